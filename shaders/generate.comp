@@ -1,0 +1,37 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Stage 1: camera rays. One path per (pixel, sample) of the pass; slot s holds pixel
+// firstPixel + s % pixelCount and sample firstSample + s / pixelCount.
+#include "lib/stage_common.glsl"
+#include "lib/path_state.glsl"
+
+void main() {
+    uint slot = gl_GlobalInvocationID.x;
+    uint pathCount = pass.pixelCount * pass.samplesInPass;
+    if (slot == 0u) {
+        P.queueCounters.c.counts[kQueueRays0] = pathCount;
+    }
+    if (slot >= pathCount) {
+        return;
+    }
+    PathInfo info = PathInfo(pass.firstPixel + slot % pass.pixelCount,
+                             pass.firstSample + slot / pass.pixelCount, 0u, 0u);
+    GpuCamera camera = P.camera;
+    uvec2 pixel = uvec2(info.pixel % camera.width, info.pixel / camera.width);
+    // Box filter: a uniform position in the pixel's square; row 0 is the top of the image.
+    vec2 jitter = segmentRandom(info, kDimCamera).xy;
+    vec2 ndc = (vec2(pixel) + jitter) / vec2(camera.width, camera.height) * 2.0f - 1.0f;
+    vec3 local = normalize(vec3(ndc.x * camera.tanHalfFovY * camera.aspect,
+                                -ndc.y * camera.tanHalfFovY, -1.0f));
+    vec3 origin = vec3(camera.cameraToWorld[0].w, camera.cameraToWorld[1].w, camera.cameraToWorld[2].w);
+    vec3 direction = normalize(vec3(dot(camera.cameraToWorld[0].xyz, local),
+                                    dot(camera.cameraToWorld[1].xyz, local),
+                                    dot(camera.cameraToWorld[2].xyz, local)));
+    storeRay(slot, origin, direction);
+    storePathInfo(slot, info);
+    P.beta.v[slot] = vec4(1.0f);
+    P.radiance.v[slot] = vec4(0.0f);
+    P.misVertex.v[slot] = vec4(origin, 0.0f);
+    P.vertexInfo.v[slot] = uvec4(camera.medium, kVertexSurface, 0u, 0u);
+    P.queueItems.v[kQueueRays0 * P.pathCapacity + slot] = slot;
+}

@@ -1,0 +1,73 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Stage 2: closest hits of this segment's rays; as the shadow variant, next-event
+// shadow rays, which pass through medium boundaries and multiply the transmittance of
+// every medium segment on the way to the light.
+#include "lib/stage_common.glsl"
+#include "lib/queues.glsl"
+#include "lib/bvh_traverse.glsl"
+#include "lib/scene_access.glsl"
+#include "lib/medium.glsl"
+
+layout(constant_id = 0) const bool kShadowRays = false;
+
+// A shadow ray crossing more boundaries than this is treated as blocked.
+const uint kMaxBoundaryCrossings = 64u;
+
+void traceClosestHit(uint slot) {
+    TraceHit hit = traceClosest(P.rayOrigin.v[slot].xyz, P.rayDirection.v[slot].xyz, kFar);
+    P.hit.v[slot] = vec4(hit.t, hit.b1, hit.b2, uintBitsToFloat(hit.triangle));
+}
+
+// Transmittance from the shadow ray's origin to its end, zero when something opaque
+// is in the way.
+vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium) {
+    vec3 tr = vec3(1.0f);
+    for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
+        TraceHit hit = traceClosest(origin, direction, distance);
+        float segment = min(hit.t, distance);
+        if (medium != kNoMediumIndex) {
+            tr *= transmittance(sigmaT(P.media.v[medium]), segment);
+        }
+        if (hit.triangle == kNoHit) {
+            return tr;
+        }
+        SurfacePoint sp = surfacePoint(hit.triangle, hit.b1, hit.b2);
+        GpuMaterial material = P.materials.v[sp.material];
+        if (material.interiorMedium < 0) {
+            return vec3(0.0f);
+        }
+        bool entering = dot(direction, sp.normal) < 0.0f;
+        medium = entering ? uint(material.interiorMedium) : sp.outsideMedium;
+        // Step past the boundary along the ray's side of it.
+        vec3 next = sp.position + (entering ? -sp.normal : sp.normal) * P.rayEpsilon;
+        distance -= dot(next - origin, direction);
+        origin = next;
+        if (distance <= 0.0f) {
+            return tr;
+        }
+    }
+    flagTruncatedLoop();
+    return vec3(0.0f);
+}
+
+void traceShadowRay(uint slot) {
+    vec4 origin = P.shadowOrigin.v[slot];
+    vec4 direction = P.shadowDirection.v[slot];
+    vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w));
+    P.radiance.v[slot].rgb += tr * P.shadowContribution.v[slot].rgb;
+}
+
+void main() {
+    uint queue = kShadowRays ? kQueueShadow : pass.currentRays;
+    uint index = gl_GlobalInvocationID.x;
+    if (index >= queueSize(queue)) {
+        return;
+    }
+    uint slot = queueItem(queue, index);
+    if (kShadowRays) {
+        traceShadowRay(slot);
+    } else {
+        traceClosestHit(slot);
+    }
+}

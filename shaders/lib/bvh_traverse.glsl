@@ -1,0 +1,102 @@
+// Closest-hit traversal of the binned-SAH BVH built on the host (src/bvh/bvh.h):
+// one ray per invocation, a short stack, nearer child first.
+#ifndef VKDR_BVH_TRAVERSE_GLSL
+#define VKDR_BVH_TRAVERSE_GLSL
+#include "constants.glsl"
+#include "intersect_triangle.glsl"
+
+const uint kBvhStackSize = 64u;
+// Bounds the loop so a corrupt tree cannot hang the device; far above any real
+// traversal, and below lavapipe's silent cap of ~65k iterations per subgroup.
+const uint kMaxTraversalSteps = 16384u;
+
+struct TraceHit {
+    float t;        // kFar on a miss
+    float b1;
+    float b2;
+    uint triangle;  // BVH-order index, kNoHit on a miss
+};
+
+// Entry distance of the ray into a box, or kFar when it misses it within tMax.
+float boxEntry(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 invDirection, float tMax) {
+    vec3 t0 = (boxMin - origin) * invDirection;
+    vec3 t1 = (boxMax - origin) * invDirection;
+    vec3 tNear = min(t0, t1);
+    vec3 tFar = max(t0, t1);
+    float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0f));
+    float exit = min(min(tFar.x, tFar.y), min(tFar.z, tMax));
+    return enter <= exit ? enter : kFar;
+}
+
+vec3 safeInverse(vec3 d) {
+    const float tiny = 1.0e-30f;
+    return vec3(1.0f) / vec3(abs(d.x) > tiny ? d.x : (d.x >= 0.0f ? tiny : -tiny),
+                             abs(d.y) > tiny ? d.y : (d.y >= 0.0f ? tiny : -tiny),
+                             abs(d.z) > tiny ? d.z : (d.z >= 0.0f ? tiny : -tiny));
+}
+
+TraceHit traceClosest(vec3 origin, vec3 direction, float tMax) {
+    TraceHit best = TraceHit(tMax, 0.0f, 0.0f, kNoHit);
+    vec3 invDirection = safeInverse(direction);
+    uint stack[kBvhStackSize];
+    uint stackSize = 0u;
+    uint node = 0u;
+    uint steps = 0u;
+    bool done = false;
+    while (!done && steps < kMaxTraversalSteps) {
+        ++steps;
+        vec4 lo = P.bvhNodes.v[2u * node];
+        vec4 hi = P.bvhNodes.v[2u * node + 1u];
+        uint firstOrChild = floatBitsToUint(lo.w);
+        uint count = floatBitsToUint(hi.w);
+        if (count > 0u) {
+            for (uint i = firstOrChild; i < firstOrChild + count; ++i) {
+                vec3 hit = intersectTriangle(origin, direction, P.triangleVertices.v[3u * i].xyz,
+                                             P.triangleVertices.v[3u * i + 1u].xyz,
+                                             P.triangleVertices.v[3u * i + 2u].xyz, best.t);
+                if (hit.x > 0.0f) {
+                    best = TraceHit(hit.x, hit.y, hit.z, i);
+                }
+            }
+            done = stackSize == 0u;
+            if (!done) {
+                node = stack[--stackSize];
+            }
+            continue;
+        }
+        uint left = firstOrChild;
+        uint right = firstOrChild + 1u;
+        float tLeft = boxEntry(P.bvhNodes.v[2u * left].xyz, P.bvhNodes.v[2u * left + 1u].xyz,
+                               origin, invDirection, best.t);
+        float tRight = boxEntry(P.bvhNodes.v[2u * right].xyz, P.bvhNodes.v[2u * right + 1u].xyz,
+                                origin, invDirection, best.t);
+        bool hitLeft = tLeft < kFar;
+        bool hitRight = tRight < kFar;
+        if (hitLeft && hitRight) {
+            uint nearChild = tLeft <= tRight ? left : right;
+            uint farChild = tLeft <= tRight ? right : left;
+            if (stackSize < kBvhStackSize) {
+                stack[stackSize++] = farChild;
+            } else {
+                flagTruncatedLoop();
+            }
+            node = nearChild;
+        } else if (hitLeft || hitRight) {
+            node = hitLeft ? left : right;
+        } else {
+            done = stackSize == 0u;
+            if (!done) {
+                node = stack[--stackSize];
+            }
+        }
+    }
+    if (!done) {
+        flagTruncatedLoop();
+    }
+    if (best.triangle == kNoHit) {
+        best.t = kFar;
+    }
+    return best;
+}
+
+#endif

@@ -1,0 +1,162 @@
+// Structs and constants shared by the C++ host and the GLSL stages, included by both
+// so a layout is written once. GLSL sees buffer references; C++ sees device addresses
+// (uint64_t). Every struct is std430-compatible and pinned with static_asserts on the
+// host (src/render/device_layout.cpp).
+#ifndef VKDR_DEVICE_TYPES_H
+#define VKDR_DEVICE_TYPES_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace vkdr::gpu {
+using vec4 = glm::vec4;
+using vec3 = glm::vec3;
+using uvec4 = glm::uvec4;
+using uint = uint32_t;
+#define VKDR_BUFFER(Type) uint64_t
+#else
+#define VKDR_BUFFER(Type) Type
+#endif
+
+// Workgroup size of every stage that walks a queue or the path slots.
+const uint kWorkgroupSize = 64;
+
+// Path slot value of PathState.hit.w when the ray left the scene.
+const uint kNoHit = 0xffffffffu;
+// Medium index for vacuum.
+const uint kNoMediumIndex = 0xffffffffu;
+
+// Kinds of vertex a medium_sample stage hands to shade.
+const uint kVertexSurface = 0u;
+const uint kVertexMedium = 1u;
+
+// Queues: indices into QueueCounters.counts and .dispatch.
+const uint kQueueRays0 = 0u;   // rays to trace this segment (double-buffered with kQueueRays1)
+const uint kQueueRays1 = 1u;
+const uint kQueueShade = 2u;   // surface and medium vertices to shade
+const uint kQueueShadow = 3u;  // next-event shadow rays
+const uint kQueueCount = 4u;
+
+struct GpuMaterial {
+    vec4 baseColor;            // rgb: Lambertian albedo factor
+    vec4 emission;             // rgb: emitted radiance
+    int baseColorTexture;      // index into the texture table, -1: none
+    int emissionTexture;       // index into the texture table, -1: none
+    int interiorMedium;        // >= 0: pass-through boundary around media[i]
+    uint doubleSided;          // 1: emits from both sides
+};
+
+struct GpuMedium {
+    vec3 sigma_a;              // absorption, per unit length
+    float g;                   // Henyey-Greenstein anisotropy
+    vec3 sigma_s;              // scattering, per unit length
+    float pad;
+};
+
+struct GpuTexture {
+    uint firstTexel;           // offset into the texel buffer
+    uint width;
+    uint height;
+    uint pad;
+};
+
+// Per triangle, in BVH leaf order (the GPU never sees the file's triangle order).
+struct GpuTriangleInfo {
+    uint material;             // index into materials
+    uint outsideMedium;        // boundaries: medium on the front side; kNoMediumIndex: vacuum
+    float lightPmf;            // probability of choosing this triangle for next-event estimation
+    uint pad;
+};
+
+struct GpuCamera {
+    vec4 cameraToWorld[3];     // rows of the 3x4 matrix
+    float tanHalfFovY;
+    float aspect;              // width / height
+    uint width;                // pixels
+    uint height;
+    uint medium;               // medium containing the camera, kNoMediumIndex: vacuum
+    uint pad0, pad1, pad2;
+};
+
+// Dispatch sizes written on the device so stages can be launched indirectly.
+struct DispatchArgs {
+    uint x, y, z, pad;
+};
+
+struct QueueCountersData {
+    uint counts[kQueueCount];
+    DispatchArgs dispatch[kQueueCount];
+    uint truncatedLoops;   // > 0: a loop hit its iteration bound (or lavapipe's silent cap)
+    uint truncatedPaths;   // paths ended by the segment limit rather than by the estimator
+    uint raysTraced;       // closest-hit and shadow rays since the host last cleared it
+    uint pad;
+};
+
+#ifndef __cplusplus
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4Buffer { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer UVec4Buffer { uvec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintBuffer { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatBuffer { float v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer MaterialBuffer { GpuMaterial v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer MediumBuffer { GpuMedium v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer TextureBuffer { GpuTexture v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer TriangleInfoBuffer { GpuTriangleInfo v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer QueueCounters { QueueCountersData c; };
+#endif
+
+// Everything a stage reads: the scene and the path state, by device address.
+struct RenderParams {
+    GpuCamera camera;
+    vec4 background;                                // rgb radiance of escaped rays
+    // Scene
+    VKDR_BUFFER(Vec4Buffer) triangleVertices;       // 3 per triangle (BVH order), xyz
+    VKDR_BUFFER(Vec4Buffer) triangleUvs;            // 2 per triangle: (uv0, uv1), (uv2, -)
+    VKDR_BUFFER(TriangleInfoBuffer) triangleInfo;
+    VKDR_BUFFER(Vec4Buffer) bvhNodes;               // 2 per node, see src/bvh/bvh.h
+    VKDR_BUFFER(MaterialBuffer) materials;
+    VKDR_BUFFER(MediumBuffer) media;
+    VKDR_BUFFER(TextureBuffer) textures;
+    VKDR_BUFFER(Vec4Buffer) texels;                 // linear RGBA
+    VKDR_BUFFER(UintBuffer) lightTriangles;         // emissive triangles (BVH-order index)
+    VKDR_BUFFER(FloatBuffer) lightCdf;              // lightCount + 1 entries, 0 .. 1
+    // Path state, one entry per path slot
+    VKDR_BUFFER(Vec4Buffer) rayOrigin;              // xyz; w: unused
+    VKDR_BUFFER(Vec4Buffer) rayDirection;           // xyz, unit length
+    VKDR_BUFFER(Vec4Buffer) beta;                   // rgb path throughput / pdf
+    VKDR_BUFFER(Vec4Buffer) radiance;               // rgb radiance gathered so far
+    VKDR_BUFFER(Vec4Buffer) misVertex;              // xyz: last scattering vertex; w: its sampling pdf (0: no MIS)
+    VKDR_BUFFER(Vec4Buffer) hit;                    // x: t, y: b1, z: b2, w: triangle (uint bits) or kNoHit
+    VKDR_BUFFER(UVec4Buffer) pathInfo;              // x: pixel, y: sample, z: depth, w: segment
+    VKDR_BUFFER(UVec4Buffer) vertexInfo;            // x: current medium, y: vertex kind
+    VKDR_BUFFER(Vec4Buffer) shadowOrigin;           // xyz; w: distance to the light point
+    VKDR_BUFFER(Vec4Buffer) shadowDirection;        // xyz; w: medium at the origin (uint bits)
+    VKDR_BUFFER(Vec4Buffer) shadowContribution;     // rgb: unoccluded next-event contribution
+    // Queues
+    VKDR_BUFFER(QueueCounters) queueCounters;
+    VKDR_BUFFER(UintBuffer) queueItems;             // kQueueCount arrays of pathCapacity slots
+    VKDR_BUFFER(Vec4Buffer) film;                   // per pixel: rgb sum over samples
+    uint pathCapacity;
+    uint lightCount;
+    uint maxDepth;
+    uint seed;
+    uint segmentLimit;                              // safety bound on segments per path
+    float rayEpsilon;                               // offset of spawned rays off a surface, scene units
+    uint pad0, pad1;
+};
+
+// Per dispatch values, in push constants next to the RenderParams address.
+struct PassConstants {
+    uint firstPixel;        // pixels [firstPixel, firstPixel + pixelCount) of this pass
+    uint pixelCount;
+    uint firstSample;       // samples [firstSample, firstSample + samplesInPass)
+    uint samplesInPass;
+    uint currentRays;       // kQueueRays0 or kQueueRays1: the queue traced this segment
+    uint queueArg;          // queue_prepare: which queue's dispatch to size
+    uint clearMask;         // queue_prepare: bit q set -> counts[q] = 0
+    uint pad;
+};
+
+#ifdef __cplusplus
+}  // namespace vkdr::gpu
+#endif
+#endif

@@ -1,0 +1,36 @@
+// The per-slot path state (structure of arrays, device_types.h) and the random numbers
+// of the path's current segment.
+#ifndef VKDR_PATH_STATE_GLSL
+#define VKDR_PATH_STATE_GLSL
+#include "rng.glsl"
+
+struct PathInfo {
+    uint pixel;
+    uint sampleIndex;
+    uint depth;    // scattering vertices so far (surface bounces + medium scattering)
+    uint segment;  // rays traced so far, pass-through boundaries included: keys the RNG
+};
+
+PathInfo loadPathInfo(uint slot) {
+    uvec4 v = P.pathInfo.v[slot];
+    return PathInfo(v.x, v.y, v.z, v.w);
+}
+
+void storePathInfo(uint slot, PathInfo info) {
+    P.pathInfo.v[slot] = uvec4(info.pixel, info.sampleIndex, info.depth, info.segment);
+}
+
+vec4 segmentRandom(PathInfo info, uint group) {
+    return uniform4(info.pixel, info.sampleIndex, info.segment, group, P.seed);
+}
+
+void storeRay(uint slot, vec3 origin, vec3 direction) {
+    P.rayOrigin.v[slot] = vec4(origin, 0.0f);
+    P.rayDirection.v[slot] = vec4(direction, 0.0f);
+}
+
+void addRadiance(uint slot, vec3 contribution) {
+    P.radiance.v[slot].rgb += contribution;
+}
+
+#endif

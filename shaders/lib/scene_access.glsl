@@ -1,0 +1,81 @@
+// Reading the scene: triangle geometry, materials with their textures, media.
+#ifndef VKDR_SCENE_ACCESS_GLSL
+#define VKDR_SCENE_ACCESS_GLSL
+#include "constants.glsl"
+
+struct SurfacePoint {
+    vec3 position;
+    vec3 normal;      // geometric, unit, on the front (counter-clockwise) side
+    vec2 uv;
+    float area;       // of the triangle
+    uint material;
+    uint outsideMedium;
+};
+
+SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
+    vec3 v0 = P.triangleVertices.v[3u * triangle].xyz;
+    vec3 v1 = P.triangleVertices.v[3u * triangle + 1u].xyz;
+    vec3 v2 = P.triangleVertices.v[3u * triangle + 2u].xyz;
+    vec4 uv01 = P.triangleUvs.v[2u * triangle];
+    vec2 uv2 = P.triangleUvs.v[2u * triangle + 1u].xy;
+    vec3 n = cross(v1 - v0, v2 - v0);
+    float doubleArea = length(n);
+    GpuTriangleInfo info = P.triangleInfo.v[triangle];
+    SurfacePoint sp;
+    sp.position = v0 + b1 * (v1 - v0) + b2 * (v2 - v0);
+    sp.normal = n / doubleArea;
+    sp.uv = (1.0f - b1 - b2) * uv01.xy + b1 * uv01.zw + b2 * uv2;
+    sp.area = 0.5f * doubleArea;
+    sp.material = info.material;
+    sp.outsideMedium = info.outsideMedium;
+    return sp;
+}
+
+// i mod n for negative i too (GLSL leaves % of negative operands undefined).
+ivec2 wrapRepeat(ivec2 i, ivec2 n) {
+    return i - n * ivec2(floor(vec2(i) / vec2(n)));
+}
+
+// Bilinear lookup with repeat wrapping; uv (0, 0) is the top-left corner of the image.
+vec3 textureLookup(int textureIndex, vec2 uv) {
+    GpuTexture tex = P.textures.v[textureIndex];
+    vec2 st = uv * vec2(tex.width, tex.height) - 0.5f;
+    vec2 cell = floor(st);
+    vec2 f = st - cell;
+    ivec2 size = ivec2(tex.width, tex.height);
+    ivec2 c0 = ivec2(cell);
+    vec3 sum = vec3(0.0f);
+    for (int corner = 0; corner < 4; ++corner) {
+        ivec2 offset = ivec2(corner & 1, corner >> 1);
+        ivec2 c = wrapRepeat(c0 + offset, size);
+        float w = (offset.x == 1 ? f.x : 1.0f - f.x) * (offset.y == 1 ? f.y : 1.0f - f.y);
+        sum += w * P.texels.v[tex.firstTexel + uint(c.y) * tex.width + uint(c.x)].rgb;
+    }
+    return sum;
+}
+
+vec3 materialAlbedo(GpuMaterial m, vec2 uv) {
+    vec3 albedo = m.baseColor.rgb;
+    if (m.baseColorTexture >= 0) {
+        albedo *= textureLookup(m.baseColorTexture, uv);
+    }
+    return albedo;
+}
+
+// Radiance leaving the surface towards `toViewer`; one-sided emitters emit on the front only.
+vec3 emittedRadiance(GpuMaterial m, vec3 normal, vec2 uv, vec3 toViewer) {
+    if (m.doubleSided == 0u && dot(normal, toViewer) <= 0.0f) {
+        return vec3(0.0f);
+    }
+    vec3 le = m.emission.rgb;
+    if (m.emissionTexture >= 0) {
+        le *= textureLookup(m.emissionTexture, uv);
+    }
+    return le;
+}
+
+vec3 sigmaT(GpuMedium medium) {
+    return medium.sigma_a + medium.sigma_s;
+}
+
+#endif

@@ -1,0 +1,25 @@
+// Included first by every stage: extensions, the shared layouts and the push constants.
+#ifndef VKDR_STAGE_COMMON_GLSL
+#define VKDR_STAGE_COMMON_GLSL
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+
+#include "device_types.h"
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RenderParamsRef {
+    RenderParams p;
+};
+
+layout(push_constant, std430) uniform Push {
+    RenderParamsRef params;
+    PassConstants pass;
+};
+
+layout(local_size_x = kWorkgroupSize) in;
+
+#define P params.p
+
+#endif

@@ -1,0 +1,13 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace vkdr {
+
+// Each subcommand registers its options on the app and returns the action to run
+// once the command line has parsed; the action returns the process exit code.
+using CommandAction = std::function<int()>;
+
+CommandAction addRenderCommand(CLI::App& app);
+CommandAction addInfoCommand(CLI::App& app);
+
+}  // namespace vkdr

@@ -1,0 +1,36 @@
+// vkdiffrender: a differentiable Monte Carlo path tracer for participating media.
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app("vkdiffrender: a differentiable volumetric path tracer on Vulkan", "vkdiffrender");
+    app.require_subcommand(1);
+    std::vector<vkdr::CommandAction> actions = {vkdr::addRenderCommand(app), vkdr::addInfoCommand(app)};
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) {
+            return app.exit(e);  // --help
+        }
+        std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
+        return 2;
+    }
+    try {
+        for (const vkdr::CommandAction& action : actions) {
+            int code = action();
+            if (code >= 0) {
+                return code;
+            }
+        }
+    } catch (const vkdr::Error& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "internal error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

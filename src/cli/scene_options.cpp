@@ -1,0 +1,28 @@
+#include "cli/scene_options.h"
+
+#include <cstdio>
+
+#include "scene/load_scene.h"
+#include "scene/parameters.h"
+
+namespace vkdr {
+
+void addSceneOptions(CLI::App& command, SceneOptions& options) {
+    command.add_option("scene", options.file, "Scene file (.gltf or .glb)")->required();
+    command.add_option("--set", options.assignments,
+                       "Override a parameter, e.g. --set media/fog/sigma_a=0.05,0.05,0.05 (repeatable; "
+                       "one value sets all three channels)");
+}
+
+Scene loadSceneWithOverrides(const SceneOptions& options) {
+    LoadedScene loaded = loadScene(options.file);
+    for (const std::string& warning : loaded.warnings) {
+        std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    }
+    for (const std::string& assignment : options.assignments) {
+        applyAssignment(loaded.scene, assignment);
+    }
+    return std::move(loaded.scene);
+}
+
+}  // namespace vkdr

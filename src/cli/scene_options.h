@@ -1,0 +1,22 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "scene/scene.h"
+
+namespace vkdr {
+
+// The scene file and its parameter overrides, shared by every subcommand.
+struct SceneOptions {
+    std::string file;
+    std::vector<std::string> assignments;  // NAME=VALUE
+};
+
+void addSceneOptions(CLI::App& command, SceneOptions& options);
+
+// Loads the scene, prints the loader's warnings, applies the --set overrides.
+Scene loadSceneWithOverrides(const SceneOptions& options);
+
+}  // namespace vkdr

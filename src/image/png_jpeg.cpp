@@ -1,0 +1,91 @@
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include "core/error.h"
+#include "image/atomic_write.h"
+#include "image/image_formats.h"
+#include "image/srgb.h"
+
+namespace vkdr {
+namespace {
+
+[[noreturn]] void failToRead(const std::filesystem::path& file, const std::string& reason) {
+    throw Error("cannot read image '" + file.string() + "': " + reason);
+}
+
+std::vector<unsigned char> readBytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) failToRead(file, "cannot open it");
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) failToRead(file, "read error");
+    return bytes;
+}
+
+// Decodes sRGB-encoded samples of a given bit depth to linear RGB; grey is
+// replicated and alpha is dropped.
+template <typename Sample>
+Image decode(const Sample* samples, int width, int height, int channels, float maxValue) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.rgb.resize(size_t(width) * height * 3);
+    bool grey = channels < 3;
+    for (size_t p = 0; p < size_t(width) * height; ++p)
+        for (int c = 0; c < 3; ++c)
+            image.rgb[3 * p + c] = linearFromSrgb(float(samples[p * channels + (grey ? 0 : c)]) / maxValue);
+    return image;
+}
+
+struct StbFree {
+    void operator()(void* pixels) const { stbi_image_free(pixels); }
+};
+
+}  // namespace
+
+void writePng(const std::filesystem::path& file, const Image& image) {
+    if (image.width <= 0 || image.height <= 0 || image.rgb.size() != size_t(image.width) * image.height * 3)
+        throw Error("cannot write PNG '" + file.string() + "': the image has no pixels or the wrong number of values");
+    std::vector<unsigned char> encoded(image.rgb.size());
+    for (size_t i = 0; i < encoded.size(); ++i)
+        encoded[i] = static_cast<unsigned char>(std::lround(255.0f * srgbFromLinear(image.rgb[i])));
+    writeAtomically(file, [&](std::ofstream& out) {
+        auto append = [](void* stream, void* data, int size) {
+            static_cast<std::ofstream*>(stream)->write(static_cast<const char*>(data), size);
+        };
+        if (!stbi_write_png_to_func(append, &out, image.width, image.height, 3, encoded.data(), image.width * 3))
+            throw Error("cannot write PNG '" + file.string() + "': encoding failed");
+    });
+}
+
+Image readPngOrJpeg(const std::filesystem::path& file) {
+    std::vector<unsigned char> bytes = readBytes(file);
+    if (bytes.empty()) failToRead(file, "the file is empty");
+    if (bytes.size() > size_t(INT_MAX)) failToRead(file, "the file is too large");
+    int length = int(bytes.size());
+
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))
+        failToRead(file, std::string("not a PNG or JPEG image we can decode (") + stbi_failure_reason() + ")");
+    if (width <= 0 || height <= 0) failToRead(file, "the image is empty");
+    if (size_t(width) * size_t(height) > kMaxImagePixels)
+        failToRead(file, std::to_string(width) + " x " + std::to_string(height) + " pixels is too large");
+
+    if (stbi_is_16_bit_from_memory(bytes.data(), length)) {
+        std::unique_ptr<stbi_us, StbFree> pixels(stbi_load_16_from_memory(bytes.data(), length, &width, &height, &channels, 0));
+        if (!pixels) failToRead(file, stbi_failure_reason());
+        return decode(pixels.get(), width, height, channels, 65535.0f);
+    }
+    std::unique_ptr<stbi_uc, StbFree> pixels(stbi_load_from_memory(bytes.data(), length, &width, &height, &channels, 0));
+    if (!pixels) failToRead(file, stbi_failure_reason());
+    return decode(pixels.get(), width, height, channels, 255.0f);
+}
+
+}  // namespace vkdr

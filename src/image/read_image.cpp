@@ -1,0 +1,26 @@
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include "core/error.h"
+#include "image/image.h"
+#include "image/image_formats.h"
+
+namespace vkdr {
+
+Image readImage(const std::filesystem::path& file) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error))
+        throw Error("cannot read image '" + file.string() + "': " +
+                    (std::filesystem::exists(file, error) ? "not a regular file" : "no such file"));
+
+    std::string extension = file.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".exr") return readExr(file);
+    if (extension == ".png" || extension == ".jpg" || extension == ".jpeg") return readPngOrJpeg(file);
+    throw Error("cannot read image '" + file.string() + "': unknown extension '" + extension +
+                "' (expected .exr, .png, .jpg or .jpeg)");
+}
+
+}  // namespace vkdr

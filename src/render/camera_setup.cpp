@@ -1,0 +1,69 @@
+#include "render/camera_setup.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "scene/medium_at.h"
+
+namespace vkdr {
+namespace {
+
+constexpr int kDefaultWidth = 512;
+constexpr int kMaxSide = 16384;
+
+const Camera& findCamera(const Scene& scene, const std::string& name) {
+    if (scene.cameras.empty()) {
+        throw Error("the scene has no perspective camera");
+    }
+    if (name.empty()) {
+        return scene.cameras.front();
+    }
+    std::string names;
+    for (const Camera& c : scene.cameras) {
+        if (c.name == name) {
+            return c;
+        }
+        names += (names.empty() ? "" : ", ") + c.name;
+    }
+    throw Error("--camera " + name + ": no such camera; the scene has: " + names);
+}
+
+}  // namespace
+
+gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
+    const Camera& camera = findCamera(scene, settings.camera);
+    if (!(camera.yfov > 0.0f && camera.yfov < 3.14f)) {
+        throw Error("camera " + camera.name + ": yfov must be in (0, pi), got " + std::to_string(camera.yfov));
+    }
+    if (settings.width < 0 || settings.height < 0 || settings.width > kMaxSide || settings.height > kMaxSide) {
+        throw Error("--width/--height must be between 1 and " + std::to_string(kMaxSide));
+    }
+    float aspect = camera.aspectRatio > 0.0f ? camera.aspectRatio : 1.0f;
+    int width = settings.width;
+    int height = settings.height;
+    if (width > 0 && height > 0) {
+        aspect = float(width) / float(height);
+    } else if (width > 0) {
+        height = std::max(1, int(std::lround(width / aspect)));
+    } else if (height > 0) {
+        width = std::max(1, int(std::lround(height * aspect)));
+    } else {
+        width = kDefaultWidth;
+        height = std::max(1, int(std::lround(width / aspect)));
+    }
+
+    gpu::GpuCamera out{};
+    for (int row = 0; row < 3; ++row) {
+        out.cameraToWorld[row] = glm::vec4(camera.cameraToWorld[0][row], camera.cameraToWorld[1][row],
+                                           camera.cameraToWorld[2][row], camera.cameraToWorld[3][row]);
+    }
+    out.tanHalfFovY = std::tan(0.5f * camera.yfov);
+    out.aspect = aspect;
+    out.width = static_cast<uint32_t>(width);
+    out.height = static_cast<uint32_t>(height);
+    int32_t medium = mediumAt(scene, glm::vec3(camera.cameraToWorld[3]));
+    out.medium = medium < 0 ? gpu::kNoMediumIndex : static_cast<uint32_t>(medium);
+    return out;
+}
+
+}  // namespace vkdr

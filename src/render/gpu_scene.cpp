@@ -1,0 +1,100 @@
+#include "render/gpu_scene.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "device_types.h"
+#include "render/light_distribution.h"
+#include "vk/context.h"
+
+namespace vkdr {
+namespace {
+
+// Offsets for spawned rays: far above float rounding at the scene's coordinates,
+// far below any feature a scene would model.
+constexpr float kRayEpsilonPerExtent = 1.0e-5f;
+
+float sceneExtent(const Scene& scene) {
+    glm::vec3 lo(std::numeric_limits<float>::max());
+    glm::vec3 hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : scene.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    return std::max(glm::length(hi - lo), 1.0e-3f);
+}
+
+uint32_t mediumIndex(int32_t medium) {
+    return medium < 0 ? gpu::kNoMediumIndex : static_cast<uint32_t>(medium);
+}
+
+std::vector<gpu::GpuMaterial> deviceMaterials(const Scene& scene) {
+    std::vector<gpu::GpuMaterial> out;
+    for (const Material& m : scene.materials) {
+        out.push_back({glm::vec4(m.baseColor, 0.0f), glm::vec4(m.emission, 0.0f), m.baseColorTexture,
+                       m.emissionTexture, m.interiorMedium, m.doubleSided ? 1u : 0u});
+    }
+    return out;
+}
+
+std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
+    std::vector<gpu::GpuMedium> out;
+    for (const Medium& m : scene.media) {
+        out.push_back({m.sigma_a, m.g, m.sigma_s, 0.0f});
+    }
+    return out;
+}
+
+}  // namespace
+
+GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh) {
+    const size_t count = bvh.triangleOrder.size();
+    LightDistribution lights = buildLightDistribution(scene);
+
+    std::vector<glm::vec4> vertices(3 * count);
+    std::vector<glm::vec4> uvs(2 * count, glm::vec4(0.0f));
+    std::vector<gpu::GpuTriangleInfo> info(count);
+    std::vector<uint32_t> bvhPosition(scene.triangles.size());
+    for (size_t i = 0; i < count; ++i) {
+        uint32_t t = bvh.triangleOrder[i];
+        bvhPosition[t] = static_cast<uint32_t>(i);
+        const glm::uvec3& tri = scene.triangles[t];
+        for (int k = 0; k < 3; ++k) {
+            vertices[3 * i + k] = glm::vec4(scene.positions[tri[k]], 0.0f);
+        }
+        if (!scene.uvs.empty()) {
+            uvs[2 * i] = glm::vec4(scene.uvs[tri[0]], scene.uvs[tri[1]]);
+            uvs[2 * i + 1] = glm::vec4(scene.uvs[tri[2]], 0.0f, 0.0f);
+        }
+        info[i] = {scene.triangleMaterial[t], mediumIndex(scene.triangleOutsideMedium[t]), lights.trianglePmf[t], 0u};
+    }
+    std::vector<uint32_t> lightTriangles;
+    for (uint32_t t : lights.triangles) {
+        lightTriangles.push_back(bvhPosition[t]);
+    }
+
+    std::vector<gpu::GpuTexture> textures;
+    std::vector<glm::vec4> texels;
+    for (const Texture& tex : scene.textures) {
+        textures.push_back({static_cast<uint32_t>(texels.size()), static_cast<uint32_t>(tex.width),
+                            static_cast<uint32_t>(tex.height), 0u});
+        texels.insert(texels.end(), tex.texels.begin(), tex.texels.end());
+    }
+
+    GpuScene gpu;
+    gpu.triangleVertices = uploadVector<glm::vec4>(context, vertices, "triangle vertices");
+    gpu.triangleUvs = uploadVector<glm::vec4>(context, uvs, "triangle uvs");
+    gpu.triangleInfo = uploadVector<gpu::GpuTriangleInfo>(context, info, "triangle info");
+    gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
+    gpu.materials = uploadVector<gpu::GpuMaterial>(context, deviceMaterials(scene), "materials");
+    gpu.media = uploadVector<gpu::GpuMedium>(context, deviceMedia(scene), "media");
+    gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
+    gpu.texels = uploadVector<glm::vec4>(context, texels, "texels");
+    gpu.lightTriangles = uploadVector<uint32_t>(context, lightTriangles, "light triangles");
+    gpu.lightCdf = uploadVector<float>(context, lights.cdf, "light cdf");
+    gpu.lightCount = static_cast<uint32_t>(lightTriangles.size());
+    gpu.rayEpsilon = kRayEpsilonPerExtent * sceneExtent(scene);
+    return gpu;
+}
+
+}  // namespace vkdr

@@ -1,0 +1,19 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace vkdr {
+
+// Emissive triangles chosen for next-event estimation in proportion to their power
+// (area x mean emitted radiance x sides that emit).
+struct LightDistribution {
+    std::vector<uint32_t> triangles;    // emissive triangles, scene order
+    std::vector<float> cdf;             // triangles.size() + 1 entries from 0 to 1
+    std::vector<float> trianglePmf;     // per scene triangle; 0 for non-emitters
+};
+
+LightDistribution buildLightDistribution(const Scene& scene);
+
+}  // namespace vkdr

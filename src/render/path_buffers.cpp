@@ -1,0 +1,36 @@
+#include "render/path_buffers.h"
+
+#include "vk/context.h"
+
+namespace vkdr {
+namespace {
+
+Buffer perPath(const VulkanContext& context, uint32_t capacity, const char* name) {
+    return Buffer(context, uint64_t(capacity) * 16, MemoryUse::Device, name);
+}
+
+}  // namespace
+
+PathBuffers::PathBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount)
+    : capacity(capacity),
+      rayOrigin(perPath(context, capacity, "ray origin")),
+      rayDirection(perPath(context, capacity, "ray direction")),
+      beta(perPath(context, capacity, "beta")),
+      radiance(perPath(context, capacity, "radiance")),
+      misVertex(perPath(context, capacity, "mis vertex")),
+      hit(perPath(context, capacity, "hit")),
+      pathInfo(perPath(context, capacity, "path info")),
+      vertexInfo(perPath(context, capacity, "vertex info")),
+      shadowOrigin(perPath(context, capacity, "shadow origin")),
+      shadowDirection(perPath(context, capacity, "shadow direction")),
+      shadowContribution(perPath(context, capacity, "shadow contribution")),
+      queueCounters(context, sizeof(gpu::QueueCountersData), MemoryUse::Device, "queue counters"),
+      queueItems(context, uint64_t(capacity) * gpu::kQueueCount * 4, MemoryUse::Device, "queue items"),
+      film(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "film"),
+      countersReadback(context, sizeof(gpu::QueueCountersData), MemoryUse::Readback, "queue counters readback") {}
+
+uint64_t PathBuffers::deviceBytes() const {
+    return uint64_t(capacity) * kBytesPerPath + film.size() + queueCounters.size();
+}
+
+}  // namespace vkdr

@@ -1,0 +1,29 @@
+#pragma once
+#include <cstdint>
+
+#include "device_types.h"
+#include "vk/buffer.h"
+
+namespace vkdr {
+
+class VulkanContext;
+
+// Structure-of-arrays path state for `capacity` paths in flight, the work queues, and
+// the film. Memory depends on the capacity and the image, never on the path depth.
+struct PathBuffers {
+    PathBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount);
+
+    uint32_t capacity;
+    Buffer rayOrigin, rayDirection, beta, radiance, misVertex, hit, pathInfo, vertexInfo;
+    Buffer shadowOrigin, shadowDirection, shadowContribution;
+    Buffer queueCounters;
+    Buffer queueItems;
+    Buffer film;
+    Buffer countersReadback;
+
+    // Device bytes per path slot, for sizing passes.
+    static constexpr uint64_t kBytesPerPath = 11 * 16 + gpu::kQueueCount * 4;
+    uint64_t deviceBytes() const;
+};
+
+}  // namespace vkdr

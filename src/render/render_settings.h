@@ -1,0 +1,18 @@
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace vkdr {
+
+struct RenderSettings {
+    std::string camera;      // empty: the scene's first perspective camera
+    int width = 0;           // 0: from the other side and the camera's aspect ratio
+    int height = 0;          //    (512 wide when neither is given)
+    uint32_t spp = 16;       // samples per pixel
+    uint32_t maxDepth = 8;   // scattering vertices per path, as in pbrt: 1 = direct light only
+    uint32_t seed = 0;
+    // Upper bound on paths in flight per pass; 0 picks one from the device's memory.
+    uint32_t pathsPerPass = 0;
+};
+
+}  // namespace vkdr

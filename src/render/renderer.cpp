@@ -1,0 +1,202 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "core/error.h"
+#include "render/camera_setup.h"
+#include "render/push_constants.h"
+#include "vk/commands.h"
+#include "vk/context.h"
+
+namespace vkdr {
+namespace {
+
+// Paths in flight per pass: enough to fill a large GPU, and a bound on memory.
+constexpr uint32_t kMaxPathsPerPass = 1u << 20;
+// Segments recorded before the host looks whether any path is still alive.
+constexpr uint32_t kSegmentsPerBatch = 8;
+
+// Pass-through boundaries add segments without adding depth; the limit only guards
+// against a path caught between boundaries by round-off.
+uint32_t segmentLimit(uint32_t maxDepth) {
+    return 4 * (maxDepth + 1) + 64;
+}
+
+uint32_t bit(uint32_t queue) {
+    return 1u << queue;
+}
+
+uint32_t pathCapacity(const VulkanContext& context, const RenderSettings& settings, uint64_t pixels) {
+    uint64_t wanted = settings.pathsPerPass > 0 ? settings.pathsPerPass : kMaxPathsPerPass;
+    // Leave most of the device's memory to the scene.
+    uint64_t affordable = context.deviceLocalHeapBytes() / 4 / PathBuffers::kBytesPerPath;
+    uint64_t needed = pixels * settings.spp;
+    return static_cast<uint32_t>(std::max<uint64_t>(1, std::min({wanted, affordable, needed})));
+}
+
+}  // namespace
+
+Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& bvh, const RenderSettings& settings)
+    : context_(context),
+      settings_(settings),
+      camera_(setUpCamera(scene, settings)),
+      background_(scene.background),
+      scene_(uploadScene(context, scene, bvh)),
+      pipelines_(context) {
+    if (settings.spp == 0) {
+        throw Error("--spp must be at least 1");
+    }
+    uint32_t pixels = camera_.width * camera_.height;
+    paths_ = std::make_unique<PathBuffers>(context, pathCapacity(context, settings, pixels), pixels);
+    gpu::RenderParams params = renderParams();
+    params_ = uploadBuffer(context, std::as_bytes(std::span(&params, 1)), "render params");
+}
+
+gpu::RenderParams Renderer::renderParams() const {
+    const PathBuffers& b = *paths_;
+    gpu::RenderParams p{};
+    p.camera = camera_;
+    p.background = glm::vec4(background_, 0.0f);
+    p.triangleVertices = scene_.triangleVertices.address();
+    p.triangleUvs = scene_.triangleUvs.address();
+    p.triangleInfo = scene_.triangleInfo.address();
+    p.bvhNodes = scene_.bvhNodes.address();
+    p.materials = scene_.materials.address();
+    p.media = scene_.media.address();
+    p.textures = scene_.textures.address();
+    p.texels = scene_.texels.address();
+    p.lightTriangles = scene_.lightTriangles.address();
+    p.lightCdf = scene_.lightCdf.address();
+    p.rayOrigin = b.rayOrigin.address();
+    p.rayDirection = b.rayDirection.address();
+    p.beta = b.beta.address();
+    p.radiance = b.radiance.address();
+    p.misVertex = b.misVertex.address();
+    p.hit = b.hit.address();
+    p.pathInfo = b.pathInfo.address();
+    p.vertexInfo = b.vertexInfo.address();
+    p.shadowOrigin = b.shadowOrigin.address();
+    p.shadowDirection = b.shadowDirection.address();
+    p.shadowContribution = b.shadowContribution.address();
+    p.queueCounters = b.queueCounters.address();
+    p.queueItems = b.queueItems.address();
+    p.film = b.film.address();
+    p.pathCapacity = b.capacity;
+    p.lightCount = scene_.lightCount;
+    p.maxDepth = settings_.maxDepth;
+    p.seed = settings_.seed;
+    p.segmentLimit = segmentLimit(settings_.maxDepth);
+    p.rayEpsilon = scene_.rayEpsilon;
+    return p;
+}
+
+Image Renderer::render(const ProgressCallback& progress) {
+    auto start = std::chrono::steady_clock::now();
+    stats_ = {};
+    const uint32_t pixels = camera_.width * camera_.height;
+    {
+        CommandRecorder recorder(context_);
+        recorder.fill(paths_->film, 0);
+        recorder.fill(paths_->queueCounters, 0);
+        recorder.submitAndWait();
+    }
+    // A pass covers whole samples of as many pixels as fit, or several samples of every pixel.
+    const uint32_t capacity = paths_->capacity;
+    const uint32_t pixelsPerPass = std::min(pixels, capacity);
+    const uint32_t samplesPerPass = std::max(1u, std::min(settings_.spp, capacity / pixels));
+    const uint64_t totalPasses = uint64_t((pixels + pixelsPerPass - 1) / pixelsPerPass) *
+                                 ((settings_.spp + samplesPerPass - 1) / samplesPerPass);
+    uint64_t passesDone = 0;
+    for (uint32_t sample = 0; sample < settings_.spp; sample += samplesPerPass) {
+        for (uint32_t pixel = 0; pixel < pixels; pixel += pixelsPerPass) {
+            runPass({pixel, std::min(pixelsPerPass, pixels - pixel), sample,
+                     std::min(samplesPerPass, settings_.spp - sample)});
+            if (progress) {
+                progress(double(++passesDone) / double(totalPasses));
+            }
+        }
+    }
+
+    Image image;
+    image.width = int(camera_.width);
+    image.height = int(camera_.height);
+    std::vector<glm::vec4> film(pixels);
+    downloadBuffer(context_, paths_->film, std::as_writable_bytes(std::span(film)));
+    image.rgb.resize(size_t(pixels) * 3);
+    const float scale = 1.0f / float(settings_.spp);
+    for (uint32_t i = 0; i < pixels; ++i) {
+        for (int c = 0; c < 3; ++c) {
+            image.rgb[3 * i + c] = film[i][c] * scale;
+        }
+    }
+    stats_.paths = uint64_t(pixels) * settings_.spp;
+    stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return image;
+}
+
+void Renderer::recordSegment(CommandRecorder& recorder, const gpu::PassConstants& constants, uint32_t currentRays) {
+    const uint32_t nextRays = currentRays == gpu::kQueueRays0 ? gpu::kQueueRays1 : gpu::kQueueRays0;
+    const Buffer& counters = paths_->queueCounters;
+    auto dispatchOffset = [](uint32_t queue) {
+        return offsetof(gpu::QueueCountersData, dispatch) + queue * sizeof(gpu::DispatchArgs);
+    };
+    PushConstants push{params_.address(), constants};
+    push.pass.currentRays = currentRays;
+    auto prepare = [&](uint32_t queue, uint32_t clearMask) {
+        PushConstants p = push;
+        p.pass.queueArg = queue;
+        p.pass.clearMask = clearMask;
+        recorder.dispatch(pipelines_.queuePrepare, 1, p.bytes());
+        recorder.barrier();
+    };
+    auto stage = [&](const ComputePipeline& pipeline, uint32_t queue) {
+        recorder.dispatchIndirect(pipeline, counters, dispatchOffset(queue), push.bytes());
+        recorder.barrier();
+    };
+    prepare(currentRays, bit(nextRays) | bit(gpu::kQueueShade) | bit(gpu::kQueueShadow));
+    stage(pipelines_.intersect, currentRays);
+    stage(pipelines_.mediumSample, currentRays);
+    prepare(gpu::kQueueShade, 0);
+    stage(pipelines_.shade, gpu::kQueueShade);
+    prepare(gpu::kQueueShadow, 0);
+    stage(pipelines_.intersectShadow, gpu::kQueueShadow);
+}
+
+void Renderer::runPass(const PassRange& range) {
+    gpu::PassConstants constants{range.firstPixel, range.pixelCount, range.firstSample, range.samplesInPass,
+                                 gpu::kQueueRays0, 0, 0, 0};
+    PushConstants push{params_.address(), constants};
+    CommandRecorder recorder(context_);
+    recorder.dispatch(pipelines_.generate, range.pixelCount * range.samplesInPass, push.bytes());
+    recorder.barrier();
+    uint32_t currentRays = gpu::kQueueRays0;
+    const uint32_t segments = segmentLimit(settings_.maxDepth);
+    gpu::QueueCountersData counters{};
+    for (uint32_t segment = 0; segment < segments;) {
+        for (uint32_t k = 0; k < kSegmentsPerBatch && segment < segments; ++k, ++segment) {
+            recordSegment(recorder, constants, currentRays);
+            currentRays = currentRays == gpu::kQueueRays0 ? gpu::kQueueRays1 : gpu::kQueueRays0;
+        }
+        recorder.copy(paths_->queueCounters, paths_->countersReadback, sizeof(counters));
+        recorder.submitAndWait();
+        std::memcpy(&counters, paths_->countersReadback.mapped(), sizeof(counters));
+        if (counters.counts[currentRays] == 0) {
+            break;
+        }
+    }
+    recorder.dispatch(pipelines_.film, range.pixelCount, push.bytes());
+    recorder.barrier();
+    // Start the next pass's ray count from zero.
+    recorder.fillRange(paths_->queueCounters, offsetof(gpu::QueueCountersData, raysTraced), 4, 0);
+    recorder.submitAndWait();
+    stats_.rays += counters.raysTraced;
+    stats_.truncatedPaths = counters.truncatedPaths;
+    if (counters.truncatedLoops > 0) {
+        throw Error("internal: " + std::to_string(counters.truncatedLoops) +
+                    " BVH traversals or shadow rays hit their iteration bound; the image would be wrong");
+    }
+}
+
+}  // namespace vkdr

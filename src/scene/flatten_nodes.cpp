@@ -1,0 +1,310 @@
+#include "scene/flatten_nodes.h"
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "scene/gltf_accessors.h"
+
+namespace vkdr {
+namespace {
+
+glm::mat4 localTransform(const tinygltf::Node& node) {
+    if (node.matrix.size() == 16) {
+        return glm::mat4(glm::make_mat4(node.matrix.data()));  // column-major, as glm
+    }
+    glm::mat4 transform(1.0f);
+    if (node.translation.size() == 3) {
+        transform = glm::translate(transform, glm::vec3(glm::make_vec3(node.translation.data())));
+    }
+    if (node.rotation.size() == 4) {
+        // glTF stores (x, y, z, w); glm's constructor takes w first.
+        glm::quat rotation(float(node.rotation[3]), float(node.rotation[0]),
+                           float(node.rotation[1]), float(node.rotation[2]));
+        transform *= glm::mat4_cast(rotation);
+    }
+    if (node.scale.size() == 3) {
+        transform = glm::scale(transform, glm::vec3(glm::make_vec3(node.scale.data())));
+    }
+    return transform;
+}
+
+const char* modeName(int mode) {
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    default: return "unknown";
+    }
+}
+
+std::string describe(std::string_view array, size_t index, const std::string& name) {
+    return indexed(array, index) + (name.empty() ? "" : " ('" + name + "')");
+}
+
+class NodeFlattener {
+public:
+    NodeFlattener(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene)
+        : model_(model), diagnostics_(diagnostics), scene_(scene),
+          visiting_(model.nodes.size(), false) {}
+
+    void visit(int nodeIndex, const glm::mat4& parentToWorld, const std::string& field) {
+        if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size()) {
+            diagnostics_.fail(field, "node " + std::to_string(nodeIndex) + " out of range (" +
+                                         std::to_string(model_.nodes.size()) + " nodes)");
+        }
+        if (visiting_[size_t(nodeIndex)]) {
+            diagnostics_.fail(field, "node " + std::to_string(nodeIndex) +
+                                         " is its own ancestor (cycle in the node hierarchy)");
+        }
+        visiting_[size_t(nodeIndex)] = true;
+        const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
+        std::string nodeField = indexed("nodes", size_t(nodeIndex));
+        glm::mat4 nodeToWorld = parentToWorld * localTransform(node);
+        if (node.skin >= 0) {
+            diagnostics_.warn(nodeField + ".skin", "skinning is ignored; the bind pose is used");
+        }
+        if (node.mesh >= 0) {
+            addMeshInstance(size_t(nodeIndex), nodeToWorld);
+        }
+        if (node.camera >= 0) {
+            addCamera(node, nodeField, nodeToWorld);
+        }
+        for (size_t c = 0; c < node.children.size(); ++c) {
+            visit(node.children[c], nodeToWorld, indexed(nodeField + ".children", c));
+        }
+        visiting_[size_t(nodeIndex)] = false;
+    }
+
+    std::vector<MeshInstance> takeInstances() { return std::move(instances_); }
+
+private:
+    void addMeshInstance(size_t nodeIndex, const glm::mat4& meshToWorld) {
+        const tinygltf::Node& node = model_.nodes[nodeIndex];
+        if (size_t(node.mesh) >= model_.meshes.size()) {
+            diagnostics_.fail(indexed("nodes", nodeIndex) + ".mesh",
+                              "mesh " + std::to_string(node.mesh) + " out of range (" +
+                                  std::to_string(model_.meshes.size()) + " meshes)");
+        }
+        const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
+        MeshInstance instance;
+        instance.description = describe("meshes", size_t(node.mesh), mesh.name) + " at " +
+                               describe("nodes", nodeIndex, node.name);
+        instance.firstTriangle = uint32_t(scene_.triangles.size());
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            addPrimitive(mesh.primitives[p],
+                         indexed(indexed("meshes", size_t(node.mesh)) + ".primitives", p),
+                         meshToWorld);
+        }
+        instance.triangleCount = uint32_t(scene_.triangles.size()) - instance.firstTriangle;
+        instances_.push_back(std::move(instance));
+    }
+
+    void addPrimitive(const tinygltf::Primitive& primitive, const std::string& field,
+                      const glm::mat4& meshToWorld) {
+        int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            diagnostics_.fail(field + ".mode", std::string("only triangles are supported, got mode ") +
+                                                   std::to_string(mode) + " (" + modeName(mode) + ")");
+        }
+        auto position = primitive.attributes.find("POSITION");
+        if (position == primitive.attributes.end()) {
+            diagnostics_.fail(field + ".attributes", "no POSITION attribute");
+        }
+        if (primitive.attributes.count("NORMAL")) {
+            diagnostics_.warn("", "vertex normals are ignored; shading uses flat triangle normals");
+        }
+        if (!primitive.targets.empty()) {
+            diagnostics_.warn(field + ".targets", "morph targets are ignored");
+        }
+        std::vector<glm::vec3> positions =
+            readPositions(model_, position->second, diagnostics_, field + ".attributes.POSITION");
+        std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
+        if (auto texcoord = primitive.attributes.find("TEXCOORD_0");
+            texcoord != primitive.attributes.end()) {
+            uvs = readTexcoords(model_, texcoord->second, diagnostics_, field + ".attributes.TEXCOORD_0");
+            if (uvs.size() != positions.size()) {
+                diagnostics_.fail(field + ".attributes.TEXCOORD_0",
+                                  std::to_string(uvs.size()) + " elements, POSITION has " +
+                                      std::to_string(positions.size()));
+            }
+        }
+        std::vector<uint32_t> indices;
+        if (primitive.indices >= 0) {
+            indices = readIndices(model_, primitive.indices, diagnostics_, field + ".indices");
+        } else {
+            indices.resize(positions.size());
+            for (size_t i = 0; i < indices.size(); ++i) {
+                indices[i] = uint32_t(i);
+            }
+        }
+        for (uint32_t index : indices) {
+            if (index >= positions.size()) {
+                diagnostics_.fail(field + ".indices", "vertex index " + std::to_string(index) +
+                                                          " out of range (" +
+                                                          std::to_string(positions.size()) +
+                                                          " vertices)");
+            }
+        }
+        uint32_t material = materialIndex(primitive.material, field + ".material");
+        // A mirroring transform turns counter-clockwise triangles clockwise (glTF spec,
+        // "Meshes": the determinant decides the winding), so swap two corners back.
+        bool mirrored = glm::determinant(glm::mat3(meshToWorld)) < 0.0f;
+
+        uint32_t base = uint32_t(scene_.positions.size());
+        for (size_t v = 0; v < positions.size(); ++v) {
+            glm::vec3 world = glm::vec3(meshToWorld * glm::vec4(positions[v], 1.0f));
+            if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z)) {
+                diagnostics_.fail(field + ".attributes.POSITION",
+                                  "vertex " + std::to_string(v) + " is not finite in world space");
+            }
+            scene_.positions.push_back(world);
+        }
+        scene_.uvs.insert(scene_.uvs.end(), uvs.begin(), uvs.end());
+        for (glm::uvec3 triangle : triangleList(mode, indices, field)) {
+            if (mirrored) {
+                std::swap(triangle.y, triangle.z);
+            }
+            scene_.triangles.push_back(triangle + glm::uvec3(base));
+            scene_.triangleMaterial.push_back(material);
+        }
+    }
+
+    std::vector<glm::uvec3> triangleList(int mode, const std::vector<uint32_t>& indices,
+                                         const std::string& field) const {
+        std::vector<glm::uvec3> triangles;
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (indices.size() % 3 != 0) {
+                diagnostics_.fail(field, std::to_string(indices.size()) +
+                                             " vertices do not make whole triangles");
+            }
+            for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+                triangles.emplace_back(indices[i], indices[i + 1], indices[i + 2]);
+            }
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            // Every other strip triangle is listed clockwise; swap to keep the winding.
+            for (size_t i = 0; i + 2 < indices.size(); ++i) {
+                if (i % 2 == 0) {
+                    triangles.emplace_back(indices[i], indices[i + 1], indices[i + 2]);
+                } else {
+                    triangles.emplace_back(indices[i + 1], indices[i], indices[i + 2]);
+                }
+            }
+        } else {
+            for (size_t i = 1; i + 1 < indices.size(); ++i) {
+                triangles.emplace_back(indices[0], indices[i], indices[i + 1]);
+            }
+        }
+        return triangles;
+    }
+
+    uint32_t materialIndex(int material, const std::string& field) {
+        if (material >= 0) {
+            if (size_t(material) >= model_.materials.size()) {
+                diagnostics_.fail(field, "material " + std::to_string(material) +
+                                             " out of range (" +
+                                             std::to_string(model_.materials.size()) +
+                                             " materials)");
+            }
+            return uint32_t(material);
+        }
+        if (!defaultMaterial_) {
+            Material fallback;  // glTF's default: white, not emissive, single-sided
+            fallback.name = "default";
+            for (const Material& existing : scene_.materials) {
+                if (existing.name == fallback.name) {
+                    fallback.name = std::to_string(scene_.materials.size());
+                }
+            }
+            scene_.materials.push_back(fallback);
+            defaultMaterial_ = uint32_t(scene_.materials.size() - 1);
+        }
+        return *defaultMaterial_;
+    }
+
+    void addCamera(const tinygltf::Node& node, const std::string& nodeField,
+                   const glm::mat4& cameraToWorld) {
+        if (size_t(node.camera) >= model_.cameras.size()) {
+            diagnostics_.fail(nodeField + ".camera", "camera " + std::to_string(node.camera) +
+                                                         " out of range (" +
+                                                         std::to_string(model_.cameras.size()) +
+                                                         " cameras)");
+        }
+        const tinygltf::Camera& source = model_.cameras[size_t(node.camera)];
+        std::string cameraField = indexed("cameras", size_t(node.camera));
+        if (source.type != "perspective") {
+            diagnostics_.warn(cameraField, "only perspective cameras are supported; skipped");
+            return;
+        }
+        if (!(source.perspective.yfov > 0.0 && source.perspective.yfov < std::numbers::pi)) {
+            diagnostics_.fail(cameraField + ".perspective.yfov",
+                              "must be in (0, pi), got " + formatNumber(source.perspective.yfov));
+        }
+        Camera camera;
+        camera.name = !node.name.empty() ? node.name : !source.name.empty() ? source.name : cameraField;
+        // Rays are built from the axes, so keep the rotation and position only.
+        camera.cameraToWorld = glm::mat4(glm::vec4(glm::normalize(glm::vec3(cameraToWorld[0])), 0.0f),
+                                         glm::vec4(glm::normalize(glm::vec3(cameraToWorld[1])), 0.0f),
+                                         glm::vec4(glm::normalize(glm::vec3(cameraToWorld[2])), 0.0f),
+                                         cameraToWorld[3]);
+        camera.yfov = float(source.perspective.yfov);
+        camera.aspectRatio = float(source.perspective.aspectRatio);
+        scene_.cameras.push_back(std::move(camera));
+    }
+
+    const tinygltf::Model& model_;
+    GltfDiagnostics& diagnostics_;
+    Scene& scene_;
+    std::vector<bool> visiting_;  // nodes on the current root-to-node path
+    std::optional<uint32_t> defaultMaterial_;
+    std::vector<MeshInstance> instances_;
+};
+
+// The node indices to start from, and the JSON path that lists them.
+std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model,
+                                                   const GltfDiagnostics& diagnostics) {
+    if (model.defaultScene >= 0 && size_t(model.defaultScene) >= model.scenes.size()) {
+        diagnostics.fail("scene", "scene " + std::to_string(model.defaultScene) +
+                                      " out of range (" + std::to_string(model.scenes.size()) +
+                                      " scenes)");
+    }
+    if (!model.scenes.empty()) {
+        size_t scene = model.defaultScene >= 0 ? size_t(model.defaultScene) : 0;
+        return {model.scenes[scene].nodes, indexed("scenes", scene) + ".nodes"};
+    }
+    std::vector<bool> isChild(model.nodes.size(), false);
+    for (const tinygltf::Node& node : model.nodes) {
+        for (int child : node.children) {
+            if (child >= 0 && size_t(child) < isChild.size()) {
+                isChild[size_t(child)] = true;
+            }
+        }
+    }
+    std::vector<int> roots;
+    for (size_t n = 0; n < model.nodes.size(); ++n) {
+        if (!isChild[n]) {
+            roots.push_back(int(n));
+        }
+    }
+    return {roots, "nodes"};
+}
+
+}  // namespace
+
+std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnostics& diagnostics,
+                                       Scene& scene) {
+    NodeFlattener flattener(model, diagnostics, scene);
+    auto [roots, field] = rootNodes(model, diagnostics);
+    for (size_t r = 0; r < roots.size(); ++r) {
+        flattener.visit(roots[r], glm::mat4(1.0f), indexed(field, r));
+    }
+    return flattener.takeInstances();
+}
+
+}  // namespace vkdr

@@ -1,0 +1,29 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "scene/gltf_diagnostics.h"
+#include "scene/scene.h"
+
+namespace vkdr {
+
+// The triangles one node's mesh contributed, contiguous in Scene::triangles.
+struct MeshInstance {
+    std::string description;  // for messages, e.g. "meshes[2] ('Box') at nodes[5] ('Smoke')"
+    uint32_t firstTriangle = 0;
+    uint32_t triangleCount = 0;
+};
+
+// Walks the glTF scene's node hierarchy (the default scene, else the first, else every
+// root node) and bakes each mesh instance into world space: appends to
+// Scene::positions, uvs, triangles and triangleMaterial, and to Scene::cameras in the
+// order the nodes are visited. Triangles are wound counter-clockwise seen from the
+// front in world space, even under mirroring transforms. Primitives without a material
+// get a glTF-default material named "default", appended to Scene::materials.
+std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnostics& diagnostics,
+                                       Scene& scene);
+
+}  // namespace vkdr

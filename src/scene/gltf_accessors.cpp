@@ -1,0 +1,146 @@
+#include "scene/gltf_accessors.h"
+
+#include <cstring>
+#include <initializer_list>
+
+namespace vkdr {
+namespace {
+
+// Where an accessor's elements lie, once every index and size has been checked.
+struct ElementRange {
+    const unsigned char* first = nullptr;
+    size_t stride = 0;  // bytes from one element to the next
+    size_t count = 0;
+    int componentType = 0;
+};
+
+ElementRange checkedElements(const tinygltf::Model& model, int accessorIndex, int type,
+                             std::initializer_list<int> componentTypes,
+                             const GltfDiagnostics& diagnostics, std::string_view field) {
+    if (accessorIndex < 0 || size_t(accessorIndex) >= model.accessors.size()) {
+        diagnostics.fail(field, "accessor " + std::to_string(accessorIndex) +
+                                    " out of range (" + std::to_string(model.accessors.size()) +
+                                    " accessors)");
+    }
+    const tinygltf::Accessor& accessor = model.accessors[size_t(accessorIndex)];
+    std::string accessorField = indexed("accessors", size_t(accessorIndex));
+    if (accessor.sparse.isSparse) {
+        diagnostics.fail(accessorField, "sparse accessors are not supported");
+    }
+    bool allowedComponent = false;
+    for (int componentType : componentTypes) {
+        allowedComponent = allowedComponent || accessor.componentType == componentType;
+    }
+    if (accessor.type != type || !allowedComponent) {
+        diagnostics.fail(accessorField, "element type (type " + std::to_string(accessor.type) +
+                                            ", componentType " +
+                                            std::to_string(accessor.componentType) +
+                                            ") is not allowed for " + std::string(field));
+    }
+    if (accessor.bufferView < 0 || size_t(accessor.bufferView) >= model.bufferViews.size()) {
+        diagnostics.fail(accessorField + ".bufferView",
+                         "buffer view " + std::to_string(accessor.bufferView) +
+                             " out of range (" + std::to_string(model.bufferViews.size()) +
+                             " buffer views)");
+    }
+    const tinygltf::BufferView& view = model.bufferViews[size_t(accessor.bufferView)];
+    std::string viewField = indexed("bufferViews", size_t(accessor.bufferView));
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size()) {
+        diagnostics.fail(viewField + ".buffer", "buffer " + std::to_string(view.buffer) +
+                                                    " out of range (" +
+                                                    std::to_string(model.buffers.size()) +
+                                                    " buffers)");
+    }
+    const tinygltf::Buffer& buffer = model.buffers[size_t(view.buffer)];
+    if (view.byteOffset + view.byteLength > buffer.data.size()) {
+        diagnostics.fail(viewField, "byteOffset + byteLength = " +
+                                        std::to_string(view.byteOffset + view.byteLength) +
+                                        " exceeds the " + std::to_string(buffer.data.size()) +
+                                        " bytes of " + indexed("buffers", size_t(view.buffer)));
+    }
+
+    size_t elementSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType)) *
+                                tinygltf::GetNumComponentsInType(uint32_t(accessor.type)));
+    size_t stride = view.byteStride == 0 ? elementSize : view.byteStride;
+    if (stride < elementSize) {
+        diagnostics.fail(viewField + ".byteStride",
+                         "stride " + std::to_string(stride) + " is smaller than the " +
+                             std::to_string(elementSize) + "-byte elements of " + accessorField);
+    }
+    size_t needed = accessor.count == 0
+                        ? 0
+                        : accessor.byteOffset + stride * (accessor.count - 1) + elementSize;
+    if (needed > view.byteLength) {
+        diagnostics.fail(accessorField, std::to_string(accessor.count) + " elements need " +
+                                            std::to_string(needed) + " bytes but " + viewField +
+                                            " holds " + std::to_string(view.byteLength));
+    }
+    return {buffer.data.data() + view.byteOffset + accessor.byteOffset, stride, accessor.count,
+            accessor.componentType};
+}
+
+template <typename T>
+T load(const unsigned char* bytes) {
+    T value;
+    std::memcpy(&value, bytes, sizeof(T));  // buffers need not be aligned for T
+    return value;
+}
+
+float normalizedComponent(const unsigned char* bytes, int componentType) {
+    switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(load<uint8_t>(bytes)) / 255.0f;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return float(load<uint16_t>(bytes)) / 65535.0f;
+    default: return load<float>(bytes);
+    }
+}
+
+}  // namespace
+
+std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor,
+                                     const GltfDiagnostics& diagnostics, std::string_view field) {
+    ElementRange range = checkedElements(model, accessor, TINYGLTF_TYPE_VEC3,
+                                         {TINYGLTF_COMPONENT_TYPE_FLOAT}, diagnostics, field);
+    std::vector<glm::vec3> positions(range.count);
+    for (size_t i = 0; i < range.count; ++i) {
+        positions[i] = load<glm::vec3>(range.first + i * range.stride);
+    }
+    return positions;
+}
+
+std::vector<glm::vec2> readTexcoords(const tinygltf::Model& model, int accessor,
+                                     const GltfDiagnostics& diagnostics, std::string_view field) {
+    ElementRange range = checkedElements(
+        model, accessor, TINYGLTF_TYPE_VEC2,
+        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+        diagnostics, field);
+    size_t componentSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(range.componentType)));
+    std::vector<glm::vec2> uvs(range.count);
+    for (size_t i = 0; i < range.count; ++i) {
+        const unsigned char* element = range.first + i * range.stride;
+        uvs[i] = {normalizedComponent(element, range.componentType),
+                  normalizedComponent(element + componentSize, range.componentType)};
+    }
+    return uvs;
+}
+
+std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor,
+                                  const GltfDiagnostics& diagnostics, std::string_view field) {
+    ElementRange range = checkedElements(
+        model, accessor, TINYGLTF_TYPE_SCALAR,
+        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+        diagnostics, field);
+    std::vector<uint32_t> indices(range.count);
+    for (size_t i = 0; i < range.count; ++i) {
+        const unsigned char* element = range.first + i * range.stride;
+        switch (range.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indices[i] = load<uint8_t>(element); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: indices[i] = load<uint16_t>(element); break;
+        default: indices[i] = load<uint32_t>(element); break;
+        }
+    }
+    return indices;
+}
+
+}  // namespace vkdr

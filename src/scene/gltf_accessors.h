@@ -1,0 +1,28 @@
+#pragma once
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tiny_gltf.h>
+
+#include "scene/gltf_diagnostics.h"
+
+namespace vkdr {
+
+// Typed copies of accessor data. Each read checks the accessor index, its buffer view
+// and buffer indices, that the buffers hold every element, and that the element type is
+// one the attribute allows. `field` names the referring property, e.g.
+// "meshes[0].primitives[1].attributes.POSITION".
+
+std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor,
+                                     const GltfDiagnostics& diagnostics, std::string_view field);
+
+// Float, or normalized unsigned byte / short (KHR_mesh_quantization spellings).
+std::vector<glm::vec2> readTexcoords(const tinygltf::Model& model, int accessor,
+                                     const GltfDiagnostics& diagnostics, std::string_view field);
+
+std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor,
+                                  const GltfDiagnostics& diagnostics, std::string_view field);
+
+}  // namespace vkdr

@@ -1,0 +1,108 @@
+#include "scene/gltf_materials.h"
+
+#include <set>
+
+#include "scene/gltf_media.h"
+#include "scene/gltf_textures.h"
+#include "scene/gltf_values.h"
+
+namespace vkdr {
+namespace {
+
+std::vector<std::string> uniqueMaterialNames(const tinygltf::Model& model,
+                                             GltfDiagnostics& diagnostics) {
+    std::vector<std::string> names;
+    std::set<std::string> taken;
+    for (size_t i = 0; i < model.materials.size(); ++i) {
+        std::string name = model.materials[i].name;
+        if (!name.empty() && taken.count(name)) {
+            diagnostics.warn(indexed("materials", i) + ".name",
+                             "'" + name + "' is used by an earlier material; this one is named '" +
+                                 std::to_string(i) + "'");
+            name.clear();
+        }
+        if (name.empty()) {
+            name = std::to_string(i);
+        }
+        taken.insert(name);
+        names.push_back(std::move(name));
+    }
+    return names;
+}
+
+void requireRange(const GltfDiagnostics& diagnostics, glm::vec3 rgb, float low, float high,
+                  const std::string& field) {
+    for (int c = 0; c < 3; ++c) {
+        if (rgb[c] < low || rgb[c] > high) {
+            diagnostics.fail(indexed(field, size_t(c)),
+                             "must be in [" + formatNumber(low) + ", " + formatNumber(high) +
+                                 "], got " + formatNumber(rgb[c]));
+        }
+    }
+}
+
+void warnAboutIgnoredProperties(const tinygltf::Material& material, size_t index,
+                                GltfDiagnostics& diagnostics) {
+    if (material.normalTexture.index >= 0 || material.occlusionTexture.index >= 0 ||
+        material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0) {
+        diagnostics.warn("", "normal, occlusion and metallic-roughness textures are ignored; "
+                             "surfaces are Lambertian");
+    }
+    if (material.alphaMode != "OPAQUE") {
+        diagnostics.warn(indexed("materials", index) + ".alphaMode",
+                         "alpha is ignored; the surface is opaque");
+    }
+}
+
+float emissiveStrength(const tinygltf::Material& material, size_t index,
+                       const GltfDiagnostics& diagnostics) {
+    auto extension = material.extensions.find("KHR_materials_emissive_strength");
+    if (extension == material.extensions.end()) {
+        return 1.0f;
+    }
+    std::string field = indexed("materials", index) + ".extensions.KHR_materials_emissive_strength";
+    double strength = readNumber(diagnostics, extension->second, field, "emissiveStrength", 1.0);
+    if (strength < 0.0) {
+        diagnostics.fail(field + ".emissiveStrength", "must be >= 0, got " + formatNumber(strength));
+    }
+    return float(strength);
+}
+
+}  // namespace
+
+void readMaterials(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene) {
+    SrgbTextureCache textures(model, diagnostics, scene.textures);
+    std::vector<std::string> names = uniqueMaterialNames(model, diagnostics);
+    for (size_t i = 0; i < model.materials.size(); ++i) {
+        const tinygltf::Material& source = model.materials[i];
+        std::string field = indexed("materials", i);
+        Material material;
+        material.name = names[i];
+        material.doubleSided = source.doubleSided;
+
+        if (std::optional<Medium> medium = readMaterialMedium(source, i, material.name, diagnostics)) {
+            scene.media.push_back(std::move(*medium));
+            material.interiorMedium = int32_t(scene.media.size() - 1);
+            scene.materials.push_back(std::move(material));
+            continue;  // a pass-through boundary has no colour and does not emit
+        }
+
+        warnAboutIgnoredProperties(source, i, diagnostics);
+        std::string baseColorField = field + ".pbrMetallicRoughness.baseColorFactor";
+        material.baseColor = rgbFromFactor(diagnostics, source.pbrMetallicRoughness.baseColorFactor,
+                                           baseColorField);
+        requireRange(diagnostics, material.baseColor, 0.0f, 1.0f, baseColorField);
+        material.baseColorTexture = textures.textureFor(
+            source.pbrMetallicRoughness.baseColorTexture, field + ".pbrMetallicRoughness.baseColorTexture");
+
+        if (!source.emissiveFactor.empty()) {
+            glm::vec3 factor = rgbFromFactor(diagnostics, source.emissiveFactor, field + ".emissiveFactor");
+            requireRange(diagnostics, factor, 0.0f, 1.0f, field + ".emissiveFactor");
+            material.emission = factor * emissiveStrength(source, i, diagnostics);
+        }
+        material.emissionTexture = textures.textureFor(source.emissiveTexture, field + ".emissiveTexture");
+        scene.materials.push_back(std::move(material));
+    }
+}
+
+}  // namespace vkdr

@@ -1,0 +1,83 @@
+#include "scene/gltf_values.h"
+
+#include <cmath>
+
+namespace vkdr {
+namespace {
+
+std::string member(std::string_view field, const std::string& key) {
+    return std::string(field) + "." + key;
+}
+
+double finiteNumber(const GltfDiagnostics& diagnostics, const tinygltf::Value& value,
+                    const std::string& path) {
+    if (!value.IsNumber()) {
+        diagnostics.fail(path, "expected a number");
+    }
+    double number = value.GetNumberAsDouble();
+    if (!std::isfinite(float(number))) {  // stored as float: 1e39 overflows too
+        diagnostics.fail(path, "must be finite, got " + formatNumber(number));
+    }
+    return number;
+}
+
+}  // namespace
+
+double readNumber(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
+                  std::string_view field, const std::string& key, double fallback) {
+    if (!object.Has(key)) {
+        return fallback;
+    }
+    return finiteNumber(diagnostics, object.Get(key), member(field, key));
+}
+
+glm::vec3 readRgbOrScalar(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
+                          std::string_view field, const std::string& key, glm::vec3 fallback) {
+    if (!object.Has(key)) {
+        return fallback;
+    }
+    const tinygltf::Value& value = object.Get(key);
+    std::string path = member(field, key);
+    if (value.IsNumber()) {
+        return glm::vec3(float(finiteNumber(diagnostics, value, path)));
+    }
+    if (!value.IsArray() || value.ArrayLen() != 3) {
+        diagnostics.fail(path, "expected a number or an array of 3 numbers");
+    }
+    glm::vec3 rgb;
+    for (int c = 0; c < 3; ++c) {
+        rgb[c] = float(finiteNumber(diagnostics, value.Get(c), indexed(path, size_t(c))));
+    }
+    return rgb;
+}
+
+std::string readString(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
+                       std::string_view field, const std::string& key,
+                       const std::string& fallback) {
+    if (!object.Has(key)) {
+        return fallback;
+    }
+    const tinygltf::Value& value = object.Get(key);
+    if (!value.IsString()) {
+        diagnostics.fail(member(field, key), "expected a string");
+    }
+    return value.Get<std::string>();
+}
+
+glm::vec3 rgbFromFactor(const GltfDiagnostics& diagnostics, const std::vector<double>& factor,
+                        std::string_view field) {
+    if (factor.size() < 3) {
+        diagnostics.fail(field, "expected at least 3 numbers");
+    }
+    glm::vec3 rgb;
+    for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(float(factor[size_t(c)]))) {
+            diagnostics.fail(indexed(field, size_t(c)),
+                             "must be finite, got " + formatNumber(factor[size_t(c)]));
+        }
+        rgb[c] = float(factor[size_t(c)]);
+    }
+    return rgb;
+}
+
+}  // namespace vkdr

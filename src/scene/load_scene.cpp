@@ -1,0 +1,75 @@
+#include "scene/load_scene.h"
+
+#include <algorithm>
+#include <array>
+#include <string_view>
+
+#include "scene/flatten_nodes.h"
+#include "scene/gltf_diagnostics.h"
+#include "scene/gltf_materials.h"
+#include "scene/gltf_media.h"
+#include "scene/medium_boundaries.h"
+#include "scene/read_gltf_model.h"
+
+namespace vkdr {
+namespace {
+
+// Extensions a file may require: the ones read, and the ones whose absence only loses
+// detail (with a warning).
+constexpr std::array<std::string_view, 7> kUnderstoodExtensions = {
+    "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_volume",            "KHR_texture_transform",      kMediumExtension,
+    kBackgroundExtension};
+
+void requireUnderstoodExtensions(const tinygltf::Model& model, const GltfDiagnostics& diagnostics) {
+    for (size_t i = 0; i < model.extensionsRequired.size(); ++i) {
+        const std::string& name = model.extensionsRequired[i];
+        if (std::find(kUnderstoodExtensions.begin(), kUnderstoodExtensions.end(), name) ==
+            kUnderstoodExtensions.end()) {
+            diagnostics.fail(indexed("extensionsRequired", i), name + " is not supported");
+        }
+    }
+}
+
+void addSceneMedium(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene) {
+    std::optional<Medium> medium = readSceneMedium(model, diagnostics);
+    if (!medium) {
+        return;
+    }
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        if (material.isMediumBoundary() &&
+            scene.media[size_t(material.interiorMedium)].name == medium->name) {
+            diagnostics.fail(std::string("extensions.") + kMediumExtension + ".name",
+                             "'" + medium->name + "' already names the medium inside " +
+                                 indexed("materials", m) + "; medium names must be unique");
+        }
+    }
+    scene.media.push_back(std::move(*medium));
+    scene.sceneMedium = int32_t(scene.media.size() - 1);
+}
+
+}  // namespace
+
+LoadedScene loadScene(const std::filesystem::path& file) {
+    GltfDiagnostics diagnostics(file.string());
+    tinygltf::Model model = readGltfModel(file, diagnostics);
+    requireUnderstoodExtensions(model, diagnostics);
+    if (!model.lights.empty()) {
+        diagnostics.warn("extensions.KHR_lights_punctual",
+                         "punctual lights are ignored; only emissive surfaces emit light");
+    }
+
+    Scene scene;
+    readMaterials(model, diagnostics, scene);
+    addSceneMedium(model, diagnostics, scene);
+    scene.background = readBackground(model, diagnostics);
+    std::vector<MeshInstance> instances = flattenNodes(model, diagnostics, scene);
+    if (scene.triangles.empty()) {
+        diagnostics.fail("", "the scene has no triangles");
+    }
+    prepareMediumBoundaries(scene, instances, diagnostics);
+    return {std::move(scene), diagnostics.takeWarnings()};
+}
+
+}  // namespace vkdr

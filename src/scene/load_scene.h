@@ -1,0 +1,20 @@
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace vkdr {
+
+struct LoadedScene {
+    Scene scene;
+    std::vector<std::string> warnings;  // things in the file that were ignored or approximated
+};
+
+// Reads a .gltf or .glb file into a flattened, world-space Scene (docs/scene-format.md
+// says what is read). Throws vkdr::Error, naming the file and the field at fault, for
+// anything that cannot be rendered faithfully.
+LoadedScene loadScene(const std::filesystem::path& file);
+
+}  // namespace vkdr

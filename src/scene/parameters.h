@@ -1,0 +1,36 @@
+#pragma once
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace vkdr {
+
+// The scene's named, overridable (and differentiable) parameters, spelled as in
+// DESIGN.md "Names":
+//   media/<medium>/sigma_a, media/<medium>/sigma_s   3 floats, >= 0, per scene unit
+//   media/<medium>/g                                 1 float, |g| < 1
+//   materials/<material>/base_color                  3 floats in [0, 1]
+//   lights/<material>/emission                       3 floats, >= 0
+// Medium boundary materials have no base colour or emission.
+
+// Every parameter of the scene: media in order (sigma_a, sigma_s, g each), then base
+// colours, then the emissions of emissive materials.
+std::vector<std::string> parameterNames(const Scene& scene);
+
+// The current value (3 floats, or 1 for g). Throws vkdr::Error for an unknown name,
+// listing the valid ones.
+std::vector<float> getParameter(const Scene& scene, std::string_view name);
+
+// Sets a parameter; one value sets all three channels of an RGB parameter. Throws
+// vkdr::Error naming the parameter when the value is out of range or not finite.
+// lights/<material>/emission is accepted for every surface material, not only the
+// emissive ones listed by parameterNames, so an emission driven to 0 can be raised again.
+void setParameter(Scene& scene, std::string_view name, std::span<const float> values);
+
+// Applies "NAME=v" or "NAME=v,v,v" (the CLI's --set syntax).
+void applyAssignment(Scene& scene, std::string_view assignment);
+
+}  // namespace vkdr

@@ -1,0 +1,69 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace vkdr {
+
+// Index meaning "no medium" (vacuum) wherever a medium index is stored.
+inline constexpr int32_t kNoMedium = -1;
+
+struct Camera {
+    std::string name;
+    glm::mat4 cameraToWorld{1.0f};  // glTF convention: looks down -Z, +Y up
+    float yfov = 0.8f;              // radians, vertical field of view
+    float aspectRatio = 0.0f;       // width / height; 0 when the file does not say
+};
+
+// Linear RGBA texels (sRGB-encoded images are decoded on load), row 0 = the image's
+// top row, which is glTF's v = 0.
+struct Texture {
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec4> texels;
+};
+
+struct Material {
+    std::string name;                     // glTF name, or its index as text when unnamed
+    glm::vec3 baseColor{1.0f};            // Lambertian albedo factor (linear RGB)
+    int32_t baseColorTexture = -1;        // index into Scene::textures, multiplies baseColor
+    glm::vec3 emission{0.0f};             // emitted radiance: emissiveFactor * emissive_strength
+    int32_t emissionTexture = -1;         // index into Scene::textures, multiplies emission
+    bool doubleSided = false;             // emits from both sides when true, else the front only
+    int32_t interiorMedium = kNoMedium;   // >= 0: a pass-through boundary enclosing media[i]
+    bool isMediumBoundary() const { return interiorMedium != kNoMedium; }
+    bool isEmissive() const { return emission != glm::vec3(0.0f); }
+};
+
+// Homogeneous medium; sigma in inverse scene units.
+struct Medium {
+    std::string name;  // parameter prefix is "media/<name>/"
+    glm::vec3 sigma_a{0.0f};
+    glm::vec3 sigma_s{0.0f};
+    float g = 0.0f;    // Henyey-Greenstein anisotropy, |g| < 1
+};
+
+// A flattened scene: every mesh instance baked into world space.
+struct Scene {
+    std::vector<glm::vec3> positions;           // world space, per vertex
+    std::vector<glm::vec2> uvs;                 // TEXCOORD_0 per vertex (0,0 when absent)
+    std::vector<glm::uvec3> triangles;          // vertex indices, counter-clockwise = front
+    std::vector<uint32_t> triangleMaterial;     // per triangle, index into materials
+    // Per triangle: the medium on the front (outward) side of a boundary triangle,
+    // where a ray goes when it leaves the enclosed medium: the scene medium, or the
+    // enclosing medium for nested boundaries. kNoMedium for non-boundary triangles and
+    // for boundaries whose outside is vacuum. Boundary meshes are closed and their
+    // triangles wound so the geometric normal points out of the enclosed medium.
+    std::vector<int32_t> triangleOutsideMedium;
+    std::vector<Material> materials;
+    std::vector<Medium> media;
+    std::vector<Texture> textures;
+    std::vector<Camera> cameras;
+    int32_t sceneMedium = kNoMedium;            // fills all space outside enclosed media
+    glm::vec3 background{0.0f};                 // radiance of rays that escape the scene
+};
+
+}  // namespace vkdr

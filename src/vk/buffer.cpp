@@ -1,0 +1,102 @@
+#include "vk/buffer.h"
+
+#include <cstring>
+#include <utility>
+
+#include "vk/commands.h"
+#include "vk/context.h"
+
+namespace vkdr {
+
+Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, const std::string& name)
+    : device_(context.device()), size_(size) {
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = size;
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                 VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    checkVk(vkCreateBuffer(device_, &info, nullptr, &buffer_), ("creating buffer " + name).c_str());
+    context.setDebugName(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(buffer_), name);
+
+    VkMemoryRequirements requirements;
+    vkGetBufferMemoryRequirements(device_, buffer_, &requirements);
+    VkMemoryPropertyFlags properties = use == MemoryUse::Device
+                                           ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT
+                                           : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    VkMemoryAllocateInfo allocation{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    allocation.pNext = &flags;
+    allocation.allocationSize = requirements.size;
+    allocation.memoryTypeIndex = context.memoryTypeIndex(requirements.memoryTypeBits, properties);
+    VkResult result = vkAllocateMemory(device_, &allocation, nullptr, &memory_);
+    if (result != VK_SUCCESS) {
+        release();
+        checkVk(result, ("allocating " + std::to_string(size >> 20) + " MiB for " + name).c_str());
+    }
+    checkVk(vkBindBufferMemory(device_, buffer_, memory_, 0), "vkBindBufferMemory");
+    if (use != MemoryUse::Device) {
+        checkVk(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+    }
+    VkBufferDeviceAddressInfo addressInfo{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    addressInfo.buffer = buffer_;
+    address_ = vkGetBufferDeviceAddress(device_, &addressInfo);
+}
+
+Buffer::~Buffer() {
+    release();
+}
+
+Buffer::Buffer(Buffer&& other) noexcept {
+    *this = std::move(other);
+}
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept {
+    if (this != &other) {
+        release();
+        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+        buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+        size_ = std::exchange(other.size_, 0);
+        address_ = std::exchange(other.address_, 0);
+        mapped_ = std::exchange(other.mapped_, nullptr);
+    }
+    return *this;
+}
+
+void Buffer::release() {
+    if (buffer_ != VK_NULL_HANDLE) {
+        vkDestroyBuffer(device_, buffer_, nullptr);
+        buffer_ = VK_NULL_HANDLE;
+    }
+    if (memory_ != VK_NULL_HANDLE) {
+        vkFreeMemory(device_, memory_, nullptr);
+        memory_ = VK_NULL_HANDLE;
+    }
+    mapped_ = nullptr;
+}
+
+Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> bytes, const std::string& name) {
+    VkDeviceSize size = std::max<VkDeviceSize>(bytes.size(), 16);
+    Buffer staging(context, size, MemoryUse::Upload, name + " (staging)");
+    std::memset(staging.mapped(), 0, size);
+    if (!bytes.empty()) {
+        std::memcpy(staging.mapped(), bytes.data(), bytes.size());
+    }
+    Buffer buffer(context, size, MemoryUse::Device, name);
+    CommandRecorder recorder(context);
+    recorder.copy(staging, buffer, size);
+    recorder.submitAndWait();
+    return buffer;
+}
+
+void downloadBuffer(const VulkanContext& context, const Buffer& buffer, std::span<std::byte> bytes) {
+    Buffer readback(context, bytes.size(), MemoryUse::Readback, "readback");
+    CommandRecorder recorder(context);
+    recorder.copy(buffer, readback, bytes.size());
+    recorder.submitAndWait();
+    std::memcpy(bytes.data(), readback.mapped(), bytes.size());
+}
+
+}  // namespace vkdr

@@ -1,0 +1,58 @@
+#pragma once
+#include <cstddef>
+#include <span>
+#include <string>
+
+#include "vk/vulkan.h"
+
+namespace vkdr {
+
+class VulkanContext;
+
+enum class MemoryUse {
+    Device,    // device-local; filled by transfers or shaders
+    Readback,  // host-visible and coherent; the device copies into it for the host to read
+    Upload,    // host-visible and coherent; the host writes, the device copies from it
+};
+
+// A buffer with its own memory allocation and device address. Move-only owner.
+class Buffer {
+public:
+    Buffer() = default;
+    Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, const std::string& name);
+    ~Buffer();
+    Buffer(Buffer&& other) noexcept;
+    Buffer& operator=(Buffer&& other) noexcept;
+    Buffer(const Buffer&) = delete;
+    Buffer& operator=(const Buffer&) = delete;
+
+    VkBuffer handle() const { return buffer_; }
+    VkDeviceSize size() const { return size_; }
+    VkDeviceAddress address() const { return address_; }
+    // Host pointer for Readback and Upload buffers, nullptr otherwise.
+    void* mapped() const { return mapped_; }
+
+private:
+    void release();
+
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkBuffer buffer_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    VkDeviceSize size_ = 0;
+    VkDeviceAddress address_ = 0;
+    void* mapped_ = nullptr;
+};
+
+// A device buffer holding `bytes`, uploaded through a staging buffer (empty data gives a
+// small zeroed buffer, so every address is valid).
+Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> bytes, const std::string& name);
+
+template <typename T>
+Buffer uploadVector(const VulkanContext& context, std::span<const T> values, const std::string& name) {
+    return uploadBuffer(context, std::as_bytes(values), name);
+}
+
+// Copies a device buffer's first `bytes.size()` bytes to the host.
+void downloadBuffer(const VulkanContext& context, const Buffer& buffer, std::span<std::byte> bytes);
+
+}  // namespace vkdr

@@ -1,0 +1,105 @@
+#include "vk/commands.h"
+
+#include <cassert>
+
+#include "core/error.h"
+#include "vk/buffer.h"
+#include "vk/context.h"
+#include "vk/pipeline.h"
+
+namespace vkdr {
+
+constexpr uint32_t kWorkgroupSize = 64;
+// Vulkan guarantees at least this many workgroups per dispatch dimension.
+constexpr uint32_t kMaxWorkgroups = 65535;
+
+CommandRecorder::CommandRecorder(const VulkanContext& context) : context_(context) {
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = context.queueFamily();
+    checkVk(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool_), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    allocation.commandPool = pool_;
+    allocation.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    allocation.commandBufferCount = 1;
+    checkVk(vkAllocateCommandBuffers(context.device(), &allocation, &commands_), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    checkVk(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence_), "vkCreateFence");
+    begin();
+}
+
+CommandRecorder::~CommandRecorder() {
+    vkDestroyFence(context_.device(), fence_, nullptr);
+    vkDestroyCommandPool(context_.device(), pool_, nullptr);
+}
+
+void CommandRecorder::begin() {
+    VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    checkVk(vkBeginCommandBuffer(commands_, &info), "vkBeginCommandBuffer");
+}
+
+void CommandRecorder::copy(const Buffer& from, const Buffer& to, VkDeviceSize bytes) {
+    VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(commands_, from.handle(), to.handle(), 1, &region);
+}
+
+void CommandRecorder::fill(const Buffer& buffer, uint32_t value) {
+    vkCmdFillBuffer(commands_, buffer.handle(), 0, VK_WHOLE_SIZE, value);
+}
+
+void CommandRecorder::fillRange(const Buffer& buffer, VkDeviceSize offset, VkDeviceSize bytes, uint32_t value) {
+    vkCmdFillBuffer(commands_, buffer.handle(), offset, bytes, value);
+}
+
+void CommandRecorder::bind(const ComputePipeline& pipeline, std::span<const std::byte> pushConstants) {
+    assert(pushConstants.size() == pipeline.pushConstantBytes());
+    vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+    vkCmdPushConstants(commands_, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       static_cast<uint32_t>(pushConstants.size()), pushConstants.data());
+}
+
+void CommandRecorder::dispatch(const ComputePipeline& pipeline, uint32_t threads,
+                               std::span<const std::byte> pushConstants) {
+    uint32_t groups = (threads + kWorkgroupSize - 1) / kWorkgroupSize;
+    if (groups > kMaxWorkgroups) {
+        throw Error("internal: dispatch of " + std::to_string(threads) + " threads exceeds the workgroup limit");
+    }
+    if (groups == 0) {
+        return;
+    }
+    bind(pipeline, pushConstants);
+    vkCmdDispatch(commands_, groups, 1, 1);
+}
+
+void CommandRecorder::dispatchIndirect(const ComputePipeline& pipeline, const Buffer& args, VkDeviceSize offset,
+                                       std::span<const std::byte> pushConstants) {
+    bind(pipeline, pushConstants);
+    vkCmdDispatchIndirect(commands_, args.handle(), offset);
+}
+
+void CommandRecorder::barrier() {
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                            VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                            VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
+                             VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+void CommandRecorder::submitAndWait() {
+    checkVk(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commands_;
+    checkVk(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "vkQueueSubmit");
+    checkVk(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for the device");
+    checkVk(vkResetFences(context_.device(), 1, &fence_), "vkResetFences");
+    checkVk(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
+    begin();
+}
+
+}  // namespace vkdr

@@ -1,0 +1,45 @@
+#pragma once
+#include <cstdint>
+#include <span>
+
+#include "vk/vulkan.h"
+
+namespace vkdr {
+
+class VulkanContext;
+class Buffer;
+class ComputePipeline;
+
+// Records one command buffer on the compute queue and submits it. Stages are separated
+// by full compute barriers: each stage reads what the previous one wrote, and buffers
+// are reached by address, so finer-grained barriers would buy nothing.
+class CommandRecorder {
+public:
+    explicit CommandRecorder(const VulkanContext& context);
+    ~CommandRecorder();
+    CommandRecorder(const CommandRecorder&) = delete;
+    CommandRecorder& operator=(const CommandRecorder&) = delete;
+
+    void copy(const Buffer& from, const Buffer& to, VkDeviceSize bytes);
+    void fill(const Buffer& buffer, uint32_t value);
+    void fillRange(const Buffer& buffer, VkDeviceSize offset, VkDeviceSize bytes, uint32_t value);
+    void dispatch(const ComputePipeline& pipeline, uint32_t threads, std::span<const std::byte> pushConstants);
+    // Workgroup counts come from `args` at `offset` (a VkDispatchIndirectCommand).
+    void dispatchIndirect(const ComputePipeline& pipeline, const Buffer& args, VkDeviceSize offset,
+                          std::span<const std::byte> pushConstants);
+    // Makes every earlier write visible to every later command (shader, transfer, indirect).
+    void barrier();
+    // Submits, waits, and leaves the recorder ready to record again.
+    void submitAndWait();
+
+private:
+    void begin();
+    void bind(const ComputePipeline& pipeline, std::span<const std::byte> pushConstants);
+
+    const VulkanContext& context_;
+    VkCommandPool pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer commands_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+};
+
+}  // namespace vkdr

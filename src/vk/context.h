@@ -1,0 +1,79 @@
+#pragma once
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "vk/vulkan.h"
+
+namespace vkdr {
+
+struct DeviceDescription {
+    uint32_t index = 0;
+    std::string name;
+    std::string driver;       // driver name and version info
+    std::string type;         // "discrete GPU", "integrated GPU", "CPU", ...
+    std::string apiVersion;
+    std::vector<std::string> missingFeatures;  // empty: usable by vkdiffrender
+};
+
+struct ContextOptions {
+    // Empty: prefer a discrete GPU, then integrated, then anything else usable (lavapipe).
+    // Otherwise a device index as listed by `vkdiffrender info`, or part of its name.
+    std::string device;
+};
+
+// The Khronos validation layer is on when the environment variable VKDR_VALIDATION is
+// "1" (with synchronization validation) or "gpu" (GPU-assisted validation as well, which
+// catches out-of-bounds accesses lavapipe would hide).
+enum class ValidationMode { Off, Standard, GpuAssisted };
+ValidationMode validationModeFromEnvironment();
+
+// Instance, device and the one compute queue everything runs on.
+class VulkanContext {
+public:
+    explicit VulkanContext(const ContextOptions& options);
+    ~VulkanContext();
+    VulkanContext(const VulkanContext&) = delete;
+    VulkanContext& operator=(const VulkanContext&) = delete;
+
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
+    VkDevice device() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    uint32_t queueFamily() const { return queueFamily_; }
+    const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    const DeviceDescription& description() const { return description_; }
+    const std::vector<DeviceDescription>& allDevices() const { return allDevices_; }
+    ValidationMode validation() const { return validation_; }
+    // Number of validation-layer messages (warnings and errors) seen so far.
+    uint32_t validationMessageCount() const { return validationMessages_.load(); }
+    uint32_t memoryTypeIndex(uint32_t allowedTypes, VkMemoryPropertyFlags required) const;
+    uint64_t deviceLocalHeapBytes() const;
+    void setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const;
+
+    // Features vkdiffrender needs, in the words `info` prints.
+    static std::vector<std::string> requiredFeatures();
+
+private:
+    void createInstance();
+    void createDevice();
+
+    ValidationMode validation_;
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    uint32_t queueFamily_ = 0;
+    VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceMemoryProperties memoryProperties_{};
+    DeviceDescription description_;
+    std::vector<DeviceDescription> allDevices_;
+    std::atomic<uint32_t> validationMessages_{0};
+};
+
+// Throws vkdr::Error when the validation layer reported anything: with VKDR_VALIDATION
+// set, a validation message is a failure.
+void requireNoValidationMessages(const VulkanContext& context);
+
+}  // namespace vkdr

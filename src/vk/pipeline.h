@@ -1,0 +1,42 @@
+#pragma once
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vk/vulkan.h"
+
+namespace vkdr {
+
+class VulkanContext;
+
+// A compute pipeline whose only interface is a push-constant block: stages reach their
+// buffers by device address, so there are no descriptor sets. Move-only owner.
+class ComputePipeline {
+public:
+    ComputePipeline() = default;
+    // `specialization[i]` is the value of constant_id i.
+    ComputePipeline(const VulkanContext& context, const std::string& name, std::span<const uint32_t> spirv,
+                    uint32_t pushConstantBytes, const std::vector<uint32_t>& specialization = {});
+    ~ComputePipeline();
+    ComputePipeline(ComputePipeline&& other) noexcept;
+    ComputePipeline& operator=(ComputePipeline&& other) noexcept;
+    ComputePipeline(const ComputePipeline&) = delete;
+    ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+    VkPipeline handle() const { return pipeline_; }
+    VkPipelineLayout layout() const { return layout_; }
+    uint32_t pushConstantBytes() const { return pushConstantBytes_; }
+    const std::string& name() const { return name_; }
+
+private:
+    void release();
+
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    uint32_t pushConstantBytes_ = 0;
+    std::string name_;
+};
+
+}  // namespace vkdr

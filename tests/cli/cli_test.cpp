@@ -1,0 +1,130 @@
+// The command line as a user meets it: help, bad input (one clear message, exit code 2,
+// nothing written over a previous result), and a real render.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "image/image.h"
+
+namespace vkdr::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exitCode;
+    std::string out;
+    std::string err;
+};
+
+std::string slurp(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+class CliTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / "vkdr_cli_tests" / info->name();
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+
+    RunResult run(const std::string& args) {
+        std::string command = std::string(VKDR_CLI_PATH) + " " + args + " > " + (dir_ / "stdout").string() + " 2> " +
+                              (dir_ / "stderr").string() + " < /dev/null";
+        int status = std::system(command.c_str());
+        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
+    }
+
+    // A failed command must say "error:" once, name `what`, exit with 2, and leave
+    // the previous output file as it was.
+    void expectCleanFailure(const std::string& args, const std::string& what) {
+        fs::path out = dir_ / "out.exr";
+        std::ofstream(out) << "previous result";
+        RunResult r = run(args + " -o " + out.string());
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("error: "), r.err.rfind("error: ")) << "more than one error message:\n" << r.err;
+        EXPECT_NE(r.err.find(what), std::string::npos) << "message does not name " << what << ":\n" << r.err;
+        EXPECT_EQ(slurp(out), "previous result");
+    }
+
+    std::string scene(const char* name) const { return std::string(VKDR_TEST_SCENES_DIR) + "/" + name; }
+
+    fs::path dir_;
+};
+
+TEST_F(CliTest, HelpDescribesEverySubcommand) {
+    RunResult r = run("render --help");
+    EXPECT_EQ(r.exitCode, 0);
+    for (const char* option : {"--spp", "--max-depth", "--seed", "--width", "--height", "--set", "--png", "--camera"}) {
+        EXPECT_NE(r.out.find(option), std::string::npos) << option;
+    }
+    EXPECT_EQ(run("info --help").exitCode, 0);
+    EXPECT_EQ(run("--help").exitCode, 0);
+}
+
+TEST_F(CliTest, MissingSceneFile) {
+    expectCleanFailure("render " + (dir_ / "nowhere.gltf").string(), "nowhere.gltf");
+}
+
+TEST_F(CliTest, MalformedJson) {
+    fs::path bad = dir_ / "broken.gltf";
+    std::ofstream(bad) << "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ ";
+    expectCleanFailure("render " + bad.string(), "broken.gltf");
+}
+
+TEST_F(CliTest, UnknownParameterListsTheValidNames) {
+    expectCleanFailure("render " + scene("cornell_fog.gltf") + " --set media/smog/sigma_a=1", "media/fog/sigma_a");
+}
+
+TEST_F(CliTest, OutOfRangeAndNaNParameters) {
+    expectCleanFailure("render " + scene("cornell_fog.gltf") + " --set media/fog/g=1.5", "media/fog/g");
+    expectCleanFailure("render " + scene("cornell_fog.gltf") + " --set media/fog/sigma_s=-1", "media/fog/sigma_s");
+    expectCleanFailure("render " + scene("cornell_fog.gltf") + " --set media/fog/sigma_a=nan", "media/fog/sigma_a");
+}
+
+TEST_F(CliTest, BadOptionValues) {
+    expectCleanFailure("render " + scene("cornell_fog.gltf") + " --spp 0", "--spp");
+    expectCleanFailure("render " + scene("cornell_fog.gltf") + " --camera nobody", "nobody");
+}
+
+TEST_F(CliTest, MissingOutputDirectory) {
+    RunResult r = run("render " + scene("cornell_fog.gltf") + " -o " + (dir_ / "no/such/dir/out.exr").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("no/such/dir"), std::string::npos) << r.err;
+}
+
+TEST_F(CliTest, RendersExrAndPngDeterministically) {
+    fs::path exr = dir_ / "fog.exr", png = dir_ / "fog.png";
+    std::string args = "render " + scene("cornell_fog.gltf") + " --width 24 --height 24 --spp 2 --max-depth 3 -o ";
+    RunResult r = run(args + exr.string() + " --png " + png.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("paths/s"), std::string::npos) << r.out;
+    Image image = readImage(exr);
+    EXPECT_EQ(image.width, 24);
+    EXPECT_EQ(image.height, 24);
+    EXPECT_EQ(readImage(png).width, 24);
+    std::string first = slurp(exr);
+    ASSERT_EQ(run(args + exr.string()).exitCode, 0);
+    EXPECT_EQ(slurp(exr), first) << "the same seed must give the same file";
+}
+
+TEST_F(CliTest, InfoNamesTheChosenDevice) {
+    RunResult r = run("info");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("Chosen:"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("shaderBufferFloat32AtomicAdd"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace vkdr::test

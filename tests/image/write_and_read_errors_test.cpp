@@ -1,0 +1,156 @@
+#include <filesystem>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "image/atomic_write.h"
+#include "image/image.h"
+#include "scratch_directory.h"
+
+namespace vkdr {
+namespace {
+
+Image smallImage() { return Image{2, 2, std::vector<float>(12, 0.5f)}; }
+
+// Runs f and expects a vkdr::Error whose message names file.
+template <typename F>
+void expectErrorNaming(const std::filesystem::path& file, F&& f) {
+    try {
+        f();
+        ADD_FAILURE() << "expected vkdr::Error for " << file;
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(file.filename().string()), std::string::npos) << e.what();
+    }
+}
+
+TEST(AtomicWrite, FailureLeavesThePreviousFileAndNoTemporary) {
+    test::ScratchDirectory dir;
+    test::writeBytes(dir / "out.exr", "previous good result");
+    expectErrorNaming(dir / "out.exr", [&] {
+        writeAtomically(dir / "out.exr", [](std::ofstream& out) {
+            out << "half of a file";
+            throw std::runtime_error("disk full");
+        });
+    });
+    EXPECT_EQ(test::readBytes(dir / "out.exr"), "previous good result");
+    EXPECT_EQ(dir.fileCount(), 1u);
+}
+
+TEST(AtomicWrite, SuccessReplacesTheFile) {
+    test::ScratchDirectory dir;
+    test::writeBytes(dir / "out.exr", "old");
+    writeExr(dir / "out.exr", smallImage());
+    EXPECT_EQ(readImage(dir / "out.exr").rgb, smallImage().rgb);
+    EXPECT_EQ(dir.fileCount(), 1u);
+}
+
+TEST(AtomicWrite, RenameOntoADirectoryFailsCleanly) {
+    test::ScratchDirectory dir;
+    std::filesystem::create_directory(dir / "taken.png");
+    test::writeBytes(dir / "taken.png" / "inside", "x");
+    expectErrorNaming(dir / "taken.png", [&] { writePng(dir / "taken.png", smallImage()); });
+    expectErrorNaming(dir / "taken.png", [&] { writeExr(dir / "taken.png", smallImage()); });
+    EXPECT_EQ(dir.fileCount(), 1u);
+    EXPECT_TRUE(std::filesystem::is_directory(dir / "taken.png"));
+}
+
+TEST(AtomicWrite, MissingDirectoryIsAnError) {
+    test::ScratchDirectory dir;
+    expectErrorNaming(dir / "nowhere" / "a.exr", [&] { writeExr(dir / "nowhere" / "a.exr", smallImage()); });
+    expectErrorNaming(dir / "nowhere" / "a.png", [&] { writePng(dir / "nowhere" / "a.png", smallImage()); });
+    EXPECT_EQ(dir.fileCount(), 0u);
+}
+
+TEST(AtomicWrite, ReadOnlyDirectoryIsAnError) {
+    if (geteuid() == 0) GTEST_SKIP() << "root writes into read-only directories";
+    test::ScratchDirectory dir;
+    std::filesystem::permissions(dir.path(), std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    expectErrorNaming(dir / "a.exr", [&] { writeExr(dir / "a.exr", smallImage()); });
+}
+
+TEST(ReadImage, MissingFile) {
+    test::ScratchDirectory dir;
+    expectErrorNaming(dir / "missing.exr", [&] { readImage(dir / "missing.exr"); });
+    expectErrorNaming(dir / "missing.png", [&] { readImage(dir / "missing.png"); });
+}
+
+TEST(ReadImage, TruncatedExr) {
+    test::ScratchDirectory dir;
+    Image image{64, 64, std::vector<float>(64 * 64 * 3)};
+    for (size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = float(i % 1013);
+    writeExr(dir / "whole.exr", image);
+    std::string bytes = test::readBytes(dir / "whole.exr");
+    for (size_t length : {size_t(0), size_t(3), size_t(40), bytes.size() / 2, bytes.size() - 1}) {
+        test::writeBytes(dir / "cut.exr", bytes.substr(0, length));
+        expectErrorNaming(dir / "cut.exr", [&] { readImage(dir / "cut.exr"); });
+    }
+}
+
+TEST(ReadImage, TruncatedPng) {
+    test::ScratchDirectory dir;
+    writePng(dir / "whole.png", Image{32, 32, std::vector<float>(32 * 32 * 3, 0.3f)});
+    std::string bytes = test::readBytes(dir / "whole.png");
+    for (size_t length : {size_t(0), size_t(8), bytes.size() / 2, bytes.size() - 13}) {
+        test::writeBytes(dir / "cut.png", bytes.substr(0, length));
+        expectErrorNaming(dir / "cut.png", [&] { readImage(dir / "cut.png"); });
+    }
+}
+
+TEST(ReadImage, GarbageBytes) {
+    test::ScratchDirectory dir;
+    std::string garbage(1000, '\0');
+    for (size_t i = 0; i < garbage.size(); ++i) garbage[i] = char(i * 7919 % 251);
+    for (const char* name : {"g.exr", "g.png", "g.jpg", "g.jpeg"}) {
+        test::writeBytes(dir / name, garbage);
+        expectErrorNaming(dir / name, [&] { readImage(dir / name); });
+    }
+    // A valid EXR magic number followed by nonsense.
+    test::writeBytes(dir / "magic.exr", std::string("\x76\x2f\x31\x01\x02\x00\x00\x00", 8) + garbage);
+    expectErrorNaming(dir / "magic.exr", [&] { readImage(dir / "magic.exr"); });
+}
+
+TEST(ReadImage, RandomlyCorruptedFilesThrowOrRead) {
+    test::ScratchDirectory dir;
+    Image image{40, 30, std::vector<float>(40 * 30 * 3)};
+    for (size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = float(i % 97) / 97;
+    writeExr(dir / "good.exr", image);
+    writePng(dir / "good.png", image);
+    std::mt19937 rng(1);
+    for (const char* extension : {".exr", ".png"}) {
+        std::string good = test::readBytes(dir / ("good" + std::string(extension)));
+        std::filesystem::path bad = dir / ("bad" + std::string(extension));
+        for (int trial = 0; trial < 300; ++trial) {
+            std::string bytes = good;
+            for (int k = 0; k <= trial % 8; ++k) bytes[rng() % bytes.size()] = char(rng());
+            if (trial % 5 == 0) bytes.resize(rng() % bytes.size());
+            test::writeBytes(bad, bytes);
+            try {
+                readImage(bad);  // a flipped byte in pixel data may still decode
+            } catch (const Error&) {
+            }
+        }
+    }
+}
+
+TEST(ReadImage, UnknownExtensionOrNotAFile) {
+    test::ScratchDirectory dir;
+    writeExr(dir / "image.exr", smallImage());
+    std::filesystem::copy_file(dir / "image.exr", dir / "image.tiff");
+    expectErrorNaming(dir / "image.tiff", [&] { readImage(dir / "image.tiff"); });
+    std::filesystem::create_directory(dir / "folder.exr");
+    expectErrorNaming(dir / "folder.exr", [&] { readImage(dir / "folder.exr"); });
+}
+
+TEST(ReadImage, ExtensionIsCaseInsensitive) {
+    test::ScratchDirectory dir;
+    writePng(dir / "UPPER.PNG", smallImage());
+    EXPECT_EQ(readImage(dir / "UPPER.PNG").width, 2);
+}
+
+}  // namespace
+}  // namespace vkdr

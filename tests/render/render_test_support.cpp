@@ -1,0 +1,68 @@
+#include "render_test_support.h"
+
+#include <cmath>
+
+#include "bvh/bvh.h"
+#include "scene/load_scene.h"
+
+namespace vkdr::test {
+
+VulkanContext& testContext() {
+    static VulkanContext context(ContextOptions{});
+    return context;
+}
+
+void RenderTest::SetUp() {
+    messagesBefore_ = testContext().validationMessageCount();
+}
+
+void RenderTest::TearDown() {
+    EXPECT_EQ(testContext().validationMessageCount(), messagesBefore_) << "the Vulkan validation layer reported messages";
+}
+
+std::filesystem::path RenderTest::tempDir() const {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / "vkdr_render_tests" /
+                                (std::string(info->test_suite_name()) + "." + info->name());
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+Image renderFile(const std::filesystem::path& scene, const RenderSettings& settings, RenderStats* stats) {
+    LoadedScene loaded = loadScene(scene);
+    Bvh bvh = buildBvh(loaded.scene.positions, loaded.scene.triangles);
+    Renderer renderer(testContext(), loaded.scene, bvh, settings);
+    Image image = renderer.render();
+    if (stats != nullptr) {
+        *stats = renderer.stats();
+    }
+    return image;
+}
+
+PixelStatistics pixelStatistics(const Image& image) {
+    const size_t n = size_t(image.width) * image.height;
+    glm::dvec3 sum(0.0), sumSquares(0.0);
+    for (size_t i = 0; i < n; ++i) {
+        glm::dvec3 v(image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]);
+        sum += v;
+        sumSquares += v * v;
+    }
+    PixelStatistics s;
+    s.mean = sum / double(n);
+    glm::dvec3 variance = (sumSquares - double(n) * s.mean * s.mean) / double(n - 1);
+    s.pixelStdDev = glm::sqrt(glm::max(variance, glm::dvec3(0.0)));
+    s.standardError = s.pixelStdDev / std::sqrt(double(n));
+    return s;
+}
+
+bool allFinite(const Image& image) {
+    for (float v : image.rgb) {
+        if (!std::isfinite(v)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace vkdr::test

@@ -1,0 +1,199 @@
+// Input that loadScene must reject with a message naming the file and the field.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "gltf_test_files.h"
+#include "scene/load_scene.h"
+
+namespace vkdr::test {
+namespace {
+
+// Loads `file` expecting a vkdr::Error whose message contains every one of `parts`.
+void expectLoadError(const std::filesystem::path& file, const std::vector<std::string>& parts) {
+    try {
+        loadScene(file);
+        ADD_FAILURE() << "loading " << file << " did not fail";
+    } catch (const Error& error) {
+        std::string message = error.what();
+        EXPECT_NE(message.find(file.string() + ": "), std::string::npos) << message;
+        for (const std::string& part : parts) {
+            EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+        }
+    }
+}
+
+GltfBuilder boxWithMaterial(json material) {
+    GltfBuilder builder;
+    int index = builder.addMaterial(std::move(material));
+    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {1, 1, 1}), index)}});
+    return builder;
+}
+
+json mediumMaterial(json participatingMedia) {
+    return {{"name", "smoke"}, {"extensions", {{"VKDR_participating_media", std::move(participatingMedia)}}}};
+}
+
+TEST(LoadSceneErrors, MissingFile) {
+    TemporaryDirectory directory;
+    expectLoadError(directory / "absent.gltf", {"no such file"});
+}
+
+TEST(LoadSceneErrors, MalformedJsonIncludesTheParserMessage) {
+    TemporaryDirectory directory;
+    expectLoadError(writeText(directory / "broken.gltf", R"({"asset": {"version": "2.0"}, "nodes": [)"),
+                    {"cannot parse glTF", "parse error"});
+}
+
+TEST(LoadSceneErrors, OutOfRangeIndices) {
+    TemporaryDirectory directory;
+    {
+        GltfBuilder builder;
+        int mesh = builder.addMesh("quad", floorQuad(1.0f), 3);
+        builder.addNode({{"mesh", mesh}});
+        expectLoadError(builder.writeGltf(directory / "material.gltf"),
+                        {"meshes[0].primitives[0].material", "material 3 out of range"});
+    }
+    {
+        GltfBuilder builder;
+        builder.addNode({{"mesh", 4}});
+        expectLoadError(builder.writeGltf(directory / "mesh.gltf"), {"nodes[0].mesh", "mesh 4 out of range"});
+    }
+    {
+        GltfBuilder builder;
+        builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+        builder.document()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 9;
+        expectLoadError(builder.writeGltf(directory / "accessor.gltf"),
+                        {"meshes[0].primitives[0].attributes.TEXCOORD_0", "accessor 9 out of range"});
+    }
+    {
+        GltfBuilder builder;
+        builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+        builder.document()["accessors"][0]["bufferView"] = 7;
+        expectLoadError(builder.writeGltf(directory / "view.gltf"),
+                        {"accessors[0].bufferView", "buffer view 7 out of range"});
+    }
+    {
+        GltfBuilder builder;
+        MeshData quad = floorQuad(1.0f);
+        quad.indices[4] = 17;
+        builder.addNode({{"mesh", builder.addMesh("quad", quad)}});
+        expectLoadError(builder.writeGltf(directory / "vertex.gltf"),
+                        {"meshes[0].primitives[0].indices", "vertex index 17 out of range (4 vertices)"});
+    }
+    {
+        json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 2}}}}}};
+        expectLoadError(boxWithMaterial(material).writeGltf(directory / "texture.gltf"),
+                        {"materials[0].pbrMetallicRoughness.baseColorTexture.index", "texture 2 out of range"});
+    }
+}
+
+TEST(LoadSceneErrors, BufferShorterThanItsAccessor) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    builder.document()["accessors"][0]["count"] = 40;
+    expectLoadError(builder.writeGltf(directory / "short.gltf"),
+                    {"accessors[0]", "40 elements need 480 bytes but bufferViews[0] holds 48"});
+}
+
+TEST(LoadSceneErrors, NonTrianglePrimitive) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("lines", floorQuad(1.0f))}});
+    builder.document()["meshes"][0]["primitives"][0]["mode"] = 1;
+    expectLoadError(builder.writeGltf(directory / "lines.gltf"),
+                    {"meshes[0].primitives[0].mode", "only triangles are supported, got mode 1 (LINES)"});
+}
+
+TEST(LoadSceneErrors, SceneWithoutTriangles) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    expectLoadError(builder.writeGltf(directory / "empty.gltf"), {"no triangles"});
+}
+
+TEST(LoadSceneErrors, NegativeSigma) {
+    TemporaryDirectory directory;
+    expectLoadError(
+        boxWithMaterial(mediumMaterial({{"sigma_a", {0.1, -0.2, 0.1}}})).writeGltf(directory / "negative.gltf"),
+        {"materials[0].extensions.VKDR_participating_media.sigma_a", "must be >= 0, got -0.2"});
+}
+
+TEST(LoadSceneErrors, AnisotropyOfOneOrMore) {
+    TemporaryDirectory directory;
+    expectLoadError(boxWithMaterial(mediumMaterial({{"g", 1.2}})).writeGltf(directory / "g.gltf"),
+                    {"materials[0].extensions.VKDR_participating_media.g", "|g| must be < 1, got 1.2"});
+}
+
+TEST(LoadSceneErrors, NumbersBeyondFloatRange) {
+    TemporaryDirectory directory;
+    GltfBuilder builder = boxWithMaterial(mediumMaterial({{"sigma_s", 12345.0}}));
+    std::string text = builder.gltfText();
+    size_t number = text.find("12345.0");
+    // Finite as a double, infinite as the float it is stored in.
+    expectLoadError(writeText(directory / "float.gltf", std::string(text).replace(number, 7, "1e39")),
+                    {"materials[0].extensions.VKDR_participating_media.sigma_s", "must be finite, got 1e+39"});
+    // Beyond double range the JSON parser itself refuses.
+    expectLoadError(writeText(directory / "double.gltf", std::string(text).replace(number, 7, "1e999")),
+                    {"cannot parse glTF", "number overflow", "1e999"});
+}
+
+TEST(LoadSceneErrors, RootMediumWithInvalidAnisotropy) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    builder.document()["extensions"]["VKDR_participating_media"] = {{"name", "fog"}, {"g", -1.0}};
+    expectLoadError(builder.writeGltf(directory / "fog.gltf"),
+                    {"extensions.VKDR_participating_media.g", "|g| must be < 1, got -1"});
+}
+
+TEST(LoadSceneErrors, RefractionIsNotSupported) {
+    TemporaryDirectory directory;
+    json glass = {{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                  {"KHR_materials_ior", {{"ior", 1.5}}}}}};
+    expectLoadError(boxWithMaterial(glass).writeGltf(directory / "glass.gltf"),
+                    {"materials[0].extensions.KHR_materials_ior.ior", "refraction is not supported", "got 1.5"});
+    json defaultIor = {{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}};
+    expectLoadError(boxWithMaterial(defaultIor).writeGltf(directory / "default_ior.gltf"),
+                    {"KHR_materials_ior.ior", "the default when absent"});
+}
+
+TEST(LoadSceneErrors, ZeroAttenuationColorMeansInfiniteAbsorption) {
+    TemporaryDirectory directory;
+    json ink = {{"extensions",
+                 {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                  {"KHR_materials_ior", {{"ior", 1.0}}},
+                  {"KHR_materials_volume", {{"attenuationColor", {0.5, 0.0, 0.5}}, {"attenuationDistance", 1.0}}}}}};
+    expectLoadError(boxWithMaterial(ink).writeGltf(directory / "ink.gltf"),
+                    {"materials[0].extensions.KHR_materials_volume.attenuationColor[1]", "infinite absorption"});
+}
+
+TEST(LoadSceneErrors, OpenMediumBoundary) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int smoke = builder.addMaterial(mediumMaterial({{"sigma_s", 1.0}}));
+    MeshData open = box({0, 0, 0}, {1, 1, 1});
+    open.indices.resize(open.indices.size() - 6);  // no top face
+    builder.addNode({{"name", "puff"}, {"mesh", builder.addMesh("smokebox", open, smoke)}});
+    expectLoadError(builder.writeGltf(directory / "open.gltf"),
+                    {"meshes[0] ('smokebox') at nodes[0] ('puff')", "medium 'smoke'", "not a closed mesh"});
+}
+
+TEST(LoadSceneErrors, DuplicateMediumNames) {
+    TemporaryDirectory directory;
+    GltfBuilder builder = boxWithMaterial(mediumMaterial({{"sigma_s", 1.0}}));
+    builder.document()["extensions"]["VKDR_participating_media"] = {{"name", "smoke"}};
+    expectLoadError(builder.writeGltf(directory / "names.gltf"),
+                    {"extensions.VKDR_participating_media.name", "medium names must be unique"});
+}
+
+TEST(LoadSceneErrors, UnsupportedRequiredExtension) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    builder.document()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    expectLoadError(builder.writeGltf(directory / "draco.gltf"),
+                    {"extensionsRequired[0]", "KHR_draco_mesh_compression is not supported"});
+}
+
+}  // namespace
+}  // namespace vkdr::test

@@ -1,0 +1,283 @@
+// Loading every supported glTF feature into a flattened Scene.
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "gltf_test_files.h"
+#include "scene/load_scene.h"
+#include "scene/medium_at.h"
+
+namespace vkdr::test {
+namespace {
+
+const MeshData kTriangle = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, {}};
+
+void expectNear(glm::vec3 actual, glm::vec3 expected, float tolerance = 1e-5f) {
+    EXPECT_NEAR(actual.x, expected.x, tolerance);
+    EXPECT_NEAR(actual.y, expected.y, tolerance);
+    EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+glm::vec3 cornerOf(const Scene& scene, size_t triangle, int corner) {
+    return scene.positions[scene.triangles[triangle][corner]];
+}
+
+glm::vec3 normalOf(const Scene& scene, size_t triangle) {
+    glm::vec3 p0 = cornerOf(scene, triangle, 0);
+    return glm::normalize(glm::cross(cornerOf(scene, triangle, 1) - p0, cornerOf(scene, triangle, 2) - p0));
+}
+
+TEST(LoadScene, FlattensTheNodeHierarchyWithMatricesAndTrs) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int mesh = builder.addMesh("triangle", kTriangle);
+    // child: matrix translating by (0, 0, 5); parent: TRS (translate x 1, rotate 90
+    // degrees about z, scale 2).
+    int child = builder.addNode({{"mesh", mesh},
+                                 {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 5, 1}}},
+                                false);
+    builder.addNode({{"name", "parent"}, {"children", {child}}, {"mesh", mesh},
+                     {"translation", {1, 0, 0}},
+                     {"rotation", {0, 0, std::sqrt(0.5), std::sqrt(0.5)}},
+                     {"scale", {2, 2, 2}}});
+    Scene scene = loadScene(builder.writeGltf(directory / "hierarchy.gltf")).scene;
+
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    // Parent first: (1,0,0) -> scale (2,0,0) -> rotate (0,2,0) -> translate (1,2,0).
+    expectNear(cornerOf(scene, 0, 1), {1, 2, 0});
+    // Child: (1,0,0) -> (1,0,5) -> scale (2,0,10) -> rotate (0,2,10) -> (1,2,10).
+    expectNear(cornerOf(scene, 1, 1), {1, 2, 10});
+    expectNear(cornerOf(scene, 1, 0), {1, 0, 10});
+}
+
+TEST(LoadScene, KeepsFrontFacesUnderMirroringTransforms) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int mesh = builder.addMesh("triangle", kTriangle);
+    builder.addNode({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
+    Scene scene = loadScene(builder.writeGltf(directory / "mirror.gltf")).scene;
+    // The triangle faces +z before mirroring; a mirror in x must not turn it around.
+    expectNear(normalOf(scene, 0), {0, 0, 1});
+}
+
+TEST(LoadScene, ReadsIndexedAndNonIndexedPrimitives) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    MeshData nonIndexed = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, {}, {}};
+    builder.addNode({{"mesh", builder.addMesh("indexed", floorQuad(1.0f))}});
+    builder.addNode({{"mesh", builder.addMesh("soup", nonIndexed)}});
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "primitives.gltf"));
+    const Scene& scene = loaded.scene;
+
+    ASSERT_EQ(scene.triangles.size(), 4u);
+    EXPECT_EQ(scene.positions.size(), 10u);
+    EXPECT_EQ(scene.uvs.size(), 10u);
+    expectNear(cornerOf(scene, 3, 0), {0, 0, 1});
+    expectNear(normalOf(scene, 0), {0, 1, 0});
+    EXPECT_EQ(scene.uvs[0], glm::vec2(0, 1));
+    EXPECT_EQ(scene.uvs[9], glm::vec2(0, 0));  // no TEXCOORD_0: zeros
+    // Primitives without a material get the glTF default.
+    ASSERT_EQ(scene.materials.size(), 1u);
+    EXPECT_EQ(scene.materials[0].name, "default");
+    EXPECT_EQ(scene.materials[0].baseColor, glm::vec3(1.0f));
+    EXPECT_EQ(scene.triangleMaterial, std::vector<uint32_t>(4, 0));
+    EXPECT_TRUE(loaded.warnings.empty());
+}
+
+TEST(LoadScene, ReadsTriangleStripsAndFansWithFrontFacesKept) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    MeshData quad = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {0, 1, 2, 3}, {}};
+    int strip = builder.addMesh("strip", quad);
+    builder.document()["meshes"][size_t(strip)]["primitives"][0]["mode"] = 5;
+    MeshData fanQuad = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 3}, {}};
+    int fan = builder.addMesh("fan", fanQuad);
+    builder.document()["meshes"][size_t(fan)]["primitives"][0]["mode"] = 6;
+    builder.addNode({{"mesh", strip}});
+    builder.addNode({{"mesh", fan}});
+    Scene scene = loadScene(builder.writeGltf(directory / "strips.gltf")).scene;
+    ASSERT_EQ(scene.triangles.size(), 4u);
+    for (size_t t = 0; t < 4; ++t) {
+        expectNear(normalOf(scene, t), {0, 0, 1});
+    }
+}
+
+TEST(LoadScene, ReadsBinaryGlb) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(2.0f, 1.0f))}});
+    Scene scene = loadScene(builder.writeGlb(directory / "quad.glb")).scene;
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    expectNear(cornerOf(scene, 0, 0), {-2, 1, 2});
+}
+
+TEST(LoadScene, DecodesSrgbTexturesWithTheTopRowFirst) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    std::vector<unsigned char> image =
+        bmpImage(2, 2, {{255, 0, 0}, {128, 128, 128}, {0, 0, 255}, {0, 255, 0}});
+    builder.document()["images"] = {
+        {{"name", "checker"}, {"uri", "data:image/bmp;base64," + base64(image)}}};
+    builder.document()["textures"] = {{{"source", 0}}};
+    int material = builder.addMaterial(
+        {{"name", "textured"},
+         {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 1, 1, 1}}, {"baseColorTexture", {{"index", 0}}}}},
+         {"emissiveFactor", {1, 1, 1}},
+         {"emissiveTexture", {{"index", 0}}}});
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
+    Scene scene = loadScene(builder.writeGltf(directory / "texture.gltf")).scene;
+
+    ASSERT_EQ(scene.textures.size(), 1u);  // one image, shared by both slots
+    const Texture& texture = scene.textures[0];
+    EXPECT_EQ(texture.name, "checker");
+    ASSERT_EQ(texture.width, 2);
+    ASSERT_EQ(texture.height, 2);
+    EXPECT_EQ(texture.texels[0], glm::vec4(1, 0, 0, 1));  // top left
+    float grey = std::pow((128.0f / 255.0f + 0.055f) / 1.055f, 2.4f);
+    EXPECT_NEAR(texture.texels[1].r, grey, 1e-6f);
+    EXPECT_NEAR(grey, 0.2158605f, 1e-6f);
+    EXPECT_EQ(texture.texels[2], glm::vec4(0, 0, 1, 1));  // bottom left
+    const Material& textured = scene.materials[0];
+    EXPECT_EQ(textured.baseColor, glm::vec3(0.5f, 1.0f, 1.0f));
+    EXPECT_EQ(textured.baseColorTexture, 0);
+    EXPECT_EQ(textured.emissionTexture, 0);
+}
+
+TEST(LoadScene, MultipliesEmissionByEmissiveStrength) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int light = builder.addMaterial(
+        {{"name", "lamp"},
+         {"emissiveFactor", {1.0, 0.5, 0.25}},
+         {"doubleSided", true},
+         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 8.0}}}}}});
+    builder.addMaterial({{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.3, 0.4, 0.5}}}}});
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), light)}});
+    Scene scene = loadScene(builder.writeGltf(directory / "light.gltf")).scene;
+
+    ASSERT_EQ(scene.materials.size(), 2u);
+    EXPECT_EQ(scene.materials[0].emission, glm::vec3(8.0f, 4.0f, 2.0f));
+    EXPECT_TRUE(scene.materials[0].doubleSided);
+    EXPECT_TRUE(scene.materials[0].isEmissive());
+    EXPECT_EQ(scene.materials[1].name, "1");  // unnamed: its index
+    expectNear(scene.materials[1].baseColor, {0.2f, 0.3f, 0.4f});
+    EXPECT_FALSE(scene.materials[1].isEmissive());
+}
+
+TEST(LoadScene, ReadsKhrVolumeAttenuationAsAbsorption) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int glass = builder.addMaterial(
+        {{"name", "ink"},
+         {"extensions",
+          {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+           {"KHR_materials_ior", {{"ior", 1.0}}},
+           {"KHR_materials_volume", {{"attenuationColor", {0.5, 0.25, 1.0}}, {"attenuationDistance", 2.0}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {1, 1, 1}), glass)}});
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "volume.gltf"));
+    const Scene& scene = loaded.scene;
+
+    ASSERT_EQ(scene.media.size(), 1u);
+    EXPECT_EQ(scene.media[0].name, "ink");
+    expectNear(scene.media[0].sigma_a, {-std::log(0.5f) / 2.0f, -std::log(0.25f) / 2.0f, 0.0f});
+    EXPECT_EQ(scene.media[0].sigma_s, glm::vec3(0.0f));
+    EXPECT_EQ(scene.media[0].g, 0.0f);
+    EXPECT_EQ(scene.materials[0].interiorMedium, 0);
+    EXPECT_TRUE(loaded.warnings.empty());
+}
+
+TEST(LoadScene, TreatsTransmissionWithoutVolumeAsAClearMediumWithAWarning) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int clear = builder.addMaterial(
+        {{"name", "air"},
+         {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                         {"KHR_materials_ior", {{"ior", 1.0}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {1, 1, 1}), clear)}});
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "clear.gltf"));
+    ASSERT_EQ(loaded.scene.media.size(), 1u);
+    EXPECT_EQ(loaded.scene.media[0].sigma_a, glm::vec3(0.0f));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("without KHR_materials_volume"), std::string::npos);
+}
+
+TEST(LoadScene, ReadsParticipatingMediaExtensionWithScalarsBroadcast) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int smoke = builder.addMaterial(
+        {{"name", "smoke"},
+         {"extensions", {{"VKDR_participating_media", {{"sigma_a", 0.25}, {"sigma_s", {1, 2, 3}}, {"g", -0.5}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {1, 1, 1}), smoke)}});
+    Scene scene = loadScene(builder.writeGltf(directory / "smoke.gltf")).scene;
+    ASSERT_EQ(scene.media.size(), 1u);
+    EXPECT_EQ(scene.media[0].name, "smoke");
+    EXPECT_EQ(scene.media[0].sigma_a, glm::vec3(0.25f));
+    EXPECT_EQ(scene.media[0].sigma_s, glm::vec3(1, 2, 3));
+    EXPECT_EQ(scene.media[0].g, -0.5f);
+    EXPECT_EQ(scene.sceneMedium, kNoMedium);
+    EXPECT_EQ(scene.triangleOutsideMedium, std::vector<int32_t>(12, kNoMedium));
+}
+
+TEST(LoadScene, ReadsRootMediumWithDefaultNameAndBackground) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    builder.document()["extensions"] = {
+        {"VKDR_participating_media", {{"sigma_a", {0.1, 0.2, 0.3}}, {"sigma_s", 0.5}}},
+        {"VKDR_background", {{"radiance", {0.5, 0.6, 0.7}}}}};
+    Scene scene = loadScene(builder.writeGltf(directory / "fog.gltf")).scene;
+    ASSERT_EQ(scene.media.size(), 1u);
+    EXPECT_EQ(scene.sceneMedium, 0);
+    EXPECT_EQ(scene.media[0].name, "scene");
+    expectNear(scene.media[0].sigma_a, {0.1f, 0.2f, 0.3f});
+    EXPECT_EQ(scene.media[0].sigma_s, glm::vec3(0.5f));
+    expectNear(scene.background, {0.5f, 0.6f, 0.7f});
+    EXPECT_EQ(mediumAt(scene, {0, 5, 0}), 0);
+}
+
+TEST(LoadScene, ReadsPerspectiveCamerasInNodeOrderAndSkipsOrthographic) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    int wide = builder.addCamera({{"name", "wide"}, {"type", "perspective"},
+                                  {"perspective", {{"yfov", 1.2}, {"znear", 0.1}, {"aspectRatio", 2.0}}}});
+    int plain = builder.addCamera({{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}});
+    int ortho = builder.addCamera({{"type", "orthographic"},
+                                   {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}});
+    builder.addNode({{"camera", ortho}});
+    // Turned to look along +x (a quarter turn about y), scaled: the scale is dropped.
+    builder.addNode({{"name", "side"}, {"camera", plain}, {"translation", {0, 1, 2}},
+                     {"rotation", {0, -std::sqrt(0.5), 0, std::sqrt(0.5)}}, {"scale", {3, 3, 3}}});
+    builder.addNode({{"camera", wide}});
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "cameras.gltf"));
+    const Scene& scene = loaded.scene;
+
+    ASSERT_EQ(scene.cameras.size(), 2u);
+    EXPECT_EQ(scene.cameras[0].name, "side");
+    EXPECT_FLOAT_EQ(scene.cameras[0].yfov, 0.5f);
+    EXPECT_EQ(scene.cameras[0].aspectRatio, 0.0f);
+    glm::vec3 forward = -glm::vec3(scene.cameras[0].cameraToWorld[2]);
+    expectNear(forward, {1, 0, 0});
+    expectNear(glm::vec3(scene.cameras[0].cameraToWorld[1]), {0, 1, 0});
+    expectNear(glm::vec3(scene.cameras[0].cameraToWorld[3]), {0, 1, 2});
+    EXPECT_EQ(scene.cameras[1].name, "wide");
+    EXPECT_FLOAT_EQ(scene.cameras[1].aspectRatio, 2.0f);
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("cameras[2]: only perspective cameras"), std::string::npos);
+}
+
+TEST(LoadScene, WarnsOnceAboutIgnoredVertexNormals) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int mesh = builder.addMesh("quad", floorQuad(1.0f));
+    builder.document()["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 0;  // any VEC3 accessor
+    builder.addNode({{"mesh", mesh}});
+    builder.addNode({{"mesh", mesh}});
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "normals.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("vertex normals are ignored"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vkdr::test

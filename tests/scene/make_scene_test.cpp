@@ -1,0 +1,72 @@
+// vkdr-make-scene writes loadable scenes of the requested size.
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+
+#include "gltf_test_files.h"
+#include "scene/load_scene.h"
+
+namespace vkdr::test {
+namespace {
+
+LoadedScene makeAndLoad(const TemporaryDirectory& directory, const std::string& arguments) {
+    std::filesystem::path file = directory / "generated.glb";
+    std::string command = std::string(VKDR_MAKE_SCENE_PATH) + " " + arguments + " -o " + file.string() +
+                          " > /dev/null";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    return loadScene(file);
+}
+
+TEST(MakeScene, ProducesTheRequestedTriangleCount) {
+    TemporaryDirectory directory;
+    for (size_t requested : {2000u, 30000u}) {
+        LoadedScene loaded = makeAndLoad(directory, "--triangles " + std::to_string(requested));
+        const Scene& scene = loaded.scene;
+        EXPECT_NEAR(double(scene.triangles.size()), double(requested), 0.03 * double(requested));
+        EXPECT_TRUE(loaded.warnings.empty());
+        EXPECT_EQ(scene.cameras.size(), 1u);
+        EXPECT_EQ(scene.sceneMedium, kNoMedium);
+        bool hasLight = false;
+        for (const Material& material : scene.materials) {
+            hasLight = hasLight || material.isEmissive();
+        }
+        EXPECT_TRUE(hasLight);
+    }
+}
+
+TEST(MakeScene, AddsTheFogMedium) {
+    TemporaryDirectory directory;
+    Scene scene = makeAndLoad(directory, "--triangles 5000 --fog 0.02,0.1").scene;
+    ASSERT_GE(scene.sceneMedium, 0);
+    EXPECT_EQ(scene.media[size_t(scene.sceneMedium)].name, "fog");
+    EXPECT_EQ(scene.media[size_t(scene.sceneMedium)].sigma_a, glm::vec3(0.02f));
+    EXPECT_EQ(scene.media[size_t(scene.sceneMedium)].sigma_s, glm::vec3(0.1f));
+}
+
+TEST(MakeScene, SpheresFaceOutwards) {
+    TemporaryDirectory directory;
+    Scene scene = makeAndLoad(directory, "--triangles 3000").scene;
+    // This budget makes a single sphere: every one of its triangles faces away from
+    // the centre of its bounding box.
+    uint32_t spheres = scene.triangleMaterial.back();
+    glm::vec3 low(1e9f), high(-1e9f);
+    for (size_t t = 0; t < scene.triangles.size(); ++t) {
+        if (scene.triangleMaterial[t] == spheres) {
+            for (int c = 0; c < 3; ++c) {
+                low = glm::min(low, scene.positions[scene.triangles[t][c]]);
+                high = glm::max(high, scene.positions[scene.triangles[t][c]]);
+            }
+        }
+    }
+    glm::vec3 centre = (low + high) * 0.5f;
+    for (size_t t = 0; t < scene.triangles.size(); ++t) {
+        if (scene.triangleMaterial[t] != spheres) continue;
+        glm::vec3 p0 = scene.positions[scene.triangles[t].x];
+        glm::vec3 p1 = scene.positions[scene.triangles[t].y];
+        glm::vec3 p2 = scene.positions[scene.triangles[t].z];
+        ASSERT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), (p0 + p1 + p2) / 3.0f - centre), 0.0f) << t;
+    }
+}
+
+}  // namespace
+}  // namespace vkdr::test

@@ -1,0 +1,127 @@
+// Medium boundaries: closedness, outward winding, the medium outside each boundary,
+// and mediumAt.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "gltf_test_files.h"
+#include "scene/load_scene.h"
+#include "scene/medium_at.h"
+
+namespace vkdr::test {
+namespace {
+
+json mediumMaterial(const std::string& name, float sigma_s) {
+    return {{"name", name}, {"extensions", {{"VKDR_participating_media", {{"sigma_s", sigma_s}}}}}};
+}
+
+int32_t mediumNamed(const Scene& scene, const std::string& name) {
+    for (size_t m = 0; m < scene.media.size(); ++m) {
+        if (scene.media[m].name == name) {
+            return int32_t(m);
+        }
+    }
+    ADD_FAILURE() << "no medium " << name;
+    return kNoMedium;
+}
+
+// A box whose faces do not share vertices, as exporters write meshes with UV seams.
+MeshData boxWithSplitFaces(glm::vec3 min, glm::vec3 max) {
+    MeshData shared = box(min, max);
+    MeshData split;
+    for (size_t i = 0; i < shared.indices.size(); ++i) {
+        split.positions.push_back(shared.positions[shared.indices[i]]);
+    }
+    return split;
+}
+
+TEST(MediumBoundaries, FlipsInwardWoundBoundariesAndWeldsSplitVertices) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
+    builder.addNode({{"mesh", builder.addMesh("inward", box({0, 0, 0}, {2, 2, 2}, true), smoke)}});
+    builder.addNode({{"mesh", builder.addMesh("split", boxWithSplitFaces({5, 0, 0}, {6, 1, 1}), smoke)}});
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "winding.gltf"));
+    const Scene& scene = loaded.scene;
+
+    ASSERT_EQ(scene.triangles.size(), 24u);
+    for (size_t t = 0; t < scene.triangles.size(); ++t) {
+        glm::vec3 p0 = scene.positions[scene.triangles[t].x];
+        glm::vec3 p1 = scene.positions[scene.triangles[t].y];
+        glm::vec3 p2 = scene.positions[scene.triangles[t].z];
+        glm::vec3 centre = t < 12 ? glm::vec3(1.0f) : glm::vec3(5.5f, 0.5f, 0.5f);
+        glm::vec3 outward = (p0 + p1 + p2) / 3.0f - centre;
+        EXPECT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), outward), 0.0f) << "triangle " << t;
+    }
+    EXPECT_TRUE(loaded.warnings.empty());
+}
+
+TEST(MediumBoundaries, NestedBoundariesSitInTheInnermostEnclosingMedium) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int outer = builder.addMaterial(mediumMaterial("outer", 1.0f));
+    int inner = builder.addMaterial(mediumMaterial("inner", 2.0f));
+    int side = builder.addMaterial(mediumMaterial("side", 3.0f));
+    int wall = builder.addMaterial({{"name", "wall"}});
+    builder.addNode({{"mesh", builder.addMesh("inner", box({2, 2, 2}, {4, 4, 4}), inner)}});
+    builder.addNode({{"mesh", builder.addMesh("outer", box({0, 0, 0}, {10, 10, 10}), outer)}});
+    builder.addNode({{"mesh", builder.addMesh("side", box({6, 6, 6}, {8, 8, 8}, true), side)}});
+    builder.addNode({{"mesh", builder.addMesh("floor", floorQuad(20.0f, -1.0f), wall)}});
+    builder.document()["extensions"]["VKDR_participating_media"] = {{"name", "fog"}, {"sigma_s", 0.1}};
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "nested.gltf"));
+    const Scene& scene = loaded.scene;
+    EXPECT_TRUE(loaded.warnings.empty());
+
+    int32_t fog = mediumNamed(scene, "fog");
+    int32_t outerMedium = mediumNamed(scene, "outer");
+    EXPECT_EQ(scene.sceneMedium, fog);
+    ASSERT_EQ(scene.triangleOutsideMedium.size(), 38u);
+    for (size_t t = 0; t < 12; ++t) {
+        EXPECT_EQ(scene.triangleOutsideMedium[t], outerMedium) << "inner box, triangle " << t;
+        EXPECT_EQ(scene.triangleOutsideMedium[t + 12], fog) << "outer box, triangle " << t;
+        EXPECT_EQ(scene.triangleOutsideMedium[t + 24], outerMedium) << "side box, triangle " << t;
+    }
+    EXPECT_EQ(scene.triangleOutsideMedium[36], kNoMedium);  // the floor is no boundary
+
+    EXPECT_EQ(mediumAt(scene, {3, 3, 3}), mediumNamed(scene, "inner"));
+    EXPECT_EQ(mediumAt(scene, {7, 7, 7}), mediumNamed(scene, "side"));
+    EXPECT_EQ(mediumAt(scene, {5, 1, 5}), outerMedium);
+    EXPECT_EQ(mediumAt(scene, {1, 9, 9}), outerMedium);
+    EXPECT_EQ(mediumAt(scene, {-5, 5, 5}), fog);
+    EXPECT_EQ(mediumAt(scene, {20, 20, 20}), fog);
+}
+
+TEST(MediumBoundaries, VacuumOutsideWithoutSceneMedium) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
+    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {1, 1, 1}), smoke)}});
+    Scene scene = loadScene(builder.writeGltf(directory / "vacuum.gltf")).scene;
+    EXPECT_EQ(mediumAt(scene, {0.5f, 0.5f, 0.5f}), 0);
+    EXPECT_EQ(mediumAt(scene, {2, 2, 2}), kNoMedium);
+    EXPECT_EQ(scene.triangleOutsideMedium, std::vector<int32_t>(12, kNoMedium));
+}
+
+TEST(MediumBoundaries, WarnsAboutOverlappingMedia) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int a = builder.addMaterial(mediumMaterial("a", 1.0f));
+    int b = builder.addMaterial(mediumMaterial("b", 1.0f));
+    builder.addNode({{"mesh", builder.addMesh("a", box({0, 0, 0}, {2, 2, 2}), a)}});
+    builder.addNode({{"mesh", builder.addMesh("b", box({1, 1, 1}, {3, 3, 3}), b)}});
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "overlap.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("overlapping media are not supported"), std::string::npos);
+}
+
+TEST(MediumBoundaries, RejectsInconsistentlyWoundBoundaries) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
+    MeshData twisted = box({0, 0, 0}, {1, 1, 1});
+    std::swap(twisted.indices[1], twisted.indices[2]);
+    builder.addNode({{"mesh", builder.addMesh("twisted", twisted, smoke)}});
+    EXPECT_THROW(loadScene(builder.writeGltf(directory / "twisted.gltf")), Error);
+}
+
+}  // namespace
+}  // namespace vkdr::test

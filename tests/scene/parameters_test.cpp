@@ -1,0 +1,137 @@
+// Named scene parameters: listing, reading, validated writing, assignments.
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "scene/parameters.h"
+
+namespace vkdr::test {
+namespace {
+
+Scene sceneWithEverything() {
+    Scene scene;
+    scene.media.push_back({"fog", glm::vec3(0.1f), glm::vec3(0.2f), 0.3f});
+    scene.media.push_back({"smoke", glm::vec3(0.5f), glm::vec3(1.5f), 0.6f});
+    Material white;
+    white.name = "white";
+    white.baseColor = glm::vec3(0.7f);
+    Material light;
+    light.name = "light";
+    light.emission = glm::vec3(17.0f, 12.0f, 4.0f);
+    Material boundary;
+    boundary.name = "smoke";
+    boundary.interiorMedium = 1;
+    scene.materials = {white, light, boundary};
+    return scene;
+}
+
+void expectErrorMentioning(const std::function<void()>& action, const std::vector<std::string>& parts) {
+    try {
+        action();
+        ADD_FAILURE() << "no error";
+    } catch (const Error& error) {
+        for (const std::string& part : parts) {
+            EXPECT_NE(std::string(error.what()).find(part), std::string::npos)
+                << "'" << part << "' not in: " << error.what();
+        }
+    }
+}
+
+TEST(Parameters, ListsMediaThenBaseColoursThenLights) {
+    std::vector<std::string> expected = {
+        "media/fog/sigma_a",   "media/fog/sigma_s",   "media/fog/g",
+        "media/smoke/sigma_a", "media/smoke/sigma_s", "media/smoke/g",
+        "materials/white/base_color", "materials/light/base_color",
+        "lights/light/emission"};
+    EXPECT_EQ(parameterNames(sceneWithEverything()), expected);
+}
+
+TEST(Parameters, GetsCurrentValues) {
+    Scene scene = sceneWithEverything();
+    EXPECT_EQ(getParameter(scene, "media/smoke/sigma_s"), std::vector<float>(3, 1.5f));
+    EXPECT_EQ(getParameter(scene, "media/fog/g"), std::vector<float>{0.3f});
+    EXPECT_EQ(getParameter(scene, "lights/light/emission"), (std::vector<float>{17.0f, 12.0f, 4.0f}));
+    EXPECT_EQ(getParameter(scene, "materials/white/base_color"), std::vector<float>(3, 0.7f));
+}
+
+TEST(Parameters, SetsRgbValuesAndBroadcastsOneValue) {
+    Scene scene = sceneWithEverything();
+    std::vector<float> rgb = {0.1f, 0.2f, 0.3f};
+    setParameter(scene, "media/fog/sigma_a", rgb);
+    EXPECT_EQ(scene.media[0].sigma_a, glm::vec3(0.1f, 0.2f, 0.3f));
+    std::vector<float> one = {0.05f};
+    setParameter(scene, "media/smoke/sigma_s", one);
+    EXPECT_EQ(scene.media[1].sigma_s, glm::vec3(0.05f));
+    setParameter(scene, "materials/white/base_color", one);
+    EXPECT_EQ(scene.materials[0].baseColor, glm::vec3(0.05f));
+    std::vector<float> g = {-0.9f};
+    setParameter(scene, "media/smoke/g", g);
+    EXPECT_EQ(scene.media[1].g, -0.9f);
+}
+
+TEST(Parameters, LightEmissionCanReturnFromZero) {
+    Scene scene = sceneWithEverything();
+    std::vector<float> zero = {0.0f};
+    setParameter(scene, "lights/light/emission", zero);
+    std::vector<float> bright = {5.0f};
+    setParameter(scene, "lights/light/emission", bright);
+    EXPECT_EQ(scene.materials[1].emission, glm::vec3(5.0f));
+}
+
+TEST(Parameters, RejectsOutOfRangeAndNonFiniteValues) {
+    Scene scene = sceneWithEverything();
+    auto set = [&](const char* name, std::vector<float> values) {
+        return [&scene, name, values] { setParameter(scene, name, values); };
+    };
+    float nan = std::numeric_limits<float>::quiet_NaN();
+    float inf = std::numeric_limits<float>::infinity();
+    expectErrorMentioning(set("media/fog/sigma_a", {-0.1f}), {"media/fog/sigma_a", "must be >= 0, got -0.1"});
+    expectErrorMentioning(set("media/fog/sigma_s", {0.1f, nan, 0.1f}), {"media/fog/sigma_s", "must be finite, got nan"});
+    expectErrorMentioning(set("media/fog/sigma_s", {inf}), {"must be finite, got inf"});
+    expectErrorMentioning(set("media/fog/g", {1.0f}), {"media/fog/g", "|g| must be < 1, got 1"});
+    expectErrorMentioning(set("media/fog/g", {0.1f, 0.2f, 0.3f}), {"media/fog/g", "expected 1 value, got 3"});
+    expectErrorMentioning(set("media/fog/sigma_a", {0.1f, 0.2f}), {"expected 1 or 3 values, got 2"});
+    expectErrorMentioning(set("materials/white/base_color", {1.5f}), {"materials/white/base_color", "must be in [0, 1]"});
+    expectErrorMentioning(set("lights/light/emission", {-1.0f}), {"lights/light/emission", "must be >= 0"});
+    EXPECT_EQ(scene.media[0].sigma_a, glm::vec3(0.1f));  // untouched by the failures
+}
+
+TEST(Parameters, UnknownNamesListTheValidOnes) {
+    Scene scene = sceneWithEverything();
+    for (const char* unknown : {"media/haze/sigma_a", "media/fog/sigma_t", "materials/smoke/base_color",
+                                "lights/white", "nonsense"}) {
+        expectErrorMentioning([&] { getParameter(scene, unknown); },
+                              {std::string("unknown parameter '") + unknown + "'", "media/fog/sigma_a",
+                               "lights/light/emission"});
+    }
+}
+
+TEST(Parameters, MaterialNamesMayContainSlashes) {
+    Scene scene;
+    Material material;
+    material.name = "Props/Red";
+    scene.materials = {material};
+    applyAssignment(scene, "materials/Props/Red/base_color=0.5,0,0");
+    EXPECT_EQ(scene.materials[0].baseColor, glm::vec3(0.5f, 0.0f, 0.0f));
+}
+
+TEST(Parameters, AppliesAssignments) {
+    Scene scene = sceneWithEverything();
+    applyAssignment(scene, "media/fog/sigma_s=0.25");
+    EXPECT_EQ(scene.media[0].sigma_s, glm::vec3(0.25f));
+    applyAssignment(scene, "lights/light/emission=1,2,3e1");
+    EXPECT_EQ(scene.materials[1].emission, glm::vec3(1.0f, 2.0f, 30.0f));
+    expectErrorMentioning([&] { applyAssignment(scene, "media/fog/g"); },
+                          {"assignment 'media/fog/g'", "expected NAME=VALUE"});
+    expectErrorMentioning([&] { applyAssignment(scene, "media/fog/g=0.1x"); },
+                          {"assignment 'media/fog/g=0.1x'", "'0.1x' is not a number"});
+    expectErrorMentioning([&] { applyAssignment(scene, "media/fog/sigma_a=1,,2"); }, {"'' is not a number"});
+    expectErrorMentioning([&] { applyAssignment(scene, "media/fog/g=nan"); }, {"media/fog/g", "must be finite"});
+    expectErrorMentioning([&] { applyAssignment(scene, "media/nope/g=0"); }, {"unknown parameter 'media/nope/g'"});
+}
+
+}  // namespace
+}  // namespace vkdr::test

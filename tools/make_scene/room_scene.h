@@ -1,0 +1,24 @@
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+namespace vkdr {
+
+struct Fog {
+    float sigma_a = 0.0f;  // per scene unit, all channels
+    float sigma_s = 0.0f;
+};
+
+struct RoomSceneOptions {
+    uint64_t triangles = 100000;  // approximate total
+    std::filesystem::path output;
+    std::optional<Fog> fog;       // the scene-wide medium "fog", when set
+};
+
+// A closed 10 x 5 x 10 room (white walls, an area light in the ceiling, a camera
+// looking in) holding a grid of bumpy spheres, written as a .glb. Returns the exact
+// triangle count.
+uint64_t writeRoomScene(const RoomSceneOptions& options);
+
+}  // namespace vkdr
