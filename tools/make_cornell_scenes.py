@@ -71,9 +71,9 @@ MATERIALS = {
         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 17.0}},
     },
     "smoke": {"extensions": {"VKDR_participating_media": {
-        "sigma_a": [0.05, 0.05, 0.05], "sigma_s": [1.5, 1.5, 1.5], "g": 0.6}}},
+        "sigma_a": [0.05, 0.05, 0.05], "sigma_s": [4.0, 4.0, 4.0], "g": 0.3}}},
 }
-FOG = {"name": "fog", "sigma_a": [0.05, 0.05, 0.05], "sigma_s": [0.1, 0.1, 0.1], "g": 0.0}
+FOG = {"name": "fog", "sigma_a": [0.01, 0.01, 0.01], "sigma_s": [0.04, 0.04, 0.04], "g": 0.0}
 
 
 def sub(a, b):

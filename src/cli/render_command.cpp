@@ -86,6 +86,9 @@ CommandAction addRenderCommand(CLI::App& app) {
     command->add_option("--height", options->settings.height,
                         "Image height in pixels (default: from the width and the camera's aspect ratio)")
         ->check(CLI::Range(1, 16384));
+    command->add_option("--paths-per-pass", options->settings.pathsPerPass,
+                        "Paths in flight per pass (default: up to 2^20, as device memory allows)")
+        ->check(CLI::Range(1u, 1u << 21));
     command->add_option("--camera", options->settings.camera, "Camera node name (default: the first camera)");
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
     return [command, options]() { return command->parsed() ? runRender(*options) : -1; };

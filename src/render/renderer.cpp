@@ -14,7 +14,9 @@ namespace vkdr {
 namespace {
 
 // Paths in flight per pass: enough to fill a large GPU, and a bound on memory.
-constexpr uint32_t kMaxPathsPerPass = 1u << 20;
+constexpr uint64_t kDefaultPathsPerPass = 1u << 20;
+// One thread per path in a 1D dispatch of at most 65535 workgroups of 64.
+constexpr uint64_t kMaxPathsPerPass = 1u << 21;
 // Segments recorded before the host looks whether any path is still alive.
 constexpr uint32_t kSegmentsPerBatch = 8;
 
@@ -29,7 +31,7 @@ uint32_t bit(uint32_t queue) {
 }
 
 uint32_t pathCapacity(const VulkanContext& context, const RenderSettings& settings, uint64_t pixels) {
-    uint64_t wanted = settings.pathsPerPass > 0 ? settings.pathsPerPass : kMaxPathsPerPass;
+    uint64_t wanted = std::min(settings.pathsPerPass > 0 ? settings.pathsPerPass : kDefaultPathsPerPass, kMaxPathsPerPass);
     // Leave most of the device's memory to the scene.
     uint64_t affordable = context.deviceLocalHeapBytes() / 4 / PathBuffers::kBytesPerPath;
     uint64_t needed = pixels * settings.spp;

@@ -77,8 +77,14 @@ void Buffer::release() {
     mapped_ = nullptr;
 }
 
+// Small tables are padded: the Debian 12 validation layers (1.3.239) report false
+// out-of-bounds errors under GPU-assisted validation for struct loads from buffers
+// only a struct or two long (fixed upstream in 1.3.280).
+constexpr VkDeviceSize kUploadGranularity = 256;
+
 Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> bytes, const std::string& name) {
-    VkDeviceSize size = std::max<VkDeviceSize>(bytes.size(), 16);
+    VkDeviceSize size = std::max<VkDeviceSize>(bytes.size(), 1);
+    size = (size + kUploadGranularity - 1) / kUploadGranularity * kUploadGranularity;
     Buffer staging(context, size, MemoryUse::Upload, name + " (staging)");
     std::memset(staging.mapped(), 0, size);
     if (!bytes.empty()) {

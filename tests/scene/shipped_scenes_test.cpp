@@ -99,14 +99,14 @@ TEST(ShippedScenes, FogAndSmokeMedia) {
     Scene fog = loadScene(kScenes / "cornell_fog.gltf").scene;
     ASSERT_GE(fog.sceneMedium, 0);
     EXPECT_EQ(fog.media[size_t(fog.sceneMedium)].name, "fog");
-    EXPECT_EQ(getParameter(fog, "media/fog/sigma_a"), std::vector<float>(3, 0.05f));
-    EXPECT_EQ(getParameter(fog, "media/fog/sigma_s"), std::vector<float>(3, 0.1f));
+    EXPECT_EQ(getParameter(fog, "media/fog/sigma_a"), std::vector<float>(3, 0.01f));
+    EXPECT_EQ(getParameter(fog, "media/fog/sigma_s"), std::vector<float>(3, 0.04f));
     EXPECT_EQ(mediumAt(fog, glm::vec3(fog.cameras[0].cameraToWorld[3])), fog.sceneMedium);
 
     Scene smoke = loadScene(kScenes / "cornell_smoke.gltf").scene;
     EXPECT_EQ(smoke.sceneMedium, kNoMedium);
-    EXPECT_EQ(getParameter(smoke, "media/smoke/sigma_s"), std::vector<float>(3, 1.5f));
-    EXPECT_EQ(getParameter(smoke, "media/smoke/g"), std::vector<float>{0.6f});
+    EXPECT_EQ(getParameter(smoke, "media/smoke/sigma_s"), std::vector<float>(3, 4.0f));
+    EXPECT_EQ(getParameter(smoke, "media/smoke/g"), std::vector<float>{0.3f});
     EXPECT_EQ(mediumAt(smoke, glm::vec3(smoke.cameras[0].cameraToWorld[3])), kNoMedium);
     EXPECT_EQ(mediumAt(smoke, {3.685f, 1.0f, 3.515f}), 0);
 }
