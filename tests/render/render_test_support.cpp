@@ -65,4 +65,39 @@ bool allFinite(const Image& image) {
     return true;
 }
 
+PixelExpectation absorbedEmitter(glm::dvec3 le, glm::dvec3 sigmaA, const std::vector<double>& distances) {
+    PixelExpectation e;
+    for (double d : distances) {
+        glm::dvec3 tr = glm::exp(-sigmaA * d);
+        double meanTr = (tr.x + tr.y + tr.z) / 3.0;
+        e.mean += le * tr;
+        e.sampleVariance += le * le * tr * tr * (1.0 / meanTr - 1.0);
+    }
+    e.mean /= double(distances.size());
+    e.sampleVariance /= double(distances.size());
+    return e;
+}
+
+void expectPixelsMatch(const Image& image, uint32_t spp, double floatTolerance,
+                       const std::function<PixelExpectation(int x, int y)>& expectation) {
+    ASSERT_TRUE(allFinite(image));
+    glm::dvec3 sumError(0.0), sumVariance(0.0);
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            PixelExpectation e = expectation(x, y);
+            for (int c = 0; c < 3; ++c) {
+                double value = image.pixel(x, y)[c];
+                double variance = e.sampleVariance[c] / spp;
+                EXPECT_NEAR(value, e.mean[c], 6.0 * std::sqrt(variance) + floatTolerance * e.mean[c])
+                    << "pixel " << x << "," << y << " channel " << c;
+                sumError[c] += value - e.mean[c];
+                sumVariance[c] += variance;
+            }
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_LT(std::abs(sumError[c]), 4.0 * std::sqrt(sumVariance[c])) << "channel " << c;
+    }
+}
+
 }  // namespace vkdr::test

@@ -1,5 +1,7 @@
 #pragma once
 #include <filesystem>
+#include <functional>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
@@ -37,5 +39,22 @@ struct PixelStatistics {
 PixelStatistics pixelStatistics(const Image& image);
 
 bool allFinite(const Image& image);
+
+// A pixel's expected value and the variance of one sample of it.
+struct PixelExpectation {
+    glm::dvec3 mean{0.0};
+    glm::dvec3 sampleVariance{0.0};
+};
+
+// A pixel seeing an emitter of radiance `le` through an absorbing medium, averaged over
+// the distances its sub-pixel positions travel in the medium. Per sample, channel c is
+// Le T_c / mean(T) with probability mean(T) (spectral-MIS free flight; an absorption
+// event ends the path with 0), so its variance is Le^2 T_c^2 (1 / mean(T) - 1).
+PixelExpectation absorbedEmitter(glm::dvec3 le, glm::dvec3 sigmaA, const std::vector<double>& distances);
+
+// Every pixel within 6 standard errors of its expectation (plus a relative float
+// tolerance), and the sum over the image within 4 standard errors.
+void expectPixelsMatch(const Image& image, uint32_t spp, double floatTolerance,
+                       const std::function<PixelExpectation(int x, int y)>& expectation);
 
 }  // namespace vkdr::test
