@@ -30,7 +30,12 @@ void main() {
     storeRay(slot, origin, direction);
     storePathInfo(slot, info);
     P.beta.v[slot] = vec4(1.0f);
-    P.radiance.v[slot] = vec4(0.0f);
+    if (kAdjoint) {
+        // The radiance buffer keeps the primal replay's L, the replay's starting L_rem.
+        P.adjointState.v[slot] = uvec4(0u);
+    } else {
+        P.radiance.v[slot] = vec4(0.0f);
+    }
     P.misVertex.v[slot] = vec4(origin, 0.0f);
     P.vertexInfo.v[slot] = uvec4(camera.medium, kVertexSurface, 0u, 0u);
     P.queueItems.v[kQueueRays0 * P.pathCapacity + slot] = slot;

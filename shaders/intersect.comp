@@ -8,6 +8,7 @@
 #include "lib/bvh_traverse.glsl"
 #include "lib/scene_access.glsl"
 #include "lib/medium.glsl"
+#include "lib/adjoint.glsl"
 
 layout(constant_id = 0) const bool kShadowRays = false;
 
@@ -20,14 +21,18 @@ void traceClosestHit(uint slot) {
 }
 
 // Transmittance from the shadow ray's origin to its end, zero when something opaque
-// is in the way.
-vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium) {
+// is in the way. With `gradientWeight` != 0, also adds gradientWeight * d log T / d sigma
+// (minus each segment's length) to the sigma_a and sigma_s gradients of its medium.
+vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight) {
     vec3 tr = vec3(1.0f);
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
         TraceHit hit = traceClosest(origin, direction, distance);
         float segment = min(hit.t, distance);
         if (medium != kNoMediumIndex) {
             tr *= transmittance(sigmaT(P.media.v[medium]), segment);
+            if (kAdjoint && maxComponent(abs(gradientWeight)) > 0.0f) {
+                addSigmaGradient(medium, -segment * gradientWeight, -segment * gradientWeight);
+            }
         }
         if (hit.triangle == kNoHit) {
             return tr;
@@ -54,8 +59,32 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
 void traceShadowRay(uint slot) {
     vec4 origin = P.shadowOrigin.v[slot];
     vec4 direction = P.shadowDirection.v[slot];
-    vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w));
-    P.radiance.v[slot].rgb += tr * P.shadowContribution.v[slot].rgb;
+    uint medium = floatBitsToUint(direction.w);
+    vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, medium, vec3(0.0f));
+    vec3 contribution = tr * P.shadowContribution.v[slot].rgb;
+    if (!kAdjoint) {
+        P.radiance.v[slot].rgb += contribution;
+        return;
+    }
+    // The contribution's own factors: transmittance, scattering (albedo or phase), emission.
+    uvec4 vertex = P.shadowVertex.v[slot];
+    AdjointState s = loadAdjointState(slot);
+    s.derivativeChannels = vertex.z;  // as it was at the vertex, before its continuation
+    vec3 delta = pathAdjoint(slot);
+    vec3 normal = normalMask(s);
+    passContribution(slot, s, delta, contribution);
+    vec3 weight = delta * contribution * normal;
+    if (maxComponent(abs(weight)) > 0.0f) {
+        shadowTransmittance(origin.xyz, direction.xyz, origin.w, medium, weight);
+    }
+    vec4 scatterGradient = P.shadowScatterGradient.v[slot];
+    vec4 emissionGradient = P.shadowEmissionGradient.v[slot];
+    if (vertex.x == kVertexSurface) {
+        addBaseColorGradient(vertex.y, delta * scatterGradient.rgb * tr * normal);
+    } else {
+        addPhaseGGradient(vertex.y, (weight.x + weight.y + weight.z) * scatterGradient.w);
+    }
+    addEmissionGradient(floatBitsToUint(emissionGradient.w), delta * emissionGradient.rgb * tr * normal);
 }
 
 void main() {

@@ -2,12 +2,14 @@
 #extension GL_GOOGLE_include_directive : require
 // Stage 3: free-flight sampling in the medium the ray travels through. A distance
 // before the surface hit becomes a medium vertex; otherwise the surface is the next
-// vertex. Rays that leave the scene collect the background and end here.
+// vertex. Rays that leave the scene collect the background and end here. The adjoint
+// pass adds delta * L_rem * d log(segment weight) to the medium's sigma gradients.
 #include "lib/stage_common.glsl"
 #include "lib/queues.glsl"
 #include "lib/path_state.glsl"
 #include "lib/scene_access.glsl"
 #include "lib/medium.glsl"
+#include "lib/adjoint.glsl"
 
 void main() {
     uint index = gl_GlobalInvocationID.x;
@@ -21,27 +23,61 @@ void main() {
     uint medium = P.vertexInfo.v[slot].x;
     vec3 beta = P.beta.v[slot].rgb;
     uint vertexKind = kVertexSurface;
+    AdjointState adjoint;
+    vec3 delta;
+    if (kAdjoint) {
+        adjoint = loadAdjointState(slot);
+        delta = pathAdjoint(slot);
+        applyPendingFactor(slot, adjoint, delta);
+    }
     if (medium != kNoMediumIndex) {
         GpuMedium m = P.media.v[medium];
         vec3 sigma_t = sigmaT(m);
         PathInfo info = loadPathInfo(slot);
         float t = sampleFreeFlight(sigma_t, segmentRandom(info, kDimFreeFlight).xy);
         if (t < tHit) {
+            // Medium vertex: weight sigma_s T(t) / p(t), with the pdf p held fixed.
             float pdf = freeFlightPdf(sigma_t, t);
-            beta *= pdf > 0.0f ? m.sigma_s * transmittance(sigma_t, t) / pdf : vec3(0.0f);
+            vec3 perUnitScattering = pdf > 0.0f ? transmittance(sigma_t, t) / pdf : vec3(0.0f);
+            vec3 betaBefore = beta;
+            beta *= m.sigma_s * perUnitScattering;
+            if (kAdjoint) {
+                vec3 dLogScattering = vec3(m.sigma_s.x > 0.0f ? 1.0f / m.sigma_s.x : 0.0f,
+                                           m.sigma_s.y > 0.0f ? 1.0f / m.sigma_s.y : 0.0f,
+                                           m.sigma_s.z > 0.0f ? 1.0f / m.sigma_s.z : 0.0f) - t;
+                addSigmaGradient(medium, factorGradient(slot, adjoint, delta, vec3(-t)),
+                                 factorGradient(slot, adjoint, delta, dLogScattering));
+                beta = enterDerivativeMode(adjoint, beta, m.sigma_s, betaBefore * perUnitScattering,
+                                           kTargetMediumScattering, medium);
+            }
             vertexKind = kVertexMedium;
             P.hit.v[slot].x = t;
         } else {
+            // Surface vertex (or escape): weight T(t_hit) / P(t > t_hit).
             float survival = freeFlightSurvival(sigma_t, tHit);
             beta *= survival > 0.0f ? transmittance(sigma_t, tHit) / survival : vec3(0.0f);
+            // An escaped ray's L_rem is zero wherever T(infinity) is; where sigma_t = 0
+            // the derivative is undefined and left out.
+            if (kAdjoint && !escaped) {
+                vec3 g = factorGradient(slot, adjoint, delta, vec3(-tHit));
+                addSigmaGradient(medium, g, g);
+            }
         }
     }
     if (vertexKind == kVertexSurface && escaped) {
-        addRadiance(slot, beta * P.background.rgb);
+        vec3 contribution = beta * P.background.rgb;
+        if (kAdjoint) {
+            passContribution(slot, adjoint, delta, contribution);
+        } else {
+            addRadiance(slot, contribution);
+        }
         return;
     }
     if (maxComponent(beta) <= 0.0f) {
         return;
+    }
+    if (kAdjoint) {
+        storeAdjointState(slot, adjoint);
     }
     P.beta.v[slot].rgb = beta;
     P.vertexInfo.v[slot].y = vertexKind;

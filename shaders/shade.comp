@@ -3,13 +3,20 @@
 // Stage 4: one vertex per path. Surfaces: pass through medium boundaries, add emission
 // (MIS against the BSDF pdf), next-event estimation, cosine sampling of the Lambertian
 // BSDF. Medium vertices: next-event estimation, exact Henyey-Greenstein sampling.
-// Then Russian roulette and the next ray.
+// Then Russian roulette and the next ray. The adjoint pass replays the same decisions,
+// passes each contribution, and records the continuation factor's log-derivative for
+// the next segment (adjoint.glsl).
 #include "lib/stage_common.glsl"
 #include "lib/queues.glsl"
 #include "lib/path_state.glsl"
 #include "lib/scene_access.glsl"
 #include "lib/lights.glsl"
 #include "lib/phase_hg.glsl"
+#include "lib/adjoint.glsl"
+
+// Adjoint pass only: the path's replay state and its pixel's dLoss/dI.
+AdjointState adjoint;
+vec3 delta;
 
 uint nextRayQueue() {
     return pass.currentRays == kQueueRays0 ? kQueueRays1 : kQueueRays0;
@@ -31,7 +38,8 @@ void continuePath(uint slot, PathInfo info, vec3 origin, vec3 direction, uint me
 // Russian roulette after the first scattering vertex, as in pbrt: survive with
 // probability max(beta), reweighting the survivors. Returns false to end the path.
 bool survivesRoulette(inout vec3 beta, uint depth, float u) {
-    float q = max(0.0f, 1.0f - maxComponent(beta));
+    vec3 decisive = kAdjoint ? rouletteThroughput(adjoint, beta) : beta;
+    float q = max(0.0f, 1.0f - maxComponent(decisive));
     if (depth > 1u && q > 0.0f) {
         if (u < q) {
             return false;
@@ -41,38 +49,52 @@ bool survivesRoulette(inout vec3 beta, uint depth, float u) {
     return maxComponent(beta) > 0.0f;
 }
 
-// Samples a point on an emitter and queues a shadow ray carrying its MIS-weighted
-// contribution; `scatter` is f * cos (surface) or the phase value (medium) towards the
-// light, `scatterPdf` the density the other strategy would have sampled it with.
+// A vertex and what its next-event estimate needs to know.
 struct NextEventQuery {
     vec3 position;
-    uint medium;
+    uint medium;       // medium the shadow ray starts in
     vec3 beta;
+    uint vertexKind;
+    uint index;        // material (surface) or medium (medium vertex)
 };
 
-void nextEvent(uint slot, PathInfo info, NextEventQuery query, vec3 wi, vec3 lightPoint,
-               vec3 le, float pdfLight, vec3 scatter, float scatterPdf) {
-    if (pdfLight <= 0.0f || maxComponent(le * scatter) <= 0.0f) {
+// Samples a point on an emitter and queues a shadow ray carrying its MIS-weighted,
+// unoccluded contribution beta * scatter * Le * w / pdf. `scatter` is f * cos (surface)
+// or the phase value (medium); `scatterPdf` is the density the other strategy would have
+// sampled the direction with. For the adjoint, `dScatter` is d scatter / d base colour
+// (surface) and `dLogPhase` is d log phase / d g (medium).
+void nextEvent(uint slot, NextEventQuery query, LightSample ls, vec3 scatter, float scatterPdf, vec3 dScatter,
+               float dLogPhase) {
+    vec3 wi = normalize(ls.position - query.position);
+    GpuMaterial light = P.materials.v[ls.material];
+    vec3 lePerUnit = emissionPerUnit(light, ls.normal, ls.uv, -wi);
+    vec3 le = light.emission.rgb * lePerUnit;
+    float pdfLight = lightPdfSolidAngle(ls.pdfArea, query.position, ls.position, ls.normal);
+    bool contributes = maxComponent(le * scatter) > 0.0f;
+    bool hasGradient = kAdjoint && maxComponent(le * dScatter) > 0.0f;
+    if (pdfLight <= 0.0f || !(contributes || hasGradient)) {
         return;
     }
-    float weight = powerHeuristic(pdfLight, scatterPdf);
-    float distance = length(lightPoint - query.position) - 2.0f * P.rayEpsilon;
+    float weight = powerHeuristic(pdfLight, scatterPdf) / pdfLight;
+    float distance = length(ls.position - query.position) - 2.0f * P.rayEpsilon;
     P.shadowOrigin.v[slot] = vec4(query.position, distance);
     P.shadowDirection.v[slot] = vec4(wi, uintBitsToFloat(query.medium));
-    P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * (weight / pdfLight), 0.0f);
+    P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, 0.0f);
+    if (kAdjoint) {
+        P.shadowScatterGradient.v[slot] = vec4(query.beta * dScatter * le * weight, dLogPhase);
+        P.shadowEmissionGradient.v[slot] = vec4(query.beta * scatter * lePerUnit * weight, uintBitsToFloat(ls.material));
+        P.shadowVertex.v[slot] = uvec4(query.vertexKind, query.index, adjoint.derivativeChannels, 0u);
+    }
     queuePush(kQueueShadow, slot);
 }
 
-LightSample sampleLightFrom(PathInfo info, vec3 position, out vec3 wi, out vec3 le, out float pdfLight) {
-    LightSample ls = sampleLight(segmentRandom(info, kDimLight).xyz);
-    wi = normalize(ls.position - position);
-    le = emittedRadiance(P.materials.v[ls.material], ls.normal, ls.uv, -wi);
-    pdfLight = lightPdfSolidAngle(ls.pdfArea, position, ls.position, ls.normal);
-    return ls;
+LightSample sampleLightFor(PathInfo info) {
+    return sampleLight(segmentRandom(info, kDimLight).xyz);
 }
 
 void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit, uint medium) {
-    SurfacePoint sp = surfacePoint(floatBitsToUint(hit.w), hit.y, hit.z);
+    uint triangle = floatBitsToUint(hit.w);
+    SurfacePoint sp = surfacePoint(triangle, hit.y, hit.z);
     GpuMaterial material = P.materials.v[sp.material];
     if (material.interiorMedium >= 0) {
         // A boundary changes the medium only: no vertex, no depth, same MIS vertex.
@@ -83,37 +105,49 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
         return;
     }
     vec3 toViewer = -direction;
-    vec3 le = emittedRadiance(material, sp.normal, sp.uv, toViewer);
-    if (maxComponent(le) > 0.0f) {
+    vec3 lePerUnit = emissionPerUnit(material, sp.normal, sp.uv, toViewer);
+    vec3 le = material.emission.rgb * lePerUnit;
+    if (maxComponent(le) > 0.0f || kAdjoint) {
         vec4 mis = P.misVertex.v[slot];
         float weight = 1.0f;
         if (mis.w > 0.0f) {
-            float pdfArea = P.triangleInfo.v[floatBitsToUint(hit.w)].lightPmf / sp.area;
+            float pdfArea = P.triangleInfo.v[triangle].lightPmf / sp.area;
             weight = powerHeuristic(mis.w, lightPdfSolidAngle(pdfArea, mis.xyz, sp.position, sp.normal));
         }
-        addRadiance(slot, beta * le * weight);
+        if (kAdjoint) {
+            passContribution(slot, adjoint, delta, beta * le * weight);
+            addEmissionGradient(sp.material, delta * beta * lePerUnit * weight * normalMask(adjoint));
+        } else {
+            addRadiance(slot, beta * le * weight);
+        }
     }
     if (info.depth == P.maxDepth) {
         return;
     }
     ++info.depth;
     vec3 n = dot(sp.normal, toViewer) > 0.0f ? sp.normal : -sp.normal;
-    vec3 albedo = materialAlbedo(material, sp.uv);
+    vec3 texture = baseColorTexture(material, sp.uv);
+    vec3 albedo = material.baseColor.rgb * texture;
     vec3 origin = sp.position + n * P.rayEpsilon;
     if (P.lightCount > 0u) {
-        vec3 wi;
-        vec3 lightLe;
-        float pdfLight;
-        LightSample ls = sampleLightFrom(info, origin, wi, lightLe, pdfLight);
-        float cosine = dot(n, wi);
+        LightSample ls = sampleLightFor(info);
+        float cosine = dot(n, normalize(ls.position - origin));
         if (cosine > 0.0f) {
-            nextEvent(slot, info, NextEventQuery(origin, medium, beta), wi, ls.position, lightLe,
-                      pdfLight, albedo * (kInvPi * cosine), kInvPi * cosine);
+            nextEvent(slot, NextEventQuery(origin, medium, beta, kVertexSurface, sp.material), ls,
+                      albedo * (kInvPi * cosine), kInvPi * cosine, texture * (kInvPi * cosine), 0.0f);
         }
     }
     vec4 u = segmentRandom(info, kDimScatter);
     vec3 wi = frameFromNormal(n) * sampleCosineHemisphere(u.xy);
+    vec3 betaBefore = beta;
     beta *= albedo;
+    if (kAdjoint) {
+        vec3 base = material.baseColor.rgb;
+        setPendingFactor(slot, adjoint, kPendingBaseColor, sp.material,
+                         vec3(base.x > 0.0f ? 1.0f / base.x : 0.0f, base.y > 0.0f ? 1.0f / base.y : 0.0f,
+                              base.z > 0.0f ? 1.0f / base.z : 0.0f));
+        beta = enterDerivativeMode(adjoint, beta, albedo, betaBefore * texture, kTargetBaseColor, sp.material);
+    }
     if (!survivesRoulette(beta, info.depth, u.z)) {
         return;
     }
@@ -130,21 +164,23 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
     vec3 position = origin + direction * hit.x;
     float g = P.media.v[medium].g;
     if (P.lightCount > 0u) {
-        vec3 wi;
-        vec3 lightLe;
-        float pdfLight;
-        LightSample ls = sampleLightFrom(info, position, wi, lightLe, pdfLight);
-        float phase = hgPhase(dot(direction, wi), g);
-        nextEvent(slot, info, NextEventQuery(position, medium, beta), wi, ls.position, lightLe,
-                  pdfLight, vec3(phase), phase);
+        LightSample ls = sampleLightFor(info);
+        float mu = dot(direction, normalize(ls.position - position));
+        float phase = hgPhase(mu, g);
+        nextEvent(slot, NextEventQuery(position, medium, beta, kVertexMedium, medium), ls, vec3(phase), phase,
+                  vec3(0.0f), hgPhaseDLogG(mu, g));
     }
     vec4 u = segmentRandom(info, kDimScatter);
     vec3 wi = sampleHg(direction, g, u.xy);
+    float mu = dot(direction, wi);
+    if (kAdjoint) {
+        setPendingFactor(slot, adjoint, kPendingPhaseG, medium, vec3(hgPhaseDLogG(mu, g)));
+    }
     if (!survivesRoulette(beta, info.depth, u.z)) {
         return;
     }
     P.beta.v[slot].rgb = beta;
-    P.misVertex.v[slot] = vec4(position, hgPhase(dot(direction, wi), g));
+    P.misVertex.v[slot] = vec4(position, hgPhase(mu, g));
     continuePath(slot, info, position, wi, medium);
 }
 
@@ -159,9 +195,16 @@ void main() {
     vec3 direction = P.rayDirection.v[slot].xyz;
     vec4 hit = P.hit.v[slot];
     uvec4 vertex = P.vertexInfo.v[slot];
+    if (kAdjoint) {
+        adjoint = loadAdjointState(slot);
+        delta = pathAdjoint(slot);
+    }
     if (vertex.y == kVertexMedium) {
         shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
     } else {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);
+    }
+    if (kAdjoint) {
+        storeAdjointState(slot, adjoint);
     }
 }

@@ -30,6 +30,13 @@ const uint kNoMediumIndex = 0xffffffffu;
 const uint kVertexSurface = 0u;
 const uint kVertexMedium = 1u;
 
+// Loss kinds (RenderParams.lossKind).
+const uint kLossL2 = 0u;
+const uint kLossL1 = 1u;
+
+// Medium gradients: sigma_a rgb, sigma_s rgb, g, unused.
+const uint kMediumGradientStride = 8u;
+
 // Queues: indices into QueueCounters.counts and .dispatch.
 const uint kQueueRays0 = 0u;   // rays to trace this segment (double-buffered with kQueueRays1)
 const uint kQueueRays1 = 1u;
@@ -135,13 +142,28 @@ struct RenderParams {
     VKDR_BUFFER(QueueCounters) queueCounters;
     VKDR_BUFFER(UintBuffer) queueItems;             // kQueueCount arrays of pathCapacity slots
     VKDR_BUFFER(Vec4Buffer) film;                   // per pixel: rgb sum over samples
+    // Differentiation (adjoint pipelines and the loss stage only)
+    VKDR_BUFFER(Vec4Buffer) target;                 // per pixel: rgb target image
+    VKDR_BUFFER(Vec4Buffer) imageAdjoint;           // per pixel: rgb dLoss/dI, divided by spp
+    VKDR_BUFFER(FloatBuffer) lossSum;               // [0]: sum of the per-pixel losses
+    VKDR_BUFFER(FloatBuffer) mediumGradients;       // kMediumGradientStride per medium
+    VKDR_BUFFER(FloatBuffer) baseColorGradients;    // 4 per material: rgb
+    VKDR_BUFFER(FloatBuffer) emissionGradients;     // 4 per material: rgb
+    VKDR_BUFFER(Vec4Buffer) pendingFactor;          // per slot: rgb d log f / d theta of the last scattering factor
+    VKDR_BUFFER(UVec4Buffer) adjointState;          // per slot, see AdjointState in adjoint.glsl
+    VKDR_BUFFER(Vec4Buffer) shadowScatterGradient;  // per slot: rgb dC/dbase colour (surface); w: d log phase / dg (medium)
+    VKDR_BUFFER(Vec4Buffer) shadowEmissionGradient; // per slot: rgb dC/demission; w: light material (uint bits)
+    VKDR_BUFFER(UVec4Buffer) shadowVertex;          // per slot: x: vertex kind, y: material or medium index
     uint pathCapacity;
     uint lightCount;
     uint maxDepth;
     uint seed;
     uint segmentLimit;                              // safety bound on segments per path
     float rayEpsilon;                               // offset of spawned rays off a surface, scene units
-    uint pad0, pad1;
+    uint lossKind;                                  // kLossL2 or kLossL1
+    float filmScale;                                // 1 / spp: film sum to pixel value
+    float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels
+    uint pad0, pad1, pad2, pad3, pad4;
 };
 
 // Per dispatch values, in push constants next to the RenderParams address.

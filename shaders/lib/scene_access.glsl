@@ -54,24 +54,27 @@ vec3 textureLookup(int textureIndex, vec2 uv) {
     return sum;
 }
 
-vec3 materialAlbedo(GpuMaterial m, vec2 uv) {
-    vec3 albedo = m.baseColor.rgb;
-    if (m.baseColorTexture >= 0) {
-        albedo *= textureLookup(m.baseColorTexture, uv);
-    }
-    return albedo;
-}
-
-// Radiance leaving the surface towards `toViewer`; one-sided emitters emit on the front only.
-vec3 emittedRadiance(GpuMaterial m, vec3 normal, vec2 uv, vec3 toViewer) {
+// Emitted radiance per unit of the material's emission parameter towards `toViewer`:
+// the emission texture, or 0 behind a one-sided emitter.
+vec3 emissionPerUnit(GpuMaterial m, vec3 normal, vec2 uv, vec3 toViewer) {
     if (m.doubleSided == 0u && dot(normal, toViewer) <= 0.0f) {
         return vec3(0.0f);
     }
-    vec3 le = m.emission.rgb;
-    if (m.emissionTexture >= 0) {
-        le *= textureLookup(m.emissionTexture, uv);
-    }
-    return le;
+    return m.emissionTexture >= 0 ? textureLookup(m.emissionTexture, uv) : vec3(1.0f);
+}
+
+// Radiance leaving the surface towards `toViewer`.
+vec3 emittedRadiance(GpuMaterial m, vec3 normal, vec2 uv, vec3 toViewer) {
+    return m.emission.rgb * emissionPerUnit(m, normal, uv, toViewer);
+}
+
+// The base colour texture's value (1 without a texture): albedo = baseColor * this.
+vec3 baseColorTexture(GpuMaterial m, vec2 uv) {
+    return m.baseColorTexture >= 0 ? textureLookup(m.baseColorTexture, uv) : vec3(1.0f);
+}
+
+vec3 materialAlbedo(GpuMaterial m, vec2 uv) {
+    return m.baseColor.rgb * baseColorTexture(m, uv);
 }
 
 vec3 sigmaT(GpuMedium medium) {

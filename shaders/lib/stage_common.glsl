@@ -6,10 +6,11 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_EXT_shader_atomic_float : require
 
 #include "device_types.h"
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RenderParamsRef {
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer RenderParamsRef {
     RenderParams p;
 };
 
@@ -19,6 +20,10 @@ layout(push_constant, std430) uniform Push {
 };
 
 layout(local_size_x = kWorkgroupSize) in;
+
+// One source, two pipelines per stage: the primal pass renders, the adjoint pass
+// replays the same paths and accumulates parameter gradients.
+layout(constant_id = 1) const bool kAdjoint = false;
 
 #define P params.p
 

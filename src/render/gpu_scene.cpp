@@ -49,16 +49,10 @@ std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
 
 GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh) {
     const size_t count = bvh.triangleOrder.size();
-    LightDistribution lights = buildLightDistribution(scene);
-
     std::vector<glm::vec4> vertices(3 * count);
     std::vector<glm::vec4> uvs(2 * count, glm::vec4(0.0f));
-    std::vector<gpu::GpuTriangleInfo> info(count);
-    std::vector<uint32_t> bvhPosition(scene.triangles.size());
     for (size_t i = 0; i < count; ++i) {
-        uint32_t t = bvh.triangleOrder[i];
-        bvhPosition[t] = static_cast<uint32_t>(i);
-        const glm::uvec3& tri = scene.triangles[t];
+        const glm::uvec3& tri = scene.triangles[bvh.triangleOrder[i]];
         for (int k = 0; k < 3; ++k) {
             vertices[3 * i + k] = glm::vec4(scene.positions[tri[k]], 0.0f);
         }
@@ -66,13 +60,7 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
             uvs[2 * i] = glm::vec4(scene.uvs[tri[0]], scene.uvs[tri[1]]);
             uvs[2 * i + 1] = glm::vec4(scene.uvs[tri[2]], 0.0f, 0.0f);
         }
-        info[i] = {scene.triangleMaterial[t], mediumIndex(scene.triangleOutsideMedium[t]), lights.trianglePmf[t], 0u};
     }
-    std::vector<uint32_t> lightTriangles;
-    for (uint32_t t : lights.triangles) {
-        lightTriangles.push_back(bvhPosition[t]);
-    }
-
     std::vector<gpu::GpuTexture> textures;
     std::vector<glm::vec4> texels;
     for (const Texture& tex : scene.textures) {
@@ -84,17 +72,34 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     GpuScene gpu;
     gpu.triangleVertices = uploadVector<glm::vec4>(context, vertices, "triangle vertices");
     gpu.triangleUvs = uploadVector<glm::vec4>(context, uvs, "triangle uvs");
-    gpu.triangleInfo = uploadVector<gpu::GpuTriangleInfo>(context, info, "triangle info");
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
-    gpu.materials = uploadVector<gpu::GpuMaterial>(context, deviceMaterials(scene), "materials");
-    gpu.media = uploadVector<gpu::GpuMedium>(context, deviceMedia(scene), "media");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
     gpu.texels = uploadVector<glm::vec4>(context, texels, "texels");
+    gpu.rayEpsilon = kRayEpsilonPerExtent * sceneExtent(scene);
+    uploadSceneParameters(context, scene, bvh.triangleOrder, gpu);
+    return gpu;
+}
+
+void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std::span<const uint32_t> triangleOrder,
+                           GpuScene& gpu) {
+    LightDistribution lights = buildLightDistribution(scene);
+    std::vector<gpu::GpuTriangleInfo> info(triangleOrder.size());
+    std::vector<uint32_t> bvhPosition(scene.triangles.size());
+    for (size_t i = 0; i < triangleOrder.size(); ++i) {
+        uint32_t t = triangleOrder[i];
+        bvhPosition[t] = static_cast<uint32_t>(i);
+        info[i] = {scene.triangleMaterial[t], mediumIndex(scene.triangleOutsideMedium[t]), lights.trianglePmf[t], 0u};
+    }
+    std::vector<uint32_t> lightTriangles;
+    for (uint32_t t : lights.triangles) {
+        lightTriangles.push_back(bvhPosition[t]);
+    }
+    gpu.triangleInfo = uploadVector<gpu::GpuTriangleInfo>(context, info, "triangle info");
+    gpu.materials = uploadVector<gpu::GpuMaterial>(context, deviceMaterials(scene), "materials");
+    gpu.media = uploadVector<gpu::GpuMedium>(context, deviceMedia(scene), "media");
     gpu.lightTriangles = uploadVector<uint32_t>(context, lightTriangles, "light triangles");
     gpu.lightCdf = uploadVector<float>(context, lights.cdf, "light cdf");
     gpu.lightCount = static_cast<uint32_t>(lightTriangles.size());
-    gpu.rayEpsilon = kRayEpsilonPerExtent * sceneExtent(scene);
-    return gpu;
 }
 
 }  // namespace vkdr

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <span>
 
 #include "bvh/bvh.h"
 #include "scene/scene.h"
@@ -27,5 +28,10 @@ struct GpuScene {
 };
 
 GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh);
+
+// Uploads what the differentiable parameters change (materials, media, the emitter
+// distribution) again, for new parameter values of the same geometry.
+void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std::span<const uint32_t> triangleOrder,
+                           GpuScene& gpu);
 
 }  // namespace vkdr

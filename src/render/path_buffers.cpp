@@ -1,5 +1,7 @@
 #include "render/path_buffers.h"
 
+#include <algorithm>
+
 #include "vk/context.h"
 
 namespace vkdr {
@@ -31,6 +33,26 @@ PathBuffers::PathBuffers(const VulkanContext& context, uint32_t capacity, uint32
 
 uint64_t PathBuffers::deviceBytes() const {
     return uint64_t(capacity) * kBytesPerPath + film.size() + queueCounters.size();
+}
+
+AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount,
+                               uint32_t mediumCount, uint32_t materialCount)
+    : pendingFactor(perPath(context, capacity, "pending factor")),
+      adjointState(perPath(context, capacity, "adjoint state")),
+      shadowScatterGradient(perPath(context, capacity, "shadow scatter gradient")),
+      shadowEmissionGradient(perPath(context, capacity, "shadow emission gradient")),
+      shadowVertex(perPath(context, capacity, "shadow vertex")),
+      target(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "target"),
+      imageAdjoint(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "image adjoint"),
+      lossSum(context, 16, MemoryUse::Device, "loss sum"),
+      mediumGradients(context, std::max(1u, mediumCount) * gpu::kMediumGradientStride * 4, MemoryUse::Device,
+                      "medium gradients"),
+      baseColorGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "base colour gradients"),
+      emissionGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "emission gradients") {}
+
+uint64_t AdjointBuffers::deviceBytes() const {
+    return pendingFactor.size() * 5 + target.size() + imageAdjoint.size() + mediumGradients.size() +
+           baseColorGradients.size() + emissionGradients.size();
 }
 
 }  // namespace vkdr

@@ -26,4 +26,18 @@ struct PathBuffers {
     uint64_t deviceBytes() const;
 };
 
+// What the adjoint pass adds: per path slot its replay state, per pixel the target and
+// dLoss/dI, per parameter the gradient accumulators.
+struct AdjointBuffers {
+    AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount, uint32_t mediumCount,
+                   uint32_t materialCount);
+
+    Buffer pendingFactor, adjointState, shadowScatterGradient, shadowEmissionGradient, shadowVertex;
+    Buffer target, imageAdjoint, lossSum;
+    Buffer mediumGradients, baseColorGradients, emissionGradients;
+
+    static constexpr uint64_t kBytesPerPath = 5 * 16;
+    uint64_t deviceBytes() const;
+};
+
 }  // namespace vkdr

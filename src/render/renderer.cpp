@@ -45,18 +45,33 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       settings_(settings),
       camera_(setUpCamera(scene, settings)),
       background_(scene.background),
+      triangleOrder_(bvh.triangleOrder),
+      mediumCount_(static_cast<uint32_t>(scene.media.size())),
+      materialCount_(static_cast<uint32_t>(scene.materials.size())),
       scene_(uploadScene(context, scene, bvh)),
-      pipelines_(context) {
+      pipelines_(context),
+      lossKind_(LossKind::L2) {
     if (settings.spp == 0) {
         throw Error("--spp must be at least 1");
     }
     uint32_t pixels = camera_.width * camera_.height;
     paths_ = std::make_unique<PathBuffers>(context, pathCapacity(context, settings, pixels), pixels);
-    gpu::RenderParams params = renderParams();
-    params_ = uploadBuffer(context, std::as_bytes(std::span(&params, 1)), "render params");
+    uploadParams();
 }
 
-gpu::RenderParams Renderer::renderParams() const {
+Renderer::~Renderer() = default;
+
+void Renderer::setParameters(const Scene& scene) {
+    uploadSceneParameters(context_, scene, triangleOrder_, scene_);
+    uploadParams();
+}
+
+void Renderer::setSeed(uint32_t seed) {
+    settings_.seed = seed;
+    uploadParams();
+}
+
+void Renderer::uploadParams() {
     const PathBuffers& b = *paths_;
     gpu::RenderParams p{};
     p.camera = camera_;
@@ -91,7 +106,44 @@ gpu::RenderParams Renderer::renderParams() const {
     p.seed = settings_.seed;
     p.segmentLimit = segmentLimit(settings_.maxDepth);
     p.rayEpsilon = scene_.rayEpsilon;
-    return p;
+    p.filmScale = 1.0f / float(settings_.spp);
+    if (adjoint_) {
+        const AdjointBuffers& a = *adjoint_;
+        p.target = a.target.address();
+        p.imageAdjoint = a.imageAdjoint.address();
+        p.lossSum = a.lossSum.address();
+        p.mediumGradients = a.mediumGradients.address();
+        p.baseColorGradients = a.baseColorGradients.address();
+        p.emissionGradients = a.emissionGradients.address();
+        p.pendingFactor = a.pendingFactor.address();
+        p.adjointState = a.adjointState.address();
+        p.shadowScatterGradient = a.shadowScatterGradient.address();
+        p.shadowEmissionGradient = a.shadowEmissionGradient.address();
+        p.shadowVertex = a.shadowVertex.address();
+        p.lossKind = lossKind_ == LossKind::L1 ? gpu::kLossL1 : gpu::kLossL2;
+        p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));
+    }
+    params_ = uploadBuffer(context_, std::as_bytes(std::span(&p, 1)), "render params");
+}
+
+void Renderer::forEachPass(const std::function<void(const PassRange&)>& pass, const ProgressCallback& progress) {
+    // A pass covers whole samples of as many pixels as fit, or several samples of every pixel.
+    const uint32_t pixels = camera_.width * camera_.height;
+    const uint32_t capacity = paths_->capacity;
+    const uint32_t pixelsPerPass = std::min(pixels, capacity);
+    const uint32_t samplesPerPass = std::max(1u, std::min(settings_.spp, capacity / pixels));
+    const uint64_t totalPasses = uint64_t((pixels + pixelsPerPass - 1) / pixelsPerPass) *
+                                 ((settings_.spp + samplesPerPass - 1) / samplesPerPass);
+    uint64_t passesDone = 0;
+    for (uint32_t sample = 0; sample < settings_.spp; sample += samplesPerPass) {
+        for (uint32_t pixel = 0; pixel < pixels; pixel += pixelsPerPass) {
+            pass({pixel, std::min(pixelsPerPass, pixels - pixel), sample,
+                  std::min(samplesPerPass, settings_.spp - sample)});
+            if (progress) {
+                progress(double(++passesDone) / double(totalPasses));
+            }
+        }
+    }
 }
 
 Image Renderer::render(const ProgressCallback& progress) {
@@ -104,22 +156,7 @@ Image Renderer::render(const ProgressCallback& progress) {
         recorder.fill(paths_->queueCounters, 0);
         recorder.submitAndWait();
     }
-    // A pass covers whole samples of as many pixels as fit, or several samples of every pixel.
-    const uint32_t capacity = paths_->capacity;
-    const uint32_t pixelsPerPass = std::min(pixels, capacity);
-    const uint32_t samplesPerPass = std::max(1u, std::min(settings_.spp, capacity / pixels));
-    const uint64_t totalPasses = uint64_t((pixels + pixelsPerPass - 1) / pixelsPerPass) *
-                                 ((settings_.spp + samplesPerPass - 1) / samplesPerPass);
-    uint64_t passesDone = 0;
-    for (uint32_t sample = 0; sample < settings_.spp; sample += samplesPerPass) {
-        for (uint32_t pixel = 0; pixel < pixels; pixel += pixelsPerPass) {
-            runPass({pixel, std::min(pixelsPerPass, pixels - pixel), sample,
-                     std::min(samplesPerPass, settings_.spp - sample)});
-            if (progress) {
-                progress(double(++passesDone) / double(totalPasses));
-            }
-        }
-    }
+    forEachPass([this](const PassRange& range) { runPass(range, PassMode::Film); }, progress);
 
     Image image;
     image.width = int(camera_.width);
@@ -138,7 +175,64 @@ Image Renderer::render(const ProgressCallback& progress) {
     return image;
 }
 
-void Renderer::recordSegment(CommandRecorder& recorder, const gpu::PassConstants& constants, uint32_t currentRays) {
+void Renderer::enableGradients(const Image& target, LossKind loss) {
+    if (target.width != width() || target.height != height()) {
+        throw Error("the target is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
+                    " but the render is " + std::to_string(width()) + "x" + std::to_string(height()));
+    }
+    adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
+                                                mediumCount_, materialCount_);
+    lossKind_ = loss;
+    std::vector<glm::vec4> texels(size_t(target.width) * target.height);
+    for (size_t i = 0; i < texels.size(); ++i) {
+        texels[i] = glm::vec4(target.rgb[3 * i], target.rgb[3 * i + 1], target.rgb[3 * i + 2], 0.0f);
+    }
+    Buffer staging = uploadVector<glm::vec4>(context_, texels, "target (staging)");
+    CommandRecorder recorder(context_);
+    recorder.copy(staging, adjoint_->target, adjoint_->target.size());
+    recorder.submitAndWait();
+    uploadParams();
+}
+
+double Renderer::loss() {
+    PushConstants push{params_.address(), {0, camera_.width * camera_.height, 0, 0, 0, 0, 0, 0}};
+    CommandRecorder recorder(context_);
+    recorder.fill(adjoint_->lossSum, 0);
+    recorder.barrier();
+    recorder.dispatch(pipelines_.loss, camera_.width * camera_.height, push.bytes());
+    recorder.submitAndWait();
+    float sum[4];
+    downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(sum)));
+    return sum[0];
+}
+
+SceneGradients Renderer::backpropagate() {
+    {
+        CommandRecorder recorder(context_);
+        recorder.fill(adjoint_->mediumGradients, 0);
+        recorder.fill(adjoint_->baseColorGradients, 0);
+        recorder.fill(adjoint_->emissionGradients, 0);
+        recorder.fill(paths_->queueCounters, 0);
+        recorder.submitAndWait();
+    }
+    forEachPass(
+        [this](const PassRange& range) {
+            runPass(range, PassMode::Replay);
+            runPass(range, PassMode::Adjoint);
+        },
+        {});
+    SceneGradients g;
+    g.media.resize(adjoint_->mediumGradients.size() / 4);
+    g.baseColors.resize(adjoint_->baseColorGradients.size() / 4);
+    g.emissions.resize(adjoint_->emissionGradients.size() / 4);
+    downloadBuffer(context_, adjoint_->mediumGradients, std::as_writable_bytes(std::span(g.media)));
+    downloadBuffer(context_, adjoint_->baseColorGradients, std::as_writable_bytes(std::span(g.baseColors)));
+    downloadBuffer(context_, adjoint_->emissionGradients, std::as_writable_bytes(std::span(g.emissions)));
+    return g;
+}
+
+void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
+                             uint32_t currentRays) {
     const uint32_t nextRays = currentRays == gpu::kQueueRays0 ? gpu::kQueueRays1 : gpu::kQueueRays0;
     const Buffer& counters = paths_->queueCounters;
     auto dispatchOffset = [](uint32_t queue) {
@@ -159,26 +253,27 @@ void Renderer::recordSegment(CommandRecorder& recorder, const gpu::PassConstants
     };
     prepare(currentRays, bit(nextRays) | bit(gpu::kQueueShade) | bit(gpu::kQueueShadow));
     stage(pipelines_.intersect, currentRays);
-    stage(pipelines_.mediumSample, currentRays);
+    stage(stages.mediumSample, currentRays);
     prepare(gpu::kQueueShade, 0);
-    stage(pipelines_.shade, gpu::kQueueShade);
+    stage(stages.shade, gpu::kQueueShade);
     prepare(gpu::kQueueShadow, 0);
-    stage(pipelines_.intersectShadow, gpu::kQueueShadow);
+    stage(stages.intersectShadow, gpu::kQueueShadow);
 }
 
-void Renderer::runPass(const PassRange& range) {
+void Renderer::runPass(const PassRange& range, PassMode mode) {
+    const PathStages& stages = mode == PassMode::Adjoint ? pipelines_.adjoint : pipelines_.primal;
     gpu::PassConstants constants{range.firstPixel, range.pixelCount, range.firstSample, range.samplesInPass,
                                  gpu::kQueueRays0, 0, 0, 0};
     PushConstants push{params_.address(), constants};
     CommandRecorder recorder(context_);
-    recorder.dispatch(pipelines_.generate, range.pixelCount * range.samplesInPass, push.bytes());
+    recorder.dispatch(stages.generate, range.pixelCount * range.samplesInPass, push.bytes());
     recorder.barrier();
     uint32_t currentRays = gpu::kQueueRays0;
     const uint32_t segments = segmentLimit(settings_.maxDepth);
     gpu::QueueCountersData counters{};
     for (uint32_t segment = 0; segment < segments;) {
         for (uint32_t k = 0; k < kSegmentsPerBatch && segment < segments; ++k, ++segment) {
-            recordSegment(recorder, constants, currentRays);
+            recordSegment(recorder, stages, constants, currentRays);
             currentRays = currentRays == gpu::kQueueRays0 ? gpu::kQueueRays1 : gpu::kQueueRays0;
         }
         recorder.copy(paths_->queueCounters, paths_->countersReadback, sizeof(counters));
@@ -188,8 +283,10 @@ void Renderer::runPass(const PassRange& range) {
             break;
         }
     }
-    recorder.dispatch(pipelines_.film, range.pixelCount, push.bytes());
-    recorder.barrier();
+    if (mode == PassMode::Film) {
+        recorder.dispatch(pipelines_.film, range.pixelCount, push.bytes());
+        recorder.barrier();
+    }
     // Start the next pass's ray count from zero.
     recorder.fillRange(paths_->queueCounters, offsetof(gpu::QueueCountersData, raysTraced), 4, 0);
     recorder.submitAndWait();

@@ -2,10 +2,12 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "bvh/bvh.h"
 #include "image/image.h"
 #include "render/gpu_scene.h"
+#include "render/loss_kind.h"
 #include "render/path_buffers.h"
 #include "render/render_settings.h"
 #include "render/stage_pipelines.h"
@@ -14,6 +16,7 @@
 namespace vkdr {
 
 class VulkanContext;
+class CommandRecorder;
 
 struct RenderStats {
     uint64_t paths = 0;
@@ -25,31 +28,63 @@ struct RenderStats {
 // Progress in [0, 1], called after every pass.
 using ProgressCallback = std::function<void(double)>;
 
-// The wavefront path tracer: uploads a scene once, then renders it pass by pass.
+// Parameter gradients as the adjoint pass accumulates them.
+struct SceneGradients {
+    std::vector<float> media;       // gpu::kMediumGradientStride per medium: sigma_a rgb, sigma_s rgb, g
+    std::vector<float> baseColors;  // 4 per material
+    std::vector<float> emissions;   // 4 per material
+};
+
+// The wavefront path tracer: uploads a scene once, then renders it pass by pass; with
+// gradients enabled it also evaluates a loss against a target and back-propagates it.
 class Renderer {
 public:
     Renderer(const VulkanContext& context, const Scene& scene, const Bvh& bvh, const RenderSettings& settings);
+    ~Renderer();
 
     Image render(const ProgressCallback& progress = {});
     const RenderStats& stats() const { return stats_; }
     int width() const { return int(camera_.width); }
     int height() const { return int(camera_.height); }
 
+    // New values of the differentiable parameters; the geometry must be the same.
+    void setParameters(const Scene& scene);
+    void setSeed(uint32_t seed);
+
+    // Gradient support. enableGradients() allocates the adjoint state. loss() compares
+    // the last render() with the target and keeps dLoss/dI; backpropagate() replays
+    // every path of a render with the current seed and returns dLoss/dparameters.
+    void enableGradients(const Image& target, LossKind loss);
+    double loss();
+    SceneGradients backpropagate();
+
 private:
+    enum class PassMode {
+        Film,    // render and add to the film
+        Replay,  // render, keep each path's radiance for the adjoint pass
+        Adjoint, // replay in adjoint mode
+    };
     struct PassRange {
         uint32_t firstPixel, pixelCount, firstSample, samplesInPass;
     };
-    void runPass(const PassRange& range);
-    void recordSegment(class CommandRecorder& recorder, const gpu::PassConstants& constants, uint32_t currentRays);
-    gpu::RenderParams renderParams() const;
+    void forEachPass(const std::function<void(const PassRange&)>& pass, const ProgressCallback& progress);
+    void runPass(const PassRange& range, PassMode mode);
+    void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
+                       uint32_t currentRays);
+    void uploadParams();
 
     const VulkanContext& context_;
     RenderSettings settings_;
     gpu::GpuCamera camera_;
     glm::vec3 background_;
+    std::vector<uint32_t> triangleOrder_;
+    uint32_t mediumCount_;
+    uint32_t materialCount_;
     GpuScene scene_;
     StagePipelines pipelines_;
     std::unique_ptr<PathBuffers> paths_;
+    std::unique_ptr<AdjointBuffers> adjoint_;
+    LossKind lossKind_;
     Buffer params_;
     RenderStats stats_;
 };

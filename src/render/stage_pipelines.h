@@ -5,16 +5,26 @@ namespace vkdr {
 
 class VulkanContext;
 
+// The stages that follow a path, compiled once as primal and once as adjoint
+// (specialization constant 1 of shaders/lib/stage_common.glsl).
+struct PathStages {
+    PathStages(const VulkanContext& context, bool adjoint);
+
+    ComputePipeline generate;
+    ComputePipeline intersectShadow;
+    ComputePipeline mediumSample;
+    ComputePipeline shade;
+};
+
 // One pipeline per wavefront stage, named after its shader file.
 struct StagePipelines {
     explicit StagePipelines(const VulkanContext& context);
 
-    ComputePipeline generate;
-    ComputePipeline intersect;
-    ComputePipeline intersectShadow;
-    ComputePipeline mediumSample;
-    ComputePipeline shade;
+    PathStages primal;
+    PathStages adjoint;
+    ComputePipeline intersect;  // closest hits: the same in both passes
     ComputePipeline film;
+    ComputePipeline loss;
     ComputePipeline queuePrepare;
 };
 

@@ -1,0 +1,151 @@
+// Path replay backpropagation (DESIGN.md, "Adjoint"). During the adjoint pass the
+// radiance buffer holds L_rem, the part of the path's radiance (from the primal replay)
+// not yet passed: every factor of the throughput adds delta * L_rem * d log f to the
+// gradient, and every contribution C is subtracted from L_rem as the replay passes it.
+//
+// A factor that is zero in some channel (sigma_s = 0, base colour 0) ends that channel's
+// radiance but not its derivative. The replay then keeps the channel going in
+// derivative mode: its throughput becomes the path's derivative with respect to that
+// one parameter (the factor replaced by its derivative), and what it later gathers is
+// added straight to that parameter's gradient. A path follows one such parameter; a
+// second zero factor makes the derivative zero, as it should.
+#ifndef VKDR_ADJOINT_GLSL
+#define VKDR_ADJOINT_GLSL
+
+// Derivative-mode targets, and factors whose gradient waits for the next segment.
+const uint kTargetNone = 0u;
+const uint kTargetMediumScattering = 1u;  // sigma_s of a medium
+const uint kTargetBaseColor = 2u;         // base colour of a material
+const uint kPendingNone = 0u;
+const uint kPendingBaseColor = 1u;        // Lambertian continuation weight (albedo)
+const uint kPendingPhaseG = 2u;           // phase-function continuation weight (pdf held fixed)
+
+struct AdjointState {
+    uint derivativeChannels;  // bit c: channel c is in derivative mode
+    uint targetKind;
+    uint targetIndex;
+    uint pending;             // pending kind | index << 8
+};
+
+AdjointState loadAdjointState(uint slot) {
+    uvec4 v = P.adjointState.v[slot];
+    return AdjointState(v.x, v.y, v.z, v.w);
+}
+
+void storeAdjointState(uint slot, AdjointState s) {
+    P.adjointState.v[slot] = uvec4(s.derivativeChannels, s.targetKind, s.targetIndex, s.pending);
+}
+
+vec3 derivativeMask(AdjointState s) {
+    return vec3((s.derivativeChannels & 1u) != 0u ? 1.0f : 0.0f, (s.derivativeChannels & 2u) != 0u ? 1.0f : 0.0f,
+                (s.derivativeChannels & 4u) != 0u ? 1.0f : 0.0f);
+}
+
+vec3 normalMask(AdjointState s) {
+    return vec3(1.0f) - derivativeMask(s);
+}
+
+// dLoss/dI of the path's pixel, already divided by the samples per pixel.
+vec3 pathAdjoint(uint slot) {
+    return P.imageAdjoint.v[P.pathInfo.v[slot].x].rgb;
+}
+
+void addGradient(FloatBuffer gradients, uint first, vec3 g) {
+    for (uint c = 0u; c < 3u; ++c) {
+        if (g[c] != 0.0f) {
+            atomicAdd(gradients.v[first + c], g[c]);
+        }
+    }
+}
+
+void addMediumGradient(uint medium, uint firstComponent, vec3 g) {
+    addGradient(P.mediumGradients, medium * kMediumGradientStride + firstComponent, g);
+}
+
+void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
+    addMediumGradient(medium, 0u, dSigmaA);
+    addMediumGradient(medium, 3u, dSigmaS);
+}
+
+void addPhaseGGradient(uint medium, float g) {
+    if (g != 0.0f) {
+        atomicAdd(P.mediumGradients.v[medium * kMediumGradientStride + 6u], g);
+    }
+}
+
+void addBaseColorGradient(uint material, vec3 g) {
+    addGradient(P.baseColorGradients, material * 4u, g);
+}
+
+void addEmissionGradient(uint material, vec3 g) {
+    addGradient(P.emissionGradients, material * 4u, g);
+}
+
+void addTargetGradient(AdjointState s, vec3 g) {
+    if (s.targetKind == kTargetMediumScattering) {
+        addMediumGradient(s.targetIndex, 3u, g);
+    } else if (s.targetKind == kTargetBaseColor) {
+        addBaseColorGradient(s.targetIndex, g);
+    }
+}
+
+// The replay passes a contribution C: normal channels leave it behind in L_rem,
+// derivative channels add it to their parameter's gradient.
+void passContribution(uint slot, AdjointState s, vec3 delta, vec3 c) {
+    P.radiance.v[slot].rgb -= c * normalMask(s);
+    addTargetGradient(s, delta * c * derivativeMask(s));
+}
+
+// delta * L_rem * d log f / d theta on the normal channels, for a factor f that
+// multiplies everything the path gathers from here on.
+vec3 factorGradient(uint slot, AdjointState s, vec3 delta, vec3 dLogF) {
+    return delta * P.radiance.v[slot].rgb * dLogF * normalMask(s);
+}
+
+// Channels where `factor` is zero and the path is still in normal mode switch to
+// derivative mode for (kind, index), carrying `derivative` (the factor's derivative,
+// times the throughput before it) instead of zero. Returns the new throughput.
+vec3 enterDerivativeMode(inout AdjointState s, vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index) {
+    bool sameTarget = s.targetKind == kTargetNone || (s.targetKind == kind && s.targetIndex == index);
+    for (uint c = 0u; c < 3u; ++c) {
+        bool normal = (s.derivativeChannels & (1u << c)) == 0u;
+        if (factor[c] == 0.0f && normal && sameTarget && derivative[c] != 0.0f) {
+            s.derivativeChannels |= 1u << c;
+            s.targetKind = kind;
+            s.targetIndex = index;
+            betaAfter[c] = derivative[c];
+        }
+    }
+    return betaAfter;
+}
+
+// The previous vertex's continuation factor: its gradient needs L_rem after that
+// vertex's next-event contribution, which the shadow stage has subtracted by now.
+void applyPendingFactor(uint slot, inout AdjointState s, vec3 delta) {
+    uint kind = s.pending & 0xffu;
+    if (kind == kPendingNone) {
+        return;
+    }
+    uint index = s.pending >> 8u;
+    vec3 g = factorGradient(slot, s, delta, P.pendingFactor.v[slot].rgb);
+    if (kind == kPendingBaseColor) {
+        addBaseColorGradient(index, g);
+    } else {
+        addPhaseGGradient(index, g.x + g.y + g.z);
+    }
+    s.pending = kPendingNone;
+}
+
+void setPendingFactor(uint slot, inout AdjointState s, uint kind, uint index, vec3 dLogF) {
+    s.pending = kind | (index << 8u);
+    P.pendingFactor.v[slot] = vec4(dLogF, 0.0f);
+}
+
+// Russian roulette looks at the channels the primal pass still carries, so the replay
+// takes the same decisions; derivative channels only ride along.
+vec3 rouletteThroughput(AdjointState s, vec3 beta) {
+    vec3 primal = beta * normalMask(s);
+    return maxComponent(primal) > 0.0f ? primal : beta;
+}
+
+#endif

@@ -1,0 +1,29 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The loss of the rendered film against the target, per pixel, and the image adjoint
+// dLoss/dI that seeds the adjoint pass (divided by the samples per pixel, so each
+// replayed path carries its share). L2: mean of (I - T)^2; L1: mean of |I - T|.
+#include "lib/stage_common.glsl"
+
+void main() {
+    uint p = gl_GlobalInvocationID.x;
+    if (p >= pass.pixelCount) {
+        return;
+    }
+    vec3 difference = P.film.v[p].rgb * P.filmScale - P.target.v[p].rgb;
+    float loss;
+    vec3 dLossDI;
+    if (P.lossKind == kLossL1) {
+        loss = dot(abs(difference), vec3(1.0f));
+        dLossDI = sign(difference);
+    } else {
+        loss = dot(difference, difference);
+        dLossDI = 2.0f * difference;
+    }
+    P.imageAdjoint.v[p] = vec4(dLossDI * (P.lossScale * P.filmScale), 0.0f);
+    // One atomic per subgroup: many pixels add into one address.
+    float subgroupLoss = subgroupAdd(loss * P.lossScale);
+    if (subgroupElect()) {
+        atomicAdd(P.lossSum.v[0], subgroupLoss);
+    }
+}

@@ -1,0 +1,100 @@
+#include "diff/rendered_loss_gradient.h"
+
+#include <chrono>
+
+#include "bvh/bvh.h"
+#include "core/error.h"
+#include "device_types.h"
+#include "diff/parameter_slots.h"
+#include "render/renderer.h"
+#include "scene/parameters.h"
+
+namespace vkdr {
+
+struct RenderedLossGradient::Impl {
+    std::vector<std::unique_ptr<Renderer>> views;  // one per target view
+    std::vector<ParameterSlot> slots;
+};
+
+namespace {
+
+// Each view gets its own random numbers; 2 * viewSeed renders the image behind
+// dLoss/dI, 2 * viewSeed + 1 the replayed paths.
+uint32_t viewSeed(uint32_t seed, size_t view) {
+    return seed * 2654435761u + uint32_t(view) * 40503u;
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const Scene& scene,
+                                           std::vector<TargetView> views, std::vector<std::string> parameters,
+                                           const RenderSettings& settings, LossKind loss)
+    : impl_(std::make_unique<Impl>()) {
+    if (views.empty()) {
+        throw Error("no target image given");
+    }
+    impl_->slots = resolveParameterSlots(scene, parameters);
+    Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    for (const TargetView& view : views) {
+        RenderSettings viewSettings = settings;
+        viewSettings.camera = view.camera;
+        viewSettings.width = view.target.width;
+        viewSettings.height = view.target.height;
+        auto renderer = std::make_unique<Renderer>(context, scene, bvh, viewSettings);
+        renderer->enableGradients(view.target, loss);
+        impl_->views.push_back(std::move(renderer));
+    }
+}
+
+RenderedLossGradient::~RenderedLossGradient() = default;
+
+double RenderedLossGradient::loss(const Scene& scene, uint32_t seed) {
+    double total = 0.0;
+    for (size_t v = 0; v < impl_->views.size(); ++v) {
+        Renderer& renderer = *impl_->views[v];
+        renderer.setParameters(scene);
+        renderer.setSeed(2 * viewSeed(seed, v));
+        renderer.render();
+        total += renderer.loss();
+    }
+    return total / double(impl_->views.size());
+}
+
+GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
+    GradientResult result;
+    std::vector<std::vector<double>> gradients(impl_->slots.size());
+    const double viewWeight = 1.0 / double(impl_->views.size());
+    for (size_t v = 0; v < impl_->views.size(); ++v) {
+        Renderer& renderer = *impl_->views[v];
+        renderer.setParameters(scene);
+        // The image behind dLoss/dI and the replayed paths use independent random
+        // numbers, so the gradient of a nonlinear loss carries no O(1/spp) bias from
+        // their correlation.
+        auto start = std::chrono::steady_clock::now();
+        renderer.setSeed(2 * viewSeed(seed, v));
+        result.images.push_back(renderer.render());
+        result.loss += viewWeight * renderer.loss();
+        result.forwardMs += millisecondsSince(start);
+        start = std::chrono::steady_clock::now();
+        renderer.setSeed(2 * viewSeed(seed, v) + 1);
+        SceneGradients g = renderer.backpropagate();
+        result.adjointMs += millisecondsSince(start);
+        for (size_t i = 0; i < impl_->slots.size(); ++i) {
+            std::vector<double> values = gatherGradient(impl_->slots[i], g);
+            gradients[i].resize(values.size(), 0.0);
+            for (size_t k = 0; k < values.size(); ++k) {
+                gradients[i][k] += viewWeight * values[k];
+            }
+        }
+    }
+    for (size_t i = 0; i < impl_->slots.size(); ++i) {
+        result.parameters.push_back({impl_->slots[i].name, getParameter(scene, impl_->slots[i].name), gradients[i]});
+    }
+    return result;
+}
+
+}  // namespace vkdr

@@ -1,0 +1,34 @@
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "diff/loss_gradient.h"
+#include "render/render_settings.h"
+
+namespace vkdr {
+
+class VulkanContext;
+
+// LossGradient by path replay on the GPU: an independent primal render gives the image
+// and dLoss/dI, then each pass renders its paths again and replays them in adjoint
+// mode, accumulating parameter gradients with atomic adds (DESIGN.md, "Adjoint").
+// The scene's geometry is fixed at construction; evaluate() takes new parameter values.
+class RenderedLossGradient : public LossGradient {
+public:
+    // settings: spp, max depth and paths per pass; each view's size is its target's.
+    RenderedLossGradient(const VulkanContext& context, const Scene& scene, std::vector<TargetView> views,
+                         std::vector<std::string> parameters, const RenderSettings& settings, LossKind loss);
+    ~RenderedLossGradient() override;
+
+    GradientResult evaluate(const Scene& scene, uint32_t seed) override;
+    // The loss alone, rendered with the same random numbers evaluate() uses for its
+    // image: finite differences over it share their noise (common random numbers).
+    double loss(const Scene& scene, uint32_t seed);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vkdr
