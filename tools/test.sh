@@ -10,6 +10,9 @@ cd "$root/build"
 # lavapipe runs compute on the CPU: two worker threads suit a two-core machine.
 export LP_NUM_THREADS=2
 ctest --output-on-failure --timeout 600
-echo "GPU-assisted validation over the renderer tests:"
+# GPU-assisted validation makes lavapipe orders of magnitude slower: it covers one
+# render test with enclosed media, the traversal, and the adjoint pass through `grad`.
+echo "GPU-assisted validation over the primal and adjoint stages:"
 VKDR_VALIDATION=gpu "$root/build/tests/render/vkdr_render_tests" --gtest_brief=1 \
-  --gtest_filter='GpuTraversal*:Determinism*:CameraInMedium*'
+  --gtest_filter='GpuTraversal*:CameraInMedium*'
+VKDR_VALIDATION=gpu "$root/build/tests/cli/vkdr_cli_tests" --gtest_brief=1 --gtest_filter='CliTest.GradPrintsOneJsonObject'

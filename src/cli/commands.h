@@ -9,5 +9,7 @@ using CommandAction = std::function<int()>;
 
 CommandAction addRenderCommand(CLI::App& app);
 CommandAction addInfoCommand(CLI::App& app);
+CommandAction addGradCommand(CLI::App& app);
+CommandAction addOptimizeCommand(CLI::App& app);
 
 }  // namespace vkdr

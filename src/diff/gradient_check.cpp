@@ -43,6 +43,9 @@ double finiteDifferenceStep(const std::string& parameter, float value) {
     if (endsWith(parameter, "/g")) {
         return 1e-2;
     }
+    if (endsWith(parameter, "/sigma_a") || endsWith(parameter, "/sigma_s")) {
+        return 0.15 * std::max(std::abs(double(value)), 0.1);
+    }
     return 1e-2 * std::max(std::abs(double(value)), 0.1);
 }
 

@@ -180,6 +180,9 @@ void Renderer::enableGradients(const Image& target, LossKind loss) {
         throw Error("the target is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
                     " but the render is " + std::to_string(width()) + "x" + std::to_string(height()));
     }
+    if (!pipelines_.gradient) {
+        pipelines_.gradient = std::make_unique<GradientPipelines>(context_);
+    }
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
                                                 mediumCount_, materialCount_);
     lossKind_ = loss;
@@ -199,7 +202,7 @@ double Renderer::loss() {
     CommandRecorder recorder(context_);
     recorder.fill(adjoint_->lossSum, 0);
     recorder.barrier();
-    recorder.dispatch(pipelines_.loss, camera_.width * camera_.height, push.bytes());
+    recorder.dispatch(pipelines_.gradient->loss, camera_.width * camera_.height, push.bytes());
     recorder.submitAndWait();
     float sum[4];
     downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(sum)));
@@ -261,7 +264,7 @@ void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages
 }
 
 void Renderer::runPass(const PassRange& range, PassMode mode) {
-    const PathStages& stages = mode == PassMode::Adjoint ? pipelines_.adjoint : pipelines_.primal;
+    const PathStages& stages = mode == PassMode::Adjoint ? pipelines_.gradient->adjoint : pipelines_.primal;
     gpu::PassConstants constants{range.firstPixel, range.pixelCount, range.firstSample, range.samplesInPass,
                                  gpu::kQueueRays0, 0, 0, 0};
     PushConstants push{params_.address(), constants};

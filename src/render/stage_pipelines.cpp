@@ -31,12 +31,13 @@ PathStages::PathStages(const VulkanContext& context, bool adjoint)
       shade(context, stageName("shade", adjoint), spirv::shadeSpirv(), sizeof(PushConstants),
             variant(false, adjoint)) {}
 
+GradientPipelines::GradientPipelines(const VulkanContext& context)
+    : adjoint(context, true), loss(context, "loss", spirv::lossSpirv(), sizeof(PushConstants)) {}
+
 StagePipelines::StagePipelines(const VulkanContext& context)
     : primal(context, false),
-      adjoint(context, true),
       intersect(context, "intersect", spirv::intersectSpirv(), sizeof(PushConstants), variant(false, false)),
       film(context, "film", spirv::filmSpirv(), sizeof(PushConstants)),
-      loss(context, "loss", spirv::lossSpirv(), sizeof(PushConstants)),
       queuePrepare(context, "queue_prepare", spirv::queuePrepareSpirv(), sizeof(PushConstants)) {}
 
 }  // namespace vkdr

@@ -1,4 +1,6 @@
 #pragma once
+#include <memory>
+
 #include "vk/pipeline.h"
 
 namespace vkdr {
@@ -16,16 +18,24 @@ struct PathStages {
     ComputePipeline shade;
 };
 
+// What only differentiation needs; compiled on first use, since a plain render
+// should not pay for it.
+struct GradientPipelines {
+    explicit GradientPipelines(const VulkanContext& context);
+
+    PathStages adjoint;
+    ComputePipeline loss;
+};
+
 // One pipeline per wavefront stage, named after its shader file.
 struct StagePipelines {
     explicit StagePipelines(const VulkanContext& context);
 
     PathStages primal;
-    PathStages adjoint;
     ComputePipeline intersect;  // closest hits: the same in both passes
     ComputePipeline film;
-    ComputePipeline loss;
     ComputePipeline queuePrepare;
+    std::unique_ptr<GradientPipelines> gradient;  // null until gradients are enabled
 };
 
 }  // namespace vkdr

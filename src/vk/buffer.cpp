@@ -8,10 +8,23 @@
 
 namespace vkdr {
 
+namespace {
+
+// Sizes are rounded up: the Debian 12 validation layers (1.3.239) report false
+// out-of-bounds errors under GPU-assisted validation for loads from buffers only a
+// struct or two long (fixed upstream in 1.3.280).
+constexpr VkDeviceSize kSizeGranularity = 256;
+
+VkDeviceSize paddedSize(VkDeviceSize size) {
+    return (std::max<VkDeviceSize>(size, 1) + kSizeGranularity - 1) / kSizeGranularity * kSizeGranularity;
+}
+
+}  // namespace
+
 Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, const std::string& name)
-    : device_(context.device()), size_(size) {
+    : device_(context.device()), size_(paddedSize(size)) {
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    info.size = size;
+    info.size = size_;
     info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
@@ -33,7 +46,7 @@ Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, c
     VkResult result = vkAllocateMemory(device_, &allocation, nullptr, &memory_);
     if (result != VK_SUCCESS) {
         release();
-        checkVk(result, ("allocating " + std::to_string(size >> 20) + " MiB for " + name).c_str());
+        checkVk(result, ("allocating " + std::to_string(size_ >> 20) + " MiB for " + name).c_str());
     }
     checkVk(vkBindBufferMemory(device_, buffer_, memory_, 0), "vkBindBufferMemory");
     if (use != MemoryUse::Device) {
@@ -77,14 +90,8 @@ void Buffer::release() {
     mapped_ = nullptr;
 }
 
-// Small tables are padded: the Debian 12 validation layers (1.3.239) report false
-// out-of-bounds errors under GPU-assisted validation for struct loads from buffers
-// only a struct or two long (fixed upstream in 1.3.280).
-constexpr VkDeviceSize kUploadGranularity = 256;
-
 Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> bytes, const std::string& name) {
     VkDeviceSize size = std::max<VkDeviceSize>(bytes.size(), 1);
-    size = (size + kUploadGranularity - 1) / kUploadGranularity * kUploadGranularity;
     Buffer staging(context, size, MemoryUse::Upload, name + " (staging)");
     std::memset(staging.mapped(), 0, size);
     if (!bytes.empty()) {

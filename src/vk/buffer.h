@@ -27,7 +27,7 @@ public:
     Buffer& operator=(const Buffer&) = delete;
 
     VkBuffer handle() const { return buffer_; }
-    VkDeviceSize size() const { return size_; }
+    VkDeviceSize size() const { return size_; }  // at least the size asked for
     VkDeviceAddress address() const { return address_; }
     // Host pointer for Readback and Upload buffers, nullptr otherwise.
     void* mapped() const { return mapped_; }

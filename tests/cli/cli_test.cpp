@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "image/image.h"
 
@@ -117,6 +118,35 @@ TEST_F(CliTest, RendersExrAndPngDeterministically) {
     std::string first = slurp(exr);
     ASSERT_EQ(run(args + exr.string()).exitCode, 0);
     EXPECT_EQ(slurp(exr), first) << "the same seed must give the same file";
+}
+
+TEST_F(CliTest, GradPrintsOneJsonObject) {
+    fs::path target = dir_ / "target.exr";
+    ASSERT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 2 -o " + target.string()).exitCode, 0);
+    RunResult r = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                      " --param media/fog/sigma_a --param media/fog/g --set media/fog/sigma_a=0.05 --spp 2 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    nlohmann::json out = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(out["loss"].is_number());
+    EXPECT_EQ(out["gradients"]["media/fog/sigma_a"].size(), 3u);
+    EXPECT_EQ(out["gradients"]["media/fog/g"].size(), 1u);
+    EXPECT_EQ(out.size(), 2u);
+}
+
+TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
+    fs::path target = dir_ / "target.exr";
+    ASSERT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string()).exitCode, 0);
+    RunResult unknown = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() + " --param media/smog/g");
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_NE(unknown.err.find("media/fog/g"), std::string::npos) << unknown.err;
+    RunResult wrongSize = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                              " --param media/fog/g --width 16 --height 16");
+    EXPECT_EQ(wrongSize.exitCode, 2);
+    EXPECT_NE(wrongSize.err.find("target.exr"), std::string::npos) << wrongSize.err;
+    RunResult missing = run("grad " + scene("cornell_fog.gltf") + " --target " + (dir_ / "none.exr").string() +
+                            " --param media/fog/g");
+    EXPECT_EQ(missing.exitCode, 2);
+    EXPECT_NE(missing.err.find("none.exr"), std::string::npos) << missing.err;
 }
 
 TEST_F(CliTest, InfoNamesTheChosenDevice) {

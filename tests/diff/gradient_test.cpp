@@ -2,9 +2,10 @@
 // base colour and emission in a scene-wide fog, g of an enclosed medium, and a base
 // colour that starts at zero. Both sides are means over seeds; the tolerance is their
 // combined standard error (plus 1 % for the finite difference's step and the O(1/spp)
-// covariance of a squared loss). sigma_a and sigma_s are not here yet: with common
-// random numbers their finite differences are too noisy at test-sized sample counts
-// (a changed sigma re-routes free flights), so they need a lower-variance reference.
+// covariance of a squared loss). sigma_a and sigma_s are checked against quadrature in
+// analytic_gradient_test.cpp instead: with common random numbers their finite
+// differences are too noisy at test-sized sample counts (a changed sigma re-routes
+// free flights).
 #include <cmath>
 
 #include "diff/gradient_check.h"

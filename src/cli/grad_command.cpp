@@ -1,0 +1,141 @@
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/scene_options.h"
+#include "cli/target_views.h"
+#include "core/error.h"
+#include "diff/gradient_check.h"
+#include "diff/rendered_loss_gradient.h"
+#include "optimize/loss_kind_text.h"
+#include "vk/context.h"
+
+namespace vkdr {
+namespace {
+
+struct GradOptions {
+    SceneOptions scene;
+    std::vector<std::string> targets;
+    std::vector<std::string> parameters;
+    RenderSettings settings;
+    std::string loss = "l2";
+    bool json = false;
+    bool check = false;
+    int checkSeeds = 4;
+    std::string device;
+};
+
+std::vector<TargetView> readViews(const GradOptions& options, const Scene& scene) {
+    std::vector<TargetView> views;
+    for (const std::string& target : options.targets) {
+        views.push_back(readTarget(target, scene));
+        const Image& image = views.back().target;
+        bool wrongWidth = options.settings.width > 0 && options.settings.width != image.width;
+        bool wrongHeight = options.settings.height > 0 && options.settings.height != image.height;
+        if (wrongWidth || wrongHeight) {
+            throw Error("--target " + target + " is " + std::to_string(image.width) + "x" +
+                        std::to_string(image.height) + ", not the --width/--height asked for");
+        }
+    }
+    return views;
+}
+
+void printText(const GradientResult& result, const std::vector<GradientCheckRow>& check) {
+    std::printf("loss %.9g\n", result.loss);
+    for (const ParameterGradient& p : result.parameters) {
+        std::printf("d loss / d %s =", p.name.c_str());
+        for (double g : p.gradient) {
+            std::printf(" %.6g", g);
+        }
+        std::printf("\n");
+    }
+    if (check.empty()) {
+        return;
+    }
+    std::printf("\n%-34s %27s %27s %10s\n", "parameter", "adjoint +- std. error", "finite diff. +- std. error",
+                "step");
+    for (const GradientCheckRow& row : check) {
+        std::string name = row.name + "[" + std::to_string(row.component) + "]";
+        std::printf("%-34s %13.6g +- %-10.3g %13.6g +- %-10.3g %10.3g\n", name.c_str(), row.adjoint,
+                    row.adjointError, row.finiteDifference, row.finiteDifferenceError, row.step);
+    }
+}
+
+void printJson(const GradientResult& result, const std::vector<GradientCheckRow>& check) {
+    nlohmann::json out;
+    out["loss"] = result.loss;
+    out["gradients"] = nlohmann::json::object();
+    for (const ParameterGradient& p : result.parameters) {
+        out["gradients"][p.name] = p.gradient;
+    }
+    if (!check.empty()) {
+        out["check"] = nlohmann::json::array();
+        for (const GradientCheckRow& row : check) {
+            out["check"].push_back({{"parameter", row.name},
+                                    {"component", row.component},
+                                    {"adjoint", row.adjoint},
+                                    {"adjoint_error", row.adjointError},
+                                    {"finite_difference", row.finiteDifference},
+                                    {"finite_difference_error", row.finiteDifferenceError},
+                                    {"step", row.step}});
+        }
+    }
+    std::printf("%s\n", out.dump().c_str());
+}
+
+int runGrad(const GradOptions& options) {
+    Scene scene = loadSceneWithOverrides(options.scene);
+    std::vector<TargetView> views = readViews(options, scene);
+    VulkanContext context(ContextOptions{options.device});
+    RenderedLossGradient lossGradient(context, scene, views, options.parameters, options.settings,
+                                      parseLossKind(options.loss));
+    GradientResult result = lossGradient.evaluate(scene, options.settings.seed);
+    std::vector<GradientCheckRow> check;
+    if (options.check) {
+        check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds);
+    }
+    requireNoValidationMessages(context);
+    if (options.json) {
+        printJson(result, check);
+    } else {
+        printText(result, check);
+    }
+    return 0;
+}
+
+}  // namespace
+
+CommandAction addGradCommand(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "grad", "Print the loss of a render against target images and its gradient with respect to parameters");
+    auto options = std::make_shared<GradOptions>();
+    addSceneOptions(*command, options->scene);
+    command->add_option("--target", options->targets,
+                        "Target image (EXR or PNG); CAMERA=FILE for another camera than the first (repeatable)")
+        ->required();
+    command->add_option("--param", options->parameters, "Parameter to differentiate, e.g. media/fog/sigma_a "
+                                                        "(repeatable)")
+        ->required();
+    command->add_option("--spp", options->settings.spp, "Samples per pixel")
+        ->default_val(options->settings.spp)->check(CLI::Range(1u, 1u << 20));
+    command->add_option("--max-depth", options->settings.maxDepth, "Scattering vertices per path")
+        ->default_val(options->settings.maxDepth)->check(CLI::Range(0u, 100000u));
+    command->add_option("--seed", options->settings.seed, "Random seed")->default_val(options->settings.seed);
+    command->add_option("--loss", options->loss, "l2 (mean squared difference) or l1 (mean absolute difference)")
+        ->default_val(options->loss)->check(CLI::IsMember({"l2", "l1"}));
+    command->add_option("--width", options->settings.width, "Must match the target's width when given")
+        ->check(CLI::Range(1, 16384));
+    command->add_option("--height", options->settings.height, "Must match the target's height when given")
+        ->check(CLI::Range(1, 16384));
+    command->add_flag("--json", options->json, "Print exactly one JSON object: {\"loss\": x, \"gradients\": {...}}");
+    command->add_flag("--check", options->check,
+                      "Also compute central finite differences with common random numbers (step in "
+                      "docs/gradients.md) and print both with their standard errors over --check-seeds seeds");
+    command->add_option("--check-seeds", options->checkSeeds, "Seeds the check averages over")
+        ->default_val(options->checkSeeds)->check(CLI::Range(2, 1000));
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
+    return [command, options]() { return command->parsed() ? runGrad(*options) : -1; };
+}
+
+}  // namespace vkdr

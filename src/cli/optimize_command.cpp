@@ -1,0 +1,198 @@
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "bvh/bvh.h"
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
+#include "cli/scene_options.h"
+#include "cli/target_views.h"
+#include "core/error.h"
+#include "diff/rendered_loss_gradient.h"
+#include "image/image.h"
+#include "optimize/experiment_run.h"
+#include "optimize/loss_kind_text.h"
+#include "optimize/optimization_run.h"
+#include "optimize/parameter_vector.h"
+#include "render/renderer.h"
+#include "scene/load_scene.h"
+#include "vk/context.h"
+
+namespace vkdr {
+namespace {
+
+struct OptimizeCommandOptions {
+    SceneOptions scene;
+    std::vector<std::string> targets;  // FILE or CAMERA=FILE
+    std::vector<std::string> parameters;
+    std::string experiment;
+    OptimizeOptions optimize;
+    RenderSettings settings;
+    std::string optimizer = "adam";
+    std::string loss = "l2";
+    std::string out = "optimize-out";
+    std::string device;
+};
+
+// The options an experiment file also sets; given on the command line, they win.
+struct ExperimentOverrides {
+    CLI::Option* iterations;
+    CLI::Option* learningRate;
+    CLI::Option* learningRateDecay;
+    CLI::Option* optimizer;
+    CLI::Option* spp;
+    CLI::Option* maxDepth;
+    CLI::Option* loss;
+    CLI::Option* seed;
+};
+
+void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
+    const OptimizeResult& result = report.result;
+    double iterations = double(result.losses.size());
+    std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint\n",
+                result.losses.back(), result.losses.size(), result.forwardMs / iterations,
+                result.adjointMs / iterations);
+    std::printf("diff.png: white is an absolute difference of %.4g\n", double(report.largestDifference));
+    std::printf("wrote log.jsonl, params.json, scene.gltf, final.exr, final.png, diff.png, loss.svg to %s\n",
+                directory.string().c_str());
+}
+
+std::function<void(uint32_t, double)> progressOn(ProgressBar& bar, uint32_t iterations) {
+    return [&bar, iterations](uint32_t iteration, double loss) {
+        char status[64];
+        std::snprintf(status, sizeof(status), "iteration %u/%u loss %.4g", iteration + 1, iterations, loss);
+        bar.update(double(iteration + 1) / iterations, status);
+    };
+}
+
+int runOptimizeScene(OptimizeCommandOptions& options) {
+    if (options.scene.file.empty()) throw Error("optimize: give a SCENE (or --experiment FILE)");
+    if (options.targets.empty()) throw Error("optimize: give at least one --target");
+    if (options.parameters.empty()) throw Error("optimize: give at least one --param");
+    options.optimize.parameters = options.parameters;
+    options.optimize.optimizer = parseOptimizerKind(options.optimizer);
+    LossKind loss = parseLossKind(options.loss);
+
+    Scene scene = loadSceneWithOverrides(options.scene);
+    requireOptimisableParameters(scene, options.optimize.parameters);
+    std::vector<TargetView> views;
+    for (const std::string& target : options.targets) views.push_back(readTarget(target, scene));
+    OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views[0].target};
+
+    VulkanContext context(ContextOptions{options.device});
+    std::fprintf(stderr, "%s: %zu triangles, %zu views, %u spp, max depth %u, %u iterations of %s on %s\n",
+                 options.scene.file.c_str(), scene.triangles.size(), views.size(), options.settings.spp,
+                 options.settings.maxDepth, options.optimize.iterations, options.optimizer.c_str(),
+                 context.description().name.c_str());
+    RenderedLossGradient lossGradient(context, scene, std::move(views), options.optimize.parameters,
+                                      options.settings, loss);
+    ProgressBar bar("optimize");
+    OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
+    bar.finish();
+    requireNoValidationMessages(context);
+    printOutputs(options.out, report);
+    return 0;
+}
+
+void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverrides& given, Experiment& experiment) {
+    if (given.iterations->count()) experiment.optimize.iterations = options.optimize.iterations;
+    if (given.learningRate->count()) experiment.optimize.learningRate = options.optimize.learningRate;
+    if (given.learningRateDecay->count()) {
+        experiment.optimize.learningRateDecay = options.optimize.learningRateDecay;
+    }
+    if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
+    if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
+    if (given.spp->count()) experiment.render.spp = options.settings.spp;
+    if (given.maxDepth->count()) experiment.render.maxDepth = options.settings.maxDepth;
+    if (given.loss->count()) experiment.loss = parseLossKind(options.loss);
+}
+
+int runOptimizeExperiment(const OptimizeCommandOptions& options, const ExperimentOverrides& overrides) {
+    if (!options.scene.file.empty() || !options.targets.empty() || !options.parameters.empty() ||
+        !options.scene.assignments.empty()) {
+        throw Error("--experiment: the experiment file gives the scene, targets and parameters; "
+                    "drop SCENE, --target, --param and --set");
+    }
+    Experiment experiment = readExperiment(options.experiment);
+    applyOverrides(options, overrides, experiment);
+    LoadedScene loaded = loadScene(experiment.scene);
+    for (const std::string& warning : loaded.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+
+    VulkanContext context(ContextOptions{options.device});
+    // Only parameter values change during an experiment, never the geometry.
+    Bvh bvh = buildBvh(loaded.scene.positions, loaded.scene.triangles);
+    ExperimentBackend backend;
+    backend.render = [&](const Scene& scene, const RenderSettings& settings) {
+        return Renderer(context, scene, bvh, settings).render();
+    };
+    backend.makeLossGradient = [&](const Scene& scene, std::vector<TargetView> views,
+                                   std::vector<std::string> parameters, const RenderSettings& settings,
+                                   LossKind loss) -> std::unique_ptr<LossGradient> {
+        return std::make_unique<RenderedLossGradient>(context, scene, std::move(views), std::move(parameters),
+                                                      settings, loss);
+    };
+    std::fprintf(stderr, "%s: %s, %zu triangles, %zu views, %u spp (targets %u), %u iterations of %s on %s\n",
+                 options.experiment.c_str(), experiment.scene.string().c_str(), loaded.scene.triangles.size(),
+                 experiment.views.size(), experiment.render.spp, experiment.targetSpp,
+                 experiment.optimize.iterations, optimizerKindName(experiment.optimize.optimizer).c_str(),
+                 context.description().name.c_str());
+
+    ProgressBar bar("optimize");
+    ExperimentResult result = runExperiment(experiment, loaded.scene, backend, options.out,
+                                            progressOn(bar, experiment.optimize.iterations));
+    bar.finish();
+    requireNoValidationMessages(context);
+    std::printf("%s", recoveryTable(result.recoveries).c_str());
+    printOutputs(options.out, result.report);
+    return 0;
+}
+
+}  // namespace
+
+CommandAction addOptimizeCommand(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "optimize", "Fit scene parameters to target images by gradient descent (or run an --experiment file)");
+    auto options = std::make_shared<OptimizeCommandOptions>();
+    addSceneOptions(*command, options->scene);
+    command->get_option("scene")->required(false);
+    command->add_option("--target", options->targets,
+                        "Target image (EXR, PNG or JPEG) of the first camera, or CAMERA=FILE (repeatable, one per "
+                        "view); each view renders at its target's size");
+    command->add_option("--param", options->parameters, "Parameter to optimise, e.g. media/fog/sigma_a (repeatable)");
+    command->add_option("--experiment", options->experiment,
+                        "Run a self-contained experiment file (docs/optimisation.md) instead of SCENE");
+    ExperimentOverrides overrides;
+    overrides.iterations = command->add_option("--iters", options->optimize.iterations, "Iterations")
+                               ->default_val(options->optimize.iterations)->check(CLI::Range(1u, 1000000u));
+    overrides.learningRate = command->add_option("--lr", options->optimize.learningRate, "Learning rate")
+                                 ->default_val(options->optimize.learningRate)->check(CLI::PositiveNumber);
+    overrides.learningRateDecay =
+        command->add_option("--lr-decay", options->optimize.learningRateDecay,
+                            "The learning rate at the last iteration as a fraction of --lr (exponential decay)")
+            ->default_val(options->optimize.learningRateDecay)->check(CLI::Range(1e-9, 1.0));
+    overrides.optimizer = command->add_option("--optimizer", options->optimizer, "adam or sgd")
+                              ->default_val(options->optimizer)->check(CLI::IsMember({"adam", "sgd"}));
+    overrides.spp = command->add_option("--spp", options->settings.spp, "Samples per pixel per iteration")
+                        ->default_val(options->settings.spp)->check(CLI::Range(1u, 1u << 20));
+    overrides.maxDepth = command->add_option("--max-depth", options->settings.maxDepth,
+                                             "Scattering vertices per path (surface bounces + medium scattering)")
+                             ->default_val(options->settings.maxDepth)->check(CLI::Range(0u, 100000u));
+    overrides.loss = command->add_option("--loss", options->loss, "l2 or l1 (means over pixels and channels)")
+                         ->default_val(options->loss)->check(CLI::IsMember({"l2", "l1"}));
+    overrides.seed = command->add_option("--seed", options->settings.seed,
+                                         "Base seed: iteration i renders with seed + i")
+                         ->default_val(options->settings.seed);
+    command->add_option("--paths-per-pass", options->settings.pathsPerPass,
+                        "Paths in flight per pass (default: up to 2^20, as device memory allows)")
+        ->check(CLI::Range(1u, 1u << 21));
+    command->add_option("--out", options->out, "Output directory, created if missing")->default_val(options->out);
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
+    return [command, options, overrides]() {
+        if (!command->parsed()) return -1;
+        options->optimize.seed = options->settings.seed;
+        return options->experiment.empty() ? runOptimizeScene(*options)
+                                           : runOptimizeExperiment(*options, overrides);
+    };
+}
+
+}  // namespace vkdr

@@ -1,0 +1,29 @@
+#include "optimize/adam.h"
+
+#include <cassert>
+#include <cmath>
+
+namespace vkdr {
+
+AdamOptimizer::AdamOptimizer(std::vector<double> learningRates, const AdamMoments& moments)
+    : learningRates_(std::move(learningRates)),
+      moments_(moments),
+      mean_(learningRates_.size(), 0.0),
+      meanSquare_(learningRates_.size(), 0.0) {}
+
+void AdamOptimizer::step(std::span<double> values, std::span<const double> gradients) {
+    assert(values.size() == mean_.size() && gradients.size() == mean_.size());
+    ++steps_;
+    // m and v start at 0, so early averages are biased towards 0 by (1 - beta^t).
+    double meanCorrection = 1.0 - std::pow(moments_.beta1, double(steps_));
+    double meanSquareCorrection = 1.0 - std::pow(moments_.beta2, double(steps_));
+    for (size_t i = 0; i < values.size(); ++i) {
+        mean_[i] = moments_.beta1 * mean_[i] + (1.0 - moments_.beta1) * gradients[i];
+        meanSquare_[i] = moments_.beta2 * meanSquare_[i] + (1.0 - moments_.beta2) * gradients[i] * gradients[i];
+        double meanHat = mean_[i] / meanCorrection;
+        double meanSquareHat = meanSquare_[i] / meanSquareCorrection;
+        values[i] -= learningRateScale_ * learningRates_[i] * meanHat / (std::sqrt(meanSquareHat) + moments_.epsilon);
+    }
+}
+
+}  // namespace vkdr

@@ -1,0 +1,16 @@
+#pragma once
+#include "image/image.h"
+
+namespace vkdr {
+
+// |render - target| per pixel and channel, divided by the largest such difference so
+// that it shows as white.
+struct DifferenceImage {
+    Image image;
+    float largestDifference = 0.0f;  // the difference that white stands for; 0: identical
+};
+
+// Throws vkdr::Error when the sizes differ.
+DifferenceImage scaledDifference(const Image& render, const Image& target);
+
+}  // namespace vkdr

@@ -1,0 +1,274 @@
+#include "optimize/experiment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "optimize/parameter_vector.h"
+#include "optimize/loss_kind_text.h"
+#include "scene/parameters.h"
+
+namespace vkdr {
+namespace {
+
+using Json = nlohmann::ordered_json;  // keeps "start" in file order: the default parameter order
+
+const std::set<std::string> kKeys = {"scene", "views", "cameras", "width", "height", "spp", "target_spp",
+                                     "max_depth", "seed", "iterations", "optimizer", "learning_rate",
+                                     "learning_rates", "learning_rate_decay", "loss", "true", "start", "parameters"};
+const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees"};
+
+// Reads one experiment file, prefixing every error with the file and the key at fault.
+class ExperimentReader {
+public:
+    explicit ExperimentReader(std::filesystem::path file) : file_(std::move(file)) {}
+
+    [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+        throw Error(file_.string() + ": " + (key.empty() ? "" : key + ": ") + problem);
+    }
+
+    Json parse() const {
+        std::ifstream in(file_);
+        if (!in) fail("", "cannot open the experiment file");
+        try {
+            Json document = Json::parse(in);
+            if (!document.is_object()) fail("", "expected a JSON object");
+            return document;
+        } catch (const Json::exception& e) {
+            fail("", std::string("not valid JSON: ") + e.what());
+        }
+    }
+
+    void requireKnownKeys(const Json& object, const std::set<std::string>& known, const std::string& where) const {
+        for (const auto& [key, value] : object.items()) {
+            if (!known.count(key)) {
+                std::string list;
+                for (const std::string& name : known) list += (list.empty() ? "" : ", ") + name;
+                fail(where + key, "unknown key; valid keys: " + list);
+            }
+        }
+    }
+
+    std::string string(const Json& value, const std::string& key) const {
+        if (!value.is_string()) fail(key, "expected a string");
+        return value.get<std::string>();
+    }
+
+    uint32_t count(const Json& value, const std::string& key, uint32_t minimum) const {
+        if (!value.is_number_integer() || value.get<int64_t>() < int64_t(minimum) ||
+            value.get<int64_t>() > int64_t(UINT32_MAX)) {
+            fail(key, "expected an integer >= " + std::to_string(minimum));
+        }
+        return value.get<uint32_t>();
+    }
+
+    double positive(const Json& value, const std::string& key) const {
+        if (!value.is_number() || !(value.get<double>() > 0.0) || !std::isfinite(value.get<double>())) {
+            fail(key, "expected a number > 0");
+        }
+        return value.get<double>();
+    }
+
+    std::vector<float> numbers(const Json& value, const std::string& key) const {
+        if (value.is_number()) return {value.get<float>()};
+        if (!value.is_array() || (value.size() != 1 && value.size() != 3)) {
+            fail(key, "expected a number or an array of 1 or 3 numbers");
+        }
+        std::vector<float> values;
+        for (const Json& element : value) {
+            if (!element.is_number()) fail(key, "expected numbers");
+            values.push_back(element.get<float>());
+        }
+        return values;
+    }
+
+    glm::vec3 vector3(const Json& value, const std::string& key) const {
+        std::vector<float> values = numbers(value, key);
+        if (values.size() != 3) fail(key, "expected an array of 3 numbers");
+        return {values[0], values[1], values[2]};
+    }
+
+    std::vector<std::string> strings(const Json& value, const std::string& key) const {
+        if (!value.is_array()) fail(key, "expected an array of strings");
+        std::vector<std::string> result;
+        for (const Json& element : value) result.push_back(string(element, key));
+        return result;
+    }
+
+    std::vector<ParameterValue> parameterValues(const Json& value, const std::string& key) const {
+        if (!value.is_object()) fail(key, "expected an object of parameter names and values");
+        std::vector<ParameterValue> result;
+        for (const auto& [name, values] : value.items()) {
+            result.push_back({name, numbers(values, key + "." + name)});
+        }
+        return result;
+    }
+
+    ExperimentCamera camera(const Json& value, size_t index) const {
+        std::string where = "cameras[" + std::to_string(index) + "]";
+        if (!value.is_object()) fail(where, "expected an object");
+        requireKnownKeys(value, kCameraKeys, where + ".");
+        for (const char* required : {"name", "position", "look_at"}) {
+            if (!value.contains(required)) fail(where, std::string("missing \"") + required + "\"");
+        }
+        ExperimentCamera camera;
+        camera.name = string(value["name"], where + ".name");
+        camera.position = vector3(value["position"], where + ".position");
+        camera.lookAt = vector3(value["look_at"], where + ".look_at");
+        if (value.contains("up")) camera.up = vector3(value["up"], where + ".up");
+        if (value.contains("yfov_degrees")) {
+            camera.yfovDegrees = float(positive(value["yfov_degrees"], where + ".yfov_degrees"));
+            if (camera.yfovDegrees >= 180.0f) fail(where + ".yfov_degrees", "must be < 180");
+        }
+        glm::vec3 forward = camera.lookAt - camera.position;
+        if (glm::length(forward) == 0.0f || glm::length(glm::cross(forward, camera.up)) == 0.0f) {
+            fail(where, "look_at must differ from position, and up must not be parallel to the view direction");
+        }
+        return camera;
+    }
+
+private:
+    std::filesystem::path file_;
+};
+
+void readRenderSettings(const ExperimentReader& reader, const Json& document, Experiment& experiment) {
+    RenderSettings& render = experiment.render;
+    render.width = 128;
+    if (document.contains("width")) render.width = int(reader.count(document["width"], "width", 1));
+    if (document.contains("height")) render.height = int(reader.count(document["height"], "height", 1));
+    if (document.contains("spp")) render.spp = reader.count(document["spp"], "spp", 1);
+    if (document.contains("max_depth")) render.maxDepth = reader.count(document["max_depth"], "max_depth", 0);
+    experiment.targetSpp = document.contains("target_spp") ? reader.count(document["target_spp"], "target_spp", 1)
+                                                           : 4 * render.spp;
+}
+
+void readOptimizeOptions(const ExperimentReader& reader, const Json& document, Experiment& experiment) {
+    OptimizeOptions& options = experiment.optimize;
+    if (document.contains("iterations")) options.iterations = reader.count(document["iterations"], "iterations", 1);
+    if (document.contains("seed")) options.seed = reader.count(document["seed"], "seed", 0);
+    if (document.contains("learning_rate")) {
+        options.learningRate = reader.positive(document["learning_rate"], "learning_rate");
+    }
+    if (document.contains("learning_rate_decay")) {
+        options.learningRateDecay = reader.positive(document["learning_rate_decay"], "learning_rate_decay");
+        if (options.learningRateDecay > 1.0) reader.fail("learning_rate_decay", "expected a number in (0, 1]");
+    }
+    if (document.contains("learning_rates")) {
+        const Json& rates = document["learning_rates"];
+        if (!rates.is_object()) reader.fail("learning_rates", "expected an object of parameter names and rates");
+        for (const auto& [name, rate] : rates.items()) {
+            options.learningRates[name] = reader.positive(rate, "learning_rates." + name);
+        }
+    }
+    try {
+        if (document.contains("optimizer")) {
+            options.optimizer = parseOptimizerKind(reader.string(document["optimizer"], "optimizer"));
+        }
+        if (document.contains("loss")) experiment.loss = parseLossKind(reader.string(document["loss"], "loss"));
+    } catch (const Error& e) {
+        reader.fail("", e.what());
+    }
+    if (document.contains("parameters")) {
+        options.parameters = reader.strings(document["parameters"], "parameters");
+    } else {
+        for (const ParameterValue& start : experiment.startValues) options.parameters.push_back(start.name);
+    }
+    if (options.parameters.empty()) {
+        reader.fail("parameters", "nothing to optimise: list names in \"parameters\" or give \"start\" values");
+    }
+}
+
+// Checks `values` against the scene by setting them on a copy: the same messages as --set.
+void checkValues(const ExperimentReader& reader, const Scene& scene, const std::vector<ParameterValue>& values,
+                 const std::string& key) {
+    Scene copy = scene;
+    for (const ParameterValue& value : values) {
+        try {
+            setParameter(copy, value.name, value.values);
+        } catch (const Error& e) {
+            reader.fail(key + "." + value.name, e.what());
+        }
+    }
+}
+
+Camera sceneCamera(const ExperimentCamera& camera) {
+    Camera result;
+    result.name = camera.name;
+    result.cameraToWorld = glm::inverse(glm::lookAt(camera.position, camera.lookAt, camera.up));
+    result.yfov = glm::radians(camera.yfovDegrees);
+    return result;
+}
+
+bool hasCamera(const Scene& scene, const std::string& name) {
+    return std::any_of(scene.cameras.begin(), scene.cameras.end(),
+                       [&](const Camera& camera) { return camera.name == name; });
+}
+
+std::string cameraList(const Scene& scene) {
+    std::string list;
+    for (const Camera& camera : scene.cameras) list += (list.empty() ? "" : ", ") + camera.name;
+    return list.empty() ? "none" : list;
+}
+
+}  // namespace
+
+Experiment readExperiment(const std::filesystem::path& file) {
+    ExperimentReader reader(file);
+    Json document = reader.parse();
+    reader.requireKnownKeys(document, kKeys, "");
+
+    Experiment experiment;
+    experiment.file = file;
+    if (!document.contains("scene")) reader.fail("", "missing \"scene\" (a glTF path relative to this file)");
+    experiment.scene = (file.parent_path() / reader.string(document["scene"], "scene")).lexically_normal();
+    if (!std::filesystem::is_regular_file(experiment.scene)) {
+        reader.fail("scene", "no such file: " + experiment.scene.string());
+    }
+    if (document.contains("views")) experiment.views = reader.strings(document["views"], "views");
+    if (experiment.views.empty()) experiment.views = {""};
+    if (document.contains("cameras")) {
+        if (!document["cameras"].is_array()) reader.fail("cameras", "expected an array");
+        for (size_t i = 0; i < document["cameras"].size(); ++i) {
+            experiment.cameras.push_back(reader.camera(document["cameras"][i], i));
+        }
+    }
+    if (document.contains("true")) experiment.trueValues = reader.parameterValues(document["true"], "true");
+    if (document.contains("start")) experiment.startValues = reader.parameterValues(document["start"], "start");
+    readRenderSettings(reader, document, experiment);
+    readOptimizeOptions(reader, document, experiment);
+    return experiment;
+}
+
+void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
+    ExperimentReader reader(experiment.file);
+    for (const ExperimentCamera& camera : experiment.cameras) {
+        if (hasCamera(scene, camera.name)) reader.fail("cameras", "the scene already has a camera '" + camera.name + "'");
+        scene.cameras.push_back(sceneCamera(camera));
+    }
+    for (const std::string& view : experiment.views) {
+        if (scene.cameras.empty()) reader.fail("views", "the scene has no camera; add one under \"cameras\"");
+        if (!view.empty() && !hasCamera(scene, view)) {
+            reader.fail("views", "no camera '" + view + "'; cameras: " + cameraList(scene));
+        }
+    }
+    try {
+        requireOptimisableParameters(scene, experiment.optimize.parameters);
+    } catch (const Error& e) {
+        reader.fail("parameters", e.what());
+    }
+    for (const auto& [name, rate] : experiment.optimize.learningRates) {
+        const std::vector<std::string>& names = experiment.optimize.parameters;
+        if (std::find(names.begin(), names.end(), name) == names.end()) {
+            reader.fail("learning_rates." + name, "not one of the parameters being optimised");
+        }
+    }
+    checkValues(reader, scene, experiment.trueValues, "true");
+    checkValues(reader, scene, experiment.startValues, "start");
+}
+
+}  // namespace vkdr

@@ -1,0 +1,54 @@
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "diff/loss_gradient.h"
+#include "optimize/experiment.h"
+#include "optimize/optimization_run.h"
+
+namespace vkdr {
+
+// What an experiment needs from a renderer; the command line provides Vulkan ones, so
+// that this library needs no GPU.
+struct ExperimentBackend {
+    // Renders `scene` as `settings` say (camera by name, size, spp, seed): the targets.
+    std::function<Image(const Scene& scene, const RenderSettings& settings)> render;
+    // The loss and gradient of `scene`'s renders against `views` (each rendered at its
+    // target's size) with respect to `parameters`.
+    std::function<std::unique_ptr<LossGradient>(const Scene& scene, std::vector<TargetView> views,
+                                                std::vector<std::string> parameters,
+                                                const RenderSettings& settings, LossKind loss)>
+        makeLossGradient;
+};
+
+struct ParameterRecovery {
+    std::string name;
+    std::vector<float> truth;
+    std::vector<float> start;
+    std::vector<float> recovered;
+};
+
+struct ExperimentResult {
+    OptimizationReport report;
+    std::vector<ParameterRecovery> recoveries;  // one per optimised parameter
+};
+
+// The targets render with the experiment's seed plus this, so that their noise is
+// independent of every optimisation iteration's (seed + iteration).
+inline constexpr uint32_t kTargetSeedOffset = 0x80000000u;
+
+// Checks `experiment` against `scene` (loaded from experiment.scene), renders the targets
+// from the true values, resets to the start values and optimises, writing the outputs of
+// runOptimization into `outputDirectory` plus target.exr/.png (the first view's target).
+ExperimentResult runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
+                               const std::filesystem::path& outputDirectory,
+                               const std::function<void(uint32_t iteration, double loss)>& progress = {});
+
+// One line per parameter: true, start and recovered values, and the error of each
+// recovered value relative to the true one (absolute where the true value is 0).
+std::string recoveryTable(const std::vector<ParameterRecovery>& recoveries);
+
+}  // namespace vkdr

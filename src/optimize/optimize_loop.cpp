@@ -1,0 +1,104 @@
+#include "optimize/optimize_loop.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "optimize/parameter_vector.h"
+
+namespace vkdr {
+namespace {
+
+std::vector<double> perValueLearningRates(const ParameterVector& parameters, const OptimizeOptions& options) {
+    for (const auto& [name, rate] : options.learningRates) {
+        if (std::find(parameters.names().begin(), parameters.names().end(), name) == parameters.names().end()) {
+            throw Error("a learning rate is given for '" + name + "', which is not being optimised");
+        }
+    }
+    std::vector<double> rates;
+    for (size_t i = 0; i < parameters.names().size(); ++i) {
+        auto found = options.learningRates.find(parameters.names()[i]);
+        rates.insert(rates.end(), parameters.count(i),
+                     found == options.learningRates.end() ? options.learningRate : found->second);
+    }
+    return rates;
+}
+
+void requireFinite(const GradientResult& result, uint32_t iteration) {
+    std::string where = "iteration " + std::to_string(iteration) + ": ";
+    if (!std::isfinite(result.loss)) {
+        throw Error(where + "the loss is " + std::to_string(result.loss) +
+                    "; no values from this iteration were kept (try a smaller learning rate)");
+    }
+    for (const ParameterGradient& parameter : result.parameters) {
+        for (double gradient : parameter.gradient) {
+            if (!std::isfinite(gradient)) {
+                throw Error(where + "the gradient of " + parameter.name + " is " + std::to_string(gradient) +
+                            "; no values from this iteration were kept (try a smaller learning rate)");
+            }
+        }
+    }
+}
+
+// The gradient in the ParameterVector's layout. A LossGradient that does not answer for
+// exactly the parameters asked for is a bug, not a user error.
+std::vector<double> flatGradient(const ParameterVector& parameters, const GradientResult& result) {
+    if (result.parameters.size() != parameters.names().size()) {
+        throw std::logic_error("LossGradient returned " + std::to_string(result.parameters.size()) +
+                               " parameters, expected " + std::to_string(parameters.names().size()));
+    }
+    std::vector<double> gradient;
+    for (size_t i = 0; i < result.parameters.size(); ++i) {
+        const ParameterGradient& parameter = result.parameters[i];
+        if (parameter.name != parameters.names()[i] || parameter.gradient.size() != parameters.count(i)) {
+            throw std::logic_error("LossGradient returned '" + parameter.name + "' with " +
+                                   std::to_string(parameter.gradient.size()) + " values where '" +
+                                   parameters.names()[i] + "' was expected");
+        }
+        gradient.insert(gradient.end(), parameter.gradient.begin(), parameter.gradient.end());
+    }
+    return gradient;
+}
+
+}  // namespace
+
+OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const OptimizeOptions& options,
+                        const OptimizeCallbacks& callbacks) {
+    if (options.iterations == 0) {
+        throw Error("the number of iterations must be at least 1");
+    }
+    if (!(options.learningRateDecay > 0.0 && options.learningRateDecay <= 1.0)) {
+        throw Error("the learning rate decay must be in (0, 1], got " + std::to_string(options.learningRateDecay));
+    }
+    ParameterVector parameters(scene, options.parameters);
+    std::unique_ptr<Optimizer> optimizer = makeOptimizer(options.optimizer, perValueLearningRates(parameters, options));
+    OptimizeResult result;
+    for (uint32_t iteration = 0; iteration < options.iterations; ++iteration) {
+        GradientResult evaluation = lossGradient.evaluate(scene, options.seed + iteration);
+        requireFinite(evaluation, iteration);
+        std::vector<double> gradient = flatGradient(parameters, evaluation);
+
+        double progress = options.iterations > 1 ? double(iteration) / double(options.iterations - 1) : 0.0;
+        optimizer->setLearningRateScale(std::pow(options.learningRateDecay, progress));
+        optimizer->step(parameters.values(), gradient);
+        parameters.project();
+        parameters.writeTo(scene);
+
+        result.losses.push_back(evaluation.loss);
+        result.forwardMs += evaluation.forwardMs;
+        result.adjointMs += evaluation.adjointMs;
+        if (callbacks.iterationDone) {
+            callbacks.iterationDone(IterationRecord{iteration, evaluation.loss, evaluation.parameters,
+                                                    evaluation.forwardMs, evaluation.adjointMs});
+        }
+        if (callbacks.progress) {
+            callbacks.progress(iteration, evaluation.loss);
+        }
+        result.lastImages = std::move(evaluation.images);
+    }
+    return result;
+}
+
+}  // namespace vkdr

@@ -1,0 +1,58 @@
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "diff/loss_gradient.h"
+#include "image/image.h"
+#include "optimize/optimizer.h"
+#include "scene/scene.h"
+
+namespace vkdr {
+
+struct OptimizeOptions {
+    std::vector<std::string> parameters;  // names as in scene/parameters.h, in this order everywhere
+    OptimizerKind optimizer = OptimizerKind::Adam;
+    double learningRate = 0.01;
+    std::map<std::string, double> learningRates;  // per-parameter overrides of learningRate
+    // The rates at the last iteration as a fraction of the first, decaying exponentially:
+    // iteration i uses rate * learningRateDecay^(i / (iterations - 1)). Below 1 it damps
+    // the noise-driven wandering around the minimum that a constant rate keeps up.
+    double learningRateDecay = 1.0;
+    uint32_t iterations = 100;
+    uint32_t seed = 0;  // iteration i renders with seed + i
+};
+
+// One evaluation of the loop: the loss and gradient at the values before that
+// iteration's step.
+struct IterationRecord {
+    uint32_t iteration = 0;  // counted from 0
+    double loss = 0.0;
+    std::vector<ParameterGradient> parameters;  // value and dLoss/dvalue, in OptimizeOptions order
+    double forwardMs = 0.0;
+    double adjointMs = 0.0;
+};
+
+struct OptimizeCallbacks {
+    std::function<void(uint32_t iteration, double loss)> progress;
+    std::function<void(const IterationRecord&)> iterationDone;
+};
+
+struct OptimizeResult {
+    std::vector<double> losses;     // per iteration
+    std::vector<Image> lastImages;  // the last iteration's render of each view
+    double forwardMs = 0.0;         // all iterations together
+    double adjointMs = 0.0;
+};
+
+// Gradient descent on `scene`'s parameters: each iteration evaluates the loss and its
+// gradient with seed + iteration, steps, projects onto the constraints
+// (optimize/constraints.h) and writes the new values into `scene`. Throws vkdr::Error
+// naming the iteration (and the parameter) when the loss or a gradient is not finite,
+// before anything of that iteration reaches `scene` or the callbacks.
+OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const OptimizeOptions& options,
+                        const OptimizeCallbacks& callbacks = {});
+
+}  // namespace vkdr

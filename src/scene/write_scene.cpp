@@ -1,0 +1,274 @@
+#include "scene/write_scene.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "image/atomic_write.h"
+
+namespace vkdr {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kMediumExtension = "VKDR_participating_media";
+constexpr const char* kVolumeExtension = "KHR_materials_volume";
+constexpr const char* kStrengthExtension = "KHR_materials_emissive_strength";
+
+// The glTF JSON, and for a .glb the binary chunk that its first buffer refers to.
+struct GltfSource {
+    json document;
+    std::optional<std::string> binaryChunk;
+};
+
+[[noreturn]] void failReading(const std::filesystem::path& file, const std::string& reason) {
+    throw Error(file.string() + ": " + reason);
+}
+
+std::string readBytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) failReading(file, std::string("cannot open: ") + std::strerror(errno));
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+uint32_t readUint32(const std::string& bytes, size_t offset) {
+    uint32_t value = 0;
+    std::memcpy(&value, bytes.data() + offset, sizeof(value));  // GLB is little-endian, as is every target
+    return value;
+}
+
+GltfSource parseGlb(const std::filesystem::path& file, const std::string& bytes) {
+    constexpr uint32_t kMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinaryChunk = 0x004E4942;
+    if (bytes.size() < 20 || readUint32(bytes, 0) != kMagic) failReading(file, "not a GLB file");
+    GltfSource source;
+    for (size_t offset = 12; offset + 8 <= bytes.size();) {
+        size_t length = readUint32(bytes, offset);
+        uint32_t type = readUint32(bytes, offset + 4);
+        if (offset + 8 + length > bytes.size()) failReading(file, "GLB chunk runs past the end of the file");
+        std::string chunk = bytes.substr(offset + 8, length);
+        if (type == kJsonChunk && source.document.is_null()) {
+            source.document = json::parse(chunk);
+        } else if (type == kBinaryChunk && !source.binaryChunk) {
+            source.binaryChunk = std::move(chunk);
+        }
+        offset += 8 + length;
+    }
+    if (!source.document.is_object()) failReading(file, "GLB without a JSON chunk");
+    return source;
+}
+
+GltfSource readGltfSource(const std::filesystem::path& file) {
+    std::string bytes = readBytes(file);
+    try {
+        if (file.extension() == ".glb" || file.extension() == ".GLB") {
+            return parseGlb(file, bytes);
+        }
+        return {json::parse(bytes), std::nullopt};
+    } catch (const json::exception& e) {
+        failReading(file, std::string("cannot parse glTF JSON: ") + e.what());
+    }
+}
+
+// The shortest decimal that reads back as `value`, so 0.05f is written as 0.05 and
+// the loader gets exactly the float it was given.
+double exactJsonNumber(float value) {
+    char text[32];
+    auto [end, ec] = std::to_chars(text, text + sizeof(text) - 1, value);
+    *end = '\0';
+    return std::strtod(text, nullptr);
+}
+
+json rgbJson(glm::vec3 rgb) {
+    return json::array({exactJsonNumber(rgb.r), exactJsonNumber(rgb.g), exactJsonNumber(rgb.b)});
+}
+
+float largestChannel(glm::vec3 rgb) { return std::max({rgb.r, rgb.g, rgb.b}); }
+
+void declareExtensionUsed(json& document, const std::string& name) {
+    json& used = document["extensionsUsed"];
+    if (!used.is_array()) used = json::array();
+    if (std::find(used.begin(), used.end(), name) == used.end()) used.push_back(name);
+}
+
+void writeParticipatingMedia(json& extension, const Medium& medium) {
+    extension["sigma_a"] = rgbJson(medium.sigma_a);
+    extension["sigma_s"] = rgbJson(medium.sigma_s);
+    extension["g"] = exactJsonNumber(medium.g);
+}
+
+// sigma_a = -ln(attenuationColor) / attenuationDistance. The distance over which the
+// densest channel keeps 1/e keeps every colour well inside (0, 1], so the float colour
+// the loader reads gives sigma_a back to float precision (or close, for channels far
+// thinner than the densest).
+void writeVolumeAttenuation(json& volume, glm::vec3 sigma_a) {
+    float densest = largestChannel(sigma_a);
+    if (densest == 0.0f) {
+        volume.erase("attenuationDistance");  // absent = infinite: no absorption
+        volume["attenuationColor"] = json::array({1.0, 1.0, 1.0});
+        return;
+    }
+    double distance = 1.0 / double(densest);
+    json color = json::array();
+    for (int c = 0; c < 3; ++c) {
+        color.push_back(std::exp(-double(sigma_a[c]) * distance));
+    }
+    volume["attenuationColor"] = color;
+    volume["attenuationDistance"] = distance;
+}
+
+void writeEnclosedMedium(json& document, json& material, const Medium& medium) {
+    json& extensions = material["extensions"];
+    bool hasOwnSpelling = extensions.contains(kMediumExtension);
+    bool absorbsOnly = medium.sigma_s == glm::vec3(0.0f) && medium.g == 0.0f;
+    // KHR_materials_volume describes absorption only; our spelling, which wins when a
+    // material has both, carries the scattering.
+    if (hasOwnSpelling || !absorbsOnly) {
+        writeParticipatingMedia(extensions[kMediumExtension], medium);
+        declareExtensionUsed(document, kMediumExtension);
+    }
+    // Kept consistent for other glTF tools, which read only the Khronos spelling.
+    if (!hasOwnSpelling || extensions.contains(kVolumeExtension)) {
+        writeVolumeAttenuation(extensions[kVolumeExtension], medium.sigma_a);
+        declareExtensionUsed(document, kVolumeExtension);
+    }
+}
+
+void writeBaseColor(json& material, glm::vec3 baseColor) {
+    json& pbr = material["pbrMetallicRoughness"];
+    const json* old = pbr.contains("baseColorFactor") ? &pbr["baseColorFactor"] : nullptr;
+    double alpha = old && old->is_array() && old->size() == 4 ? (*old)[3].get<double>() : 1.0;
+    json factor = rgbJson(baseColor);
+    factor.push_back(alpha);
+    pbr["baseColorFactor"] = factor;
+}
+
+// glTF caps emissiveFactor at 1; the strength extension carries the rest.
+void writeEmission(json& document, json& material, glm::vec3 emission) {
+    if (emission == glm::vec3(0.0f) && !material.contains("emissiveFactor")) {
+        return;
+    }
+    float strength = std::max(1.0f, largestChannel(emission));
+    material["emissiveFactor"] = rgbJson(emission / strength);
+    if (strength > 1.0f) {
+        material["extensions"][kStrengthExtension]["emissiveStrength"] = exactJsonNumber(strength);
+        declareExtensionUsed(document, kStrengthExtension);
+    } else if (material.contains("extensions")) {
+        material["extensions"].erase(kStrengthExtension);
+        if (material["extensions"].empty()) material.erase("extensions");
+    }
+}
+
+void writeSurface(json& document, json& material, const Material& source) {
+    writeBaseColor(material, source.baseColor);
+    writeEmission(document, material, source.emission);
+}
+
+// The loader gives primitives without a material glTF's default material, named
+// "default", after the file's own. If the fit changed it, it becomes a real material.
+void writeDefaultMaterial(json& document, const Material& fallback) {
+    if (fallback.baseColor == glm::vec3(1.0f) && fallback.emission == glm::vec3(0.0f)) {
+        return;
+    }
+    json material = {{"name", fallback.name}};
+    writeSurface(document, material, fallback);
+    json& materials = document["materials"];
+    materials.push_back(material);
+    size_t index = materials.size() - 1;
+    for (json& mesh : document["meshes"]) {
+        for (json& primitive : mesh["primitives"]) {
+            if (!primitive.contains("material")) primitive["material"] = index;
+        }
+    }
+}
+
+void writeMaterials(json& document, const Scene& scene, const std::filesystem::path& original) {
+    size_t fileMaterials = document.contains("materials") ? document["materials"].size() : 0;
+    if (scene.materials.size() < fileMaterials || scene.materials.size() > fileMaterials + 1) {
+        failReading(original, "has " + std::to_string(fileMaterials) + " materials; the scene to write back has " +
+                                  std::to_string(scene.materials.size()) + " (was it loaded from this file?)");
+    }
+    for (size_t i = 0; i < fileMaterials; ++i) {
+        json& material = document["materials"][i];
+        const Material& source = scene.materials[i];
+        if (source.isMediumBoundary()) {
+            writeEnclosedMedium(document, material, scene.media[size_t(source.interiorMedium)]);
+        } else {
+            writeSurface(document, material, source);
+        }
+    }
+    if (scene.materials.size() > fileMaterials) {
+        writeDefaultMaterial(document, scene.materials.back());
+    }
+}
+
+void writeSceneMedium(json& document, const Scene& scene) {
+    if (scene.sceneMedium == kNoMedium) {
+        return;
+    }
+    writeParticipatingMedia(document["extensions"][kMediumExtension], scene.media[size_t(scene.sceneMedium)]);
+}
+
+bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+
+// External files stay where they are; the written scene refers to them from its own
+// directory. (tinygltf 2.7, which the loader uses, reads URIs as plain relative paths.)
+void rebaseUris(json& document, const char* array, const std::filesystem::path& fromDirectory,
+                const std::filesystem::path& toDirectory) {
+    if (!document.contains(array)) {
+        return;
+    }
+    for (json& entry : document[array]) {
+        if (!entry.contains("uri") || !entry["uri"].is_string() || isDataUri(entry["uri"].get<std::string>())) {
+            continue;
+        }
+        std::filesystem::path resource = fromDirectory / entry["uri"].get<std::string>();
+        entry["uri"] = std::filesystem::relative(resource, toDirectory).generic_string();
+    }
+}
+
+void writeBinaryChunkBeside(json& document, const GltfSource& source, const std::filesystem::path& original,
+                            const std::filesystem::path& out) {
+    if (!document.contains("buffers") || document["buffers"].empty() || document["buffers"][0].contains("uri")) {
+        return;
+    }
+    json& buffer = document["buffers"][0];
+    size_t byteLength = buffer.value("byteLength", size_t(0));
+    if (!source.binaryChunk || source.binaryChunk->size() < byteLength) {
+        failReading(original, "buffers[0] needs a binary chunk of " + std::to_string(byteLength) + " bytes");
+    }
+    std::filesystem::path binary = std::filesystem::path(out).replace_extension(".bin");
+    // tinygltf requires an external buffer's file to be exactly byteLength long.
+    writeAtomically(binary, [&](std::ofstream& stream) {
+        stream.write(source.binaryChunk->data(), std::streamsize(byteLength));
+    });
+    buffer["uri"] = binary.filename().string();
+}
+
+}  // namespace
+
+void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
+                              const std::filesystem::path& out) {
+    GltfSource source = readGltfSource(original);
+    json& document = source.document;
+    writeMaterials(document, scene, original);
+    writeSceneMedium(document, scene);
+
+    std::filesystem::path fromDirectory = std::filesystem::absolute(original).parent_path();
+    std::filesystem::path toDirectory = std::filesystem::absolute(out).parent_path();
+    rebaseUris(document, "buffers", fromDirectory, toDirectory);
+    rebaseUris(document, "images", fromDirectory, toDirectory);
+    writeBinaryChunkBeside(document, source, original, out);
+
+    std::string text = document.dump(2);
+    writeAtomically(out, [&](std::ofstream& stream) { stream << text << '\n'; });
+}
+
+}  // namespace vkdr

@@ -1,0 +1,212 @@
+// Experiment files: reading, validation against the scene, and a whole run with an
+// analytic stand-in for the renderer.
+#include <functional>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "../image/scratch_directory.h"
+#include "core/error.h"
+#include "optimize/experiment.h"
+#include "optimize/experiment_run.h"
+#include "quadratic_loss_gradient.h"
+#include "scene/load_scene.h"
+#include "scene/parameters.h"
+
+namespace vkdr::test {
+namespace {
+
+using json = nlohmann::ordered_json;  // keeps "start" in the order written
+
+const std::filesystem::path kScenes = VKDR_TEST_SCENES_DIR;
+
+// An experiment on the shipped fog Cornell box, written into `directory`.
+json fogExperiment(const std::filesystem::path& directory) {
+    return {{"scene", std::filesystem::relative(kScenes / "cornell_fog.gltf", directory).string()},
+            {"width", 8},
+            {"height", 8},
+            {"spp", 2},
+            {"iterations", 300},
+            {"learning_rate", 0.01},
+            {"true", {{"media/fog/sigma_s", 0.0}, {"media/fog/sigma_a", 0.05}}},
+            {"start", {{"media/fog/sigma_a", 0.3}, {"media/fog/g", {0.5}}}}};
+}
+
+std::filesystem::path writeExperiment(const ScratchDirectory& scratch, const json& experiment) {
+    std::filesystem::path file = scratch / "experiment.json";
+    writeBytes(file, experiment.dump());
+    return file;
+}
+
+void expectError(const std::function<void()>& action, const std::vector<std::string>& parts) {
+    try {
+        action();
+        ADD_FAILURE() << "no error";
+    } catch (const Error& error) {
+        for (const std::string& part : parts) {
+            EXPECT_NE(std::string(error.what()).find(part), std::string::npos)
+                << "'" << part << "' not in: " << error.what();
+        }
+    }
+}
+
+void expectReadError(const ScratchDirectory& scratch, const json& experiment, const std::vector<std::string>& parts) {
+    expectError([&] { readExperiment(writeExperiment(scratch, experiment)); }, parts);
+}
+
+void expectPrepareError(const ScratchDirectory& scratch, const json& experiment, const std::vector<std::string>& parts) {
+    expectError(
+        [&] {
+            Experiment read = readExperiment(writeExperiment(scratch, experiment));
+            Scene scene = loadScene(read.scene).scene;
+            prepareExperimentScene(read, scene);
+        },
+        parts);
+}
+
+TEST(Experiment, ReadsEverySettingWithDefaultsForTheRest) {
+    ScratchDirectory scratch;
+    Experiment experiment = readExperiment(writeExperiment(scratch, fogExperiment(scratch.path())));
+    EXPECT_TRUE(std::filesystem::equivalent(experiment.scene, kScenes / "cornell_fog.gltf"));
+    EXPECT_EQ(experiment.views, std::vector<std::string>{""});  // the first camera
+    EXPECT_EQ(experiment.render.width, 8);
+    EXPECT_EQ(experiment.render.spp, 2u);
+    EXPECT_EQ(experiment.targetSpp, 8u);
+    EXPECT_EQ(experiment.loss, LossKind::L2);
+    EXPECT_EQ(experiment.optimize.optimizer, OptimizerKind::Adam);
+    EXPECT_EQ(experiment.optimize.iterations, 300u);
+    // Without "parameters", the keys of "start" in file order.
+    EXPECT_EQ(experiment.optimize.parameters, (std::vector<std::string>{"media/fog/sigma_a", "media/fog/g"}));
+    ASSERT_EQ(experiment.trueValues.size(), 2u);
+    EXPECT_EQ(experiment.trueValues[1].name, "media/fog/sigma_a");
+    EXPECT_EQ(experiment.startValues[1].values, std::vector<float>{0.5f});
+}
+
+TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
+    ScratchDirectory scratch;
+    json experiment = fogExperiment(scratch.path());
+    experiment["iteratons"] = 5;
+    expectReadError(scratch, experiment, {"experiment.json", "iteratons", "unknown key", "iterations"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["spp"] = "many";
+    expectReadError(scratch, experiment, {"spp", "integer"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["scene"] = "nowhere.gltf";
+    expectReadError(scratch, experiment, {"scene", "nowhere.gltf", "no such file"});
+
+    experiment.erase("scene");
+    expectReadError(scratch, experiment, {"missing \"scene\""});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["optimizer"] = "newton";
+    expectReadError(scratch, experiment, {"experiment.json", "newton", "adam or sgd"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["start"]["media/fog/g"] = {0.1, 0.2};
+    expectReadError(scratch, experiment, {"start.media/fog/g", "1 or 3 numbers"});
+
+    writeBytes(scratch / "broken.json", "{\"scene\": ");
+    expectError([&] { readExperiment(scratch / "broken.json"); }, {"broken.json", "not valid JSON"});
+}
+
+TEST(Experiment, RejectsUnknownParametersValuesAndViewsAgainstTheScene) {
+    ScratchDirectory scratch;
+    json experiment = fogExperiment(scratch.path());
+    experiment["parameters"] = {"media/smoke/g"};
+    expectPrepareError(scratch, experiment, {"parameters", "unknown parameter 'media/smoke/g'", "media/fog/g"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["true"]["media/fog/g"] = 1.5;
+    expectPrepareError(scratch, experiment, {"true.media/fog/g", "|g| must be < 1"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["views"] = {"side"};
+    expectPrepareError(scratch, experiment, {"views", "no camera 'side'", "camera"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["learning_rates"] = {{"media/fog/sigma_s", 0.1}};
+    expectPrepareError(scratch, experiment, {"learning_rates.media/fog/sigma_s", "not one of the parameters"});
+}
+
+TEST(Experiment, AddsItsCamerasToTheScene) {
+    ScratchDirectory scratch;
+    json experiment = fogExperiment(scratch.path());
+    experiment["views"] = {"camera", "side"};
+    experiment["cameras"] = {{{"name", "side"}, {"position", {0, 2, -4}}, {"look_at", {0, 2, 0}}, {"yfov_degrees", 30}}};
+    Experiment read = readExperiment(writeExperiment(scratch, experiment));
+    Scene scene = loadScene(read.scene).scene;
+    prepareExperimentScene(read, scene);
+    ASSERT_EQ(scene.cameras.size(), 2u);
+    const Camera& side = scene.cameras[1];
+    EXPECT_EQ(side.name, "side");
+    // Looks down its -Z axis, from its position, towards look_at (+Z in the world).
+    glm::vec4 position = side.cameraToWorld * glm::vec4(0, 0, 0, 1);
+    glm::vec4 forward = side.cameraToWorld * glm::vec4(0, 0, -1, 0);
+    EXPECT_NEAR(position.y, 2.0f, 1e-6f);
+    EXPECT_NEAR(position.z, -4.0f, 1e-6f);
+    EXPECT_NEAR(forward.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(side.yfov, glm::radians(30.0f), 1e-6f);
+
+    experiment["cameras"][0]["look_at"] = {0, 2, -4};
+    expectReadError(scratch, experiment, {"cameras[0]", "look_at must differ"});
+}
+
+TEST(Experiment, RecoversTheTrueValuesWithAnAnalyticBackend) {
+    ScratchDirectory scratch;
+    Experiment experiment = readExperiment(writeExperiment(scratch, fogExperiment(scratch.path())));
+    Scene scene = loadScene(experiment.scene).scene;
+
+    std::vector<RenderSettings> targetRenders;
+    ExperimentBackend backend;
+    // A "render" that shows sigma_a; the loss gradient's minimum is the value the
+    // target was rendered with.
+    backend.render = [&](const Scene& rendered, const RenderSettings& settings) {
+        targetRenders.push_back(settings);
+        float sigma_a = getParameter(rendered, "media/fog/sigma_a")[0];
+        return Image{settings.width, settings.height, std::vector<float>(size_t(settings.width * settings.height * 3), sigma_a)};
+    };
+    backend.makeLossGradient = [&](const Scene& start, std::vector<TargetView> views, std::vector<std::string> names,
+                                   const RenderSettings&, LossKind) -> std::unique_ptr<LossGradient> {
+        EXPECT_EQ(getParameter(start, "media/fog/sigma_a")[0], 0.3f);
+        EXPECT_EQ(names, experiment.optimize.parameters);
+        const Image& target = views.at(0).target;
+        double truth = target.rgb[0];
+        auto loss = std::make_unique<QuadraticLossGradient>(
+            QuadraticLossGradient::Minima{{"media/fog/sigma_a", {truth, truth, truth}}, {"media/fog/g", {0.0}}});
+        loss->setImageSize(target.width, target.height);
+        return loss;
+    };
+    ExperimentResult result = runExperiment(experiment, scene, backend, scratch / "out");
+
+    ASSERT_EQ(targetRenders.size(), 1u);
+    EXPECT_EQ(targetRenders[0].spp, 8u);
+    EXPECT_EQ(targetRenders[0].seed, kTargetSeedOffset);
+    ASSERT_EQ(result.recoveries.size(), 2u);
+    EXPECT_EQ(result.recoveries[0].truth, std::vector<float>(3, 0.05f));
+    EXPECT_EQ(result.recoveries[0].start, std::vector<float>(3, 0.3f));
+    EXPECT_NEAR(result.recoveries[0].recovered[0], 0.05f, 1e-3f);
+    EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), std::vector<float>(3, 0.0f));  // "true" values stay
+
+    std::string table = recoveryTable(result.recoveries);
+    EXPECT_NE(table.find("media/fog/sigma_a"), std::string::npos);
+    EXPECT_NE(table.find("%"), std::string::npos);
+    EXPECT_NE(table.find("abs"), std::string::npos);  // g's true value is 0
+    for (const char* file : {"log.jsonl", "params.json", "scene.gltf", "target.exr", "diff.png"}) {
+        EXPECT_TRUE(std::filesystem::is_regular_file(scratch / "out" / file)) << file;
+    }
+}
+
+TEST(Experiment, ShippedExperimentsMatchTheirScenes) {
+    std::filesystem::path directory = kScenes / "experiments";
+    for (const char* name : {"cornell_absorption.json", "smoke_g_and_colour.json"}) {
+        SCOPED_TRACE(name);
+        Experiment experiment = readExperiment(directory / name);
+        Scene scene = loadScene(experiment.scene).scene;
+        prepareExperimentScene(experiment, scene);
+    }
+}
+
+}  // namespace
+}  // namespace vkdr::test

@@ -1,0 +1,172 @@
+// The optimiser loop against an analytic loss: convergence, constraints, seeds, and
+// stopping on a non-finite gradient.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "optimize/constraints.h"
+#include "optimize/optimize_loop.h"
+#include "quadratic_loss_gradient.h"
+#include "scene/parameters.h"
+
+namespace vkdr::test {
+namespace {
+
+OptimizeOptions optionsFor(std::vector<std::string> parameters, OptimizerKind optimizer, double learningRate,
+                           uint32_t iterations) {
+    OptimizeOptions options;
+    options.parameters = std::move(parameters);
+    options.optimizer = optimizer;
+    options.learningRate = learningRate;
+    options.iterations = iterations;
+    return options;
+}
+
+void expectValues(const Scene& scene, const std::string& name, const std::vector<float>& expected, float tolerance) {
+    std::vector<float> values = getParameter(scene, name);
+    ASSERT_EQ(values.size(), expected.size()) << name;
+    for (size_t i = 0; i < values.size(); ++i) {
+        EXPECT_NEAR(values[i], expected[i], tolerance) << name << "[" << i << "]";
+    }
+}
+
+TEST(OptimizeLoop, AdamFindsTheMinimumOfAQuadraticInSigmaAndG) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {0.05, 0.1, 0.2}}, {"media/fog/g", {-0.4}}});
+    OptimizeResult result =
+        optimize(loss, scene, optionsFor({"media/fog/sigma_a", "media/fog/g"}, OptimizerKind::Adam, 0.01, 400));
+    expectValues(scene, "media/fog/sigma_a", {0.05f, 0.1f, 0.2f}, 2e-3f);
+    expectValues(scene, "media/fog/g", {-0.4f}, 2e-3f);
+    ASSERT_EQ(result.losses.size(), 400u);
+    EXPECT_LT(result.losses.back(), 1e-4 * result.losses.front());
+    ASSERT_EQ(result.lastImages.size(), 1u);
+}
+
+TEST(OptimizeLoop, SgdFindsTheMinimumOfAQuadratic) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/sigma_s", {0.7, 0.6, 0.5}}});
+    optimize(loss, scene, optionsFor({"media/fog/sigma_s"}, OptimizerKind::Sgd, 0.1, 100));
+    expectValues(scene, "media/fog/sigma_s", {0.7f, 0.6f, 0.5f}, 1e-5f);
+}
+
+TEST(OptimizeLoop, KeepsEveryParameterInsideItsConstraints) {
+    Scene scene = sceneWithParameters();
+    // Every minimum lies outside the allowed range: the fit must stop on the boundary.
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {-1.0, 0.1, -0.5}},
+                                {"media/fog/g", {1.5}},
+                                {"materials/white/base_color", {1.3, -0.2, 0.4}},
+                                {"lights/lamp/emission", {-3.0, 1.0, 2.0}}});
+    OptimizeOptions options = optionsFor({"media/fog/sigma_a", "media/fog/g", "materials/white/base_color",
+                                          "lights/lamp/emission"},
+                                         OptimizerKind::Adam, 0.05, 300);
+    size_t evaluations = 0;
+    OptimizeCallbacks callbacks;
+    callbacks.iterationDone = [&](const IterationRecord&) {
+        ++evaluations;
+        EXPECT_GE(getParameter(scene, "media/fog/sigma_a")[0], 0.0f);
+        EXPECT_LE(std::abs(getParameter(scene, "media/fog/g")[0]), float(kMaxAbsAnisotropy));
+    };
+    optimize(loss, scene, options, callbacks);
+    EXPECT_EQ(evaluations, 300u);
+    expectValues(scene, "media/fog/sigma_a", {0.0f, 0.1f, 0.0f}, 2e-3f);
+    expectValues(scene, "media/fog/g", {0.99f}, 1e-6f);
+    expectValues(scene, "materials/white/base_color", {1.0f, 0.0f, 0.4f}, 2e-3f);
+    expectValues(scene, "lights/lamp/emission", {0.0f, 1.0f, 2.0f}, 2e-3f);
+}
+
+TEST(OptimizeLoop, UsesPerParameterLearningRates) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {0.0, 0.0, 0.0}}, {"media/fog/sigma_s", {0.0, 0.0, 0.0}}});
+    OptimizeOptions options = optionsFor({"media/fog/sigma_a", "media/fog/sigma_s"}, OptimizerKind::Adam, 0.01, 1);
+    options.learningRates["media/fog/sigma_s"] = 0.05;
+    optimize(loss, scene, options);
+    expectValues(scene, "media/fog/sigma_a", {0.29f, 0.29f, 0.29f}, 1e-6f);  // Adam's first step is the rate
+    expectValues(scene, "media/fog/sigma_s", {0.05f, 0.05f, 0.05f}, 1e-6f);
+
+    options.learningRates["media/fog/g"] = 0.1;
+    try {
+        optimize(loss, scene, options);
+        FAIL() << "no error";
+    } catch (const Error& error) {
+        EXPECT_NE(std::string(error.what()).find("media/fog/g"), std::string::npos) << error.what();
+    }
+}
+
+TEST(OptimizeLoop, DecaysTheLearningRateExponentiallyToTheGivenFraction) {
+    Scene scene = sceneWithParameters();
+    // SGD's step is rate * 2 (g + 100): the steps show the rates.
+    QuadraticLossGradient loss({{"media/fog/g", {-100.0}}});
+    OptimizeOptions options = optionsFor({"media/fog/g"}, OptimizerKind::Sgd, 1e-4, 3);
+    options.learningRateDecay = 0.25;
+    std::vector<double> values;
+    optimize(loss, scene, options, {{}, [&](const IterationRecord& record) { values.push_back(record.parameters[0].value[0]); }});
+    values.push_back(getParameter(scene, "media/fog/g")[0]);
+    ASSERT_EQ(values.size(), 4u);
+    std::vector<double> rates = {1e-4, 0.5e-4, 0.25e-4};  // 0.25^(i/2)
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_NEAR(values[i] - values[i + 1], rates[i] * 2.0 * (values[i] + 100.0), 1e-7) << i;
+    }
+
+    options.learningRateDecay = 1.5;
+    EXPECT_THROW(optimize(loss, scene, options), Error);
+}
+
+TEST(OptimizeLoop, RendersIterationIWithBaseSeedPlusIAndReportsProgress) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/g", {0.0}}});
+    OptimizeOptions options = optionsFor({"media/fog/g"}, OptimizerKind::Adam, 0.01, 3);
+    options.seed = 40;
+    std::vector<std::pair<uint32_t, double>> progress;
+    optimize(loss, scene, options, {[&](uint32_t iteration, double value) { progress.push_back({iteration, value}); }, {}});
+    EXPECT_EQ(loss.seeds(), (std::vector<uint32_t>{40, 41, 42}));
+    ASSERT_EQ(progress.size(), 3u);
+    EXPECT_EQ(progress[2].first, 2u);
+    EXPECT_NEAR(progress[0].second, 0.04, 1e-7);  // g starts at 0.2
+}
+
+TEST(OptimizeLoop, StopsOnANonFiniteGradientNamingTheParameterAndIteration) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {0.1, 0.1, 0.1}}, {"media/fog/sigma_s", {0.0, 0.0, 0.0}}});
+    loss.failFrom(3, "media/fog/sigma_s");
+    std::vector<float> valuesAfterIteration2;
+    OptimizeCallbacks callbacks;
+    callbacks.iterationDone = [&](const IterationRecord&) {
+        valuesAfterIteration2 = getParameter(scene, "media/fog/sigma_s");
+    };
+    try {
+        optimize(loss, scene, optionsFor({"media/fog/sigma_a", "media/fog/sigma_s"}, OptimizerKind::Adam, 0.01, 10),
+                 callbacks);
+        FAIL() << "no error";
+    } catch (const Error& error) {
+        std::string message = error.what();
+        EXPECT_NE(message.find("iteration 3"), std::string::npos) << message;
+        EXPECT_NE(message.find("media/fog/sigma_s"), std::string::npos) << message;
+        EXPECT_NE(message.find("nan"), std::string::npos) << message;
+    }
+    EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), valuesAfterIteration2);
+}
+
+TEST(OptimizeLoop, RejectsUnknownRepeatedAndMissingParameters) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({});
+    auto expectError = [&](std::vector<std::string> names, const std::string& part) {
+        try {
+            optimize(loss, scene, optionsFor(names, OptimizerKind::Adam, 0.01, 1));
+            ADD_FAILURE() << "no error for " << part;
+        } catch (const Error& error) {
+            EXPECT_NE(std::string(error.what()).find(part), std::string::npos) << error.what();
+        }
+    };
+    expectError({"media/haze/sigma_a"}, "media/fog/sigma_a");  // lists the valid names
+    expectError({"media/fog/g", "media/fog/g"}, "twice");
+    expectError({}, "no parameters");
+}
+
+TEST(Constraints, FollowTheLastComponentOfTheName) {
+    EXPECT_EQ(boundsForParameter("media/a/b/sigma_s").lower, 0.0);
+    EXPECT_EQ(boundsForParameter("materials/x/base_color").upper, 1.0);
+    EXPECT_EQ(boundsForParameter("media/fog/g").lower, -0.99);
+    EXPECT_THROW(boundsForParameter("media/fog/density"), Error);
+}
+
+}  // namespace
+}  // namespace vkdr::test

@@ -1,0 +1,73 @@
+#include "single_scattering_quadrature.h"
+
+#include <cmath>
+
+namespace vkdr::test {
+namespace {
+
+double hg(double mu, double g) {
+    double d = 1.0 + g * g - 2.0 * g * mu;
+    return (1.0 - g * g) / (4.0 * M_PI * d * std::sqrt(d));
+}
+
+double hgDLogG(double mu, double g) {
+    return -2.0 * g / (1.0 - g * g) + 3.0 * (mu - g) / (1.0 + g * g - 2.0 * g * mu);
+}
+
+}  // namespace
+
+TestGltf FogSetup::scene() const {
+    TestGltf gltf;
+    gltf.materials = {emissiveMaterial("lamp", glm::vec3(le), false)};
+    TestMesh lamp;
+    float x = float(lightX), z = float(lightZ), h = float(lightHalf);
+    lamp.positions = {{x, -h, z - h}, {x, h, z - h}, {x, h, z + h}, {x, -h, z + h}};
+    lamp.triangles = {{0, 2, 1}, {0, 3, 2}};  // facing -x
+    gltf.meshes = {lamp};
+    gltf.extensions["VKDR_participating_media"] = {{"name", "fog"},
+                                                   {"sigma_a", {sigmaA.x, sigmaA.y, sigmaA.z}},
+                                                   {"sigma_s", {sigmaS.x, sigmaS.y, sigmaS.z}},
+                                                   {"g", g}};
+    gltf.yfov = float(yfov);
+    return gltf;
+}
+
+SingleScattering singleScattering(const FogSetup& fog) {
+    const glm::dvec3 sigmaT = fog.sigmaA + fog.sigmaS;
+    constexpr int kPixelSteps = 3, kLightSteps = 24, kRaySteps = 1600;
+    constexpr double kRayEnd = 80.0;
+    const double tanHalf = std::tan(0.5 * fog.yfov);
+    const double cell = 2.0 * fog.lightHalf / kLightSteps;
+    SingleScattering out;
+    for (int p = 0; p < kPixelSteps * kPixelSteps; ++p) {
+        double ndcX = ((p % kPixelSteps) + 0.5) / kPixelSteps * 2.0 - 1.0;
+        double ndcY = ((p / kPixelSteps) + 0.5) / kPixelSteps * 2.0 - 1.0;
+        glm::dvec3 direction = glm::normalize(glm::dvec3(-ndcX * tanHalf, -ndcY * tanHalf, 1.0));
+        for (int i = 0; i < kRaySteps; ++i) {
+            double t = (i + 0.5) * kRayEnd / kRaySteps;
+            glm::dvec3 x = t * direction;
+            for (int j = 0; j < kLightSteps * kLightSteps; ++j) {
+                glm::dvec3 y(fog.lightX, -fog.lightHalf + (j % kLightSteps + 0.5) * cell,
+                             fog.lightZ - fog.lightHalf + (j / kLightSteps + 0.5) * cell);
+                glm::dvec3 toLight = y - x;
+                double r = glm::length(toLight);
+                double mu = glm::dot(direction, toLight / r);
+                // Everything but sigma_s: attenuation over the ray and the light path.
+                glm::dvec3 base = fog.le * glm::exp(-sigmaT * (t + r)) * (hg(mu, fog.g) * (toLight.x / r) / (r * r));
+                glm::dvec3 f = fog.sigmaS * base;
+                out.radiance += f;
+                out.dSigmaA += -(t + r) * f;
+                out.dSigmaS += base * (1.0 - fog.sigmaS * (t + r));
+                out.dG += f * hgDLogG(mu, fog.g);
+            }
+        }
+    }
+    double weight = (kRayEnd / kRaySteps) * cell * cell / double(kPixelSteps * kPixelSteps);
+    out.radiance *= weight;
+    out.dSigmaA *= weight;
+    out.dSigmaS *= weight;
+    out.dG *= weight;
+    return out;
+}
+
+}  // namespace vkdr::test

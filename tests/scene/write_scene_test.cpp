@@ -1,0 +1,186 @@
+// Writing fitted parameters back into glTF: every parameter survives a load-change-
+// write-load round trip, in both medium spellings, with external and GLB buffers.
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "gltf_test_files.h"
+#include "scene/load_scene.h"
+#include "scene/parameters.h"
+#include "scene/write_scene.h"
+
+namespace vkdr::test {
+namespace {
+
+// Float values pass through decimal JSON, and KHR_materials_volume through exp/log of
+// a float colour: equal to a few float ulps.
+void expectSameParameters(const Scene& expected, const Scene& actual) {
+    ASSERT_EQ(parameterNames(expected), parameterNames(actual));
+    for (const std::string& name : parameterNames(expected)) {
+        std::vector<float> want = getParameter(expected, name);
+        std::vector<float> got = getParameter(actual, name);
+        ASSERT_EQ(want.size(), got.size()) << name;
+        for (size_t i = 0; i < want.size(); ++i) {
+            EXPECT_NEAR(got[i], want[i], 2e-6f * std::max(1.0f, std::abs(want[i]))) << name << "[" << i << "]";
+        }
+    }
+}
+
+json readJson(const std::filesystem::path& file) { return json::parse(std::ifstream(file)); }
+
+Scene writeAndReload(const std::filesystem::path& original, const Scene& scene, const std::filesystem::path& out) {
+    writeSceneWithParameters(original, scene, out);
+    return loadScene(out).scene;
+}
+
+void set(Scene& scene, const std::string& name, std::vector<float> values) { setParameter(scene, name, values); }
+
+int addKhrVolumeBox(GltfBuilder& builder) {
+    int ink = builder.addMaterial(
+        {{"name", "ink"},
+         {"extensions",
+          {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+           {"KHR_materials_ior", {{"ior", 1.0}}},
+           {"KHR_materials_volume", {{"attenuationColor", {0.5, 0.25, 1.0}}, {"attenuationDistance", 2.0}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {1, 1, 1}), ink)}});
+    return ink;
+}
+
+TEST(WriteScene, RoundTripsEveryParameterOfTheExampleScene) {
+    TemporaryDirectory directory;
+    std::filesystem::path original = std::filesystem::path(VKDR_TEST_DATA_DIR) / "example.gltf";
+    Scene scene = loadScene(original).scene;
+    set(scene, "media/haze/sigma_a", {0.011f, 0.012f, 0.013f});
+    set(scene, "media/haze/sigma_s", {0.5f});
+    set(scene, "media/haze/g", {-0.25f});
+    set(scene, "media/smoke/sigma_a", {0.2f, 0.0f, 0.7f});
+    set(scene, "media/smoke/sigma_s", {2.5f, 1.0f, 0.125f});
+    set(scene, "media/smoke/g", {0.9f});
+    set(scene, "materials/floor/base_color", {0.1f, 0.55f, 1.0f});
+    set(scene, "lights/lamp/emission", {3.0f, 12.5f, 0.0f});
+
+    Scene reloaded = writeAndReload(original, scene, directory / "fitted.gltf");
+    expectSameParameters(scene, reloaded);
+    EXPECT_EQ(reloaded.triangles.size(), scene.triangles.size());
+}
+
+TEST(WriteScene, SplitsEmissionIntoAFactorAtMostOneAndAStrength) {
+    TemporaryDirectory directory;
+    std::filesystem::path original = std::filesystem::path(VKDR_TEST_DATA_DIR) / "example.gltf";
+    Scene scene = loadScene(original).scene;
+    set(scene, "lights/lamp/emission", {40.0f, 20.0f, 10.0f});
+    writeSceneWithParameters(original, scene, directory / "bright.gltf");
+    json lamp = readJson(directory / "bright.gltf")["materials"][1];
+    EXPECT_EQ(lamp["emissiveFactor"], json({1.0, 0.5, 0.25}));
+    EXPECT_EQ(lamp["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"], 40.0);
+
+    set(scene, "lights/lamp/emission", {0.5f});
+    writeSceneWithParameters(original, scene, directory / "dim.gltf");
+    lamp = readJson(directory / "dim.gltf")["materials"][1];
+    EXPECT_EQ(lamp["emissiveFactor"], json({0.5, 0.5, 0.5}));
+    EXPECT_FALSE(lamp.contains("extensions"));
+}
+
+TEST(WriteScene, KeepsTheKhronosSpellingForAnAbsorbingMedium) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    addKhrVolumeBox(builder);
+    std::filesystem::path original = builder.writeGltf(directory / "ink.gltf");
+    Scene scene = loadScene(original).scene;
+    set(scene, "media/ink/sigma_a", {0.3f, 0.0f, 4.0f});
+
+    Scene reloaded = writeAndReload(original, scene, directory / "fitted.gltf");
+    expectSameParameters(scene, reloaded);
+    json extensions = readJson(directory / "fitted.gltf")["materials"][0]["extensions"];
+    EXPECT_FALSE(extensions.contains("VKDR_participating_media"));
+    EXPECT_TRUE(extensions.contains("KHR_materials_volume"));
+}
+
+TEST(WriteScene, SwitchesAKhronosMediumThatScattersToOurSpelling) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    addKhrVolumeBox(builder);
+    std::filesystem::path original = builder.writeGltf(directory / "ink.gltf");
+    Scene scene = loadScene(original).scene;
+    set(scene, "media/ink/sigma_s", {0.75f});
+    set(scene, "media/ink/g", {0.5f});
+
+    Scene reloaded = writeAndReload(original, scene, directory / "fitted.gltf");
+    expectSameParameters(scene, reloaded);
+    json written = readJson(directory / "fitted.gltf");
+    EXPECT_TRUE(written["materials"][0]["extensions"].contains("VKDR_participating_media"));
+    EXPECT_NE(std::find(written["extensionsUsed"].begin(), written["extensionsUsed"].end(), "VKDR_participating_media"),
+              written["extensionsUsed"].end());
+}
+
+TEST(WriteScene, RoundTripsAnAbsorptionOfZero) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    addKhrVolumeBox(builder);
+    std::filesystem::path original = builder.writeGltf(directory / "ink.gltf");
+    Scene scene = loadScene(original).scene;
+    set(scene, "media/ink/sigma_a", {0.0f});
+    expectSameParameters(scene, writeAndReload(original, scene, directory / "fitted.gltf"));
+}
+
+TEST(WriteScene, GivesPrimitivesWithoutAMaterialTheFittedDefaultMaterial) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    std::filesystem::path original = builder.writeGltf(directory / "bare.gltf");
+    Scene scene = loadScene(original).scene;
+    set(scene, "materials/default/base_color", {0.25f, 0.5f, 0.75f});
+    expectSameParameters(scene, writeAndReload(original, scene, directory / "fitted.gltf"));
+}
+
+TEST(WriteScene, WritesTheBinaryChunkOfAGlbBesideTheGltf) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    addKhrVolumeBox(builder);
+    std::filesystem::path original = builder.writeGlb(directory / "ink.glb");
+    Scene scene = loadScene(original).scene;
+    set(scene, "media/ink/sigma_a", {0.125f});
+    std::filesystem::create_directories(directory / "out");
+
+    Scene reloaded = writeAndReload(original, scene, directory / "out" / "scene.gltf");
+    expectSameParameters(scene, reloaded);
+    EXPECT_TRUE(std::filesystem::is_regular_file(directory / "out" / "scene.bin"));
+    EXPECT_EQ(readJson(directory / "out" / "scene.gltf")["buffers"][0]["uri"], "scene.bin");
+}
+
+TEST(WriteScene, RewritesExternalBufferUrisRelativeToTheOutputDirectory) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    addKhrVolumeBox(builder);
+    std::filesystem::create_directories(directory / "source" / "data");
+    std::filesystem::path glb = builder.writeGlb(directory / "ink.glb");
+    // An external-buffer .gltf made from the GLB's own chunk, in source/ with data/ below.
+    Scene scene = loadScene(glb).scene;
+    writeSceneWithParameters(glb, scene, directory / "source" / "data" / "ink.gltf");
+    json document = readJson(directory / "source" / "data" / "ink.gltf");
+    std::filesystem::rename(directory / "source" / "data" / "ink.gltf", directory / "source" / "ink.gltf");
+    document["buffers"][0]["uri"] = "data/ink.bin";
+    writeText(directory / "source" / "ink.gltf", document.dump());
+    std::filesystem::create_directories(directory / "fits" / "run1");
+
+    Scene reloaded = writeAndReload(directory / "source" / "ink.gltf", scene, directory / "fits" / "run1" / "scene.gltf");
+    expectSameParameters(scene, reloaded);
+    EXPECT_EQ(readJson(directory / "fits" / "run1" / "scene.gltf")["buffers"][0]["uri"], "../../source/data/ink.bin");
+}
+
+TEST(WriteScene, NamesAnUnreadableOriginal) {
+    TemporaryDirectory directory;
+    Scene scene;
+    try {
+        writeSceneWithParameters(directory / "missing.gltf", scene, directory / "out.gltf");
+        FAIL() << "no error";
+    } catch (const Error& error) {
+        EXPECT_NE(std::string(error.what()).find("missing.gltf"), std::string::npos) << error.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(directory / "out.gltf"));
+}
+
+}  // namespace
+}  // namespace vkdr::test
