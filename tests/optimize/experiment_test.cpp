@@ -7,6 +7,7 @@
 
 #include "../image/scratch_directory.h"
 #include "core/error.h"
+#include "expect_error.h"
 #include "optimize/experiment.h"
 #include "optimize/experiment_run.h"
 #include "quadratic_loss_gradient.h"
@@ -38,24 +39,12 @@ std::filesystem::path writeExperiment(const ScratchDirectory& scratch, const jso
     return file;
 }
 
-void expectError(const std::function<void()>& action, const std::vector<std::string>& parts) {
-    try {
-        action();
-        ADD_FAILURE() << "no error";
-    } catch (const Error& error) {
-        for (const std::string& part : parts) {
-            EXPECT_NE(std::string(error.what()).find(part), std::string::npos)
-                << "'" << part << "' not in: " << error.what();
-        }
-    }
-}
-
 void expectReadError(const ScratchDirectory& scratch, const json& experiment, const std::vector<std::string>& parts) {
-    expectError([&] { readExperiment(writeExperiment(scratch, experiment)); }, parts);
+    expectErrorMentioning([&] { readExperiment(writeExperiment(scratch, experiment)); }, parts);
 }
 
 void expectPrepareError(const ScratchDirectory& scratch, const json& experiment, const std::vector<std::string>& parts) {
-    expectError(
+    expectErrorMentioning(
         [&] {
             Experiment read = readExperiment(writeExperiment(scratch, experiment));
             Scene scene = loadScene(read.scene).scene;
@@ -108,7 +97,7 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
     expectReadError(scratch, experiment, {"start.media/fog/g", "1 or 3 numbers"});
 
     writeBytes(scratch / "broken.json", "{\"scene\": ");
-    expectError([&] { readExperiment(scratch / "broken.json"); }, {"broken.json", "not valid JSON"});
+    expectErrorMentioning([&] { readExperiment(scratch / "broken.json"); }, {"broken.json", "not valid JSON"});
 }
 
 TEST(Experiment, RejectsUnknownParametersValuesAndViewsAgainstTheScene) {

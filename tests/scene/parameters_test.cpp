@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "expect_error.h"
 #include "scene/parameters.h"
 
 namespace vkdr::test {
@@ -26,18 +27,6 @@ Scene sceneWithEverything() {
     boundary.interiorMedium = 1;
     scene.materials = {white, light, boundary};
     return scene;
-}
-
-void expectErrorMentioning(const std::function<void()>& action, const std::vector<std::string>& parts) {
-    try {
-        action();
-        ADD_FAILURE() << "no error";
-    } catch (const Error& error) {
-        for (const std::string& part : parts) {
-            EXPECT_NE(std::string(error.what()).find(part), std::string::npos)
-                << "'" << part << "' not in: " << error.what();
-        }
-    }
 }
 
 TEST(Parameters, ListsMediaThenBaseColoursThenLights) {
