@@ -61,6 +61,10 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
 
 Renderer::~Renderer() = default;
 
+uint64_t Renderer::pathMemoryBytes() const {
+    return paths_->deviceBytes() + (adjoint_ ? adjoint_->deviceBytes() : 0);
+}
+
 void Renderer::setParameters(const Scene& scene) {
     uploadSceneParameters(context_, scene, triangleOrder_, scene_);
     uploadParams();

@@ -45,6 +45,9 @@ public:
     Image render(const ProgressCallback& progress = {});
     const RenderStats& stats() const { return stats_; }
     int width() const { return int(camera_.width); }
+    // Device memory held for paths in flight, the film, and (with gradients) the
+    // adjoint state: it depends on the paths per pass and the image, never on the depth.
+    uint64_t pathMemoryBytes() const;
     int height() const { return int(camera_.height); }
 
     // New values of the differentiable parameters; the geometry must be the same.
