@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
 #include "core/error.h"
@@ -117,11 +118,7 @@ CommandAction addGradCommand(CLI::App& app) {
     command->add_option("--param", options->parameters, "Parameter to differentiate, e.g. media/fog/sigma_a "
                                                         "(repeatable)")
         ->required();
-    command->add_option("--spp", options->settings.spp, "Samples per pixel")
-        ->default_val(options->settings.spp)->check(CLI::Range(1u, 1u << 20));
-    command->add_option("--max-depth", options->settings.maxDepth, "Scattering vertices per path")
-        ->default_val(options->settings.maxDepth)->check(CLI::Range(0u, 100000u));
-    command->add_option("--seed", options->settings.seed, "Random seed")->default_val(options->settings.seed);
+    addSamplingOptions(*command, options->settings);
     command->add_option("--loss", options->loss, "l2 (mean squared difference) or l1 (mean absolute difference)")
         ->default_val(options->loss)->check(CLI::IsMember({"l2", "l1"}));
     command->add_option("--width", options->settings.width, "Must match the target's width when given")

@@ -5,6 +5,7 @@
 #include "bvh/bvh.h"
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
+#include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
 #include "core/error.h"
@@ -172,19 +173,12 @@ CommandAction addOptimizeCommand(CLI::App& app) {
             ->default_val(options->optimize.learningRateDecay)->check(CLI::Range(1e-9, 1.0));
     overrides.optimizer = command->add_option("--optimizer", options->optimizer, "adam or sgd")
                               ->default_val(options->optimizer)->check(CLI::IsMember({"adam", "sgd"}));
-    overrides.spp = command->add_option("--spp", options->settings.spp, "Samples per pixel per iteration")
-                        ->default_val(options->settings.spp)->check(CLI::Range(1u, 1u << 20));
-    overrides.maxDepth = command->add_option("--max-depth", options->settings.maxDepth,
-                                             "Scattering vertices per path (surface bounces + medium scattering)")
-                             ->default_val(options->settings.maxDepth)->check(CLI::Range(0u, 100000u));
+    SamplingOptions sampling = addSamplingOptions(*command, options->settings);
+    overrides.spp = sampling.spp->description("Samples per pixel per iteration");
+    overrides.maxDepth = sampling.maxDepth;
+    overrides.seed = sampling.seed->description("Base seed: iteration i renders with seed + i");
     overrides.loss = command->add_option("--loss", options->loss, "l2 or l1 (means over pixels and channels)")
                          ->default_val(options->loss)->check(CLI::IsMember({"l2", "l1"}));
-    overrides.seed = command->add_option("--seed", options->settings.seed,
-                                         "Base seed: iteration i renders with seed + i")
-                         ->default_val(options->settings.seed);
-    command->add_option("--paths-per-pass", options->settings.pathsPerPass,
-                        "Paths in flight per pass (default: up to 2^20, as device memory allows)")
-        ->check(CLI::Range(1u, 1u << 21));
     command->add_option("--out", options->out, "Output directory, created if missing")->default_val(options->out);
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
     return [command, options, overrides]() {

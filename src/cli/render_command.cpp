@@ -5,6 +5,7 @@
 #include "bvh/bvh.h"
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
+#include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "core/error.h"
 #include "image/image.h"
@@ -74,21 +75,12 @@ CommandAction addRenderCommand(CLI::App& app) {
     addSceneOptions(*command, options->scene);
     command->add_option("-o,--output", options->output, "Output EXR file (32-bit float linear RGB)")->required();
     command->add_option("--png", options->png, "Also write an sRGB PNG preview (clamped to [0, 1])");
-    command->add_option("--spp", options->settings.spp, "Samples per pixel")
-        ->default_val(options->settings.spp)->check(CLI::Range(1u, 1u << 20));
-    command->add_option("--max-depth", options->settings.maxDepth,
-                        "Scattering vertices per path (surface bounces + medium scattering); 1 = direct light only")
-        ->default_val(options->settings.maxDepth)->check(CLI::Range(0u, 100000u));
-    command->add_option("--seed", options->settings.seed, "Random seed; the same seed gives the same image")
-        ->default_val(options->settings.seed);
+    addSamplingOptions(*command, options->settings);
     command->add_option("--width", options->settings.width, "Image width in pixels (default: 512, or from --height)")
         ->check(CLI::Range(1, 16384));
     command->add_option("--height", options->settings.height,
                         "Image height in pixels (default: from the width and the camera's aspect ratio)")
         ->check(CLI::Range(1, 16384));
-    command->add_option("--paths-per-pass", options->settings.pathsPerPass,
-                        "Paths in flight per pass (default: up to 2^20, as device memory allows)")
-        ->check(CLI::Range(1u, 1u << 21));
     command->add_option("--camera", options->settings.camera, "Camera node name (default: the first camera)");
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
     return [command, options]() { return command->parsed() ? runRender(*options) : -1; };
