@@ -50,10 +50,24 @@ vec3 pathAdjoint(uint slot) {
     return P.imageAdjoint.v[P.pathInfo.v[slot].x].rgb;
 }
 
+// Adds g to gradients[first], [first + 1], [first + 2]. Most lanes of a subgroup add
+// to the same few parameters, and float atomics on one address serialise, so the lanes
+// that share `first` sum their values first and one of them adds the sum: the loop
+// peels off one distinct `first` per iteration. A call site must pass one buffer for
+// all its lanes, since the lanes are grouped by `first` alone.
 void addGradient(FloatBuffer gradients, uint first, vec3 g) {
-    for (uint c = 0u; c < 3u; ++c) {
-        if (g[c] != 0.0f) {
-            atomicAdd(gradients.v[first + c], g[c]);
+    for (;;) {
+        uint leader = subgroupBroadcastFirst(first);
+        if (first == leader) {
+            vec3 sum = subgroupAdd(g);
+            if (subgroupElect()) {
+                for (uint c = 0u; c < 3u; ++c) {
+                    if (sum[c] != 0.0f) {
+                        atomicAdd(gradients.v[first + c], sum[c]);
+                    }
+                }
+            }
+            break;
         }
     }
 }
@@ -68,9 +82,7 @@ void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
 }
 
 void addPhaseGGradient(uint medium, float g) {
-    if (g != 0.0f) {
-        atomicAdd(P.mediumGradients.v[medium * kMediumGradientStride + 6u], g);
-    }
+    addGradient(P.mediumGradients, medium * kMediumGradientStride + 6u, vec3(g, 0.0f, 0.0f));
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
