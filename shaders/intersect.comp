@@ -80,7 +80,7 @@ void traceShadowRay(uint slot) {
     vec4 scatterGradient = P.shadowScatterGradient.v[slot];
     vec4 emissionGradient = P.shadowEmissionGradient.v[slot];
     if (vertex.x == kVertexSurface) {
-        addBaseColorGradient(vertex.y, delta * scatterGradient.rgb * tr * normal);
+        addAlbedoGradient(vertex.y, P.vertexUv.v[slot].xy, delta * scatterGradient.rgb * tr * normal);
     } else {
         addPhaseGGradient(vertex.y, (weight.x + weight.y + weight.z) * scatterGradient.w);
     }

@@ -61,7 +61,7 @@ struct NextEventQuery {
 // Samples a point on an emitter and queues a shadow ray carrying its MIS-weighted,
 // unoccluded contribution beta * scatter * Le * w / pdf. `scatter` is f * cos (surface)
 // or the phase value (medium); `scatterPdf` is the density the other strategy would have
-// sampled the direction with. For the adjoint, `dScatter` is d scatter / d base colour
+// sampled the direction with. For the adjoint, `dScatter` is d scatter / d albedo
 // (surface) and `dLogPhase` is d log phase / d g (medium).
 void nextEvent(uint slot, NextEventQuery query, LightSample ls, vec3 scatter, float scatterPdf, vec3 dScatter,
                float dLogPhase) {
@@ -129,12 +129,15 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     vec3 texture = baseColorTexture(material, sp.uv);
     vec3 albedo = material.baseColor.rgb * texture;
     vec3 origin = sp.position + n * P.rayEpsilon;
+    if (kAdjoint) {
+        P.vertexUv.v[slot] = vec4(sp.uv, 0.0f, 0.0f);
+    }
     if (P.lightCount > 0u) {
         LightSample ls = sampleLightFor(info);
         float cosine = dot(n, normalize(ls.position - origin));
         if (cosine > 0.0f) {
             nextEvent(slot, NextEventQuery(origin, medium, beta, kVertexSurface, sp.material), ls,
-                      albedo * (kInvPi * cosine), kInvPi * cosine, texture * (kInvPi * cosine), 0.0f);
+                      albedo * (kInvPi * cosine), kInvPi * cosine, vec3(kInvPi * cosine), 0.0f);
         }
     }
     vec4 u = segmentRandom(info, kDimScatter);
@@ -142,10 +145,9 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     vec3 betaBefore = beta;
     beta *= albedo;
     if (kAdjoint) {
-        vec3 base = material.baseColor.rgb;
         setPendingFactor(slot, adjoint, kPendingBaseColor, sp.material,
-                         vec3(base.x > 0.0f ? 1.0f / base.x : 0.0f, base.y > 0.0f ? 1.0f / base.y : 0.0f,
-                              base.z > 0.0f ? 1.0f / base.z : 0.0f));
+                         vec3(albedo.x > 0.0f ? 1.0f / albedo.x : 0.0f, albedo.y > 0.0f ? 1.0f / albedo.y : 0.0f,
+                              albedo.z > 0.0f ? 1.0f / albedo.z : 0.0f));
         beta = enterDerivativeMode(adjoint, beta, albedo, betaBefore * texture, kTargetBaseColor, sp.material);
     }
     if (!survivesRoulette(beta, info.depth, u.z)) {

@@ -11,13 +11,14 @@
 // second zero factor makes the derivative zero, as it should.
 #ifndef VKDR_ADJOINT_GLSL
 #define VKDR_ADJOINT_GLSL
+#include "scene_access.glsl"
 
 // Derivative-mode targets, and factors whose gradient waits for the next segment.
 const uint kTargetNone = 0u;
 const uint kTargetMediumScattering = 1u;  // sigma_s of a medium
 const uint kTargetBaseColor = 2u;         // base colour of a material
 const uint kPendingNone = 0u;
-const uint kPendingBaseColor = 1u;        // Lambertian continuation weight (albedo)
+const uint kPendingBaseColor = 1u;        // Lambertian continuation weight (albedo at vertexUv)
 const uint kPendingPhaseG = 2u;           // phase-function continuation weight (pdf held fixed)
 
 struct AdjointState {
@@ -93,6 +94,24 @@ void addEmissionGradient(uint material, vec3 g) {
     addGradient(P.emissionGradients, material * 4u, g);
 }
 
+// g = dLoss/d(texture value at uv), spread over the texels the lookup blends.
+void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
+    BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
+    for (int corner = 0; corner < 4; ++corner) {
+        addGradient(P.texelGradients, footprint.texel[corner] * 4u, g * footprint.weight[corner]);
+    }
+}
+
+// g = dLoss/d albedo at a surface point. albedo = base colour factor * texture(uv), so
+// the factor gets g * texture(uv) and the base colour texture's texels g * factor.
+void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
+    GpuMaterial m = P.materials.v[material];
+    addBaseColorGradient(material, g * baseColorTexture(m, uv));
+    if (m.baseColorTexture >= 0) {
+        addTexelGradients(m.baseColorTexture, uv, g * m.baseColor.rgb);
+    }
+}
+
 void addTargetGradient(AdjointState s, vec3 g) {
     if (s.targetKind == kTargetMediumScattering) {
         addMediumGradient(s.targetIndex, 3u, g);
@@ -141,7 +160,7 @@ void applyPendingFactor(uint slot, inout AdjointState s, vec3 delta) {
     uint index = s.pending >> 8u;
     vec3 g = factorGradient(slot, s, delta, P.pendingFactor.v[slot].rgb);
     if (kind == kPendingBaseColor) {
-        addBaseColorGradient(index, g);
+        addAlbedoGradient(index, P.vertexUv.v[slot].xy, g);
     } else {
         addPhaseGGradient(index, g.x + g.y + g.z);
     }

@@ -149,9 +149,11 @@ struct RenderParams {
     VKDR_BUFFER(FloatBuffer) mediumGradients;       // kMediumGradientStride per medium
     VKDR_BUFFER(FloatBuffer) baseColorGradients;    // 4 per material: rgb
     VKDR_BUFFER(FloatBuffer) emissionGradients;     // 4 per material: rgb
+    VKDR_BUFFER(FloatBuffer) texelGradients;        // 4 per texel (the layout of texels): rgb
     VKDR_BUFFER(Vec4Buffer) pendingFactor;          // per slot: rgb d log f / d theta of the last scattering factor
     VKDR_BUFFER(UVec4Buffer) adjointState;          // per slot, see AdjointState in adjoint.glsl
-    VKDR_BUFFER(Vec4Buffer) shadowScatterGradient;  // per slot: rgb dC/dbase colour (surface); w: d log phase / dg (medium)
+    VKDR_BUFFER(Vec4Buffer) vertexUv;               // per slot: xy: texture coordinates of the last surface vertex
+    VKDR_BUFFER(Vec4Buffer) shadowScatterGradient;  // per slot: rgb dC/dalbedo (surface); w: d log phase / dg (medium)
     VKDR_BUFFER(Vec4Buffer) shadowEmissionGradient; // per slot: rgb dC/demission; w: light material (uint bits)
     VKDR_BUFFER(UVec4Buffer) shadowVertex;          // per slot: x: vertex kind, y: material or medium index
     uint pathCapacity;

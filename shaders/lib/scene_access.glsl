@@ -36,20 +36,36 @@ ivec2 wrapRepeat(ivec2 i, ivec2 n) {
     return i - n * ivec2(floor(vec2(i) / vec2(n)));
 }
 
-// Bilinear lookup with repeat wrapping; uv (0, 0) is the top-left corner of the image.
-vec3 textureLookup(int textureIndex, vec2 uv) {
+// The four texels a bilinear lookup with repeat wrapping blends, and their weights;
+// uv (0, 0) is the top-left corner of the image. The adjoint spreads a texture value's
+// gradient over the same texels with the same weights.
+struct BilinearFootprint {
+    uint texel[4];  // indices into P.texels
+    vec4 weight;
+};
+
+BilinearFootprint bilinearFootprint(int textureIndex, vec2 uv) {
     GpuTexture tex = P.textures.v[textureIndex];
     vec2 st = uv * vec2(tex.width, tex.height) - 0.5f;
     vec2 cell = floor(st);
     vec2 f = st - cell;
     ivec2 size = ivec2(tex.width, tex.height);
     ivec2 c0 = ivec2(cell);
-    vec3 sum = vec3(0.0f);
+    BilinearFootprint footprint;
     for (int corner = 0; corner < 4; ++corner) {
         ivec2 offset = ivec2(corner & 1, corner >> 1);
         ivec2 c = wrapRepeat(c0 + offset, size);
-        float w = (offset.x == 1 ? f.x : 1.0f - f.x) * (offset.y == 1 ? f.y : 1.0f - f.y);
-        sum += w * P.texels.v[tex.firstTexel + uint(c.y) * tex.width + uint(c.x)].rgb;
+        footprint.texel[corner] = tex.firstTexel + uint(c.y) * tex.width + uint(c.x);
+        footprint.weight[corner] = (offset.x == 1 ? f.x : 1.0f - f.x) * (offset.y == 1 ? f.y : 1.0f - f.y);
+    }
+    return footprint;
+}
+
+vec3 textureLookup(int textureIndex, vec2 uv) {
+    BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
+    vec3 sum = vec3(0.0f);
+    for (int corner = 0; corner < 4; ++corner) {
+        sum += footprint.weight[corner] * P.texels.v[footprint.texel[corner]].rgb;
     }
     return sum;
 }
@@ -71,10 +87,6 @@ vec3 emittedRadiance(GpuMaterial m, vec3 normal, vec2 uv, vec3 toViewer) {
 // The base colour texture's value (1 without a texture): albedo = baseColor * this.
 vec3 baseColorTexture(GpuMaterial m, vec2 uv) {
     return m.baseColorTexture >= 0 ? textureLookup(m.baseColorTexture, uv) : vec3(1.0f);
-}
-
-vec3 materialAlbedo(GpuMaterial m, vec2 uv) {
-    return m.baseColor.rgb * baseColorTexture(m, uv);
 }
 
 vec3 sigmaT(GpuMedium medium) {

@@ -24,6 +24,15 @@ uint32_t indexByName(const std::vector<T>& items, const std::string& name) {
     return ~0u;
 }
 
+// Where a texture starts in the texel array the renderer uploads (textures one after another).
+uint32_t firstTexel(const Scene& scene, size_t texture) {
+    size_t first = 0;
+    for (size_t i = 0; i < texture; ++i) {
+        first += scene.textures[i].texels.size();
+    }
+    return static_cast<uint32_t>(first);
+}
+
 }  // namespace
 
 std::vector<ParameterSlot> resolveParameterSlots(const Scene& scene, const std::vector<std::string>& names) {
@@ -45,6 +54,12 @@ std::vector<ParameterSlot> resolveParameterSlots(const Scene& scene, const std::
         if (slot.index == ~0u) {
             throw Error("parameter " + name + ": no medium or material named " + owner);
         }
+        if (property == "base_color_texture") {
+            size_t texture = size_t(scene.materials[slot.index].baseColorTexture);
+            slot.kind = ParameterSlot::Kind::BaseColorTexture;
+            slot.index = firstTexel(scene, texture);
+            slot.texelCount = static_cast<uint32_t>(scene.textures[texture].texels.size());
+        }
         slots.push_back(slot);
     }
     return slots;
@@ -60,6 +75,15 @@ std::vector<double> gatherGradient(const ParameterSlot& slot, const SceneGradien
     case ParameterSlot::Kind::SigmaS: return rgb(gradients.media, medium + 3);
     case ParameterSlot::Kind::PhaseG: return {gradients.media[medium + 6]};
     case ParameterSlot::Kind::BaseColor: return rgb(gradients.baseColors, size_t(slot.index) * 4);
+    case ParameterSlot::Kind::BaseColorTexture: {
+        std::vector<double> texels;
+        texels.reserve(size_t(slot.texelCount) * 3);
+        for (size_t texel = slot.index; texel < size_t(slot.index) + slot.texelCount; ++texel) {
+            std::vector<double> value = rgb(gradients.texels, 4 * texel);
+            texels.insert(texels.end(), value.begin(), value.end());
+        }
+        return texels;
+    }
     case ParameterSlot::Kind::Emission: return rgb(gradients.emissions, size_t(slot.index) * 4);
     }
     return {};

@@ -9,10 +9,11 @@ namespace vkdr {
 
 // Where a named parameter's gradient lives in the adjoint pass's accumulators.
 struct ParameterSlot {
-    enum class Kind { SigmaA, SigmaS, PhaseG, BaseColor, Emission };
+    enum class Kind { SigmaA, SigmaS, PhaseG, BaseColor, BaseColorTexture, Emission };
     std::string name;
     Kind kind;
-    uint32_t index;  // medium or material
+    uint32_t index;  // medium or material; for BaseColorTexture, the texture's first texel
+    uint32_t texelCount = 0;
 };
 
 // Resolves names like media/fog/sigma_a; an unknown name is a vkdr::Error listing the

@@ -13,9 +13,10 @@ ValueBounds boundsForParameter(std::string_view name) {
     std::string_view field = name.substr(name.rfind('/') + 1);
     if (field == "sigma_a" || field == "sigma_s" || field == "emission") return {0.0, kInfinity};
     if (field == "g") return {-kMaxAbsAnisotropy, kMaxAbsAnisotropy};
-    if (field == "base_color") return {0.0, 1.0};
+    if (field == "base_color" || field == "base_color_texture") return {0.0, 1.0};
     throw Error("parameter '" + std::string(name) +
-                "' cannot be optimised: expected a name ending in sigma_a, sigma_s, g, base_color or emission");
+                "' cannot be optimised: expected a name ending in sigma_a, sigma_s, g, base_color, "
+                "base_color_texture or emission");
 }
 
 void projectOntoBounds(std::span<double> values, const ValueBounds& bounds) {

@@ -45,6 +45,15 @@ std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
     return out;
 }
 
+// Every texture's texels, one texture after another.
+std::vector<glm::vec4> allTexels(const Scene& scene) {
+    std::vector<glm::vec4> texels;
+    for (const Texture& tex : scene.textures) {
+        texels.insert(texels.end(), tex.texels.begin(), tex.texels.end());
+    }
+    return texels;
+}
+
 }  // namespace
 
 GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh) {
@@ -62,11 +71,10 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
         }
     }
     std::vector<gpu::GpuTexture> textures;
-    std::vector<glm::vec4> texels;
+    uint32_t firstTexel = 0;
     for (const Texture& tex : scene.textures) {
-        textures.push_back({static_cast<uint32_t>(texels.size()), static_cast<uint32_t>(tex.width),
-                            static_cast<uint32_t>(tex.height), 0u});
-        texels.insert(texels.end(), tex.texels.begin(), tex.texels.end());
+        textures.push_back({firstTexel, static_cast<uint32_t>(tex.width), static_cast<uint32_t>(tex.height), 0u});
+        firstTexel += static_cast<uint32_t>(tex.texels.size());
     }
 
     GpuScene gpu;
@@ -74,7 +82,6 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     gpu.triangleUvs = uploadVector<glm::vec4>(context, uvs, "triangle uvs");
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
-    gpu.texels = uploadVector<glm::vec4>(context, texels, "texels");
     gpu.rayEpsilon = kRayEpsilonPerExtent * sceneExtent(scene);
     uploadSceneParameters(context, scene, bvh.triangleOrder, gpu);
     return gpu;
@@ -97,6 +104,7 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
     gpu.triangleInfo = uploadVector<gpu::GpuTriangleInfo>(context, info, "triangle info");
     gpu.materials = uploadVector<gpu::GpuMaterial>(context, deviceMaterials(scene), "materials");
     gpu.media = uploadVector<gpu::GpuMedium>(context, deviceMedia(scene), "media");
+    gpu.texels = uploadVector<glm::vec4>(context, allTexels(scene), "texels");
     gpu.lightTriangles = uploadVector<uint32_t>(context, lightTriangles, "light triangles");
     gpu.lightCdf = uploadVector<float>(context, lights.cdf, "light cdf");
     gpu.lightCount = static_cast<uint32_t>(lightTriangles.size());

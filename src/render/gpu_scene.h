@@ -29,8 +29,8 @@ struct GpuScene {
 
 GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh);
 
-// Uploads what the differentiable parameters change (materials, media, the emitter
-// distribution) again, for new parameter values of the same geometry.
+// Uploads what the differentiable parameters change (materials, media, texels, the
+// emitter distribution) again, for new parameter values of the same geometry.
 void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std::span<const uint32_t> triangleOrder,
                            GpuScene& gpu);
 

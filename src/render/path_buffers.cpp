@@ -36,9 +36,10 @@ uint64_t PathBuffers::deviceBytes() const {
 }
 
 AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount,
-                               uint32_t mediumCount, uint32_t materialCount)
+                               uint32_t mediumCount, uint32_t materialCount, uint32_t texelCount)
     : pendingFactor(perPath(context, capacity, "pending factor")),
       adjointState(perPath(context, capacity, "adjoint state")),
+      vertexUv(perPath(context, capacity, "vertex uv")),
       shadowScatterGradient(perPath(context, capacity, "shadow scatter gradient")),
       shadowEmissionGradient(perPath(context, capacity, "shadow emission gradient")),
       shadowVertex(perPath(context, capacity, "shadow vertex")),
@@ -48,11 +49,12 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
       mediumGradients(context, std::max(1u, mediumCount) * gpu::kMediumGradientStride * 4, MemoryUse::Device,
                       "medium gradients"),
       baseColorGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "base colour gradients"),
-      emissionGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "emission gradients") {}
+      emissionGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "emission gradients"),
+      texelGradients(context, std::max(1u, texelCount) * 16, MemoryUse::Device, "texel gradients") {}
 
 uint64_t AdjointBuffers::deviceBytes() const {
-    return pendingFactor.size() * 5 + target.size() + imageAdjoint.size() + mediumGradients.size() +
-           baseColorGradients.size() + emissionGradients.size();
+    return pendingFactor.size() * 6 + target.size() + imageAdjoint.size() + mediumGradients.size() +
+           baseColorGradients.size() + emissionGradients.size() + texelGradients.size();
 }
 
 }  // namespace vkdr

@@ -30,13 +30,13 @@ struct PathBuffers {
 // dLoss/dI, per parameter the gradient accumulators.
 struct AdjointBuffers {
     AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount, uint32_t mediumCount,
-                   uint32_t materialCount);
+                   uint32_t materialCount, uint32_t texelCount);
 
-    Buffer pendingFactor, adjointState, shadowScatterGradient, shadowEmissionGradient, shadowVertex;
+    Buffer pendingFactor, adjointState, vertexUv, shadowScatterGradient, shadowEmissionGradient, shadowVertex;
     Buffer target, imageAdjoint, lossSum;
-    Buffer mediumGradients, baseColorGradients, emissionGradients;
+    Buffer mediumGradients, baseColorGradients, emissionGradients, texelGradients;
 
-    static constexpr uint64_t kBytesPerPath = 5 * 16;
+    static constexpr uint64_t kBytesPerPath = 6 * 16;
     uint64_t deviceBytes() const;
 };
 

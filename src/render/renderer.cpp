@@ -26,6 +26,14 @@ uint32_t segmentLimit(uint32_t maxDepth) {
     return 4 * (maxDepth + 1) + 64;
 }
 
+uint32_t totalTexels(const Scene& scene) {
+    uint64_t count = 0;
+    for (const Texture& texture : scene.textures) {
+        count += texture.texels.size();
+    }
+    return static_cast<uint32_t>(count);
+}
+
 uint32_t bit(uint32_t queue) {
     return 1u << queue;
 }
@@ -48,6 +56,7 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       triangleOrder_(bvh.triangleOrder),
       mediumCount_(static_cast<uint32_t>(scene.media.size())),
       materialCount_(static_cast<uint32_t>(scene.materials.size())),
+      texelCount_(totalTexels(scene)),
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context),
       lossKind_(LossKind::L2) {
@@ -119,8 +128,10 @@ void Renderer::uploadParams() {
         p.mediumGradients = a.mediumGradients.address();
         p.baseColorGradients = a.baseColorGradients.address();
         p.emissionGradients = a.emissionGradients.address();
+        p.texelGradients = a.texelGradients.address();
         p.pendingFactor = a.pendingFactor.address();
         p.adjointState = a.adjointState.address();
+        p.vertexUv = a.vertexUv.address();
         p.shadowScatterGradient = a.shadowScatterGradient.address();
         p.shadowEmissionGradient = a.shadowEmissionGradient.address();
         p.shadowVertex = a.shadowVertex.address();
@@ -188,7 +199,7 @@ void Renderer::enableGradients(const Image& target, LossKind loss) {
         pipelines_.gradient = std::make_unique<GradientPipelines>(context_);
     }
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
-                                                mediumCount_, materialCount_);
+                                                mediumCount_, materialCount_, texelCount_);
     lossKind_ = loss;
     std::vector<glm::vec4> texels(size_t(target.width) * target.height);
     for (size_t i = 0; i < texels.size(); ++i) {
@@ -219,6 +230,7 @@ SceneGradients Renderer::backpropagate() {
         recorder.fill(adjoint_->mediumGradients, 0);
         recorder.fill(adjoint_->baseColorGradients, 0);
         recorder.fill(adjoint_->emissionGradients, 0);
+        recorder.fill(adjoint_->texelGradients, 0);
         recorder.fill(paths_->queueCounters, 0);
         recorder.submitAndWait();
     }
@@ -232,9 +244,11 @@ SceneGradients Renderer::backpropagate() {
     g.media.resize(adjoint_->mediumGradients.size() / 4);
     g.baseColors.resize(adjoint_->baseColorGradients.size() / 4);
     g.emissions.resize(adjoint_->emissionGradients.size() / 4);
+    g.texels.resize(adjoint_->texelGradients.size() / 4);
     downloadBuffer(context_, adjoint_->mediumGradients, std::as_writable_bytes(std::span(g.media)));
     downloadBuffer(context_, adjoint_->baseColorGradients, std::as_writable_bytes(std::span(g.baseColors)));
     downloadBuffer(context_, adjoint_->emissionGradients, std::as_writable_bytes(std::span(g.emissions)));
+    downloadBuffer(context_, adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels)));
     return g;
 }
 

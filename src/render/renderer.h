@@ -33,6 +33,7 @@ struct SceneGradients {
     std::vector<float> media;       // gpu::kMediumGradientStride per medium: sigma_a rgb, sigma_s rgb, g
     std::vector<float> baseColors;  // 4 per material
     std::vector<float> emissions;   // 4 per material
+    std::vector<float> texels;      // 4 per texel, textures one after another as in Scene::textures
 };
 
 // The wavefront path tracer: uploads a scene once, then renders it pass by pass; with
@@ -83,6 +84,7 @@ private:
     std::vector<uint32_t> triangleOrder_;
     uint32_t mediumCount_;
     uint32_t materialCount_;
+    uint32_t texelCount_;
     GpuScene scene_;
     StagePipelines pipelines_;
     std::unique_ptr<PathBuffers> paths_;

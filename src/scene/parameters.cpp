@@ -14,13 +14,24 @@ namespace {
 
 enum class Quantity { Sigma, Anisotropy, Albedo, Emission };
 
-// Where a parameter's floats live in the Scene, and what values they accept.
+// Where a parameter's floats live in the Scene, and what values they accept: `size`
+// values, `channels` at a time, consecutive groups `stride` floats apart (a texture's
+// texels are RGBA, of which the parameter is the RGB).
 template <typename Float>
 struct ParameterSlot {
     Float* values = nullptr;
     size_t size = 0;
     Quantity quantity = Quantity::Sigma;
+    size_t channels = 1;
+    size_t stride = 1;
+
+    Float& operator[](size_t i) const { return values[(i / channels) * stride + i % channels]; }
 };
+
+template <typename Float>
+ParameterSlot<Float> packedSlot(Float* values, size_t size, Quantity quantity) {
+    return {values, size, quantity, size, size};
+}
 
 struct ParsedName {
     std::string_view kind;    // "media", "materials" or "lights"
@@ -52,11 +63,11 @@ auto findSlot(SceneType& scene, std::string_view name) {
                 continue;
             }
             if (parsed->field == "sigma_a") {
-                slot = ParameterSlot<Float>{glm::value_ptr(medium.sigma_a), 3, Quantity::Sigma};
+                slot = packedSlot<Float>(glm::value_ptr(medium.sigma_a), 3, Quantity::Sigma);
             } else if (parsed->field == "sigma_s") {
-                slot = ParameterSlot<Float>{glm::value_ptr(medium.sigma_s), 3, Quantity::Sigma};
+                slot = packedSlot<Float>(glm::value_ptr(medium.sigma_s), 3, Quantity::Sigma);
             } else if (parsed->field == "g") {
-                slot = ParameterSlot<Float>{&medium.g, 1, Quantity::Anisotropy};
+                slot = packedSlot<Float>(&medium.g, 1, Quantity::Anisotropy);
             }
         }
         return slot;
@@ -66,9 +77,13 @@ auto findSlot(SceneType& scene, std::string_view name) {
             continue;
         }
         if (parsed->kind == "materials" && parsed->field == "base_color") {
-            slot = ParameterSlot<Float>{glm::value_ptr(material.baseColor), 3, Quantity::Albedo};
+            slot = packedSlot<Float>(glm::value_ptr(material.baseColor), 3, Quantity::Albedo);
+        } else if (parsed->kind == "materials" && parsed->field == "base_color_texture" &&
+                   material.baseColorTexture >= 0) {
+            auto& texels = scene.textures[size_t(material.baseColorTexture)].texels;
+            slot = ParameterSlot<Float>{glm::value_ptr(texels.front()), 3 * texels.size(), Quantity::Albedo, 3, 4};
         } else if (parsed->kind == "lights" && parsed->field == "emission") {
-            slot = ParameterSlot<Float>{glm::value_ptr(material.emission), 3, Quantity::Emission};
+            slot = packedSlot<Float>(glm::value_ptr(material.emission), 3, Quantity::Emission);
         }
     }
     return slot;
@@ -117,6 +132,9 @@ std::vector<std::string> parameterNames(const Scene& scene) {
     for (const Material& material : scene.materials) {
         if (!material.isMediumBoundary()) {
             names.push_back("materials/" + material.name + "/base_color");
+            if (material.baseColorTexture >= 0) {
+                names.push_back("materials/" + material.name + "/base_color_texture");
+            }
         }
     }
     for (const Material& material : scene.materials) {
@@ -132,7 +150,11 @@ std::vector<float> getParameter(const Scene& scene, std::string_view name) {
     if (!slot) {
         failUnknown(scene, name);
     }
-    return std::vector<float>(slot->values, slot->values + slot->size);
+    std::vector<float> values(slot->size);
+    for (size_t i = 0; i < slot->size; ++i) {
+        values[i] = (*slot)[i];
+    }
+    return values;
 }
 
 void setParameter(Scene& scene, std::string_view name, std::span<const float> values) {
@@ -142,8 +164,8 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
     }
     if (values.size() != slot->size && values.size() != 1) {
         throw Error("parameter " + std::string(name) + ": expected " +
-                    (slot->size == 1 ? std::string("1 value") : "1 or 3 values") + ", got " +
-                    std::to_string(values.size()));
+                    (slot->size == 1 ? std::string("1 value") : "1 or " + std::to_string(slot->size) + " values") +
+                    ", got " + std::to_string(values.size()));
     }
     for (float value : values) {
         if (std::string problem = rangeProblem(slot->quantity, value); !problem.empty()) {
@@ -151,7 +173,7 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
         }
     }
     for (size_t i = 0; i < slot->size; ++i) {
-        slot->values[i] = values.size() == 1 ? values[0] : values[i];
+        (*slot)[i] = values.size() == 1 ? values[0] : values[i];
     }
 }
 

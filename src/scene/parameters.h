@@ -13,6 +13,9 @@ namespace vkdr {
 //   media/<medium>/sigma_a, media/<medium>/sigma_s   3 floats, >= 0, per scene unit
 //   media/<medium>/g                                 1 float, |g| < 1
 //   materials/<material>/base_color                  3 floats in [0, 1]
+//   materials/<material>/base_color_texture          3 floats in [0, 1] per texel of the
+//                                                    material's base colour texture (linear
+//                                                    RGB, rows from the top), if it has one
 //   lights/<material>/emission                       3 floats, >= 0
 // Medium boundary materials have no base colour or emission.
 
@@ -20,11 +23,11 @@ namespace vkdr {
 // colours, then the emissions of emissive materials.
 std::vector<std::string> parameterNames(const Scene& scene);
 
-// The current value (3 floats, or 1 for g). Throws vkdr::Error for an unknown name,
+// The current value (3 floats, 1 for g, 3 per texel for a texture). Throws vkdr::Error for an unknown name,
 // listing the valid ones.
 std::vector<float> getParameter(const Scene& scene, std::string_view name);
 
-// Sets a parameter; one value sets all three channels of an RGB parameter. Throws
+// Sets a parameter; one value sets every channel (and texel) of the parameter. Throws
 // vkdr::Error naming the parameter when the value is out of range or not finite.
 // lights/<material>/emission is accepted for every surface material, not only the
 // emissive ones listed by parameterNames, so an emission driven to 0 can be raised again.

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "image/atomic_write.h"
+#include "image/image.h"
 
 namespace vkdr {
 namespace {
@@ -252,6 +253,41 @@ void writeBinaryChunkBeside(json& document, const GltfSource& source, const std:
     buffer["uri"] = binary.filename().string();
 }
 
+Image textureImage(const Texture& texture) {
+    Image image{texture.width, texture.height, {}};
+    image.rgb.reserve(texture.texels.size() * 3);
+    for (const glm::vec4& texel : texture.texels) {
+        image.rgb.insert(image.rgb.end(), {texel.r, texel.g, texel.b});
+    }
+    return image;
+}
+
+// The texels of base colour textures are parameters too. Each such image is written
+// beside `out` as <stem>.image<i>.png (8-bit sRGB, as glTF base colour textures are;
+// alpha is not kept) and the glTF image refers to it instead of its old source.
+void writeBaseColorTextures(json& document, const Scene& scene, const std::filesystem::path& out) {
+    std::vector<bool> written(document.contains("images") ? document["images"].size() : 0, false);
+    size_t fileMaterials = document.contains("materials") ? document["materials"].size() : 0;
+    for (size_t i = 0; i < fileMaterials && i < scene.materials.size(); ++i) {
+        const Material& material = scene.materials[i];
+        if (material.isMediumBoundary() || material.baseColorTexture < 0) {
+            continue;
+        }
+        size_t texture = document["materials"][i]["pbrMetallicRoughness"]["baseColorTexture"]["index"].get<size_t>();
+        size_t image = document["textures"][texture]["source"].get<size_t>();
+        if (written[image]) {
+            continue;
+        }
+        std::string file = out.stem().string() + ".image" + std::to_string(image) + ".png";
+        writePng(out.parent_path() / file, textureImage(scene.textures[size_t(material.baseColorTexture)]));
+        json& entry = document["images"][image];
+        entry.erase("bufferView");
+        entry.erase("mimeType");
+        entry["uri"] = file;
+        written[image] = true;
+    }
+}
+
 }  // namespace
 
 void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
@@ -266,6 +302,7 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     rebaseUris(document, "buffers", fromDirectory, toDirectory);
     rebaseUris(document, "images", fromDirectory, toDirectory);
     writeBinaryChunkBeside(document, source, original, out);
+    writeBaseColorTextures(document, scene, out);
 
     std::string text = document.dump(2);
     writeAtomically(out, [&](std::ofstream& stream) { stream << text << '\n'; });

@@ -1,6 +1,6 @@
 // The adjoint pass against central finite differences with common random numbers:
-// base colour and emission in a scene-wide fog, g of an enclosed medium, and a base
-// colour that starts at zero. Both sides are means over seeds; the tolerance is their
+// base colour, the texels of a base colour texture and emission in a scene-wide fog,
+// g of an enclosed medium, and a base colour that starts at zero. Both sides are means over seeds; the tolerance is their
 // combined standard error (plus 1 % for the finite difference's step and the O(1/spp)
 // covariance of a squared loss). sigma_a and sigma_s are checked against quadrature in
 // analytic_gradient_test.cpp instead: with common random numbers their finite
@@ -53,11 +53,23 @@ TestGltf smokeRoom() {
     return g;
 }
 
+// Gives the walls a two-texel base colour texture, repeated across them with texture
+// coordinates that change along every face, so both texels are seen.
+void textureTheWalls(Scene& scene) {
+    scene.textures.push_back({"stripes", 2, 1, {glm::vec4(0.8f, 0.5f, 0.3f, 1.0f), glm::vec4(0.4f, 0.7f, 0.6f, 1.0f)}});
+    scene.materials[0].baseColorTexture = 0;
+    scene.uvs.clear();
+    for (const glm::vec3& p : scene.positions) {
+        scene.uvs.push_back(glm::vec2(p.x + p.y + p.z, p.y - p.z) * 0.75f);
+    }
+}
+
 struct GradientCase {
     const char* label;
     TestGltf (*scene)();
     const char* parameter;
-    const char* assignment;  // optional --set before differentiating
+    const char* assignment;                   // optional --set before differentiating
+    void (*edit)(Scene& scene) = nullptr;     // optional change the glTF cannot express
 };
 
 class GradientTest : public RenderTest, public ::testing::WithParamInterface<GradientCase> {};
@@ -65,6 +77,9 @@ class GradientTest : public RenderTest, public ::testing::WithParamInterface<Gra
 TEST_P(GradientTest, AdjointMatchesFiniteDifferences) {
     const GradientCase& c = GetParam();
     Scene scene = loadScene(c.scene().write(tempDir(), "scene")).scene;
+    if (c.edit) {
+        c.edit(scene);
+    }
     if (c.assignment[0] != '\0') {
         applyAssignment(scene, c.assignment);
     }
@@ -84,6 +99,8 @@ TEST_P(GradientTest, AdjointMatchesFiniteDifferences) {
 INSTANTIATE_TEST_SUITE_P(
     Parameters, GradientTest,
     ::testing::Values(GradientCase{"BaseColorInFog", foggyRoom, "materials/walls/base_color", ""},
+                      GradientCase{"TexelsInFog", foggyRoom, "materials/walls/base_color_texture", "",
+                                   textureTheWalls},
                       GradientCase{"EmissionInFog", foggyRoom, "lights/lamp/emission", ""},
                       GradientCase{"EnclosedMediumG", smokeRoom, "media/smoke/g", ""},
                       GradientCase{"ZeroBaseColor", foggyRoom, "materials/walls/base_color",

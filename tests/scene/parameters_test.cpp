@@ -61,6 +61,23 @@ TEST(Parameters, SetsRgbValuesAndBroadcastsOneValue) {
     EXPECT_EQ(scene.media[1].g, -0.9f);
 }
 
+TEST(Parameters, BaseColorTextureIsTheRgbOfEveryTexel) {
+    Scene scene = sceneWithEverything();
+    scene.textures.push_back({"checker", 2, 1, {glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), glm::vec4(0.4f, 0.5f, 0.6f, 1.0f)}});
+    scene.materials[0].baseColorTexture = 0;
+    EXPECT_EQ(parameterNames(scene)[7], "materials/white/base_color_texture");
+    EXPECT_EQ(getParameter(scene, "materials/white/base_color_texture"),
+              (std::vector<float>{0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f}));
+    std::vector<float> texels = {0.6f, 0.5f, 0.4f, 0.3f, 0.2f, 0.1f};
+    setParameter(scene, "materials/white/base_color_texture", texels);
+    EXPECT_EQ(scene.textures[0].texels[1], glm::vec4(0.3f, 0.2f, 0.1f, 1.0f));  // alpha untouched
+    std::vector<float> wrongCount = {0.1f, 0.2f, 0.3f};
+    expectErrorMentioning([&] { setParameter(scene, "materials/white/base_color_texture", wrongCount); },
+                          {"materials/white/base_color_texture", "expected 1 or 6 values, got 3"});
+    expectErrorMentioning([&] { getParameter(scene, "materials/light/base_color_texture"); },
+                          {"unknown parameter 'materials/light/base_color_texture'"});
+}
+
 TEST(Parameters, LightEmissionCanReturnFromZero) {
     Scene scene = sceneWithEverything();
     std::vector<float> zero = {0.0f};

@@ -170,6 +170,30 @@ TEST(WriteScene, RewritesExternalBufferUrisRelativeToTheOutputDirectory) {
     EXPECT_EQ(readJson(directory / "fits" / "run1" / "scene.gltf")["buffers"][0]["uri"], "../../source/data/ink.bin");
 }
 
+TEST(WriteScene, WritesFittedTexelsAsAnSrgbPng) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.document()["images"] = {
+        {{"name", "checker"}, {"uri", "data:image/bmp;base64," + base64(bmpImage(2, 1, {{255, 0, 0}, {0, 0, 255}}))}}};
+    builder.document()["textures"] = {{{"source", 0}}};
+    int material = builder.addMaterial(
+        {{"name", "painted"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
+    std::filesystem::path original = builder.writeGltf(directory / "painted.gltf");
+    Scene scene = loadScene(original).scene;
+    set(scene, "materials/painted/base_color_texture", {0.25f, 0.5f, 0.75f, 0.05f, 0.9f, 0.0f});
+
+    Scene reloaded = writeAndReload(original, scene, directory / "fitted.gltf");
+    EXPECT_EQ(readJson(directory / "fitted.gltf")["images"][0]["uri"], "fitted.image0.png");
+    std::vector<float> want = getParameter(scene, "materials/painted/base_color_texture");
+    std::vector<float> got = getParameter(reloaded, "materials/painted/base_color_texture");
+    ASSERT_EQ(got.size(), want.size());
+    for (size_t i = 0; i < want.size(); ++i) {
+        // Half an 8-bit sRGB step, in linear terms, is at most 0.0045 (at 1).
+        EXPECT_NEAR(got[i], want[i], 0.0045f) << i;
+    }
+}
+
 TEST(WriteScene, NamesAnUnreadableOriginal) {
     TemporaryDirectory directory;
     Scene scene;
