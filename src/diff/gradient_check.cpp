@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 
+#include "core/sample_statistics.h"
 #include "optimize/constraints.h"
 
 #include "scene/parameters.h"
@@ -14,22 +15,6 @@ bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-struct MeanAndError {
-    double mean;
-    double error;
-};
-
-MeanAndError meanAndError(const std::vector<double>& v) {
-    double sum = 0.0, sumSquares = 0.0;
-    for (double x : v) {
-        sum += x;
-        sumSquares += x * x;
-    }
-    double n = double(v.size());
-    double mean = sum / n;
-    double variance = n > 1 ? std::max(0.0, (sumSquares - n * mean * mean) / (n - 1)) : 0.0;
-    return {mean, std::sqrt(variance / n)};
-}
 
 double lossWith(RenderedLossGradient& lg, const Scene& scene, const std::string& name, int component, float value,
                 uint32_t seed) {

@@ -2,9 +2,11 @@
 // a small emitter (max depth 1), where the radiance and its derivatives with respect to
 // sigma_a, sigma_s and g are 1D x 2D integrals. The adjoint's mean over seeds must match
 // within five of its standard errors. Also with sigma_s = 0 in every channel and in one,
-// where only the derivative mode of the replay can find the gradient.
+// where only the derivative mode of the replay can find the gradient, and with the
+// medium enclosed in a box that the camera ray enters and every shadow ray leaves.
 #include <cmath>
 
+#include "core/sample_statistics.h"
 #include "diff/rendered_loss_gradient.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
@@ -20,7 +22,12 @@ struct FogGradientCase {
     const char* label;
     glm::dvec3 sigmaS;
     double g;
+    std::optional<FogSetup::Box> enclosure = std::nullopt;
 };
+
+void PrintTo(const FogGradientCase& c, std::ostream* os) {
+    *os << c.label;
+}
 
 class FogGradientTest : public RenderTest, public ::testing::WithParamInterface<FogGradientCase> {};
 
@@ -28,6 +35,7 @@ TEST_P(FogGradientTest, MatchesQuadrature) {
     FogSetup fog;
     fog.sigmaS = GetParam().sigmaS;
     fog.g = GetParam().g;
+    fog.enclosure = GetParam().enclosure;
     Scene scene = loadScene(fog.scene().write(tempDir(), "fog")).scene;
     const SingleScattering reference = singleScattering(fog);
 
@@ -41,23 +49,20 @@ TEST_P(FogGradientTest, MatchesQuadrature) {
 
     Image target{1, 1, {float(kTarget.x), float(kTarget.y), float(kTarget.z)}};
     RenderedLossGradient lg(testContext(), scene, {{"", target}}, names, {.spp = 4096, .maxDepth = 1}, LossKind::L2);
-    std::vector<std::vector<double>> sum(names.size(), std::vector<double>(3, 0.0)), sumSquares = sum;
+    std::vector<std::vector<std::vector<double>>> samples(names.size(), std::vector<std::vector<double>>(3));
     for (uint32_t seed = 0; seed < kSeeds; ++seed) {
         GradientResult r = lg.evaluate(scene, seed);
         for (size_t p = 0; p < names.size(); ++p) {
             for (size_t c = 0; c < r.parameters[p].gradient.size(); ++c) {
-                sum[p][c] += r.parameters[p].gradient[c];
-                sumSquares[p][c] += r.parameters[p].gradient[c] * r.parameters[p].gradient[c];
+                samples[p][c].push_back(r.parameters[p].gradient[c]);
             }
         }
     }
     for (size_t p = 0; p < names.size(); ++p) {
         for (size_t c = 0; c < expected[p].size(); ++c) {
-            double mean = sum[p][c] / kSeeds;
-            double variance = std::max(0.0, (sumSquares[p][c] / kSeeds - mean * mean) * kSeeds / (kSeeds - 1));
-            double standardError = std::sqrt(variance / kSeeds);
-            EXPECT_NEAR(mean, expected[p][c], 5.0 * standardError + 1e-3 * std::abs(expected[p][c]))
-                << names[p] << "[" << c << "]: standard error " << standardError;
+            MeanAndError adjoint = meanAndError(samples[p][c]);
+            EXPECT_NEAR(adjoint.mean, expected[p][c], 5.0 * adjoint.error + 1e-3 * std::abs(expected[p][c]))
+                << names[p] << "[" << c << "]: standard error " << adjoint.error;
         }
     }
 }
@@ -67,7 +72,9 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(FogGradientCase{"Forward", {0.3, 0.5, 0.8}, 0.4},
                       FogGradientCase{"Backward", {0.3, 0.5, 0.8}, -0.5},
                       FogGradientCase{"NoScattering", {0.0, 0.0, 0.0}, 0.4},
-                      FogGradientCase{"NoScatteringInGreen", {0.3, 0.0, 0.8}, 0.2}),
+                      FogGradientCase{"NoScatteringInGreen", {0.3, 0.0, 0.8}, 0.2},
+                      // The light (x = 1.5) is outside the box: shadow rays cross its face x = 1.
+                      FogGradientCase{"Enclosed", {0.3, 0.5, 0.8}, 0.4, FogSetup::Box{{-1.0, -1.0, 1.0}, {1.0, 1.0, 4.0}}}),
     [](const ::testing::TestParamInfo<FogGradientCase>& info) { return std::string(info.param.label); });
 
 }  // namespace

@@ -72,6 +72,10 @@ struct GradientCase {
     void (*edit)(Scene& scene) = nullptr;     // optional change the glTF cannot express
 };
 
+void PrintTo(const GradientCase& c, std::ostream* os) {
+    *os << c.label;
+}
+
 class GradientTest : public RenderTest, public ::testing::WithParamInterface<GradientCase> {};
 
 TEST_P(GradientTest, AdjointMatchesFiniteDifferences) {

@@ -5,29 +5,14 @@
 // every pixel estimates the same value.
 #include <cmath>
 
+#include "furnace_scene.h"
 #include "render_test_support.h"
-#include "test_gltf.h"
 
 namespace vkdr::test {
 namespace {
 
-const glm::vec3 kLe(1.0f, 0.5f, 0.25f);
+const glm::vec3 kLe = kFurnaceLe;
 constexpr int kSide = 24;
-
-nlohmann::json furnaceWall(glm::vec3 albedo) {
-    nlohmann::json m = emissiveMaterial("walls", kLe, true);
-    m["pbrMetallicRoughness"]["baseColorFactor"] = {albedo.x, albedo.y, albedo.z, 1.0};
-    return m;
-}
-
-TestGltf furnace(glm::vec3 albedo) {
-    TestGltf g;
-    g.materials = {furnaceWall(albedo)};
-    g.meshes = {box(glm::vec3(-1.0f), glm::vec3(1.0f), 0)};
-    g.cameraPosition = glm::vec3(0.1f, -0.2f, -0.3f);
-    g.yfov = 1.2f;
-    return g;
-}
 
 void expectUniform(const Image& image, glm::dvec3 expected) {
     ASSERT_TRUE(allFinite(image));

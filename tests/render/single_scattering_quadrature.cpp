@@ -14,6 +14,24 @@ double hgDLogG(double mu, double g) {
     return -2.0 * g / (1.0 - g * g) + 3.0 * (mu - g) / (1.0 + g * g - 2.0 * g * mu);
 }
 
+// Length of the segment origin + [0, tMax] * direction inside `box` (slab method).
+double lengthInside(glm::dvec3 origin, glm::dvec3 direction, double tMax, const FogSetup::Box& box) {
+    double enter = 0.0, leave = tMax;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (direction[axis] == 0.0) {
+            if (origin[axis] < box.lo[axis] || origin[axis] > box.hi[axis]) {
+                return 0.0;
+            }
+            continue;
+        }
+        double t0 = (box.lo[axis] - origin[axis]) / direction[axis];
+        double t1 = (box.hi[axis] - origin[axis]) / direction[axis];
+        enter = std::max(enter, std::min(t0, t1));
+        leave = std::min(leave, std::max(t0, t1));
+    }
+    return std::max(0.0, leave - enter);
+}
+
 }  // namespace
 
 TestGltf FogSetup::scene() const {
@@ -24,10 +42,15 @@ TestGltf FogSetup::scene() const {
     lamp.positions = {{x, -h, z - h}, {x, h, z - h}, {x, h, z + h}, {x, -h, z + h}};
     lamp.triangles = {{0, 2, 1}, {0, 3, 2}};  // facing -x
     gltf.meshes = {lamp};
-    gltf.extensions["VKDR_participating_media"] = {{"name", "fog"},
-                                                   {"sigma_a", {sigmaA.x, sigmaA.y, sigmaA.z}},
-                                                   {"sigma_s", {sigmaS.x, sigmaS.y, sigmaS.z}},
-                                                   {"g", g}};
+    if (enclosure) {
+        gltf.materials.push_back(vkdrMediumMaterial("fog", glm::vec3(sigmaA), glm::vec3(sigmaS), float(g)));
+        gltf.meshes.push_back(box(glm::vec3(enclosure->lo), glm::vec3(enclosure->hi), 1));
+    } else {
+        gltf.extensions["VKDR_participating_media"] = {{"name", "fog"},
+                                                       {"sigma_a", {sigmaA.x, sigmaA.y, sigmaA.z}},
+                                                       {"sigma_s", {sigmaS.x, sigmaS.y, sigmaS.z}},
+                                                       {"g", g}};
+    }
     gltf.yfov = float(yfov);
     return gltf;
 }
@@ -46,18 +69,25 @@ SingleScattering singleScattering(const FogSetup& fog) {
         for (int i = 0; i < kRaySteps; ++i) {
             double t = (i + 0.5) * kRayEnd / kRaySteps;
             glm::dvec3 x = t * direction;
+            if (fog.enclosure && !(glm::all(glm::greaterThan(x, fog.enclosure->lo)) &&
+                                   glm::all(glm::lessThan(x, fog.enclosure->hi)))) {
+                continue;  // vacuum: nothing scatters here
+            }
+            double cameraPath = fog.enclosure ? lengthInside(glm::dvec3(0.0), direction, t, *fog.enclosure) : t;
             for (int j = 0; j < kLightSteps * kLightSteps; ++j) {
                 glm::dvec3 y(fog.lightX, -fog.lightHalf + (j % kLightSteps + 0.5) * cell,
                              fog.lightZ - fog.lightHalf + (j / kLightSteps + 0.5) * cell);
                 glm::dvec3 toLight = y - x;
                 double r = glm::length(toLight);
                 double mu = glm::dot(direction, toLight / r);
+                // The optical path's length in the medium, along the ray and towards the light.
+                double d = cameraPath + (fog.enclosure ? lengthInside(x, toLight / r, r, *fog.enclosure) : r);
                 // Everything but sigma_s: attenuation over the ray and the light path.
-                glm::dvec3 base = fog.le * glm::exp(-sigmaT * (t + r)) * (hg(mu, fog.g) * (toLight.x / r) / (r * r));
+                glm::dvec3 base = fog.le * glm::exp(-sigmaT * d) * (hg(mu, fog.g) * (toLight.x / r) / (r * r));
                 glm::dvec3 f = fog.sigmaS * base;
                 out.radiance += f;
-                out.dSigmaA += -(t + r) * f;
-                out.dSigmaS += base * (1.0 - fog.sigmaS * (t + r));
+                out.dSigmaA += -d * f;
+                out.dSigmaS += base * (1.0 - fog.sigmaS * d);
                 out.dG += f * hgDLogG(mu, fog.g);
             }
         }

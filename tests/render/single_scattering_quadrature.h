@@ -1,7 +1,10 @@
 #pragma once
-// Single scattering of a camera ray through an infinite homogeneous fog, lit by a small
+// Single scattering of a camera ray through a homogeneous medium, lit by a small
 // one-sided square emitter beside the ray: the reference for the single-scattering
-// render test and for the analytic gradient tests.
+// render test and for the analytic gradient tests. The medium fills all space (a
+// scene-wide fog) or an axis-aligned box (an enclosed medium, vacuum outside).
+#include <optional>
+
 #include <glm/glm.hpp>
 
 #include "test_gltf.h"
@@ -16,6 +19,10 @@ struct FogSetup {
     double yfov = 0.01;  // one pixel, looking along +z from the origin
     // The emitter: a square in the plane x = lightX around (lightX, 0, lightZ), facing -x.
     double lightX = 1.5, lightZ = 2.0, lightHalf = 0.25;
+    struct Box {
+        glm::dvec3 lo, hi;
+    };
+    std::optional<Box> enclosure;  // set: the medium fills this box only
 
     TestGltf scene() const;
 };

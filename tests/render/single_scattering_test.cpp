@@ -5,6 +5,7 @@
 // depend on the direction convention of the phase function, which furnaces cannot see.
 #include <cmath>
 
+#include "core/sample_statistics.h"
 #include "render_test_support.h"
 #include "single_scattering_quadrature.h"
 
@@ -21,18 +22,17 @@ TEST_P(SingleScatteringTest, MatchesQuadrature) {
 
     // Independent renders of one pixel: their spread gives the standard error.
     constexpr int kRenders = 16;
-    glm::dvec3 sum(0.0), sumSquares(0.0);
+    std::vector<double> channels[3];
     for (uint32_t seed = 0; seed < kRenders; ++seed) {
         Image image = renderFile(file, {.width = 1, .height = 1, .spp = 8192, .maxDepth = 1, .seed = seed});
-        glm::dvec3 v(image.rgb[0], image.rgb[1], image.rgb[2]);
-        sum += v;
-        sumSquares += v * v;
+        for (int c = 0; c < 3; ++c) {
+            channels[c].push_back(image.rgb[c]);
+        }
     }
-    glm::dvec3 mean = sum / double(kRenders);
-    glm::dvec3 standardError = glm::sqrt((sumSquares / double(kRenders) - mean * mean) / double(kRenders - 1));
     for (int c = 0; c < 3; ++c) {
+        MeanAndError pixel = meanAndError(channels[c]);
         // 16 renders: the standard error is itself uncertain, so allow 6 of them.
-        EXPECT_NEAR(mean[c], expected[c], 6.0 * standardError[c] + 1e-3 * expected[c])
+        EXPECT_NEAR(pixel.mean, expected[c], 6.0 * pixel.error + 1e-3 * expected[c])
             << "channel " << c << ", g = " << fog.g;
     }
 }

@@ -1,0 +1,16 @@
+#include "furnace_scene.h"
+
+namespace vkdr::test {
+
+TestGltf furnace(glm::vec3 albedo) {
+    nlohmann::json walls = emissiveMaterial("walls", kFurnaceLe, true);
+    walls["pbrMetallicRoughness"]["baseColorFactor"] = {albedo.x, albedo.y, albedo.z, 1.0};
+    TestGltf g;
+    g.materials = {walls};
+    g.meshes = {box(glm::vec3(-1.0f), glm::vec3(1.0f), 0)};
+    g.cameraPosition = glm::vec3(0.1f, -0.2f, -0.3f);
+    g.yfov = 1.2f;
+    return g;
+}
+
+}  // namespace vkdr::test
