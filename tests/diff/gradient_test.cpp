@@ -1,6 +1,7 @@
 // The adjoint pass against central finite differences with common random numbers:
 // base colour, the texels of a base colour texture and emission in a scene-wide fog,
-// g of an enclosed medium, and a base colour that starts at zero. Both sides are means over seeds; the tolerance is their
+// g, base colour and emission with an enclosed medium, and a base colour that starts
+// at zero. Both sides are means over seeds; the tolerance is their
 // combined standard error (plus 1 % for the finite difference's step and the O(1/spp)
 // covariance of a squared loss). sigma_a and sigma_s are checked against quadrature in
 // analytic_gradient_test.cpp instead: with common random numbers their finite
@@ -107,6 +108,8 @@ INSTANTIATE_TEST_SUITE_P(
                                    textureTheWalls},
                       GradientCase{"EmissionInFog", foggyRoom, "lights/lamp/emission", ""},
                       GradientCase{"EnclosedMediumG", smokeRoom, "media/smoke/g", ""},
+                      GradientCase{"BaseColorWithEnclosedMedium", smokeRoom, "materials/walls/base_color", ""},
+                      GradientCase{"EmissionWithEnclosedMedium", smokeRoom, "lights/lamp/emission", ""},
                       GradientCase{"ZeroBaseColor", foggyRoom, "materials/walls/base_color",
                                    "materials/walls/base_color=0"}),
     [](const ::testing::TestParamInfo<GradientCase>& info) { return std::string(info.param.label); });
