@@ -20,18 +20,58 @@ void traceClosestHit(uint slot) {
     P.hit.v[slot] = vec4(hit.t, hit.b1, hit.b2, uintBitsToFloat(hit.triangle));
 }
 
+// The media a shadow ray passes through and its length in each. The adjoint needs
+// them once the transmittance is known: d C / d sigma_m = -length_m C for every medium
+// m on the way. A ray through more distinct media than are kept is traced a second
+// time to add its gradients.
+const uint kRecordedMedia = 2u;
+struct MediumLengths {
+    uint medium[kRecordedMedia];
+    float inMedium[kRecordedMedia];  // length of the ray in medium[i]
+    uint count;
+    bool complete;  // false: the ray passed through more media than were kept
+};
+
+MediumLengths noMediumLengths() {
+    MediumLengths lengths;
+    lengths.count = 0u;
+    lengths.complete = true;
+    return lengths;
+}
+
+void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
+    for (uint i = 0u; i < lengths.count; ++i) {
+        if (lengths.medium[i] == medium) {
+            lengths.inMedium[i] += length;
+            return;
+        }
+    }
+    if (lengths.count == kRecordedMedia) {
+        lengths.complete = false;
+        return;
+    }
+    lengths.medium[lengths.count] = medium;
+    lengths.inMedium[lengths.count] = length;
+    ++lengths.count;
+}
+
 // Transmittance from the shadow ray's origin to its end, zero when something opaque
-// is in the way. With `gradientWeight` != 0, also adds gradientWeight * d log T / d sigma
-// (minus each segment's length) to the sigma_a and sigma_s gradients of its medium.
-vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight) {
+// is in the way. In the adjoint pass it also records the length in each medium, and
+// with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma (minus each
+// segment's length) to the sigma_a and sigma_s gradients of its medium.
+vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight,
+                         inout MediumLengths lengths) {
     vec3 tr = vec3(1.0f);
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
         TraceHit hit = traceClosest(origin, direction, distance);
         float segment = min(hit.t, distance);
         if (medium != kNoMediumIndex) {
             tr *= transmittance(sigmaT(P.media.v[medium]), segment);
-            if (kAdjoint && maxComponent(abs(gradientWeight)) > 0.0f) {
-                addSigmaGradient(medium, -segment * gradientWeight, -segment * gradientWeight);
+            if (kAdjoint) {
+                addMediumLength(lengths, medium, segment);
+                if (maxComponent(abs(gradientWeight)) > 0.0f) {
+                    addSigmaGradient(medium, -segment * gradientWeight, -segment * gradientWeight);
+                }
             }
         }
         if (hit.triangle == kNoHit) {
@@ -60,7 +100,8 @@ void traceShadowRay(uint slot) {
     vec4 origin = P.shadowOrigin.v[slot];
     vec4 direction = P.shadowDirection.v[slot];
     uint medium = floatBitsToUint(direction.w);
-    vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, medium, vec3(0.0f));
+    MediumLengths lengths = noMediumLengths();
+    vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, medium, vec3(0.0f), lengths);
     vec3 contribution = tr * P.shadowContribution.v[slot].rgb;
     if (!kAdjoint) {
         P.radiance.v[slot].rgb += contribution;
@@ -75,7 +116,14 @@ void traceShadowRay(uint slot) {
     passContribution(slot, s, delta, contribution);
     vec3 weight = delta * contribution * normal;
     if (maxComponent(abs(weight)) > 0.0f) {
-        shadowTransmittance(origin.xyz, direction.xyz, origin.w, medium, weight);
+        if (lengths.complete) {
+            for (uint i = 0u; i < lengths.count; ++i) {
+                addSigmaGradient(lengths.medium[i], -lengths.inMedium[i] * weight, -lengths.inMedium[i] * weight);
+            }
+        } else {
+            MediumLengths retraced = noMediumLengths();
+            shadowTransmittance(origin.xyz, direction.xyz, origin.w, medium, weight, retraced);
+        }
     }
     vec4 scatterGradient = P.shadowScatterGradient.v[slot];
     vec4 emissionGradient = P.shadowEmissionGradient.v[slot];

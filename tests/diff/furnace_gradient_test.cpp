@@ -1,5 +1,5 @@
-// In a furnace filled with a conservative fog (sigma_a = 0), the image is Le / (1 - rho)
-// whatever the fog's sigma_s and g, so their gradients are zero: the adjoint's mean over
+// In a furnace filled with conservative media (sigma_a = 0), the image is Le / (1 - rho)
+// whatever their sigma_s and g, so those gradients are zero: the adjoint's mean over
 // seeds must be within four standard errors of 0. sigma_a, which does change the image,
 // must have a gradient many standard errors from 0, so the test sees real gradients.
 // Long free flights make single gradients heavy-tailed, so many cheap seeds (rather
@@ -16,7 +16,7 @@ namespace vkdr::test {
 namespace {
 
 constexpr int kSide = 8;
-constexpr int kSeeds = 48;
+constexpr int kSeeds = 96;
 
 class FurnaceGradientTest : public RenderTest {};
 
@@ -24,9 +24,16 @@ TEST_F(FurnaceGradientTest, ScatteringAndAnisotropyDoNotChangeTheImage) {
     TestGltf g = furnace(glm::vec3(0.5f));
     g.extensions["VKDR_participating_media"] = {
         {"name", "fog"}, {"sigma_a", {0.0, 0.0, 0.0}}, {"sigma_s", {0.5, 1.0, 2.0}}, {"g", 0.6}};
+    // Two conservative boxes side by side: shadow rays from one through the other cross
+    // three media, more than the shadow stage records, so it traces them a second time.
+    g.materials.push_back(vkdrMediumMaterial("left", glm::vec3(0.0f), glm::vec3(2.0f, 1.0f, 0.5f), -0.4f));
+    g.materials.push_back(vkdrMediumMaterial("right", glm::vec3(0.0f), glm::vec3(1.5f), 0.3f));
+    g.meshes.push_back(box(glm::vec3(-0.8f, -0.5f, 0.2f), glm::vec3(-0.2f, 0.5f, 0.8f), 1));
+    g.meshes.push_back(box(glm::vec3(0.2f, -0.5f, 0.2f), glm::vec3(0.8f, 0.5f, 0.8f), 2));
     Scene scene = loadScene(g.write(tempDir(), "furnace")).scene;
     Image black{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.0f)};
-    const std::vector<std::string> names = {"media/fog/sigma_s", "media/fog/g", "media/fog/sigma_a"};
+    const std::vector<std::string> names = {"media/fog/sigma_s", "media/fog/g",   "media/left/sigma_s",
+                                            "media/right/g",     "media/fog/sigma_a"};
     // Deep enough that truncation, which does depend on sigma_s, is far below the noise.
     RenderedLossGradient lg(testContext(), scene, {{"", black}}, names, {.spp = 8, .maxDepth = 400}, LossKind::L2);
     std::vector<std::vector<std::vector<double>>> samples(names.size(), std::vector<std::vector<double>>(3));
