@@ -24,7 +24,7 @@ constexpr uint64_t kMaxRoomTriangles = uint64_t(1) << 30;
 constexpr uint64_t kHostBytesPerTriangle = 500;
 constexpr uint64_t kDeviceBytesPerTriangle = 200;
 
-// "10k" -> 10000, "1m" -> 1000000; nothing for anything else.
+// "10k" -> 10000, "1m" -> 1000000; nothing for anything else or too large to multiply.
 std::optional<uint64_t> parseCount(const std::string& text) {
     uint64_t value = 0;
     auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -32,14 +32,11 @@ std::optional<uint64_t> parseCount(const std::string& text) {
         return std::nullopt;
     }
     std::string suffix(end, text.data() + text.size());
-    if (suffix == "k") {
-        value *= 1000;
-    } else if (suffix == "m") {
-        value *= 1000000;
-    } else if (!suffix.empty()) {
+    uint64_t scale = suffix == "k" ? 1000 : suffix == "m" ? 1000000 : 1;
+    if ((scale == 1 && !suffix.empty()) || value > kMaxRoomTriangles) {
         return std::nullopt;
     }
-    return value;
+    return value * scale;
 }
 
 bool looksLikeFile(const std::string& name) {

@@ -33,6 +33,8 @@ TEST(BenchScene, UnknownNamesAreErrorsNamingThem) {
     expectErrorMentioning([] { resolveBenchScene("room_lots", kScenes); }, {"room_lots"});
     expectErrorMentioning([] { resolveBenchScene("room_0", kScenes); }, {"room_0"});
     expectErrorMentioning([] { resolveBenchScene("room_10x", kScenes); }, {"room_10x"});
+    expectErrorMentioning([] { resolveBenchScene("room_5000000m", kScenes); }, {"room_5000000m"});
+    expectErrorMentioning([] { resolveBenchScene("room_99999999999999999999999", kScenes); }, {"room_9999"});
 }
 
 TEST(BenchScene, GeneratedRoomHasAboutTheRequestedTriangles) {
