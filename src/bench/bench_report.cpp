@@ -42,8 +42,8 @@ std::string markdownTable(const BenchReport& report) {
                " | " + format("%.2f", s.bvhBuildMs) + " | " + format("%.2f", s.trianglesPerSecond() * 1e-6) +
                " | " + format("%.1f", s.forwardMs) + " | " + format("%.1f", s.gradientMs) + " | " +
                format("%.2f", s.gradientToForward()) + " | " + format("%.3f", s.pathsPerSecond() * 1e-6) + " | " +
-               format("%.3f", s.raysPerSecond() * 1e-6) + " | " + format("%.0f", double(peakDeviceBytes(s)) / kMiB) +
-               " | " + format("%.0f", double(s.peakHostBytes) / kMiB) + " |\n";
+               format("%.3f", s.raysPerSecond() * 1e-6) + " | " + format("%.1f", double(peakDeviceBytes(s)) / kMiB) +
+               " | " + format("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
     }
     out += "\nGPU ms per stage (timestamp queries); adjoint is every adjoint-mode pass, replay the primal passes "
            "it re-renders\n\n| scene |";
