@@ -61,7 +61,9 @@ int runBench(BenchOptions options) {
             report.skipped.push_back({source.name, *reason});
             continue;
         }
-        auto progress = [&](double fraction) { bar.update((double(i) + fraction) / double(sources.size()), source.name); };
+        auto progress = [&](double fraction) {
+            bar.update((double(i) + fraction) / double(sources.size()), source.name);
+        };
         progress(0.0);
         resetPeakHostResidentBytes();
         Scene scene = loadBenchScene(source);
@@ -96,7 +98,9 @@ CommandAction addBenchCommand(CLI::App& app) {
     command->add_option("--height", options->settings.render.height,
                         "Image height in pixels (default: from the width and the camera's aspect ratio)")
         ->check(CLI::Range(1, 16384));
-    command->add_option("--iters", options->settings.iterations, "Timed iterations per measurement (median)")
+    command
+        ->add_option("--iters", options->settings.iterations,
+                     "Timed runs of each measurement after one warm-up; the figures are their median")
         ->default_val(options->settings.iterations)
         ->check(CLI::Range(1u, 1000u));
     command->add_option("--json", options->json, "Also write the results as JSON (docs/performance.md)");
