@@ -16,3 +16,6 @@ echo "GPU-assisted validation over the primal and adjoint stages:"
 VKDR_VALIDATION=gpu "$root/build/tests/render/vkdr_render_tests" --gtest_brief=1 \
   --gtest_filter='GpuTraversal*:CameraInMedium*'
 VKDR_VALIDATION=gpu "$root/build/tests/cli/vkdr_cli_tests" --gtest_brief=1 --gtest_filter='CliTest.GradPrintsOneJsonObject'
+# The benchmark harness runs once on a tiny setting: it must work; its times gate nothing.
+"$root/build/src/cli/vkdiffrender" bench cornell_fog room_10k --width 32 --spp 1 --iters 1 \
+  --json "$root/build/bench-smoke.json"

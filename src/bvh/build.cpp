@@ -61,13 +61,17 @@ struct BuildRange {
 // build's innermost loop, binning: it updates whole boxes at once. Lane 3 is unused.
 using Float4 = float __attribute__((vector_size(16)));
 using Int4 = int32_t __attribute__((vector_size(16)));
+using UInt4 = uint32_t __attribute__((vector_size(16)));
 
 Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 Float4 max4(Float4 a, Float4 b) { return a < b ? b : a; }
-// Loads x, y, z, and into lane 3 whatever four bytes follow them in memory.
+// Loads x, y, z, and 0 into lane 3. Lane 3 must not keep the bytes that follow v in
+// memory: after boundsMax they are the triangle index, which as a float is a denormal,
+// and arithmetic on denormals takes a microcode assist of ~100 cycles per operation.
 Float4 load4(const glm::vec3& v) {
     Float4 result;
     std::memcpy(&result, &v, sizeof(result));
+    result[3] = 0.0f;
     return result;
 }
 
@@ -147,6 +151,26 @@ private:
 
 Bounds3 boundsOf(const Bin& bin) { return {{bin.min[0], bin.min[1], bin.min[2]}, {bin.max[0], bin.max[1], bin.max[2]}}; }
 
+// Bounds3 in two SIMD registers, for the sweeps over bins and the partition: every
+// node sweeps all its bins six times, and converting each bin to a Bounds3 cost more
+// than the sweep itself.
+struct Box4 {
+    Float4 min = Float4{} + std::numeric_limits<float>::max();
+    Float4 max = Float4{} - std::numeric_limits<float>::max();
+    void extend(Float4 low, Float4 high) {
+        min = min4(min, low);
+        max = max4(max, high);
+    }
+    void extend(Float4 point) { extend(point, point); }
+    // Bounds3::halfArea() with the same arithmetic, so the same splits win.
+    float halfArea() const {
+        Float4 d = max - min;
+        if (d[0] < 0.0f || d[1] < 0.0f || d[2] < 0.0f) return 0.0f;
+        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    }
+    Bounds3 bounds() const { return {{min[0], min[1], min[2]}, {max[0], max[1], max[2]}}; }
+};
+
 // Where to divide a node's triangles, and what that costs in triangle tests.
 struct Split {
     int axis = -1;  // -1: no plane separates the triangles
@@ -163,49 +187,65 @@ float sahCost(float childCosts, const BuildRange& range) {
     return kTraversalCost + (nodeArea > 0.0f ? childCosts / nodeArea : 0.0f);
 }
 
+// Half areas of three boxes, one per lane, with Bounds3::halfArea()'s arithmetic (so
+// the same splits win); 0 for an empty box. Inlined: a call passes the boxes through memory.
+[[gnu::always_inline]] inline Float4 halfAreas(const std::array<Box4, 3>& boxes) {
+    Float4 d0 = boxes[0].max - boxes[0].min, d1 = boxes[1].max - boxes[1].min, d2 = boxes[2].max - boxes[2].min;
+    Float4 x{d0[0], d1[0], d2[0], 0.0f}, y{d0[1], d1[1], d2[1], 0.0f}, z{d0[2], d1[2], d2[2], 0.0f};
+    Int4 empty = (x < 0.0f) | (y < 0.0f) | (z < 0.0f);
+    return empty ? Float4{} : x * y + y * z + z * x;
+}
+
+// The SAH sweeps run the three axes at once, one per SIMD lane, without branches: a
+// sweep is a chain of dependent min/max and area sums, too short per bin to keep a
+// core busy one axis at a time. An empty bin changes neither side, so a plane after it
+// costs what the plane before it did and never wins the strict comparison: the split
+// chosen, ties included, is the one sweeping each axis alone would choose, axis 0 first.
 Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, const BuildRange& range) {
+    const int binCount = mapping.binCount();
+    std::array<std::span<const Bin>, 3> bins{grid.bins(0), grid.bins(1), grid.bins(2)};
+    auto countsOf = [&](int i) { return UInt4{bins[0][i].count, bins[1][i].count, bins[2][i].count, 0}; };
+    auto extend = [&](std::array<Box4, 3>& boxes, int i) {
+        for (int axis = 0; axis < 3; ++axis) boxes[axis].extend(bins[axis][i].min, bins[axis][i].max);
+    };
+    // aboveCost[i]: count * area of the bins [i, binCount), per axis.
+    std::array<Float4, kMaxBinCount> aboveCost;
+    std::array<Box4, 3> above;
+    UInt4 aboveCount{};
+    for (int i = binCount - 1; i >= 1; --i) {
+        extend(above, i);
+        aboveCount += countsOf(i);
+        aboveCost[i] = __builtin_convertvector(aboveCount, Float4) * halfAreas(above);
+    }
+    const Int4 splittable{-int(mapping.canSplit(0)), -int(mapping.canSplit(1)), -int(mapping.canSplit(2)), 0};
+    const UInt4 total = UInt4{} + uint32_t(range.size());
+    Float4 bestCost = Float4{} + std::numeric_limits<float>::infinity();
+    Int4 bestBin{};
+    std::array<Box4, 3> below;
+    UInt4 belowCount{};
+    for (int i = 1; i < binCount; ++i) {
+        extend(below, i - 1);
+        belowCount += countsOf(i - 1);
+        Float4 cost = __builtin_convertvector(belowCount, Float4) * halfAreas(below) + aboveCost[i];
+        // Both sides must hold triangles.
+        Int4 wins = splittable & (belowCount > 0) & (belowCount < total) & (cost < bestCost);
+        bestCost = wins ? cost : bestCost;
+        bestBin = wins ? Int4{} + i : bestBin;
+    }
     Split best;
-    int binCount = mapping.binCount();
     for (int axis = 0; axis < 3; ++axis) {
-        if (!mapping.canSplit(axis)) continue;
-        std::span<const Bin> bins = grid.bins(axis);
-        // Empty bins change nothing: skipping them keeps the sweeps in proportion to
-        // the triangles in small nodes, where most bins are empty.
-        // aboveCost[i]: count * area of the bins [i, binCount).
-        std::array<float, kMaxBinCount> aboveCost;
-        Bounds3 above;
-        uint32_t aboveCount = 0;
-        float cost = 0.0f;
-        for (int i = binCount - 1; i >= 1; --i) {
-            if (bins[i].count > 0) {
-                above.extend(boundsOf(bins[i]));
-                aboveCount += bins[i].count;
-                cost = float(aboveCount) * above.halfArea();
-            }
-            aboveCost[i] = cost;
-        }
-        Bounds3 below;
-        uint32_t belowCount = 0;
-        for (int i = 1; i < binCount; ++i) {
-            // A plane after an empty bin divides the triangles as the one before it does.
-            if (bins[i - 1].count == 0) continue;
-            below.extend(boundsOf(bins[i - 1]));
-            belowCount += bins[i - 1].count;
-            if (belowCount == range.size()) break;
-            float cost = float(belowCount) * below.halfArea() + aboveCost[i];
-            if (cost < best.cost) {
-                best.axis = axis;
-                best.bin = i;
-                best.cost = cost;
-            }
+        if (bestCost[axis] < best.cost) {
+            best.axis = axis;
+            best.bin = bestBin[axis];
+            best.cost = bestCost[axis];
         }
     }
     if (best.axis < 0) return best;
 
-    std::span<const Bin> bins = grid.bins(best.axis);
     for (int i = 0; i < binCount; ++i) {
-        (i < best.bin ? best.leftBounds : best.rightBounds).extend(boundsOf(bins[i]));
-        (i < best.bin ? best.leftCount : best.rightCount) += bins[i].count;
+        const Bin& bin = bins[best.axis][i];
+        (i < best.bin ? best.leftBounds : best.rightBounds).extend(boundsOf(bin));
+        (i < best.bin ? best.leftCount : best.rightCount) += bin.count;
     }
     best.cost = sahCost(best.cost, range);
     return best;
@@ -255,7 +295,9 @@ public:
         }
         // The right subtree gets its own array, appended after both are done, so that
         // the node order does not depend on which task finishes first.
-        std::vector<BvhNode> rightNodes(1);
+        std::vector<BvhNode> rightNodes;
+        rightNodes.reserve(2 * right.size() - 1);  // the most a subtree can have: it never moves
+        rightNodes.resize(1);
         tbb::parallel_invoke([&] { build(left, firstChild, nodes); }, [&] { build(right, 0, rightNodes); });
         appendSubtree(rightNodes, firstChild + 1, nodes);
     }
@@ -303,18 +345,31 @@ private:
     // bounds on the way; their bounds come from the bins.
     std::pair<BuildRange, BuildRange> partition(const BuildRange& range, const Split& split,
                                                 const BinMapping& mapping) const {
-        auto goesLeft = [&](const TriangleBox& box) { return mapping.bin(box.centroid(), split.axis) < split.bin; };
-        BuildRange left{.depth = range.depth + 1, .bounds = split.leftBounds};
-        BuildRange right{.depth = range.depth + 1, .bounds = split.rightBounds};
+        // As TriangleBox::centroid() and BinMapping::bin(), with the same arithmetic.
+        auto centroidOf = [](const TriangleBox& box) {
+            return 0.5f * load4(box.bounds.min) + 0.5f * load4(box.bounds.max);
+        };
+        auto goesLeft = [&](Float4 centroid) { return mapping.bins(centroid)[split.axis] < split.bin; };
+        Box4 leftCentroids, rightCentroids;
         size_t i = range.begin, j = range.end;
         for (;;) {
-            while (i < j && goesLeft(boxes_[i])) left.centroidBounds.extend(boxes_[i++].centroid());
-            while (i < j && !goesLeft(boxes_[j - 1])) right.centroidBounds.extend(boxes_[--j].centroid());
+            Float4 stray{}, strayFromRight{};
+            while (i < j && goesLeft(stray = centroidOf(boxes_[i]))) {
+                leftCentroids.extend(stray);
+                ++i;
+            }
+            while (i < j && !goesLeft(strayFromRight = centroidOf(boxes_[j - 1]))) {
+                rightCentroids.extend(strayFromRight);
+                --j;
+            }
             if (i == j) break;
-            std::swap(boxes_[i], boxes_[j - 1]);
-            left.centroidBounds.extend(boxes_[i++].centroid());
-            right.centroidBounds.extend(boxes_[--j].centroid());
+            std::swap(boxes_[i++], boxes_[--j]);
+            leftCentroids.extend(strayFromRight);
+            rightCentroids.extend(stray);
         }
+        BuildRange left{.depth = range.depth + 1, .bounds = split.leftBounds, .centroidBounds = leftCentroids.bounds()};
+        BuildRange right{.depth = range.depth + 1, .bounds = split.rightBounds,
+                         .centroidBounds = rightCentroids.bounds()};
         left.begin = range.begin;
         left.end = right.begin = i;
         right.end = range.end;
@@ -397,6 +452,7 @@ Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const glm::uvec3> t
     }
     BuildRange root;
     std::vector<TriangleBox> boxes = boxTriangles(positions, triangles, root);
+    bvh.nodes.reserve(2 * triangles.size() - 1);  // pages the tree does not use are never touched
     bvh.nodes.resize(1);
     Builder(boxes).build(root, 0, bvh.nodes);
     bvh.nodes.shrink_to_fit();

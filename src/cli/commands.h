@@ -11,5 +11,6 @@ CommandAction addRenderCommand(CLI::App& app);
 CommandAction addInfoCommand(CLI::App& app);
 CommandAction addGradCommand(CLI::App& app);
 CommandAction addOptimizeCommand(CLI::App& app);
+CommandAction addBenchCommand(CLI::App& app);
 
 }  // namespace vkdr

@@ -9,7 +9,8 @@ int main(int argc, char** argv) {
     CLI::App app("vkdiffrender: a differentiable volumetric path tracer on Vulkan", "vkdiffrender");
     app.require_subcommand(1);
     std::vector<vkdr::CommandAction> actions = {vkdr::addRenderCommand(app), vkdr::addGradCommand(app),
-                                                vkdr::addOptimizeCommand(app), vkdr::addInfoCommand(app)};
+                                                vkdr::addOptimizeCommand(app), vkdr::addBenchCommand(app),
+                                                vkdr::addInfoCommand(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -9,6 +9,7 @@
 #include "render/push_constants.h"
 #include "vk/commands.h"
 #include "vk/context.h"
+#include "vk/dispatch_timer.h"
 
 namespace vkdr {
 namespace {
@@ -214,7 +215,10 @@ void Renderer::enableGradients(const Image& target, LossKind loss) {
 
 double Renderer::loss() {
     PushConstants push{params_.address(), {0, camera_.width * camera_.height, 0, 0, 0, 0, 0, 0}};
-    CommandRecorder recorder(context_);
+    if (timer_) {
+        timer_->setScope("loss");
+    }
+    CommandRecorder recorder(context_, timer_);
     recorder.fill(adjoint_->lossSum, 0);
     recorder.barrier();
     recorder.dispatch(pipelines_.gradient->loss, camera_.width * camera_.height, push.bytes());
@@ -286,7 +290,10 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
     gpu::PassConstants constants{range.firstPixel, range.pixelCount, range.firstSample, range.samplesInPass,
                                  gpu::kQueueRays0, 0, 0, 0};
     PushConstants push{params_.address(), constants};
-    CommandRecorder recorder(context_);
+    if (timer_) {
+        timer_->setScope(mode == PassMode::Film ? "forward" : mode == PassMode::Replay ? "replay" : "adjoint");
+    }
+    CommandRecorder recorder(context_, timer_);
     recorder.dispatch(stages.generate, range.pixelCount * range.samplesInPass, push.bytes());
     recorder.barrier();
     uint32_t currentRays = gpu::kQueueRays0;

@@ -17,6 +17,7 @@ namespace vkdr {
 
 class VulkanContext;
 class CommandRecorder;
+class DispatchTimer;
 
 struct RenderStats {
     uint64_t paths = 0;
@@ -54,6 +55,9 @@ public:
     // New values of the differentiable parameters; the geometry must be the same.
     void setParameters(const Scene& scene);
     void setSeed(uint32_t seed);
+    // Times every later dispatch by stage, in the scopes "forward", "replay", "adjoint"
+    // and "loss" (vk/dispatch_timer.h); null, the default, times nothing.
+    void setDispatchTimer(DispatchTimer* timer) { timer_ = timer; }
 
     // Gradient support. enableGradients() allocates the adjoint state. loss() compares
     // the last render() with the target and keeps dLoss/dI; backpropagate() replays
@@ -92,6 +96,7 @@ private:
     LossKind lossKind_;
     Buffer params_;
     RenderStats stats_;
+    DispatchTimer* timer_ = nullptr;
 };
 
 }  // namespace vkdr

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <utility>
 
+#include "vk/allocation_counter.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 
@@ -22,7 +23,7 @@ VkDeviceSize paddedSize(VkDeviceSize size) {
 }  // namespace
 
 Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, const std::string& name)
-    : device_(context.device()), size_(paddedSize(size)) {
+    : device_(context.device()), allocations_(&context.allocations()), size_(paddedSize(size)) {
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size_;
     info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
@@ -48,6 +49,8 @@ Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, c
         release();
         checkVk(result, ("allocating " + std::to_string(size_ >> 20) + " MiB for " + name).c_str());
     }
+    allocatedBytes_ = requirements.size;
+    allocations_->add(allocatedBytes_);
     checkVk(vkBindBufferMemory(device_, buffer_, memory_, 0), "vkBindBufferMemory");
     if (use != MemoryUse::Device) {
         checkVk(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
@@ -69,6 +72,8 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     if (this != &other) {
         release();
         device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+        allocations_ = std::exchange(other.allocations_, nullptr);
+        allocatedBytes_ = std::exchange(other.allocatedBytes_, 0);
         buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
         memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
         size_ = std::exchange(other.size_, 0);
@@ -86,6 +91,8 @@ void Buffer::release() {
     if (memory_ != VK_NULL_HANDLE) {
         vkFreeMemory(device_, memory_, nullptr);
         memory_ = VK_NULL_HANDLE;
+        allocations_->remove(allocatedBytes_);
+        allocatedBytes_ = 0;
     }
     mapped_ = nullptr;
 }

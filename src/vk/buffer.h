@@ -8,6 +8,7 @@
 namespace vkdr {
 
 class VulkanContext;
+class AllocationCounter;
 
 enum class MemoryUse {
     Device,    // device-local; filled by transfers or shaders
@@ -36,6 +37,8 @@ private:
     void release();
 
     VkDevice device_ = VK_NULL_HANDLE;
+    AllocationCounter* allocations_ = nullptr;  // the context's, told of memory_
+    VkDeviceSize allocatedBytes_ = 0;
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
     VkDeviceSize size_ = 0;

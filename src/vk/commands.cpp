@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
+#include "vk/dispatch_timer.h"
 #include "vk/pipeline.h"
 
 namespace vkdr {
@@ -13,7 +14,8 @@ constexpr uint32_t kWorkgroupSize = 64;
 // Vulkan guarantees at least this many workgroups per dispatch dimension.
 constexpr uint32_t kMaxWorkgroups = 65535;
 
-CommandRecorder::CommandRecorder(const VulkanContext& context) : context_(context) {
+CommandRecorder::CommandRecorder(const VulkanContext& context, DispatchTimer* timer)
+    : context_(context), timer_(timer) {
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = context.queueFamily();
@@ -37,6 +39,9 @@ void CommandRecorder::begin() {
     VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     checkVk(vkBeginCommandBuffer(commands_, &info), "vkBeginCommandBuffer");
+    if (timer_) {
+        timer_->begin(commands_);
+    }
 }
 
 void CommandRecorder::copy(const Buffer& from, const Buffer& to, VkDeviceSize bytes) {
@@ -70,12 +75,18 @@ void CommandRecorder::dispatch(const ComputePipeline& pipeline, uint32_t threads
     }
     bind(pipeline, pushConstants);
     vkCmdDispatch(commands_, groups, 1, 1);
+    if (timer_) {
+        timer_->afterDispatch(commands_, pipeline.name());
+    }
 }
 
 void CommandRecorder::dispatchIndirect(const ComputePipeline& pipeline, const Buffer& args, VkDeviceSize offset,
                                        std::span<const std::byte> pushConstants) {
     bind(pipeline, pushConstants);
     vkCmdDispatchIndirect(commands_, args.handle(), offset);
+    if (timer_) {
+        timer_->afterDispatch(commands_, pipeline.name());
+    }
 }
 
 void CommandRecorder::barrier() {
@@ -98,6 +109,9 @@ void CommandRecorder::submitAndWait() {
     checkVk(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "vkQueueSubmit");
     checkVk(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for the device");
     checkVk(vkResetFences(context_.device(), 1, &fence_), "vkResetFences");
+    if (timer_) {
+        timer_->collect();
+    }
     checkVk(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
     begin();
 }

@@ -9,13 +9,15 @@ namespace vkdr {
 class VulkanContext;
 class Buffer;
 class ComputePipeline;
+class DispatchTimer;
 
 // Records one command buffer on the compute queue and submits it. Stages are separated
 // by full compute barriers: each stage reads what the previous one wrote, and buffers
 // are reached by address, so finer-grained barriers would buy nothing.
 class CommandRecorder {
 public:
-    explicit CommandRecorder(const VulkanContext& context);
+    // With a timer, every dispatch is timed (vk/dispatch_timer.h); without, nothing is added.
+    explicit CommandRecorder(const VulkanContext& context, DispatchTimer* timer = nullptr);
     ~CommandRecorder();
     CommandRecorder(const CommandRecorder&) = delete;
     CommandRecorder& operator=(const CommandRecorder&) = delete;
@@ -37,6 +39,7 @@ private:
     void bind(const ComputePipeline& pipeline, std::span<const std::byte> pushConstants);
 
     const VulkanContext& context_;
+    DispatchTimer* timer_;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer commands_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;

@@ -64,6 +64,15 @@ DeviceDescription describe(VkPhysicalDevice device, uint32_t index) {
     return d;
 }
 
+bool supportsExtension(VkPhysicalDevice device, const char* name) {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+    return std::any_of(extensions.begin(), extensions.end(),
+                       [name](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
 bool hasComputeQueue(VkPhysicalDevice device, uint32_t* family) {
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
@@ -227,12 +236,18 @@ void VulkanContext::createDevice() {
     queueInfo.pQueuePriorities = &priority;
 
     RequiredFeatures features;
+    std::vector<const char*> extensions(std::begin(kRequiredDeviceExtensions), std::end(kRequiredDeviceExtensions));
+    // Optional: lets the benchmark report the driver's own count of memory in use.
+    memoryBudget_ = supportsExtension(physicalDevice_, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+    if (memoryBudget_) {
+        extensions.push_back(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+    }
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     info.pNext = &features.features2;
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queueInfo;
-    info.enabledExtensionCount = static_cast<uint32_t>(std::size(kRequiredDeviceExtensions));
-    info.ppEnabledExtensionNames = kRequiredDeviceExtensions;
+    info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
     checkVk(vkCreateDevice(physicalDevice_, &info, nullptr, &device_), "vkCreateDevice");
     volkLoadDevice(device_);
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
@@ -268,6 +283,23 @@ uint64_t VulkanContext::deviceLocalHeapBytes() const {
         }
     }
     return largest;
+}
+
+std::optional<uint64_t> VulkanContext::deviceLocalHeapUsage() const {
+    if (!memoryBudget_) {
+        return std::nullopt;
+    }
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+    VkPhysicalDeviceMemoryProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
+    properties.pNext = &budget;
+    vkGetPhysicalDeviceMemoryProperties2(physicalDevice_, &properties);
+    uint64_t used = 0;
+    for (uint32_t i = 0; i < properties.memoryProperties.memoryHeapCount; ++i) {
+        if (properties.memoryProperties.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) {
+            used += budget.heapUsage[i];
+        }
+    }
+    return used;
 }
 
 void VulkanContext::setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const {

@@ -1,8 +1,10 @@
 #pragma once
 #include <atomic>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "vk/allocation_counter.h"
 #include "vk/vulkan.h"
 
 namespace vkdr {
@@ -49,6 +51,11 @@ public:
     uint32_t validationMessageCount() const { return validationMessages_.load(); }
     uint32_t memoryTypeIndex(uint32_t allowedTypes, VkMemoryPropertyFlags required) const;
     uint64_t deviceLocalHeapBytes() const;
+    // Device memory held by this context's buffers (Buffer reports to it).
+    AllocationCounter& allocations() const { return allocations_; }
+    // What the driver says the process uses of the device-local heaps, where it supports
+    // VK_EXT_memory_budget; nothing otherwise.
+    std::optional<uint64_t> deviceLocalHeapUsage() const;
     void setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
     // Features vkdiffrender needs, in the words `info` prints.
@@ -70,6 +77,8 @@ private:
     DeviceDescription description_;
     std::vector<DeviceDescription> allDevices_;
     std::atomic<uint32_t> validationMessages_{0};
+    mutable AllocationCounter allocations_;
+    bool memoryBudget_ = false;  // VK_EXT_memory_budget enabled
 };
 
 // Throws vkdr::Error when the validation layer reported anything: with VKDR_VALIDATION

@@ -71,6 +71,12 @@ TEST_F(CliTest, HelpDescribesEverySubcommand) {
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
     }
     EXPECT_EQ(run("info --help").exitCode, 0);
+    RunResult bench = run("bench --help");
+    EXPECT_EQ(bench.exitCode, 0);
+    for (const char* option : {"--spp", "--max-depth", "--width", "--height", "--iters", "--json", "--device"}) {
+        EXPECT_NE(bench.out.find(option), std::string::npos) << option;
+    }
+    EXPECT_EQ(bench.out.find("--seed"), std::string::npos);
     EXPECT_EQ(run("--help").exitCode, 0);
 }
 
@@ -147,6 +153,46 @@ TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
                             " --param media/fog/g");
     EXPECT_EQ(missing.exitCode, 2);
     EXPECT_NE(missing.err.find("none.exr"), std::string::npos) << missing.err;
+}
+
+TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {
+    fs::path json = dir_ / "bench.json";
+    RunResult r = run("bench cornell_fog room_2k --width 16 --height 16 --spp 1 --max-depth 3 --iters 1 --json " +
+                      json.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("| cornell_fog |"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("| room_2k |"), std::string::npos) << r.out;
+    nlohmann::json out = nlohmann::json::parse(slurp(json));
+    EXPECT_FALSE(out["device"].get<std::string>().empty());
+    EXPECT_FALSE(out["driver"].get<std::string>().empty());
+    ASSERT_EQ(out["scenes"].size(), 2u);
+    for (const auto& scene : out["scenes"]) {
+        for (const char* key : {"name", "triangles", "width", "height", "spp", "max_depth", "bvh_build_ms",
+                                "stages_ms", "forward_ms", "gradient_ms", "gradient_to_forward", "paths_per_s",
+                                "rays_per_s", "peak_device_bytes", "peak_host_bytes"}) {
+            EXPECT_TRUE(scene.contains(key)) << key;
+        }
+        for (const char* stage : {"generate", "intersect", "medium_sample", "shade", "shadow", "loss", "adjoint"}) {
+            EXPECT_TRUE(scene["stages_ms"][stage].is_number()) << stage;
+        }
+        EXPECT_EQ(scene["width"], 16);
+        EXPECT_EQ(scene["spp"], 1);
+        EXPECT_EQ(scene["max_depth"], 3);
+    }
+    EXPECT_EQ(out["scenes"][0]["name"], "cornell_fog");
+}
+
+TEST_F(CliTest, BenchRejectsUnknownScenesBeforeRunning) {
+    fs::path json = dir_ / "bench.json";
+    std::ofstream(json) << "previous result";
+    RunResult r = run("bench cornell_fog cornell_fgo --width 16 --iters 1 --json " + json.string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err.find("error: "), r.err.rfind("error: ")) << r.err;
+    EXPECT_NE(r.err.find("error: unknown scene 'cornell_fgo'"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_EQ(slurp(json), "previous result");
+    EXPECT_EQ(run("bench room_ --iters 1").exitCode, 2);
+    EXPECT_EQ(run("bench cornell_fog --iters 0").exitCode, 2);
 }
 
 TEST_F(CliTest, InfoNamesTheChosenDevice) {

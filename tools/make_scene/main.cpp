@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "room_scene.h"
+#include "procedural/room_scene.h"
 
 namespace {
 

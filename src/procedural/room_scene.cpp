@@ -1,4 +1,4 @@
-#include "room_scene.h"
+#include "procedural/room_scene.h"
 
 #include <array>
 #include <limits>
@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "glb_stream_writer.h"
-#include "sphere_grid.h"
+#include "procedural/glb_stream_writer.h"
+#include "procedural/sphere_grid.h"
 
 namespace vkdr {
 namespace {

@@ -1,4 +1,4 @@
-#include "glb_stream_writer.h"
+#include "procedural/glb_stream_writer.h"
 
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "sphere_grid.h"
+#include "procedural/sphere_grid.h"
 
 #include <algorithm>
 #include <cmath>

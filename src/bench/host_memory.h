@@ -1,0 +1,17 @@
+#pragma once
+#include <cstdint>
+
+namespace vkdr {
+
+// Starts a new measurement of the peak resident set (Linux: /proc/self/clear_refs);
+// where the kernel does not allow it, the peak stays the process's lifetime peak.
+void resetPeakHostResidentBytes();
+
+// The most host memory the process has held resident since the last reset: VmHWM of
+// /proc/self/status, or getrusage's ru_maxrss where that cannot be read.
+uint64_t peakHostResidentBytes();
+
+// Memory the system could still give the process without swapping (MemAvailable).
+uint64_t availableHostBytes();
+
+}  // namespace vkdr

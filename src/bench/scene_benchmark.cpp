@@ -1,0 +1,187 @@
+#include "bench/scene_benchmark.h"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "bench/host_memory.h"
+#include "bench/median.h"
+#include "bvh/bvh.h"
+#include "render/renderer.h"
+#include "vk/context.h"
+#include "vk/dispatch_timer.h"
+
+namespace vkdr {
+namespace {
+
+// The target is rendered with one seed; gradient iterations use the next two, as
+// RenderedLossGradient does: one for the image behind dLoss/dI, one for the replay.
+constexpr uint32_t kTargetSeed = 1;
+constexpr uint32_t kImageSeed = 2;
+constexpr uint32_t kReplaySeed = 3;
+
+template <typename Work>
+double millisecondsOf(Work&& work) {
+    auto start = std::chrono::steady_clock::now();
+    work();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Pipeline names (render/stage_pipelines.cpp) to stage names: the adjoint variants
+// count as their stage, and "intersect (shadow)" is the shadow stage.
+std::string stageOf(std::string pipeline) {
+    const std::string adjoint = " (adjoint)";
+    if (pipeline.ends_with(adjoint)) {
+        pipeline.resize(pipeline.size() - adjoint.size());
+    }
+    return pipeline == "intersect (shadow)" ? "shadow" : pipeline;
+}
+
+double sum(const std::map<std::string, double>& times) {
+    double total = 0.0;
+    for (const auto& [name, ms] : times) {
+        total += ms;
+    }
+    return total;
+}
+
+// One gradient iteration's stage times, keyed as in SceneBenchmark.
+struct StageTimes {
+    std::map<std::string, double> stages, adjointStages;
+};
+
+StageTimes stageTimes(const DispatchTimer::Milliseconds& timed) {
+    StageTimes out;
+    auto scope = [&](const char* name) -> const std::map<std::string, double>& {
+        static const std::map<std::string, double> none;
+        auto it = timed.find(name);
+        return it == timed.end() ? none : it->second;
+    };
+    for (const auto& [pipeline, ms] : scope("forward")) {
+        out.stages[stageOf(pipeline)] += ms;
+    }
+    for (const auto& [pipeline, ms] : scope("adjoint")) {
+        out.adjointStages[stageOf(pipeline)] += ms;
+    }
+    out.stages["loss"] = sum(scope("loss"));
+    out.stages["replay"] = sum(scope("replay"));
+    out.stages["adjoint"] = sum(scope("adjoint"));
+    return out;
+}
+
+std::map<std::string, double> medians(const std::vector<std::map<std::string, double>>& samples) {
+    std::map<std::string, std::vector<double>> byKey;
+    for (const auto& sample : samples) {
+        for (const auto& [key, value] : sample) {
+            byKey[key].push_back(value);
+        }
+    }
+    std::map<std::string, double> out;
+    for (auto& [key, values] : byKey) {
+        values.resize(samples.size(), 0.0);  // a stage that did not run in an iteration took 0
+        out[key] = median(values);
+    }
+    return out;
+}
+
+class Progress {
+public:
+    Progress(const std::function<void(double)>& report, uint32_t iterations)
+        : report_(report), total_(double(4 * iterations + 3)) {}
+    void step() {
+        if (report_) {
+            report_(++done_ / total_);
+        }
+    }
+
+private:
+    const std::function<void(double)>& report_;
+    double total_;
+    double done_ = 0.0;
+};
+
+}  // namespace
+
+SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
+                              const BenchSettings& settings, const std::function<void(double)>& progress) {
+    const uint32_t iterations = std::max(1u, settings.iterations);
+    Progress steps(progress, iterations);
+    SceneBenchmark result;
+    result.name = name;
+    result.triangles = scene.triangles.size();
+    result.spp = settings.render.spp;
+    result.maxDepth = settings.render.maxDepth;
+
+    Bvh bvh = buildBvh(scene.positions, scene.triangles);  // warm-up: starts the thread pool
+    steps.step();
+    std::vector<double> bvhMs;
+    for (uint32_t i = 0; i < iterations; ++i) {
+        bvhMs.push_back(millisecondsOf([&] { bvh = buildBvh(scene.positions, scene.triangles); }));
+        steps.step();
+    }
+    result.bvhBuildMs = median(bvhMs);
+
+    context.allocations().resetPeak();
+    std::optional<uint64_t> driverPeak;
+    auto sampleDriverMemory = [&] {
+        if (std::optional<uint64_t> used = context.deviceLocalHeapUsage()) {
+            driverPeak = std::max(driverPeak.value_or(0), *used);
+        }
+    };
+    RenderSettings renderSettings = settings.render;
+    renderSettings.seed = kTargetSeed;
+    Renderer renderer(context, scene, bvh, renderSettings);
+    result.width = renderer.width();
+    result.height = renderer.height();
+    renderer.enableGradients(renderer.render(), LossKind::L2);
+    steps.step();
+
+    auto gradientIteration = [&] {
+        renderer.setSeed(kImageSeed);
+        renderer.render();
+        renderer.loss();
+        renderer.setSeed(kReplaySeed);
+        renderer.backpropagate();
+    };
+    gradientIteration();  // warm-up: compiles the adjoint pipelines
+    sampleDriverMemory();
+    steps.step();
+
+    std::vector<double> forwardMs, gradientMs;
+    renderer.setSeed(kImageSeed);
+    for (uint32_t i = 0; i < iterations; ++i) {
+        forwardMs.push_back(millisecondsOf([&] { renderer.render(); }));
+        steps.step();
+    }
+    result.paths = renderer.stats().paths;
+    result.rays = renderer.stats().rays;
+    for (uint32_t i = 0; i < iterations; ++i) {
+        gradientMs.push_back(millisecondsOf(gradientIteration));
+        sampleDriverMemory();
+        steps.step();
+    }
+    result.forwardMs = median(forwardMs);
+    result.gradientMs = median(gradientMs);
+
+    DispatchTimer timer(context);
+    renderer.setDispatchTimer(&timer);
+    std::vector<std::map<std::string, double>> stages, adjointStages;
+    for (uint32_t i = 0; i < iterations; ++i) {
+        timer.clear();
+        gradientIteration();
+        StageTimes times = stageTimes(timer.milliseconds());
+        stages.push_back(times.stages);
+        adjointStages.push_back(times.adjointStages);
+        steps.step();
+    }
+    renderer.setDispatchTimer(nullptr);
+    result.stagesMs = medians(stages);
+    result.adjointStagesMs = medians(adjointStages);
+
+    result.peakAllocatedDeviceBytes = context.allocations().peak();
+    result.peakDriverDeviceBytes = driverPeak;
+    result.peakHostBytes = peakHostResidentBytes();
+    return result;
+}
+
+}  // namespace vkdr

@@ -1,0 +1,54 @@
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "render/render_settings.h"
+#include "scene/scene.h"
+
+namespace vkdr {
+
+class VulkanContext;
+
+struct BenchSettings {
+    RenderSettings render;    // size, spp and max depth; the seed is the benchmark's own
+    uint32_t iterations = 3;  // timed repetitions of each measurement, after one warm-up
+};
+
+// What one scene costs: medians over the timed iterations.
+struct SceneBenchmark {
+    std::string name;
+    uint64_t triangles = 0;
+    int width = 0, height = 0;
+    uint32_t spp = 0, maxDepth = 0;
+    double bvhBuildMs = 0.0;
+    double forwardMs = 0.0;   // Renderer::render(), wall clock
+    double gradientMs = 0.0;  // render(), loss() and backpropagate(), wall clock
+    uint64_t paths = 0;       // of one forward pass
+    uint64_t rays = 0;        // closest-hit and shadow rays of one forward pass
+    // GPU milliseconds by stage (DispatchTimer): the forward pass's generate, intersect,
+    // medium_sample, shade, shadow, queue_prepare and film; then loss; replay, the primal
+    // passes backpropagate() renders again; adjoint, all of its adjoint-mode passes.
+    std::map<std::string, double> stagesMs;
+    std::map<std::string, double> adjointStagesMs;  // "adjoint" by stage
+    uint64_t peakAllocatedDeviceBytes = 0;          // the most held at once by our buffers
+    std::optional<uint64_t> peakDriverDeviceBytes;  // device-local heap use, VK_EXT_memory_budget
+    uint64_t peakHostBytes = 0;                     // peak resident set since the caller's reset
+
+    double trianglesPerSecond() const { return bvhBuildMs > 0.0 ? double(triangles) / (bvhBuildMs * 1e-3) : 0.0; }
+    double pathsPerSecond() const { return forwardMs > 0.0 ? double(paths) / (forwardMs * 1e-3) : 0.0; }
+    double raysPerSecond() const { return forwardMs > 0.0 ? double(rays) / (forwardMs * 1e-3) : 0.0; }
+    double gradientToForward() const { return forwardMs > 0.0 ? gradientMs / forwardMs : 0.0; }
+};
+
+// Times the BVH build, then renders: a warm-up render that becomes the target image,
+// one warm-up gradient iteration, and then `iterations` each of forward passes,
+// gradient iterations (as RenderedLossGradient runs them), and gradient iterations
+// with a DispatchTimer attached for the stage times, so that the timestamps do not
+// slow the wall-clock figures. `progress` gets the fraction done.
+SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
+                              const BenchSettings& settings, const std::function<void(double)>& progress);
+
+}  // namespace vkdr

@@ -1,0 +1,113 @@
+#include <cstdio>
+#include <filesystem>
+
+#include "bench/bench_report.h"
+#include "bench/bench_scene.h"
+#include "bench/host_memory.h"
+#include "bench/scene_benchmark.h"
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
+#include "cli/sampling_options.h"
+#include "core/error.h"
+#include "image/atomic_write.h"
+#include "vk/context.h"
+
+namespace vkdr {
+namespace {
+
+// Small enough that the default scenes run in minutes on lavapipe.
+constexpr int kDefaultWidth = 256;
+constexpr uint32_t kDefaultSpp = 1;
+
+struct BenchOptions {
+    std::vector<std::string> scenes;
+    BenchSettings settings;
+    std::string json;
+    std::string scenesDirectory = VKDR_SCENES_DIR;
+    std::string device;
+};
+
+int runBench(BenchOptions options) {
+    if (!options.json.empty()) {
+        std::filesystem::path parent = std::filesystem::path(options.json).parent_path();
+        if (!parent.empty() && !std::filesystem::is_directory(parent)) {
+            throw Error("--json " + options.json + ": directory " + parent.string() + " does not exist");
+        }
+    }
+    if (options.settings.render.width == 0 && options.settings.render.height == 0) {
+        options.settings.render.width = kDefaultWidth;
+    }
+    if (options.scenes.empty()) {
+        options.scenes = defaultBenchScenes();
+    }
+    std::vector<BenchSceneSource> sources;
+    for (const std::string& name : options.scenes) {
+        sources.push_back(resolveBenchScene(name, options.scenesDirectory));
+    }
+
+    VulkanContext context(ContextOptions{options.device});
+    BenchReport report;
+    report.device = context.description().name;
+    report.driver = context.description().driver;
+    report.iterations = options.settings.iterations;
+    const bool deviceIsHost = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    ProgressBar bar("bench");
+    for (size_t i = 0; i < sources.size(); ++i) {
+        const BenchSceneSource& source = sources[i];
+        if (std::optional<std::string> reason =
+                whyTooLarge(source, availableHostBytes(), context.deviceLocalHeapBytes(), deviceIsHost)) {
+            bar.finish();
+            std::fprintf(stderr, "skipped %s: %s\n", source.name.c_str(), reason->c_str());
+            report.skipped.push_back({source.name, *reason});
+            continue;
+        }
+        auto progress = [&](double fraction) {
+            bar.update((double(i) + fraction) / double(sources.size()), source.name);
+        };
+        progress(0.0);
+        resetPeakHostResidentBytes();
+        Scene scene = loadBenchScene(source);
+        report.scenes.push_back(benchmarkScene(context, source.name, scene, options.settings, progress));
+    }
+    bar.finish();
+    requireNoValidationMessages(context);
+
+    std::printf("%s", markdownTable(report).c_str());
+    if (!options.json.empty()) {
+        writeAtomically(options.json, [&](std::ofstream& out) { out << reportJson(report).dump(2) << "\n"; });
+    }
+    return 0;
+}
+
+}  // namespace
+
+CommandAction addBenchCommand(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "bench", "Time scenes: BVH build, GPU time per stage, forward pass and gradient iteration, memory");
+    auto options = std::make_shared<BenchOptions>();
+    options->settings.render.spp = kDefaultSpp;
+    command->add_option("scenes", options->scenes,
+                        "cornell_fog, cornell_smoke (any NAME.gltf in --scenes-dir), room_<N> for a procedural "
+                        "room of N triangles (room_10k, room_1m), or a .gltf/.glb file (default: cornell_fog "
+                        "cornell_smoke room_10k room_100k room_1m room_10m)");
+    SamplingOptions sampling = addSamplingOptions(*command, options->settings.render);
+    command->remove_option(sampling.seed);  // the benchmark picks its own seeds
+    command->add_option("--width", options->settings.render.width,
+                        "Image width in pixels (default: 256, or from --height)")
+        ->check(CLI::Range(1, 16384));
+    command->add_option("--height", options->settings.render.height,
+                        "Image height in pixels (default: from the width and the camera's aspect ratio)")
+        ->check(CLI::Range(1, 16384));
+    command
+        ->add_option("--iters", options->settings.iterations,
+                     "Timed runs of each measurement after one warm-up; the figures are their median")
+        ->default_val(options->settings.iterations)
+        ->check(CLI::Range(1u, 1000u));
+    command->add_option("--json", options->json, "Also write the results as JSON (docs/performance.md)");
+    command->add_option("--scenes-dir", options->scenesDirectory, "Where the shipped scenes are")
+        ->default_val(options->scenesDirectory);
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
+    return [command, options]() { return command->parsed() ? runBench(*options) : -1; };
+}
+
+}  // namespace vkdr

@@ -1,0 +1,72 @@
+// The benchmark's JSON has the shape issue 4 asks for, and the table a row per scene.
+#include <gtest/gtest.h>
+
+#include "bench/bench_report.h"
+
+namespace vkdr::test {
+namespace {
+
+BenchReport exampleReport() {
+    SceneBenchmark scene;
+    scene.name = "room_10k";
+    scene.triangles = 10012;
+    scene.width = 16;
+    scene.height = 12;
+    scene.spp = 2;
+    scene.maxDepth = 4;
+    scene.bvhBuildMs = 5.0;
+    scene.forwardMs = 100.0;
+    scene.gradientMs = 250.0;
+    scene.paths = 384;
+    scene.rays = 1000;
+    scene.stagesMs = {{"generate", 1.0}, {"intersect", 2.0}, {"adjoint", 3.0}};
+    scene.adjointStagesMs = {{"shade", 1.5}};
+    scene.peakAllocatedDeviceBytes = 1 << 20;
+    scene.peakHostBytes = 1 << 24;
+    BenchReport report{"llvmpipe", "Mesa", 3, {scene}, {{"room_10m", "needs about 5 GiB of host memory"}}};
+    return report;
+}
+
+TEST(BenchReport, JsonHasEveryFieldOfTheIssue) {
+    nlohmann::ordered_json json = reportJson(exampleReport());
+    EXPECT_EQ(json["device"], "llvmpipe");
+    EXPECT_EQ(json["driver"], "Mesa");
+    ASSERT_EQ(json["scenes"].size(), 1u);
+    const auto& scene = json["scenes"][0];
+    for (const char* key : {"name", "triangles", "width", "height", "spp", "max_depth", "bvh_build_ms", "stages_ms",
+                            "forward_ms", "gradient_ms", "gradient_to_forward", "paths_per_s", "rays_per_s",
+                            "peak_device_bytes", "peak_host_bytes"}) {
+        EXPECT_TRUE(scene.contains(key)) << key;
+    }
+    for (const char* stage : {"generate", "intersect", "medium_sample", "shade", "shadow", "loss", "adjoint"}) {
+        EXPECT_TRUE(scene["stages_ms"].contains(stage)) << stage;
+    }
+    EXPECT_EQ(scene["triangles"], 10012);
+    EXPECT_EQ(scene["stages_ms"]["intersect"], 2.0);
+    EXPECT_EQ(scene["stages_ms"]["shadow"], 0.0);  // not measured: 0, never missing
+    EXPECT_DOUBLE_EQ(scene["gradient_to_forward"].get<double>(), 2.5);
+    EXPECT_DOUBLE_EQ(scene["paths_per_s"].get<double>(), 3840.0);
+    EXPECT_DOUBLE_EQ(scene["bvh_triangles_per_s"].get<double>(), 10012.0 / 0.005);
+    EXPECT_EQ(scene["peak_device_bytes"], 1 << 20);
+    EXPECT_EQ(scene["peak_device_source"], "allocations");
+    EXPECT_EQ(json["skipped"][0]["name"], "room_10m");
+}
+
+TEST(BenchReport, DriverMemoryCountTakesPrecedence) {
+    BenchReport report = exampleReport();
+    report.scenes[0].peakDriverDeviceBytes = 3 << 20;
+    nlohmann::ordered_json json = reportJson(report);
+    const auto& scene = json["scenes"][0];
+    EXPECT_EQ(scene["peak_device_bytes"], 3 << 20);
+    EXPECT_EQ(scene["peak_device_source"], "VK_EXT_memory_budget");
+    EXPECT_EQ(scene["peak_allocated_device_bytes"], 1 << 20);
+}
+
+TEST(BenchReport, TableHasARowPerSceneAndNamesSkippedOnes) {
+    std::string table = markdownTable(exampleReport());
+    EXPECT_NE(table.find("| room_10k | 10012 | 16x12 | 2 | 4 |"), std::string::npos) << table;
+    EXPECT_NE(table.find("skipped room_10m: needs about 5 GiB"), std::string::npos) << table;
+}
+
+}  // namespace
+}  // namespace vkdr::test
