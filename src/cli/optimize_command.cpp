@@ -40,6 +40,7 @@ struct ExperimentOverrides {
     CLI::Option* iterations;
     CLI::Option* learningRate;
     CLI::Option* learningRateDecay;
+    CLI::Option* learningRateDecayStart;
     CLI::Option* optimizer;
     CLI::Option* spp;
     CLI::Option* maxDepth;
@@ -100,6 +101,9 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.learningRate->count()) experiment.optimize.learningRate = options.optimize.learningRate;
     if (given.learningRateDecay->count()) {
         experiment.optimize.learningRateDecay = options.optimize.learningRateDecay;
+    }
+    if (given.learningRateDecayStart->count()) {
+        experiment.optimize.learningRateDecayStart = options.optimize.learningRateDecayStart;
     }
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
     if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
@@ -171,6 +175,10 @@ CommandAction addOptimizeCommand(CLI::App& app) {
         command->add_option("--lr-decay", options->optimize.learningRateDecay,
                             "The learning rate at the last iteration as a fraction of --lr (exponential decay)")
             ->default_val(options->optimize.learningRateDecay)->check(CLI::Range(1e-9, 1.0));
+    overrides.learningRateDecayStart =
+        command->add_option("--lr-decay-start", options->optimize.learningRateDecayStart,
+                            "The fraction of the iterations run at the full rate before the decay starts")
+            ->default_val(options->optimize.learningRateDecayStart)->check(CLI::Range(0.0, 0.999));
     overrides.optimizer = command->add_option("--optimizer", options->optimizer, "adam or sgd")
                               ->default_val(options->optimizer)->check(CLI::IsMember({"adam", "sgd"}));
     SamplingOptions sampling = addSamplingOptions(*command, options->settings);

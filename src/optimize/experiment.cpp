@@ -20,7 +20,7 @@ using Json = nlohmann::ordered_json;  // keeps "start" in file order: the defaul
 
 const std::set<std::string> kKeys = {"scene", "views", "cameras", "width", "height", "spp", "target_spp",
                                      "max_depth", "seed", "iterations", "optimizer", "learning_rate",
-                                     "learning_rates", "learning_rate_decay", "loss", "true", "start", "parameters"};
+                                     "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "loss", "true", "start", "parameters"};
 const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees"};
 
 // Reads one experiment file, prefixing every error with the file and the key at fault.
@@ -157,6 +157,13 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
     if (document.contains("learning_rate_decay")) {
         options.learningRateDecay = reader.positive(document["learning_rate_decay"], "learning_rate_decay");
         if (options.learningRateDecay > 1.0) reader.fail("learning_rate_decay", "expected a number in (0, 1]");
+    }
+    if (document.contains("learning_rate_decay_start")) {
+        const Json& start = document["learning_rate_decay_start"];
+        if (!start.is_number() || !(start.get<double>() >= 0.0 && start.get<double>() < 1.0)) {
+            reader.fail("learning_rate_decay_start", "expected a number in [0, 1)");
+        }
+        options.learningRateDecayStart = start.get<double>();
     }
     if (document.contains("learning_rates")) {
         const Json& rates = document["learning_rates"];

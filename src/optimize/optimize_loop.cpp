@@ -62,6 +62,15 @@ std::vector<double> flatGradient(const ParameterVector& parameters, const Gradie
     return gradient;
 }
 
+// The exponent of the learning rate decay: 0 until the decay starts, 1 at the last iteration.
+double decayProgress(const OptimizeOptions& options, uint32_t iteration) {
+    if (options.iterations < 2) {
+        return 0.0;
+    }
+    double run = double(iteration) / double(options.iterations - 1);
+    return std::max(0.0, (run - options.learningRateDecayStart) / (1.0 - options.learningRateDecayStart));
+}
+
 }  // namespace
 
 OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const OptimizeOptions& options,
@@ -72,6 +81,10 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
     if (!(options.learningRateDecay > 0.0 && options.learningRateDecay <= 1.0)) {
         throw Error("the learning rate decay must be in (0, 1], got " + std::to_string(options.learningRateDecay));
     }
+    if (!(options.learningRateDecayStart >= 0.0 && options.learningRateDecayStart < 1.0)) {
+        throw Error("the learning rate decay start must be in [0, 1), got " +
+                    std::to_string(options.learningRateDecayStart));
+    }
     ParameterVector parameters(scene, options.parameters);
     std::unique_ptr<Optimizer> optimizer = makeOptimizer(options.optimizer, perValueLearningRates(parameters, options));
     OptimizeResult result;
@@ -80,8 +93,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         requireFinite(evaluation, iteration);
         std::vector<double> gradient = flatGradient(parameters, evaluation);
 
-        double progress = options.iterations > 1 ? double(iteration) / double(options.iterations - 1) : 0.0;
-        optimizer->setLearningRateScale(std::pow(options.learningRateDecay, progress));
+        optimizer->setLearningRateScale(std::pow(options.learningRateDecay, decayProgress(options, iteration)));
         optimizer->step(parameters.values(), gradient);
         parameters.project();
         parameters.writeTo(scene);

@@ -18,9 +18,13 @@ struct OptimizeOptions {
     double learningRate = 0.01;
     std::map<std::string, double> learningRates;  // per-parameter overrides of learningRate
     // The rates at the last iteration as a fraction of the first, decaying exponentially:
-    // iteration i uses rate * learningRateDecay^(i / (iterations - 1)). Below 1 it damps
+    // iteration i uses rate * learningRateDecay^p, where p rises from 0 at
+    // learningRateDecayStart * (iterations - 1) to 1 at the last iteration. Below 1 it damps
     // the noise-driven wandering around the minimum that a constant rate keeps up.
     double learningRateDecay = 1.0;
+    // The fraction of the iterations that run at the full rate before the decay starts,
+    // in [0, 1): the values can travel to the minimum first, then settle on it.
+    double learningRateDecayStart = 0.0;
     uint32_t iterations = 100;
     uint32_t seed = 0;  // iteration i renders with seed + i
 };

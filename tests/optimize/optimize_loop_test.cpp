@@ -110,6 +110,26 @@ TEST(OptimizeLoop, DecaysTheLearningRateExponentiallyToTheGivenFraction) {
     EXPECT_THROW(optimize(loss, scene, options), Error);
 }
 
+TEST(OptimizeLoop, HoldsTheLearningRateUntilTheDecayStarts) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/g", {-100.0}}});
+    OptimizeOptions options = optionsFor({"media/fog/g"}, OptimizerKind::Sgd, 1e-4, 5);
+    options.learningRateDecay = 0.25;
+    options.learningRateDecayStart = 0.5;
+    std::vector<double> values;
+    optimize(loss, scene, options, {{}, [&](const IterationRecord& record) { values.push_back(record.parameters[0].value[0]); }});
+    values.push_back(getParameter(scene, "media/fog/g")[0]);
+    ASSERT_EQ(values.size(), 6u);
+    // Iterations 0-2 at the full rate, then 0.25^(1/2) and 0.25^1 at iterations 3 and 4.
+    std::vector<double> rates = {1e-4, 1e-4, 1e-4, 0.5e-4, 0.25e-4};
+    for (size_t i = 0; i < 5; ++i) {
+        EXPECT_NEAR(values[i] - values[i + 1], rates[i] * 2.0 * (values[i] + 100.0), 1e-7) << i;
+    }
+
+    options.learningRateDecayStart = 1.0;
+    EXPECT_THROW(optimize(loss, scene, options), Error);
+}
+
 TEST(OptimizeLoop, RendersIterationIWithBaseSeedPlusIAndReportsProgress) {
     Scene scene = sceneWithParameters();
     QuadraticLossGradient loss({{"media/fog/g", {0.0}}});
