@@ -62,10 +62,28 @@ std::vector<double> flatGradient(const ParameterVector& parameters, const Gradie
     return gradient;
 }
 
+void restore(const LoopState& state, const OptimizeOptions& options, ParameterVector& parameters,
+             Optimizer& optimizer, OptimizeResult& result) {
+    if (state.iteration >= options.iterations || state.losses.size() != state.iteration) {
+        throw Error("cannot resume after iteration " + std::to_string(state.iteration) + " with " +
+                    std::to_string(state.losses.size()) + " losses in a run of " +
+                    std::to_string(options.iterations) + " iterations");
+    }
+    if (state.values.size() != parameters.size()) {
+        throw Error("cannot resume with " + std::to_string(state.values.size()) + " values where " +
+                    std::to_string(parameters.size()) + " are optimised");
+    }
+    optimizer.restore(state.optimizer);
+    std::copy(state.values.begin(), state.values.end(), parameters.values().begin());
+    result.losses = state.losses;
+    result.forwardMs = state.forwardMs;
+    result.adjointMs = state.adjointMs;
+}
+
 }  // namespace
 
 OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const OptimizeOptions& options,
-                        const OptimizeCallbacks& callbacks) {
+                        const OptimizeCallbacks& callbacks, const LoopState* resume) {
     if (options.iterations == 0) {
         throw Error("the number of iterations must be at least 1");
     }
@@ -75,7 +93,13 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
     ParameterVector parameters(scene, options.parameters);
     std::unique_ptr<Optimizer> optimizer = makeOptimizer(options.optimizer, perValueLearningRates(parameters, options));
     OptimizeResult result;
-    for (uint32_t iteration = 0; iteration < options.iterations; ++iteration) {
+    uint32_t first = 0;
+    if (resume) {
+        restore(*resume, options, parameters, *optimizer, result);
+        parameters.writeTo(scene);
+        first = resume->iteration;
+    }
+    for (uint32_t iteration = first; iteration < options.iterations; ++iteration) {
         GradientResult evaluation = lossGradient.evaluate(scene, options.seed + iteration);
         requireFinite(evaluation, iteration);
         std::vector<double> gradient = flatGradient(parameters, evaluation);
@@ -97,6 +121,13 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
             callbacks.progress(iteration, evaluation.loss);
         }
         result.lastImages = std::move(evaluation.images);
+        uint32_t done = iteration + 1;
+        if (callbacks.checkpoint && options.checkpointEvery > 0 && done % options.checkpointEvery == 0 &&
+            done < options.iterations) {
+            std::vector<double> values(parameters.values().begin(), parameters.values().end());
+            callbacks.checkpoint(LoopState{done, std::move(values), optimizer->state(), result.losses,
+                                           result.forwardMs, result.adjointMs});
+        }
     }
     return result;
 }
