@@ -13,6 +13,16 @@
 namespace vkdr {
 namespace {
 
+// Bounds on what a file can make the loader build. The largest scenes vkdiffrender is
+// meant for (10M triangles from tools/make_scene) fit well within them; a hierarchy that
+// instances a mesh exponentially often (each node listing the next twice) or nests
+// nodes deeper than any exporter does is refused before it exhausts memory, time or
+// the stack.
+constexpr size_t kMaxSceneTriangles = size_t(1) << 25;
+constexpr size_t kMaxSceneVertices = size_t(1) << 26;
+constexpr size_t kMaxNodeDepth = 1000;
+constexpr size_t kMaxNodeVisits = size_t(1) << 22;
+
 glm::mat4 localTransform(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) {
         return glm::mat4(glm::make_mat4(node.matrix.data()));  // column-major, as glm
@@ -53,10 +63,18 @@ public:
         : model_(model), diagnostics_(diagnostics), scene_(scene),
           visiting_(model.nodes.size(), false) {}
 
-    void visit(int nodeIndex, const glm::mat4& parentToWorld, const std::string& field) {
+    void visit(int nodeIndex, const glm::mat4& parentToWorld, const std::string& field, size_t depth = 0) {
         if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size()) {
             diagnostics_.fail(field, "node " + std::to_string(nodeIndex) + " out of range (" +
                                          std::to_string(model_.nodes.size()) + " nodes)");
+        }
+        if (depth >= kMaxNodeDepth) {
+            diagnostics_.fail(field, "the node hierarchy is nested more than " + std::to_string(kMaxNodeDepth) +
+                                         " levels deep");
+        }
+        if (++visits_ > kMaxNodeVisits) {
+            diagnostics_.fail(field, "the node hierarchy instances more than " + std::to_string(kMaxNodeVisits) +
+                                         " nodes (nodes listed as children of several parents multiply)");
         }
         if (visiting_[size_t(nodeIndex)]) {
             diagnostics_.fail(field, "node " + std::to_string(nodeIndex) +
@@ -76,7 +94,7 @@ public:
             addCamera(node, nodeField, nodeToWorld);
         }
         for (size_t c = 0; c < node.children.size(); ++c) {
-            visit(node.children[c], nodeToWorld, indexed(nodeField + ".children", c));
+            visit(node.children[c], nodeToWorld, indexed(nodeField + ".children", c), depth + 1);
         }
         visiting_[size_t(nodeIndex)] = false;
     }
@@ -152,6 +170,7 @@ private:
                                                           " vertices)");
             }
         }
+        requireRoomFor(positions.size(), mode, indices.size(), field);
         uint32_t material = materialIndex(primitive.material, field + ".material");
         // A mirroring transform turns counter-clockwise triangles clockwise (glTF spec,
         // "Meshes": the determinant decides the winding), so swap two corners back.
@@ -173,6 +192,17 @@ private:
             }
             scene_.triangles.push_back(triangle + glm::uvec3(base));
             scene_.triangleMaterial.push_back(material);
+        }
+    }
+
+    // Keeps every vertex index within 32 bits and the scene within memory.
+    void requireRoomFor(size_t vertices, int mode, size_t indices, const std::string& field) const {
+        size_t triangles = mode == TINYGLTF_MODE_TRIANGLES ? indices / 3 : (indices < 2 ? 0 : indices - 2);
+        if (scene_.positions.size() + vertices > kMaxSceneVertices ||
+            scene_.triangles.size() + triangles > kMaxSceneTriangles) {
+            diagnostics_.fail(field, "the scene would exceed " + std::to_string(kMaxSceneTriangles) +
+                                         " triangles or " + std::to_string(kMaxSceneVertices) +
+                                         " vertices with all mesh instances");
         }
     }
 
@@ -246,6 +276,13 @@ private:
             diagnostics_.fail(cameraField + ".perspective.yfov",
                               "must be in (0, pi), got " + formatNumber(source.perspective.yfov));
         }
+        // Absent is 0 (the image's aspect ratio decides); a wider camera than 1e4 : 1
+        // makes no image of at most 16384 pixels a side.
+        double aspect = source.perspective.aspectRatio;
+        if (aspect != 0.0 && !(aspect >= 1e-4 && aspect <= 1e4)) {
+            diagnostics_.fail(cameraField + ".perspective.aspectRatio",
+                              "must be in [1e-4, 1e4], got " + formatNumber(aspect));
+        }
         Camera camera;
         camera.name = !node.name.empty() ? node.name : !source.name.empty() ? source.name : cameraField;
         // Rays are built from the axes, so keep the rotation and position only.
@@ -253,6 +290,12 @@ private:
                                          glm::vec4(glm::normalize(glm::vec3(cameraToWorld[1])), 0.0f),
                                          glm::vec4(glm::normalize(glm::vec3(cameraToWorld[2])), 0.0f),
                                          cameraToWorld[3]);
+        for (int column = 0; column < 4; ++column) {
+            glm::vec4 axis = camera.cameraToWorld[column];
+            if (!std::isfinite(axis.x) || !std::isfinite(axis.y) || !std::isfinite(axis.z)) {
+                diagnostics_.fail(nodeField, "the camera's transform is degenerate (a zero scale) or not finite");
+            }
+        }
         camera.yfov = float(source.perspective.yfov);
         camera.aspectRatio = float(source.perspective.aspectRatio);
         scene_.cameras.push_back(std::move(camera));
@@ -262,6 +305,7 @@ private:
     GltfDiagnostics& diagnostics_;
     Scene& scene_;
     std::vector<bool> visiting_;  // nodes on the current root-to-node path
+    size_t visits_ = 0;           // nodes visited, counting each instance
     std::optional<uint32_t> defaultMaterial_;
     std::vector<MeshInstance> instances_;
 };
