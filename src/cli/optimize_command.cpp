@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "diff/rendered_loss_gradient.h"
 #include "image/image.h"
+#include "optimize/checkpoint.h"
 #include "optimize/experiment_run.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/optimization_run.h"
@@ -19,6 +20,7 @@
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "vk/context.h"
+#include "vk/vulkan.h"
 
 namespace vkdr {
 namespace {
@@ -91,6 +93,16 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
                 directory.string().c_str());
 }
 
+// A lost device stops the run like any error; what it leaves to resume from is worth saying.
+[[noreturn]] void failWithResumeHint(const DeviceLostError& error, const std::filesystem::path& directory) {
+    std::filesystem::path checkpoint = directory / kCheckpointFileName;
+    throw Error(std::string(error.what()) +
+                (std::filesystem::exists(checkpoint)
+                     ? "; " + checkpoint.string() + " is intact: run the same command with --resume " +
+                           directory.string()
+                     : "; no checkpoint had been written yet"));
+}
+
 std::function<void(uint32_t, double)> progressOn(ProgressBar& bar, uint32_t iterations) {
     return [&bar, iterations](uint32_t iteration, double loss) {
         char status[64];
@@ -123,7 +135,12 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     RenderedLossGradient lossGradient(context, scene, std::move(views), options.optimize.parameters,
                                       options.settings, loss);
     ProgressBar bar("optimize");
-    OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
+    OptimizationReport report;
+    try {
+        report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
+    } catch (const DeviceLostError& error) {
+        failWithResumeHint(error, options.out);
+    }
     bar.finish();
     requireNoValidationMessages(context);
     printOutputs(options.out, report);
@@ -175,8 +192,13 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
                  context.description().name.c_str());
 
     ProgressBar bar("optimize");
-    ExperimentResult result = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
-                                            progressOn(bar, experiment.optimize.iterations));
+    ExperimentResult result;
+    try {
+        result = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
+                               progressOn(bar, experiment.optimize.iterations));
+    } catch (const DeviceLostError& error) {
+        failWithResumeHint(error, options.out);
+    }
     bar.finish();
     requireNoValidationMessages(context);
     std::printf("%s", recoveryTable(result.recoveries).c_str());

@@ -22,11 +22,12 @@ inline std::string slurp(const std::filesystem::path& file) {
     return s.str();
 }
 
-// Runs vkdiffrender with `args` (shell syntax), its stdout and stderr captured in files
-// in `scratch`.
-inline RunResult runCli(const std::string& args, const std::filesystem::path& scratch) {
-    std::string command = std::string(VKDR_CLI_PATH) + " " + args + " > " + (scratch / "stdout").string() + " 2> " +
-                          (scratch / "stderr").string() + " < /dev/null";
+// Runs vkdiffrender with `args` (shell syntax) and `environment` (NAME=VALUE ...), its
+// stdout and stderr captured in files in `scratch`.
+inline RunResult runCli(const std::string& args, const std::filesystem::path& scratch,
+                        const std::string& environment = "") {
+    std::string command = environment + " " + std::string(VKDR_CLI_PATH) + " " + args + " > " +
+                          (scratch / "stdout").string() + " 2> " + (scratch / "stderr").string() + " < /dev/null";
     int status = std::system(command.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(scratch / "stdout"), slurp(scratch / "stderr")};
 }
