@@ -42,6 +42,22 @@ void requireFinite(const GradientResult& result, uint32_t iteration) {
     }
 }
 
+// A finite gradient can still step a value past what a float holds (SGD with a large
+// rate); the scene stores floats, so such a step must not reach it.
+void requireFiniteSteps(const ParameterVector& parameters, uint32_t iteration) {
+    for (size_t i = 0; i < parameters.names().size(); ++i) {
+        for (size_t c = 0; c < parameters.count(i); ++c) {
+            double value = parameters.values()[parameters.offset(i) + c];
+            if (!std::isfinite(float(value))) {
+                throw Error("iteration " + std::to_string(iteration) + ": the step took " + parameters.names()[i] +
+                            " to " + std::to_string(value) +
+                            ", beyond float range; no values from this iteration were kept (try a smaller "
+                            "learning rate)");
+            }
+        }
+    }
+}
+
 // The gradient in the ParameterVector's layout. A LossGradient that does not answer for
 // exactly the parameters asked for is a bug, not a user error.
 std::vector<double> flatGradient(const ParameterVector& parameters, const GradientResult& result) {
@@ -108,6 +124,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         optimizer->setLearningRateScale(std::pow(options.learningRateDecay, progress));
         optimizer->step(parameters.values(), gradient);
         parameters.project();
+        requireFiniteSteps(parameters, iteration);
         parameters.writeTo(scene);
 
         result.losses.push_back(evaluation.loss);
