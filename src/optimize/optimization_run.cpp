@@ -106,6 +106,7 @@ OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, con
     RunIdentity identity = identityOf(job);
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
+    removeStaleTemporaries(directory);  // a killed run's partial writes
     IterationLog log = resume ? IterationLog(directory / "log.jsonl", resume->iteration)
                               : IterationLog(directory / "log.jsonl");
     OptimizeCallbacks callbacks{progress, [&](const IterationRecord& record) { log.append(record); },
