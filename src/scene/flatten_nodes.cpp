@@ -21,7 +21,7 @@ namespace {
 constexpr size_t kMaxSceneTriangles = size_t(1) << 25;
 constexpr size_t kMaxSceneVertices = size_t(1) << 26;
 constexpr size_t kMaxNodeDepth = 1000;
-constexpr size_t kMaxNodeVisits = size_t(1) << 22;
+constexpr size_t kMaxNodeVisits = size_t(1) << 20;
 
 glm::mat4 localTransform(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) {
@@ -57,44 +57,53 @@ std::string describe(std::string_view array, size_t index, const std::string& na
     return indexed(array, index) + (name.empty() ? "" : " ('" + name + "')");
 }
 
+// Where a node index is listed: slot `slot` of the root list (parent < 0) or of node
+// `parent`'s children. It becomes a JSON path only for a message, since a hierarchy may
+// instance millions of nodes.
+struct NodeSlot {
+    int parent = -1;
+    size_t slot = 0;
+};
+
 class NodeFlattener {
 public:
-    NodeFlattener(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene)
-        : model_(model), diagnostics_(diagnostics), scene_(scene),
+    NodeFlattener(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene, std::string rootsField)
+        : model_(model), diagnostics_(diagnostics), scene_(scene), rootsField_(std::move(rootsField)),
           visiting_(model.nodes.size(), false) {}
 
-    void visit(int nodeIndex, const glm::mat4& parentToWorld, const std::string& field, size_t depth = 0) {
+    void visit(int nodeIndex, const glm::mat4& parentToWorld, NodeSlot where, size_t depth = 0) {
         if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size()) {
-            diagnostics_.fail(field, "node " + std::to_string(nodeIndex) + " out of range (" +
-                                         std::to_string(model_.nodes.size()) + " nodes)");
+            diagnostics_.fail(fieldOf(where), "node " + std::to_string(nodeIndex) + " out of range (" +
+                                                  std::to_string(model_.nodes.size()) + " nodes)");
         }
         if (depth >= kMaxNodeDepth) {
-            diagnostics_.fail(field, "the node hierarchy is nested more than " + std::to_string(kMaxNodeDepth) +
-                                         " levels deep");
+            diagnostics_.fail(fieldOf(where), "the node hierarchy is nested more than " +
+                                                  std::to_string(kMaxNodeDepth) + " levels deep");
         }
         if (++visits_ > kMaxNodeVisits) {
-            diagnostics_.fail(field, "the node hierarchy instances more than " + std::to_string(kMaxNodeVisits) +
-                                         " nodes (nodes listed as children of several parents multiply)");
+            diagnostics_.fail(fieldOf(where), "the node hierarchy instances more than " +
+                                                  std::to_string(kMaxNodeVisits) +
+                                                  " nodes (nodes listed as children of several parents multiply)");
         }
         if (visiting_[size_t(nodeIndex)]) {
-            diagnostics_.fail(field, "node " + std::to_string(nodeIndex) +
-                                         " is its own ancestor (cycle in the node hierarchy)");
+            diagnostics_.fail(fieldOf(where), "node " + std::to_string(nodeIndex) +
+                                                  " is its own ancestor (cycle in the node hierarchy)");
         }
         visiting_[size_t(nodeIndex)] = true;
         const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
-        std::string nodeField = indexed("nodes", size_t(nodeIndex));
         glm::mat4 nodeToWorld = parentToWorld * localTransform(node);
         if (node.skin >= 0) {
-            diagnostics_.warn(nodeField + ".skin", "skinning is ignored; the bind pose is used");
+            diagnostics_.warn(indexed("nodes", size_t(nodeIndex)) + ".skin",
+                              "skinning is ignored; the bind pose is used");
         }
         if (node.mesh >= 0) {
             addMeshInstance(size_t(nodeIndex), nodeToWorld);
         }
         if (node.camera >= 0) {
-            addCamera(node, nodeField, nodeToWorld);
+            addCamera(node, indexed("nodes", size_t(nodeIndex)), nodeToWorld);
         }
         for (size_t c = 0; c < node.children.size(); ++c) {
-            visit(node.children[c], nodeToWorld, indexed(nodeField + ".children", c), depth + 1);
+            visit(node.children[c], nodeToWorld, {nodeIndex, c}, depth + 1);
         }
         visiting_[size_t(nodeIndex)] = false;
     }
@@ -102,6 +111,11 @@ public:
     std::vector<MeshInstance> takeInstances() { return std::move(instances_); }
 
 private:
+    std::string fieldOf(NodeSlot where) const {
+        return where.parent < 0 ? indexed(rootsField_, where.slot)
+                                : indexed(indexed("nodes", size_t(where.parent)) + ".children", where.slot);
+    }
+
     void addMeshInstance(size_t nodeIndex, const glm::mat4& meshToWorld) {
         const tinygltf::Node& node = model_.nodes[nodeIndex];
         if (size_t(node.mesh) >= model_.meshes.size()) {
@@ -304,6 +318,7 @@ private:
     const tinygltf::Model& model_;
     GltfDiagnostics& diagnostics_;
     Scene& scene_;
+    std::string rootsField_;      // the JSON path of the root list
     std::vector<bool> visiting_;  // nodes on the current root-to-node path
     size_t visits_ = 0;           // nodes visited, counting each instance
     std::optional<uint32_t> defaultMaterial_;
@@ -343,10 +358,10 @@ std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model,
 
 std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnostics& diagnostics,
                                        Scene& scene) {
-    NodeFlattener flattener(model, diagnostics, scene);
     auto [roots, field] = rootNodes(model, diagnostics);
+    NodeFlattener flattener(model, diagnostics, scene, field);
     for (size_t r = 0; r < roots.size(); ++r) {
-        flattener.visit(roots[r], glm::mat4(1.0f), indexed(field, r));
+        flattener.visit(roots[r], glm::mat4(1.0f), {-1, r});
     }
     return flattener.takeInstances();
 }
