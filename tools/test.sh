@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs, builds, and runs the whole test suite on lavapipe with the Vulkan
 # validation layers on (synchronization validation in every test, and a second run of
-# the GPU tests under GPU-assisted validation, which catches out-of-bounds accesses).
+# the GPU tests under GPU-assisted validation, which catches out-of-bounds accesses),
+# then the suites that need no device under AddressSanitizer and UBSan (tools/sanitize.sh).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/tools/install_dependencies.sh"
@@ -16,3 +17,5 @@ echo "GPU-assisted validation over the primal and adjoint stages:"
 VKDR_VALIDATION=gpu "$root/build/tests/render/vkdr_render_tests" --gtest_brief=1 \
   --gtest_filter='GpuTraversal*:CameraInMedium*'
 VKDR_VALIDATION=gpu "$root/build/tests/cli/vkdr_cli_tests" --gtest_brief=1 --gtest_filter='CliTest.GradPrintsOneJsonObject'
+echo "AddressSanitizer and UndefinedBehaviorSanitizer over the suites that need no device:"
+"$root/tools/sanitize.sh"

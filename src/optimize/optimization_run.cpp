@@ -60,7 +60,9 @@ RunIdentity identityOf(const OptimizationJob& job) {
     identity["optimizer"] = optimizerKindName(options.optimizer);
     identity["learning_rate"] = numberText(options.learningRate);
     std::string rates;
-    for (const auto& [name, rate] : options.learningRates) rates += (rates.empty() ? "" : " ") + name + "=" + numberText(rate);
+    for (const auto& [name, rate] : options.learningRates) {
+        rates += (rates.empty() ? "" : " ") + name + "=" + numberText(rate);
+    }
     identity["learning_rates"] = rates;
     identity["learning_rate_decay"] = numberText(options.learningRateDecay);
     identity["iterations"] = std::to_string(options.iterations);
