@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Fuzzes the scene loader and the target-image reader with libFuzzer (clang's
 # -fsanitize=fuzzer, with AddressSanitizer and UndefinedBehaviorSanitizer):
-#   tools/fuzz.sh MINUTES [scene|image]     (both targets, one after the other, when none is named;
+image]     (both targets, one after the other, when none is named;|image]     (both targets, one after the other, when none is named;
 #                                           MINUTES 0 only builds)
 # Builds into build-fuzz/ (the normal build is not touched) and runs at low priority.
 # New inputs go to build-fuzz/corpus/TARGET; the seeds are tests/fuzz/corpus/TARGET, the
 # malformed-input corpus and the inputs that once crashed (tests/fuzz/regressions/TARGET).
-# A crash leaves build-fuzz/crash-*: fix it, then keep the input in tests/fuzz/regressions/TARGET
-# with the extension the loader expects (.gltf, .glb, .exr, .png); the replay tests run it.
+# An input may take seconds: a hierarchy that instances a mesh 2^20 times (the most the
+# loader allows) takes half a second normally and many times that instrumented, hence
+# the 60 s timeout. A crash leaves build-fuzz/crash-* (or timeout-*, oom-*): fix it,
+# then keep the input in tests/fuzz/regressions/TARGET with the extension the loader
+# expects (.gltf, .glb, .exr, .png); the replay tests run it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 minutes=${1:?usage: tools/fuzz.sh MINUTES [scene|image]}
@@ -32,7 +35,7 @@ for target in $targets; do
   mkdir -p "$build/corpus/$target" "$root/tests/fuzz/regressions/$target"
   echo "fuzzing $target for $minutes minutes"
   (cd "$build" && nice -n 10 "$build/tests/fuzz/vkdr_fuzz_$target" -max_total_time=$((minutes * 60)) \
-    -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
+    -rss_limit_mb=2048 -timeout=60 -print_final_stats=1 \
     "$build/corpus/$target" "$root/tests/fuzz/corpus/$target" "$root/tests/fuzz/regressions/$target" \
     "$root/tests/cli/data/malformed")
 done

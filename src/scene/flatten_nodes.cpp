@@ -1,6 +1,7 @@
 #include "scene/flatten_nodes.h"
 
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <optional>
 
@@ -56,6 +57,15 @@ const char* modeName(int mode) {
 std::string describe(std::string_view array, size_t index, const std::string& name) {
     return indexed(array, index) + (name.empty() ? "" : " ('" + name + "')");
 }
+
+// A primitive as read from the file, shared by every instance of its mesh.
+struct DecodedPrimitive {
+    std::string field;                  // its JSON path, for messages
+    std::vector<glm::vec3> positions;   // in mesh space
+    std::vector<glm::vec2> uvs;         // one per position
+    std::vector<glm::uvec3> triangles;  // counter-clockwise, indexing positions
+    uint32_t material = 0;
+};
 
 // Where a node index is listed: slot `slot` of the root list (parent < 0) or of node
 // `parent`'s children. It becomes a JSON path only for a message, since a hierarchy may
@@ -128,17 +138,29 @@ private:
         instance.description = describe("meshes", size_t(node.mesh), mesh.name) + " at " +
                                describe("nodes", nodeIndex, node.name);
         instance.firstTriangle = uint32_t(scene_.triangles.size());
-        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-            addPrimitive(mesh.primitives[p],
-                         indexed(indexed("meshes", size_t(node.mesh)) + ".primitives", p),
-                         meshToWorld);
+        for (const DecodedPrimitive& primitive : decodedMesh(size_t(node.mesh))) {
+            addPrimitive(primitive, meshToWorld);
         }
         instance.triangleCount = uint32_t(scene_.triangles.size()) - instance.firstTriangle;
         instances_.push_back(std::move(instance));
     }
 
-    void addPrimitive(const tinygltf::Primitive& primitive, const std::string& field,
-                      const glm::mat4& meshToWorld) {
+    // Each mesh is read once, however often the hierarchy instances it.
+    const std::vector<DecodedPrimitive>& decodedMesh(size_t meshIndex) {
+        auto found = decodedMeshes_.find(meshIndex);
+        if (found != decodedMeshes_.end()) {
+            return found->second;
+        }
+        const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
+        std::vector<DecodedPrimitive> primitives;
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            primitives.push_back(decodePrimitive(mesh.primitives[p],
+                                                 indexed(indexed("meshes", meshIndex) + ".primitives", p)));
+        }
+        return decodedMeshes_.emplace(meshIndex, std::move(primitives)).first->second;
+    }
+
+    DecodedPrimitive decodePrimitive(const tinygltf::Primitive& primitive, const std::string& field) {
         int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -155,63 +177,68 @@ private:
         if (!primitive.targets.empty()) {
             diagnostics_.warn(field + ".targets", "morph targets are ignored");
         }
-        std::vector<glm::vec3> positions =
-            readPositions(model_, position->second, diagnostics_, field + ".attributes.POSITION");
-        std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
+        DecodedPrimitive decoded;
+        decoded.field = field;
+        decoded.positions = readPositions(model_, position->second, diagnostics_, field + ".attributes.POSITION");
+        decoded.uvs.assign(decoded.positions.size(), glm::vec2(0.0f));
         if (auto texcoord = primitive.attributes.find("TEXCOORD_0");
             texcoord != primitive.attributes.end()) {
-            uvs = readTexcoords(model_, texcoord->second, diagnostics_, field + ".attributes.TEXCOORD_0");
-            if (uvs.size() != positions.size()) {
+            decoded.uvs = readTexcoords(model_, texcoord->second, diagnostics_, field + ".attributes.TEXCOORD_0");
+            if (decoded.uvs.size() != decoded.positions.size()) {
                 diagnostics_.fail(field + ".attributes.TEXCOORD_0",
-                                  std::to_string(uvs.size()) + " elements, POSITION has " +
-                                      std::to_string(positions.size()));
+                                  std::to_string(decoded.uvs.size()) + " elements, POSITION has " +
+                                      std::to_string(decoded.positions.size()));
             }
         }
         std::vector<uint32_t> indices;
         if (primitive.indices >= 0) {
             indices = readIndices(model_, primitive.indices, diagnostics_, field + ".indices");
         } else {
-            indices.resize(positions.size());
+            indices.resize(decoded.positions.size());
             for (size_t i = 0; i < indices.size(); ++i) {
                 indices[i] = uint32_t(i);
             }
         }
         for (uint32_t index : indices) {
-            if (index >= positions.size()) {
+            if (index >= decoded.positions.size()) {
                 diagnostics_.fail(field + ".indices", "vertex index " + std::to_string(index) +
                                                           " out of range (" +
-                                                          std::to_string(positions.size()) +
+                                                          std::to_string(decoded.positions.size()) +
                                                           " vertices)");
             }
         }
-        requireRoomFor(positions.size(), mode, indices.size(), field);
-        uint32_t material = materialIndex(primitive.material, field + ".material");
+        decoded.triangles = triangleList(mode, indices, field);
+        decoded.material = materialIndex(primitive.material, field + ".material");
+        return decoded;
+    }
+
+    void addPrimitive(const DecodedPrimitive& primitive, const glm::mat4& meshToWorld) {
+        requireRoomFor(primitive.positions.size(), primitive.triangles.size(), primitive.field);
         // A mirroring transform turns counter-clockwise triangles clockwise (glTF spec,
         // "Meshes": the determinant decides the winding), so swap two corners back.
         bool mirrored = glm::determinant(glm::mat3(meshToWorld)) < 0.0f;
 
         uint32_t base = uint32_t(scene_.positions.size());
-        for (size_t v = 0; v < positions.size(); ++v) {
-            glm::vec3 world = glm::vec3(meshToWorld * glm::vec4(positions[v], 1.0f));
+        for (size_t v = 0; v < primitive.positions.size(); ++v) {
+            glm::vec3 world = glm::vec3(meshToWorld * glm::vec4(primitive.positions[v], 1.0f));
             if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z)) {
-                diagnostics_.fail(field + ".attributes.POSITION",
+                diagnostics_.fail(primitive.field + ".attributes.POSITION",
                                   "vertex " + std::to_string(v) + " is not finite in world space");
             }
             scene_.positions.push_back(world);
         }
-        scene_.uvs.insert(scene_.uvs.end(), uvs.begin(), uvs.end());
-        for (glm::uvec3 triangle : triangleList(mode, indices, field)) {
+        scene_.uvs.insert(scene_.uvs.end(), primitive.uvs.begin(), primitive.uvs.end());
+        for (glm::uvec3 triangle : primitive.triangles) {
             if (mirrored) {
                 std::swap(triangle.y, triangle.z);
             }
             scene_.triangles.push_back(triangle + glm::uvec3(base));
-            scene_.triangleMaterial.push_back(material);
+            scene_.triangleMaterial.push_back(primitive.material);
         }
     }
 
     // Keeps every vertex index within 32 bits and the scene within memory.
-    void requireRoomFor(size_t vertices, int mode, size_t indices, const std::string& field) const {
-        size_t triangles = mode == TINYGLTF_MODE_TRIANGLES ? indices / 3 : (indices < 2 ? 0 : indices - 2);
+    void requireRoomFor(size_t vertices, size_t triangles, const std::string& field) const {
         if (scene_.positions.size() + vertices > kMaxSceneVertices ||
             scene_.triangles.size() + triangles > kMaxSceneTriangles) {
             diagnostics_.fail(field, "the scene would exceed " + std::to_string(kMaxSceneTriangles) +
@@ -321,6 +348,7 @@ private:
     std::string rootsField_;      // the JSON path of the root list
     std::vector<bool> visiting_;  // nodes on the current root-to-node path
     size_t visits_ = 0;           // nodes visited, counting each instance
+    std::map<size_t, std::vector<DecodedPrimitive>> decodedMeshes_;  // by mesh index
     std::optional<uint32_t> defaultMaterial_;
     std::vector<MeshInstance> instances_;
 };
