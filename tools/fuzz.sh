@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes the scene loader and the target-image reader with libFuzzer (clang's
 # -fsanitize=fuzzer, with AddressSanitizer and UndefinedBehaviorSanitizer):
-image]     (both targets, one after the other, when none is named;|image]     (both targets, one after the other, when none is named;
-#                                           MINUTES 0 only builds)
+#   tools/fuzz.sh MINUTES [scene|image]   (both when none is named; 0 minutes only builds)
 # Builds into build-fuzz/ (the normal build is not touched) and runs at low priority.
 # New inputs go to build-fuzz/corpus/TARGET; the seeds are tests/fuzz/corpus/TARGET, the
 # malformed-input corpus and the inputs that once crashed (tests/fuzz/regressions/TARGET).
