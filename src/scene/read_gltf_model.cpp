@@ -7,6 +7,8 @@
 
 #include <stb_image.h>
 
+#include "image/png_chunks.h"
+
 namespace vkdr {
 namespace {
 
@@ -32,6 +34,10 @@ constexpr int64_t kMaxTextureTexels = int64_t(1) << 26;
 // file that declares an enormous image is refused before any pixel memory is claimed.
 bool loadBoundedImage(tinygltf::Image* image, const int imageIndex, std::string* error, std::string* warning,
                       int width, int height, const unsigned char* bytes, int size, void*) {
+    if (std::string problem = pngChunkProblem(bytes, size_t(size)); !problem.empty()) {
+        *error += "images[" + std::to_string(imageIndex) + "] cannot be decoded: " + problem + "\n";
+        return false;
+    }
     int declaredWidth = 0, declaredHeight = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, size, &declaredWidth, &declaredHeight, &channels)) {
         // stb_image tries every format it knows, so its own reason names only the last.

@@ -213,6 +213,9 @@ def main():
     case("target_huge.exr", exr(4, 4, data_window=(0, 0, 99999, 99999)), "grad", "exceeds the maximum")
     case("target_too_wide.png", png(20000, 1), "grad", "20000x1", "16384")
     case("target_truncated.png", png(8, 8)[:40], "grad", "cannot read image")
+    idat_too_long = bytearray(png(8, 8))
+    idat_too_long[33:37] = struct.pack(">I", 0x7FFFFFF0)  # the IDAT chunk's length, after IHDR
+    case("target_chunk_longer_than_file.png", bytes(idat_too_long), "grad", "IDAT", "declares 2147483632 bytes")
     case("target_empty.png", b"", "grad", "empty")
     case("target_garbage.jpg", b"\xff\xd8\xff\xe0 not really a JPEG", "grad", "cannot read image")
     case("target_unknown_format.bmp", b"BM", "grad", "unknown extension")
