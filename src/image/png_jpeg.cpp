@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "image/atomic_write.h"
 #include "image/image_formats.h"
-#include "image/png_chunks.h"
+#include "image/encoded_image_checks.h"
 #include "image/srgb.h"
 
 namespace vkdr {
@@ -71,6 +71,7 @@ Image readPngOrJpeg(const std::filesystem::path& file) {
     if (bytes.empty()) failToRead(file, "the file is empty");
     if (bytes.size() > size_t(INT_MAX)) failToRead(file, "the file is too large");
     int length = int(bytes.size());
+    if (!isPngOrJpeg(bytes.data(), bytes.size())) failToRead(file, "not a PNG or JPEG file (by its first bytes)");
     if (std::string problem = pngChunkProblem(bytes.data(), bytes.size()); !problem.empty()) failToRead(file, problem);
 
     int width = 0, height = 0, channels = 0;

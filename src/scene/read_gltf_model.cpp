@@ -7,7 +7,7 @@
 
 #include <stb_image.h>
 
-#include "image/png_chunks.h"
+#include "image/encoded_image_checks.h"
 
 namespace vkdr {
 namespace {

@@ -1,4 +1,4 @@
-#include "image/png_chunks.h"
+#include "image/encoded_image_checks.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -6,11 +6,26 @@
 
 namespace vkdr {
 
+namespace {
+
+const unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+
+bool startsWith(const unsigned char* bytes, size_t size, const unsigned char* prefix, size_t length) {
+    return size >= length && std::memcmp(bytes, prefix, length) == 0;
+}
+
+}  // namespace
+
+bool isPngOrJpeg(const unsigned char* bytes, size_t size) {
+    static const unsigned char kJpegStart[3] = {0xff, 0xd8, 0xff};  // start of image, then a marker
+    return startsWith(bytes, size, kPngSignature, sizeof(kPngSignature)) ||
+           startsWith(bytes, size, kJpegStart, sizeof(kJpegStart));
+}
+
 std::string pngChunkProblem(const unsigned char* bytes, size_t size) {
-    static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (size < sizeof(kSignature) || std::memcmp(bytes, kSignature, sizeof(kSignature)) != 0) return {};
+    if (!startsWith(bytes, size, kPngSignature, sizeof(kPngSignature))) return {};
     // Each chunk: a big-endian 32-bit data length, a 4-byte type, the data, a 4-byte CRC.
-    size_t offset = sizeof(kSignature);
+    size_t offset = sizeof(kPngSignature);
     while (size - offset >= 8) {
         uint32_t length = uint32_t(bytes[offset]) << 24 | uint32_t(bytes[offset + 1]) << 16 |
                           uint32_t(bytes[offset + 2]) << 8 | uint32_t(bytes[offset + 3]);
