@@ -18,4 +18,10 @@ bool isPngOrJpeg(const unsigned char* bytes, size_t size);
 // first.
 std::string pngChunkProblem(const unsigned char* bytes, size_t size);
 
+// For bytes that start as a JPEG: what is wrong when a marker segment before the scan
+// data is longer than the file, or a Huffman table declares more than 256 codes (empty
+// when neither, or the bytes are not a JPEG). Debian's stb_image writes past its
+// Huffman arrays for such a table (found by tools/fuzz.sh), so callers check this first.
+std::string jpegProblem(const unsigned char* bytes, size_t size);
+
 }  // namespace vkdr

@@ -73,6 +73,7 @@ Image readPngOrJpeg(const std::filesystem::path& file) {
     int length = int(bytes.size());
     if (!isPngOrJpeg(bytes.data(), bytes.size())) failToRead(file, "not a PNG or JPEG file (by its first bytes)");
     if (std::string problem = pngChunkProblem(bytes.data(), bytes.size()); !problem.empty()) failToRead(file, problem);
+    if (std::string problem = jpegProblem(bytes.data(), bytes.size()); !problem.empty()) failToRead(file, problem);
 
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))

@@ -34,7 +34,9 @@ constexpr int64_t kMaxTextureTexels = int64_t(1) << 26;
 // file that declares an enormous image is refused before any pixel memory is claimed.
 bool loadBoundedImage(tinygltf::Image* image, const int imageIndex, std::string* error, std::string* warning,
                       int width, int height, const unsigned char* bytes, int size, void*) {
-    if (std::string problem = pngChunkProblem(bytes, size_t(size)); !problem.empty()) {
+    std::string problem = pngChunkProblem(bytes, size_t(size));
+    if (problem.empty()) problem = jpegProblem(bytes, size_t(size));
+    if (!problem.empty()) {
         *error += "images[" + std::to_string(imageIndex) + "] cannot be decoded: " + problem + "\n";
         return false;
     }
