@@ -216,6 +216,9 @@ def main():
     idat_too_long = bytearray(png(8, 8))
     idat_too_long[33:37] = struct.pack(">I", 0x7FFFFFF0)  # the IDAT chunk's length, after IHDR
     case("target_chunk_longer_than_file.png", bytes(idat_too_long), "grad", "IDAT", "declares 2147483632 bytes")
+    table = bytes([0x00, 150, 150] + [0] * 14) + bytes(300)  # DC table 0 with 300 codes; 256 is the most
+    case("target_huffman_table_too_large.jpg", b"\xff\xd8\xff\xc4" + struct.pack(">H", 2 + len(table)) + table,
+         "grad", "declares 300 codes")
     case("target_empty.png", b"", "grad", "empty")
     case("target_garbage.jpg", b"\xff\xd8\xff\xe0 not really a JPEG", "grad", "cannot read image")
     case("target_unknown_format.bmp", b"BM", "grad", "unknown extension")
