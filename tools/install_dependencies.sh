@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs what vkdiffrender needs to build, run and test on Debian 12, all from
-# Debian's packages. Run as root; does nothing that is already done.
+# Installs what vkdiffrender needs to build, run and test on Debian 12 (and clang with
+# its libFuzzer runtime for tools/fuzz.sh), all from Debian's packages. Run as root;
+# does nothing that is already done.
 set -euo pipefail
 
 packages=(
@@ -9,6 +10,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libglm-dev libtbb-dev libcli11-dev
   libgtest-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs, builds, and runs the whole test suite on lavapipe with the Vulkan
 # validation layers on (synchronization validation in every test, and a second run of
-# the GPU tests under GPU-assisted validation, which catches out-of-bounds accesses).
+# the GPU tests under GPU-assisted validation, which catches out-of-bounds accesses),
+# then the suites that need no device under AddressSanitizer and UBSan (tools/sanitize.sh).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/tools/install_dependencies.sh"
@@ -19,3 +20,5 @@ VKDR_VALIDATION=gpu "$root/build/tests/cli/vkdr_cli_tests" --gtest_brief=1 --gte
 # The benchmark harness runs once on a tiny setting: it must work; its times gate nothing.
 "$root/build/src/cli/vkdiffrender" bench cornell_fog room_10k --width 32 --spp 1 --iters 1 \
   --json "$root/build/bench-smoke.json"
+echo "AddressSanitizer and UndefinedBehaviorSanitizer over the suites that need no device:"
+"$root/tools/sanitize.sh"

@@ -11,13 +11,16 @@
 #include "core/error.h"
 #include "diff/rendered_loss_gradient.h"
 #include "image/image.h"
+#include "optimize/checkpoint.h"
 #include "optimize/experiment_run.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/optimization_run.h"
 #include "optimize/parameter_vector.h"
+#include "optimize/run_identity.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "vk/context.h"
+#include "vk/vulkan.h"
 
 namespace vkdr {
 namespace {
@@ -32,6 +35,7 @@ struct OptimizeCommandOptions {
     std::string optimizer = "adam";
     std::string loss = "l2";
     std::string out = "optimize-out";
+    std::string resume;  // a previous run's --out directory to continue in
     std::string device;
 };
 
@@ -48,6 +52,37 @@ struct ExperimentOverrides {
     CLI::Option* seed;
 };
 
+// --resume DIR continues the run whose outputs are in DIR, and writes there.
+void applyResume(OptimizeCommandOptions& options, const CLI::Option* outGiven) {
+    if (options.resume.empty()) return;
+    if (outGiven->count() && std::filesystem::path(options.out) != std::filesystem::path(options.resume)) {
+        throw Error("--resume " + options.resume + " writes into that directory; drop --out " + options.out);
+    }
+    options.out = options.resume;
+}
+
+// Target files and --set values decide the result as much as the scene does; the
+// checkpoint's run identity (optimize/run_identity.h) holds them.
+RunIdentity commandIdentity(const OptimizeCommandOptions& options) {
+    RunIdentity identity;
+    std::string targets;
+    for (const std::string& target : options.targets) {
+        size_t equals = target.find('=');
+        std::string file = equals == std::string::npos ? target : target.substr(equals + 1);
+        std::string camera = equals == std::string::npos ? "" : target.substr(0, equals) + "=";
+        targets += (targets.empty() ? "" : "; ") + camera + fileDigest(file);
+    }
+    identity["targets"] = targets;
+    std::string assignments;
+    for (const std::string& assignment : options.scene.assignments) {
+        assignments += (assignments.empty() ? "" : " ") + assignment;
+    }
+    identity["set"] = assignments;
+    identity["spp"] = std::to_string(options.settings.spp);
+    identity["max_depth"] = std::to_string(options.settings.maxDepth);
+    return identity;
+}
+
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
     const OptimizeResult& result = report.result;
     double iterations = double(result.losses.size());
@@ -57,6 +92,16 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
     std::printf("diff.png: white is an absolute difference of %.4g\n", double(report.largestDifference));
     std::printf("wrote log.jsonl, params.json, scene.gltf, final.exr, final.png, diff.png, loss.svg to %s\n",
                 directory.string().c_str());
+}
+
+// A lost device stops the run like any error; what it leaves to resume from is worth saying.
+[[noreturn]] void failWithResumeHint(const DeviceLostError& error, const std::filesystem::path& directory) {
+    std::filesystem::path checkpoint = directory / kCheckpointFileName;
+    throw Error(std::string(error.what()) +
+                (std::filesystem::exists(checkpoint)
+                     ? "; " + checkpoint.string() + " is intact: run the same command with --resume " +
+                           directory.string()
+                     : "; no checkpoint had been written yet"));
 }
 
 std::function<void(uint32_t, double)> progressOn(ProgressBar& bar, uint32_t iterations) {
@@ -80,6 +125,8 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     std::vector<TargetView> views;
     for (const std::string& target : options.targets) views.push_back(readTarget(target, scene));
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views[0].target};
+    job.identity = commandIdentity(options);
+    job.resume = !options.resume.empty();
 
     VulkanContext context(ContextOptions{options.device});
     std::fprintf(stderr, "%s: %zu triangles, %zu views, %u spp, max depth %u, %u iterations of %s on %s\n",
@@ -89,7 +136,12 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     RenderedLossGradient lossGradient(context, scene, std::move(views), options.optimize.parameters,
                                       options.settings, loss);
     ProgressBar bar("optimize");
-    OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
+    OptimizationReport report;
+    try {
+        report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
+    } catch (const DeviceLostError& error) {
+        failWithResumeHint(error, options.out);
+    }
     bar.finish();
     requireNoValidationMessages(context);
     printOutputs(options.out, report);
@@ -120,6 +172,7 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     }
     Experiment experiment = readExperiment(options.experiment);
     applyOverrides(options, overrides, experiment);
+    experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     LoadedScene loaded = loadScene(experiment.scene);
     for (const std::string& warning : loaded.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
 
@@ -143,8 +196,13 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
                  context.description().name.c_str());
 
     ProgressBar bar("optimize");
-    ExperimentResult result = runExperiment(experiment, loaded.scene, backend, options.out,
-                                            progressOn(bar, experiment.optimize.iterations));
+    ExperimentResult result;
+    try {
+        result = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
+                               progressOn(bar, experiment.optimize.iterations));
+    } catch (const DeviceLostError& error) {
+        failWithResumeHint(error, options.out);
+    }
     bar.finish();
     requireNoValidationMessages(context);
     std::printf("%s", recoveryTable(result.recoveries).c_str());
@@ -187,11 +245,21 @@ CommandAction addOptimizeCommand(CLI::App& app) {
     overrides.seed = sampling.seed->description("Base seed: iteration i renders with seed + i");
     overrides.loss = command->add_option("--loss", options->loss, "l2 or l1 (means over pixels and channels)")
                          ->default_val(options->loss)->check(CLI::IsMember({"l2", "l1"}));
-    command->add_option("--out", options->out, "Output directory, created if missing")->default_val(options->out);
+    CLI::Option* out =
+        command->add_option("--out", options->out, "Output directory, created if missing")->default_val(options->out);
+    command
+        ->add_option("--checkpoint-every", options->optimize.checkpointEvery,
+                     "Write DIR/checkpoint.json every K iterations (0: never); a stopped run loses at most K")
+        ->default_val(options->optimize.checkpointEvery)
+        ->check(CLI::Range(0u, 1000000u));
+    command->add_option("--resume", options->resume,
+                        "Continue the stopped run whose --out was DIR, from DIR/checkpoint.json; give the same "
+                        "scene, targets, parameters and options");
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
-    return [command, options, overrides]() {
+    return [command, options, overrides, out]() {
         if (!command->parsed()) return -1;
         options->optimize.seed = options->settings.seed;
+        applyResume(*options, out);
         return options->experiment.empty() ? runOptimizeScene(*options)
                                            : runOptimizeExperiment(*options, overrides);
     };

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "image/image.h"
+#include "render/render_settings.h"
 
 namespace vkdr {
 
@@ -21,11 +22,19 @@ TargetView readTarget(const std::string& argument, const Scene& scene) {
         }
         if (!found) throw Error("--target " + argument + ": no camera '" + camera + "'; cameras: " + cameras);
     }
+    Image target;
     try {
-        return {camera, readImage(file)};
+        target = readImage(file);
     } catch (const Error& e) {
         throw Error("--target: " + std::string(e.what()));
     }
+    // A view renders at its target's size.
+    if (target.width > kMaxImageSide || target.height > kMaxImageSide) {
+        throw Error("--target " + argument + " is " + std::to_string(target.width) + "x" +
+                    std::to_string(target.height) + "; images of at most " + std::to_string(kMaxImageSide) +
+                    " pixels a side render");
+    }
+    return {camera, std::move(target)};
 }
 
 }  // namespace vkdr

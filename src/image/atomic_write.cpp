@@ -2,9 +2,12 @@
 
 #include <atomic>
 #include <cerrno>
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include <unistd.h>
@@ -14,13 +17,27 @@
 namespace vkdr {
 namespace {
 
+constexpr const char* kTemporaryMarker = ".tmp-";
+
 // Beside the destination, so that the rename stays within one file system; hidden,
-// and unique per process and call, so that concurrent writers never share one.
+// and unique per process and call, so that concurrent writers never share one:
+// ".NAME.tmp-PID-COUNTER".
 std::filesystem::path temporaryPathFor(const std::filesystem::path& file) {
     static std::atomic<unsigned> counter{0};
-    std::string name = "." + file.filename().string() + ".tmp-" + std::to_string(getpid()) + "-" +
+    std::string name = "." + file.filename().string() + kTemporaryMarker + std::to_string(getpid()) + "-" +
                        std::to_string(counter++);
     return file.parent_path() / name;
+}
+
+// The writing process of a temporary named by temporaryPathFor, if the name is one.
+std::optional<pid_t> writerOf(const std::string& name) {
+    size_t marker = name.rfind(kTemporaryMarker);
+    if (name.empty() || name[0] != '.' || marker == std::string::npos) return std::nullopt;
+    const char* digits = name.c_str() + marker + std::strlen(kTemporaryMarker);
+    char* end = nullptr;
+    long pid = std::strtol(digits, &end, 10);
+    if (end == digits || *end != '-' || pid <= 0) return std::nullopt;
+    return pid_t(pid);
 }
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& reason) {
@@ -34,6 +51,17 @@ void discard(std::ofstream& out, const std::filesystem::path& temporary) {
 }
 
 }  // namespace
+
+size_t removeStaleTemporaries(const std::filesystem::path& directory) {
+    size_t removed = 0;
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
+        std::optional<pid_t> writer = writerOf(entry.path().filename().string());
+        bool writerGone = writer && kill(*writer, 0) != 0 && errno == ESRCH;
+        if (writerGone && entry.is_regular_file() && std::filesystem::remove(entry.path(), error)) ++removed;
+    }
+    return removed;
+}
 
 void writeAtomically(const std::filesystem::path& file, const std::function<void(std::ofstream&)>& writeContents) {
     if (file.filename().empty()) fail(file, "not a file name");

@@ -10,4 +10,9 @@ namespace vkdr {
 // temporary is removed and vkdr::Error names `file` (not the temporary).
 void writeAtomically(const std::filesystem::path& file, const std::function<void(std::ofstream&)>& writeContents);
 
+// Removes the temporary files that writeAtomically left in `directory` when its process
+// was killed mid-write (those of processes still running are left alone), so that a
+// directory a run writes into again holds no partial file. Returns how many it removed.
+size_t removeStaleTemporaries(const std::filesystem::path& directory);
+
 }  // namespace vkdr

@@ -34,7 +34,16 @@ std::vector<const char*> channelsToRead(const std::filesystem::path& file, const
     failToRead(file, "needs channels R, G and B, or Y; found " + channelNames(channels));
 }
 
+// OpenEXR checks a header against these before it allocates the line offset table or
+// any tile, so that a corrupt header cannot make it claim memory for a huge image.
+void limitExrSizes() {
+    constexpr int kMaxSide = 1 << 16;
+    Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
+    Imf::Header::setMaxTileSize(kMaxSide, kMaxSide);
+}
+
 Image readExrFile(const std::filesystem::path& file) {
+    limitExrSizes();
     Imf::InputFile input(file.c_str());
     const Imf::Header& header = input.header();
     std::vector<const char*> sources = channelsToRead(file, header.channels());

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "image/atomic_write.h"
 #include "image/image_formats.h"
+#include "image/encoded_image_checks.h"
 #include "image/srgb.h"
 
 namespace vkdr {
@@ -70,6 +71,9 @@ Image readPngOrJpeg(const std::filesystem::path& file) {
     if (bytes.empty()) failToRead(file, "the file is empty");
     if (bytes.size() > size_t(INT_MAX)) failToRead(file, "the file is too large");
     int length = int(bytes.size());
+    if (!isPngOrJpeg(bytes.data(), bytes.size())) failToRead(file, "not a PNG or JPEG file (by its first bytes)");
+    if (std::string problem = pngChunkProblem(bytes.data(), bytes.size()); !problem.empty()) failToRead(file, problem);
+    if (std::string problem = jpegProblem(bytes.data(), bytes.size()); !problem.empty()) failToRead(file, problem);
 
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))

@@ -2,6 +2,9 @@
 
 #include <cassert>
 #include <cmath>
+#include <string>
+
+#include "core/error.h"
 
 namespace vkdr {
 
@@ -24,6 +27,17 @@ void AdamOptimizer::step(std::span<double> values, std::span<const double> gradi
         double meanSquareHat = meanSquare_[i] / meanSquareCorrection;
         values[i] -= learningRateScale_ * learningRates_[i] * meanHat / (std::sqrt(meanSquareHat) + moments_.epsilon);
     }
+}
+
+void AdamOptimizer::restore(const OptimizerState& state) {
+    if (state.mean.size() != mean_.size() || state.meanSquare.size() != meanSquare_.size()) {
+        throw Error("the Adam state holds " + std::to_string(state.mean.size()) + " and " +
+                    std::to_string(state.meanSquare.size()) + " moments where " + std::to_string(mean_.size()) +
+                    " values are optimised");
+    }
+    steps_ = state.steps;
+    mean_ = state.mean;
+    meanSquare_ = state.meanSquare;
 }
 
 }  // namespace vkdr

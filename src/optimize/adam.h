@@ -19,6 +19,8 @@ class AdamOptimizer : public Optimizer {
 public:
     explicit AdamOptimizer(std::vector<double> learningRates, const AdamMoments& moments = {});
     void step(std::span<double> values, std::span<const double> gradients) override;
+    OptimizerState state() const override { return {steps_, mean_, meanSquare_}; }
+    void restore(const OptimizerState& state) override;
 
 private:
     std::vector<double> learningRates_;

@@ -59,10 +59,13 @@ public:
         return value.get<std::string>();
     }
 
-    uint32_t count(const Json& value, const std::string& key, uint32_t minimum) const {
+    // The command line's bounds apply here too: they keep sizes and loops within range.
+    uint32_t count(const Json& value, const std::string& key, uint32_t minimum,
+                   uint32_t maximum = UINT32_MAX) const {
         if (!value.is_number_integer() || value.get<int64_t>() < int64_t(minimum) ||
-            value.get<int64_t>() > int64_t(UINT32_MAX)) {
-            fail(key, "expected an integer >= " + std::to_string(minimum));
+            value.get<int64_t>() > int64_t(maximum)) {
+            fail(key, "expected an integer >= " + std::to_string(minimum) +
+                          (maximum == UINT32_MAX ? "" : " and <= " + std::to_string(maximum)));
         }
         return value.get<uint32_t>();
     }
@@ -139,17 +142,23 @@ private:
 void readRenderSettings(const ExperimentReader& reader, const Json& document, Experiment& experiment) {
     RenderSettings& render = experiment.render;
     render.width = 128;
-    if (document.contains("width")) render.width = int(reader.count(document["width"], "width", 1));
-    if (document.contains("height")) render.height = int(reader.count(document["height"], "height", 1));
-    if (document.contains("spp")) render.spp = reader.count(document["spp"], "spp", 1);
-    if (document.contains("max_depth")) render.maxDepth = reader.count(document["max_depth"], "max_depth", 0);
-    experiment.targetSpp = document.contains("target_spp") ? reader.count(document["target_spp"], "target_spp", 1)
-                                                           : 4 * render.spp;
+    const uint32_t maxSide = kMaxImageSide, maxSpp = 1u << 20, maxDepth = 100000;
+    if (document.contains("width")) render.width = int(reader.count(document["width"], "width", 1, maxSide));
+    if (document.contains("height")) render.height = int(reader.count(document["height"], "height", 1, maxSide));
+    if (document.contains("spp")) render.spp = reader.count(document["spp"], "spp", 1, maxSpp);
+    if (document.contains("max_depth")) {
+        render.maxDepth = reader.count(document["max_depth"], "max_depth", 0, maxDepth);
+    }
+    experiment.targetSpp = document.contains("target_spp")
+                               ? reader.count(document["target_spp"], "target_spp", 1, maxSpp)
+                               : std::min(4 * render.spp, maxSpp);
 }
 
 void readOptimizeOptions(const ExperimentReader& reader, const Json& document, Experiment& experiment) {
     OptimizeOptions& options = experiment.optimize;
-    if (document.contains("iterations")) options.iterations = reader.count(document["iterations"], "iterations", 1);
+    if (document.contains("iterations")) {
+        options.iterations = reader.count(document["iterations"], "iterations", 1, 1000000);
+    }
     if (document.contains("seed")) options.seed = reader.count(document["seed"], "seed", 0);
     if (document.contains("learning_rate")) {
         options.learningRate = reader.positive(document["learning_rate"], "learning_rate");

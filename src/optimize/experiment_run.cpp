@@ -62,7 +62,7 @@ std::string errors(const ParameterRecovery& recovery) {
 }  // namespace
 
 ExperimentResult runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
-                               const std::filesystem::path& outputDirectory,
+                               const std::filesystem::path& outputDirectory, bool resume,
                                const std::function<void(uint32_t iteration, double loss)>& progress) {
     prepareExperimentScene(experiment, scene);
     const std::vector<std::string>& names = experiment.optimize.parameters;
@@ -74,6 +74,10 @@ ExperimentResult runExperiment(const Experiment& experiment, Scene& scene, const
     std::vector<std::vector<float>> start = currentValues(scene, names);
 
     OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, targets[0].target};
+    job.identity = {{"experiment", experiment.file.filename().string() + ", " + fileDigest(experiment.file)},
+                    {"spp", std::to_string(experiment.render.spp)},
+                    {"max_depth", std::to_string(experiment.render.maxDepth)}};
+    job.resume = resume;
     std::unique_ptr<LossGradient> lossGradient =
         backend.makeLossGradient(scene, targets, names, experiment.render, experiment.loss);
     ExperimentResult result;

@@ -43,8 +43,10 @@ inline constexpr uint32_t kTargetSeedOffset = 0x80000000u;
 // Checks `experiment` against `scene` (loaded from experiment.scene), renders the targets
 // from the true values, resets to the start values and optimises, writing the outputs of
 // runOptimization into `outputDirectory` plus target.exr/.png (the first view's target).
+// With `resume` the optimisation continues from the directory's checkpoint, which must
+// come from the same experiment file, scene and settings.
 ExperimentResult runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
-                               const std::filesystem::path& outputDirectory,
+                               const std::filesystem::path& outputDirectory, bool resume = false,
                                const std::function<void(uint32_t iteration, double loss)>& progress = {});
 
 // One line per parameter: true, start and recovered values, and the error of each

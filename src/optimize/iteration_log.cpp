@@ -1,6 +1,7 @@
 #include "optimize/iteration_log.h"
 
 #include <fstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -23,6 +24,17 @@ std::string iterationJsonLine(const IterationRecord& record) {
                                    {"forward_ms", record.forwardMs},
                                    {"adjoint_ms", record.adjointMs}};
     return line.dump();
+}
+
+IterationLog::IterationLog(std::filesystem::path file, uint32_t iterations) : file_(std::move(file)) {
+    std::ifstream in(file_);
+    for (std::string line; std::getline(in, line);) {
+        nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
+        bool earlier = record.is_object() && record.contains("iteration") &&
+                       record["iteration"].is_number_unsigned() && record["iteration"].get<uint64_t>() < iterations;
+        if (earlier) text_ += line + "\n";
+    }
+    writeAtomically(file_, [&](std::ofstream& stream) { stream << text_; });
 }
 
 void IterationLog::append(const IterationRecord& record) {

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -15,7 +16,12 @@ std::string iterationJsonLine(const IterationRecord& record);
 // of the iterations done; a few hundred short lines cost nothing next to a render.
 class IterationLog {
 public:
+    // Starts a new log; the file is written at the first append.
     explicit IterationLog(std::filesystem::path file) : file_(std::move(file)) {}
+    // Continues the log of a run resumed after `iterations` iterations: keeps the lines
+    // of the iterations before, and drops those after (a stopped run may have logged a
+    // few past its last checkpoint), so that each iteration appears once. Rewrites the file.
+    IterationLog(std::filesystem::path file, uint32_t iterations);
     void append(const IterationRecord& record);
 
 private:

@@ -1,17 +1,21 @@
 #include "optimize/optimization_run.h"
 
+#include <cstdio>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "image/atomic_write.h"
+#include "optimize/checkpoint.h"
 #include "optimize/difference_image.h"
 #include "optimize/iteration_log.h"
 #include "optimize/json_numbers.h"
 #include "optimize/loss_chart.h"
 #include "optimize/loss_kind_text.h"
+#include "optimize/parameter_vector.h"
 #include "scene/parameters.h"
 #include "scene/write_scene.h"
 
@@ -39,17 +43,82 @@ void createDirectory(const std::filesystem::path& directory) {
     }
 }
 
+std::string numberText(double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.17g", value);
+    return text;
+}
+
+// The job's own share of the run identity: the scene file and the loop's options.
+RunIdentity identityOf(const OptimizationJob& job) {
+    const OptimizeOptions& options = job.options;
+    RunIdentity identity = job.identity;
+    identity["scene"] = job.sceneFile.filename().string() + ", " + fileDigest(job.sceneFile);
+    std::string names;
+    for (const std::string& name : options.parameters) names += (names.empty() ? "" : " ") + name;
+    identity["parameters"] = names;
+    identity["optimizer"] = optimizerKindName(options.optimizer);
+    identity["learning_rate"] = numberText(options.learningRate);
+    std::string rates;
+    for (const auto& [name, rate] : options.learningRates) {
+        rates += (rates.empty() ? "" : " ") + name + "=" + numberText(rate);
+    }
+    identity["learning_rates"] = rates;
+    identity["learning_rate_decay"] = numberText(options.learningRateDecay);
+    identity["learning_rate_decay_start"] = numberText(options.learningRateDecayStart);
+    identity["iterations"] = std::to_string(options.iterations);
+    identity["seed"] = std::to_string(options.seed);
+    identity["loss"] = lossKindName(job.loss);
+    return identity;
+}
+
+// A checkpoint from a run with the same identity fits unless the file was edited.
+void requireFits(const std::filesystem::path& file, const LoopState& state, const OptimizeOptions& options,
+                 size_t valueCount) {
+    auto fail = [&](const std::string& problem) { throw Error(file.string() + ": " + problem); };
+    if (state.iteration == 0 || state.iteration >= options.iterations) {
+        fail("iteration " + std::to_string(state.iteration) + " is not within the run's " +
+             std::to_string(options.iterations) + " iterations");
+    }
+    if (state.losses.size() != state.iteration) fail("losses: expected one per iteration done");
+    if (state.values.size() != valueCount) fail("values: expected " + std::to_string(valueCount));
+    size_t moments = options.optimizer == OptimizerKind::Adam ? valueCount : 0;
+    if (state.optimizer.mean.size() != moments || state.optimizer.meanSquare.size() != moments) {
+        fail("optimizer: expected " + std::to_string(moments) + " moments of each kind");
+    }
+}
+
+std::optional<LoopState> resumeState(const OptimizationJob& job, const Scene& scene, const RunIdentity& identity) {
+    if (!job.resume) return std::nullopt;
+    std::filesystem::path file = job.outputDirectory / kCheckpointFileName;
+    if (!std::filesystem::exists(file)) {
+        throw Error("--resume " + job.outputDirectory.string() + ": there is no " + kCheckpointFileName +
+                    " (a run writes one every --checkpoint-every iterations)");
+    }
+    Checkpoint checkpoint = readCheckpoint(file);
+    requireSameRun(file, checkpoint.run, identity);
+    requireFits(file, checkpoint.state, job.options, ParameterVector(scene, job.options.parameters).size());
+    return checkpoint.state;
+}
+
 }  // namespace
 
 OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(uint32_t iteration, double loss)>& progress) {
     const std::filesystem::path& directory = job.outputDirectory;
+    RunIdentity identity = identityOf(job);
+    std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
-    IterationLog log(directory / "log.jsonl");
-    OptimizeCallbacks callbacks{progress, [&](const IterationRecord& record) { log.append(record); }};
+    removeStaleTemporaries(directory);  // a killed run's partial writes
+    IterationLog log = resume ? IterationLog(directory / "log.jsonl", resume->iteration)
+                              : IterationLog(directory / "log.jsonl");
+    OptimizeCallbacks callbacks{progress, [&](const IterationRecord& record) { log.append(record); },
+                                [&](const LoopState& state) {
+                                    writeCheckpoint(directory / kCheckpointFileName, {identity, state});
+                                }};
 
     OptimizationReport report;
-    report.result = optimize(lossGradient, scene, job.options, callbacks);
+    report.result = optimize(lossGradient, scene, job.options, callbacks, resume ? &*resume : nullptr);
     const Image& finalImage = report.result.lastImages.at(0);
     DifferenceImage difference = scaledDifference(finalImage, job.firstTarget);
     report.largestDifference = difference.largestDifference;

@@ -5,6 +5,7 @@
 #include "diff/loss_gradient.h"
 #include "image/image.h"
 #include "optimize/optimize_loop.h"
+#include "optimize/run_identity.h"
 #include "scene/scene.h"
 
 namespace vkdr {
@@ -15,6 +16,10 @@ struct OptimizationJob {
     OptimizeOptions options;
     LossKind loss = LossKind::L2;           // what the LossGradient computes; labels loss.svg
     Image firstTarget;                      // the first view's target, for diff.png
+    // What else decides the result (render settings, targets, --set values), for the
+    // checkpoint's run identity; runOptimization adds the scene file and the options.
+    RunIdentity identity;
+    bool resume = false;                    // continue from outputDirectory's checkpoint
 };
 
 struct OptimizationReport {
@@ -24,11 +29,15 @@ struct OptimizationReport {
 
 // Optimises `scene` in place and writes into job.outputDirectory, every file atomically:
 //   log.jsonl   after every iteration (optimize/iteration_log.h)
+//   checkpoint.json every options.checkpointEvery iterations (optimize/checkpoint.h)
 //   params.json the fitted values by name, scene.gltf the input scene with them written
 //               back, final.exr/.png the last render of the first view, diff.png its
 //               scaled difference to the target, loss.svg the loss curve.
 // When the loop fails (optimize/optimize_loop.h) only log.jsonl, up to the last good
-// iteration, is left: nothing that holds fitted values is written.
+// iteration, and the last checkpoint are left: nothing that holds fitted values is written.
+// With job.resume it reads the checkpoint, refuses it unless it was written by a run
+// with the same identity, drops the log's lines past it and continues from it: the
+// outputs are those of the run that was never stopped.
 OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(uint32_t iteration, double loss)>& progress = {});
 

@@ -42,6 +42,22 @@ void requireFinite(const GradientResult& result, uint32_t iteration) {
     }
 }
 
+// A finite gradient can still step a value past what a float holds (SGD with a large
+// rate); the scene stores floats, so such a step must not reach it.
+void requireFiniteSteps(const ParameterVector& parameters, uint32_t iteration) {
+    for (size_t i = 0; i < parameters.names().size(); ++i) {
+        for (size_t c = 0; c < parameters.count(i); ++c) {
+            double value = parameters.values()[parameters.offset(i) + c];
+            if (!std::isfinite(float(value))) {
+                throw Error("iteration " + std::to_string(iteration) + ": the step took " + parameters.names()[i] +
+                            " to " + std::to_string(value) +
+                            ", beyond float range; no values from this iteration were kept (try a smaller "
+                            "learning rate)");
+            }
+        }
+    }
+}
+
 // The gradient in the ParameterVector's layout. A LossGradient that does not answer for
 // exactly the parameters asked for is a bug, not a user error.
 std::vector<double> flatGradient(const ParameterVector& parameters, const GradientResult& result) {
@@ -71,10 +87,28 @@ double decayProgress(const OptimizeOptions& options, uint32_t iteration) {
     return std::max(0.0, (run - options.learningRateDecayStart) / (1.0 - options.learningRateDecayStart));
 }
 
+void restore(const LoopState& state, const OptimizeOptions& options, ParameterVector& parameters,
+             Optimizer& optimizer, OptimizeResult& result) {
+    if (state.iteration >= options.iterations || state.losses.size() != state.iteration) {
+        throw Error("cannot resume after iteration " + std::to_string(state.iteration) + " with " +
+                    std::to_string(state.losses.size()) + " losses in a run of " +
+                    std::to_string(options.iterations) + " iterations");
+    }
+    if (state.values.size() != parameters.size()) {
+        throw Error("cannot resume with " + std::to_string(state.values.size()) + " values where " +
+                    std::to_string(parameters.size()) + " are optimised");
+    }
+    optimizer.restore(state.optimizer);
+    std::copy(state.values.begin(), state.values.end(), parameters.values().begin());
+    result.losses = state.losses;
+    result.forwardMs = state.forwardMs;
+    result.adjointMs = state.adjointMs;
+}
+
 }  // namespace
 
 OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const OptimizeOptions& options,
-                        const OptimizeCallbacks& callbacks) {
+                        const OptimizeCallbacks& callbacks, const LoopState* resume) {
     if (options.iterations == 0) {
         throw Error("the number of iterations must be at least 1");
     }
@@ -88,7 +122,13 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
     ParameterVector parameters(scene, options.parameters);
     std::unique_ptr<Optimizer> optimizer = makeOptimizer(options.optimizer, perValueLearningRates(parameters, options));
     OptimizeResult result;
-    for (uint32_t iteration = 0; iteration < options.iterations; ++iteration) {
+    uint32_t first = 0;
+    if (resume) {
+        restore(*resume, options, parameters, *optimizer, result);
+        parameters.writeTo(scene);
+        first = resume->iteration;
+    }
+    for (uint32_t iteration = first; iteration < options.iterations; ++iteration) {
         GradientResult evaluation = lossGradient.evaluate(scene, options.seed + iteration);
         requireFinite(evaluation, iteration);
         std::vector<double> gradient = flatGradient(parameters, evaluation);
@@ -96,6 +136,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         optimizer->setLearningRateScale(std::pow(options.learningRateDecay, decayProgress(options, iteration)));
         optimizer->step(parameters.values(), gradient);
         parameters.project();
+        requireFiniteSteps(parameters, iteration);
         parameters.writeTo(scene);
 
         result.losses.push_back(evaluation.loss);
@@ -109,6 +150,13 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
             callbacks.progress(iteration, evaluation.loss);
         }
         result.lastImages = std::move(evaluation.images);
+        uint32_t done = iteration + 1;
+        if (callbacks.checkpoint && options.checkpointEvery > 0 && done % options.checkpointEvery == 0 &&
+            done < options.iterations) {
+            std::vector<double> values(parameters.values().begin(), parameters.values().end());
+            callbacks.checkpoint(LoopState{done, std::move(values), optimizer->state(), result.losses,
+                                           result.forwardMs, result.adjointMs});
+        }
     }
     return result;
 }

@@ -27,6 +27,20 @@ struct OptimizeOptions {
     double learningRateDecayStart = 0.0;
     uint32_t iterations = 100;
     uint32_t seed = 0;  // iteration i renders with seed + i
+    // OptimizeCallbacks::checkpoint is called after every this many iterations (0: never).
+    uint32_t checkpointEvery = 10;
+};
+
+// What the loop needs to continue after `iteration` iterations exactly as if it had never
+// stopped: the values after that many steps and the optimiser's state. The losses and
+// times so far complete the outputs of a resumed run.
+struct LoopState {
+    uint32_t iteration = 0;      // iterations done; the next one to run
+    std::vector<double> values;  // in ParameterVector order (optimize/parameter_vector.h)
+    OptimizerState optimizer;
+    std::vector<double> losses;  // one per iteration done
+    double forwardMs = 0.0;      // all iterations done together
+    double adjointMs = 0.0;
 };
 
 // One evaluation of the loop: the loss and gradient at the values before that
@@ -42,6 +56,9 @@ struct IterationRecord {
 struct OptimizeCallbacks {
     std::function<void(uint32_t iteration, double loss)> progress;
     std::function<void(const IterationRecord&)> iterationDone;
+    // After every OptimizeOptions::checkpointEvery iterations, except after the last one
+    // (the run's outputs follow it), once `scene` holds the new values.
+    std::function<void(const LoopState&)> checkpoint;
 };
 
 struct OptimizeResult {
@@ -56,7 +73,10 @@ struct OptimizeResult {
 // (optimize/constraints.h) and writes the new values into `scene`. Throws vkdr::Error
 // naming the iteration (and the parameter) when the loss or a gradient is not finite,
 // before anything of that iteration reaches `scene` or the callbacks.
+// With `resume` (a LoopState from the checkpoint callback of a run with the same
+// options) it writes resume->values into `scene` and continues from resume->iteration;
+// its losses and times are part of the result.
 OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const OptimizeOptions& options,
-                        const OptimizeCallbacks& callbacks = {});
+                        const OptimizeCallbacks& callbacks = {}, const LoopState* resume = nullptr);
 
 }  // namespace vkdr

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "optimize/optimizer.h"
@@ -11,9 +12,12 @@ class SgdOptimizer : public Optimizer {
 public:
     explicit SgdOptimizer(std::vector<double> learningRates) : learningRates_(std::move(learningRates)) {}
     void step(std::span<double> values, std::span<const double> gradients) override;
+    OptimizerState state() const override { return {steps_, {}, {}}; }
+    void restore(const OptimizerState& state) override;
 
 private:
     std::vector<double> learningRates_;
+    uint64_t steps_ = 0;  // only recorded: SGD's step does not depend on it
 };
 
 }  // namespace vkdr

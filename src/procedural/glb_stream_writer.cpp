@@ -49,6 +49,10 @@ GlbStreamWriter::~GlbStreamWriter() {
 }
 
 void GlbStreamWriter::write(const void* data, size_t bytes) {
+    // An empty vector's data() may be null, which fwrite must not be given even for 0 bytes.
+    if (bytes == 0) {
+        return;
+    }
     if (std::fwrite(data, 1, bytes, file_) != bytes) {
         throw Error(path_.string() + ": write failed");
     }

@@ -9,7 +9,6 @@ namespace vkdr {
 namespace {
 
 constexpr int kDefaultWidth = 512;
-constexpr int kMaxSide = 16384;
 
 const Camera& findCamera(const Scene& scene, const std::string& name) {
     if (scene.cameras.empty()) {
@@ -35,8 +34,9 @@ gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
     if (!(camera.yfov > 0.0f && camera.yfov < 3.14f)) {
         throw Error("camera " + camera.name + ": yfov must be in (0, pi), got " + std::to_string(camera.yfov));
     }
-    if (settings.width < 0 || settings.height < 0 || settings.width > kMaxSide || settings.height > kMaxSide) {
-        throw Error("--width/--height must be between 1 and " + std::to_string(kMaxSide));
+    if (settings.width < 0 || settings.height < 0 || settings.width > kMaxImageSide ||
+        settings.height > kMaxImageSide) {
+        throw Error("--width/--height must be between 1 and " + std::to_string(kMaxImageSide));
     }
     float aspect = camera.aspectRatio > 0.0f ? camera.aspectRatio : 1.0f;
     int width = settings.width;
@@ -50,6 +50,12 @@ gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
     } else {
         width = kDefaultWidth;
         height = std::max(1, int(std::lround(width / aspect)));
+    }
+
+    if (width > kMaxImageSide || height > kMaxImageSide) {
+        throw Error("camera " + camera.name + ": its aspect ratio " + std::to_string(aspect) + " makes the image " +
+                    std::to_string(width) + "x" + std::to_string(height) + ", over " +
+                    std::to_string(kMaxImageSide) + " pixels a side; give both --width and --height");
     }
 
     gpu::GpuCamera out{};

@@ -4,6 +4,10 @@
 
 namespace vkdr {
 
+// The largest image side rendered: 16384^2 pixels keep pixel indices and every per-pixel
+// buffer size within 32 bits.
+inline constexpr int kMaxImageSide = 16384;
+
 struct RenderSettings {
     std::string camera;      // empty: the scene's first perspective camera
     int width = 0;           // 0: from the other side and the camera's aspect ratio

@@ -1,6 +1,7 @@
 #include "scene/flatten_nodes.h"
 
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <optional>
 
@@ -12,6 +13,16 @@
 
 namespace vkdr {
 namespace {
+
+// Bounds on what a file can make the loader build. The largest scenes vkdiffrender is
+// meant for (10M triangles from tools/make_scene) fit well within them; a hierarchy that
+// instances a mesh exponentially often (each node listing the next twice) or nests
+// nodes deeper than any exporter does is refused before it exhausts memory, time or
+// the stack.
+constexpr size_t kMaxSceneTriangles = size_t(1) << 25;
+constexpr size_t kMaxSceneVertices = size_t(1) << 26;
+constexpr size_t kMaxNodeDepth = 1000;
+constexpr size_t kMaxNodeVisits = size_t(1) << 20;
 
 glm::mat4 localTransform(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) {
@@ -47,36 +58,62 @@ std::string describe(std::string_view array, size_t index, const std::string& na
     return indexed(array, index) + (name.empty() ? "" : " ('" + name + "')");
 }
 
+// A primitive as read from the file, shared by every instance of its mesh.
+struct DecodedPrimitive {
+    std::string field;                  // its JSON path, for messages
+    std::vector<glm::vec3> positions;   // in mesh space
+    std::vector<glm::vec2> uvs;         // one per position
+    std::vector<glm::uvec3> triangles;  // counter-clockwise, indexing positions
+    uint32_t material = 0;
+};
+
+// Where a node index is listed: slot `slot` of the root list (parent < 0) or of node
+// `parent`'s children. It becomes a JSON path only for a message, since a hierarchy may
+// instance millions of nodes.
+struct NodeSlot {
+    int parent = -1;
+    size_t slot = 0;
+};
+
 class NodeFlattener {
 public:
-    NodeFlattener(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene)
-        : model_(model), diagnostics_(diagnostics), scene_(scene),
+    NodeFlattener(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene, std::string rootsField)
+        : model_(model), diagnostics_(diagnostics), scene_(scene), rootsField_(std::move(rootsField)),
           visiting_(model.nodes.size(), false) {}
 
-    void visit(int nodeIndex, const glm::mat4& parentToWorld, const std::string& field) {
+    void visit(int nodeIndex, const glm::mat4& parentToWorld, NodeSlot where, size_t depth = 0) {
         if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size()) {
-            diagnostics_.fail(field, "node " + std::to_string(nodeIndex) + " out of range (" +
-                                         std::to_string(model_.nodes.size()) + " nodes)");
+            diagnostics_.fail(fieldOf(where), "node " + std::to_string(nodeIndex) + " out of range (" +
+                                                  std::to_string(model_.nodes.size()) + " nodes)");
+        }
+        if (depth >= kMaxNodeDepth) {
+            diagnostics_.fail(fieldOf(where), "the node hierarchy is nested more than " +
+                                                  std::to_string(kMaxNodeDepth) + " levels deep");
+        }
+        if (++visits_ > kMaxNodeVisits) {
+            diagnostics_.fail(fieldOf(where), "the node hierarchy instances more than " +
+                                                  std::to_string(kMaxNodeVisits) +
+                                                  " nodes (nodes listed as children of several parents multiply)");
         }
         if (visiting_[size_t(nodeIndex)]) {
-            diagnostics_.fail(field, "node " + std::to_string(nodeIndex) +
-                                         " is its own ancestor (cycle in the node hierarchy)");
+            diagnostics_.fail(fieldOf(where), "node " + std::to_string(nodeIndex) +
+                                                  " is its own ancestor (cycle in the node hierarchy)");
         }
         visiting_[size_t(nodeIndex)] = true;
         const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
-        std::string nodeField = indexed("nodes", size_t(nodeIndex));
         glm::mat4 nodeToWorld = parentToWorld * localTransform(node);
         if (node.skin >= 0) {
-            diagnostics_.warn(nodeField + ".skin", "skinning is ignored; the bind pose is used");
+            diagnostics_.warn(indexed("nodes", size_t(nodeIndex)) + ".skin",
+                              "skinning is ignored; the bind pose is used");
         }
         if (node.mesh >= 0) {
             addMeshInstance(size_t(nodeIndex), nodeToWorld);
         }
         if (node.camera >= 0) {
-            addCamera(node, nodeField, nodeToWorld);
+            addCamera(node, indexed("nodes", size_t(nodeIndex)), nodeToWorld);
         }
         for (size_t c = 0; c < node.children.size(); ++c) {
-            visit(node.children[c], nodeToWorld, indexed(nodeField + ".children", c));
+            visit(node.children[c], nodeToWorld, {nodeIndex, c}, depth + 1);
         }
         visiting_[size_t(nodeIndex)] = false;
     }
@@ -84,6 +121,11 @@ public:
     std::vector<MeshInstance> takeInstances() { return std::move(instances_); }
 
 private:
+    std::string fieldOf(NodeSlot where) const {
+        return where.parent < 0 ? indexed(rootsField_, where.slot)
+                                : indexed(indexed("nodes", size_t(where.parent)) + ".children", where.slot);
+    }
+
     void addMeshInstance(size_t nodeIndex, const glm::mat4& meshToWorld) {
         const tinygltf::Node& node = model_.nodes[nodeIndex];
         if (size_t(node.mesh) >= model_.meshes.size()) {
@@ -96,17 +138,29 @@ private:
         instance.description = describe("meshes", size_t(node.mesh), mesh.name) + " at " +
                                describe("nodes", nodeIndex, node.name);
         instance.firstTriangle = uint32_t(scene_.triangles.size());
-        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-            addPrimitive(mesh.primitives[p],
-                         indexed(indexed("meshes", size_t(node.mesh)) + ".primitives", p),
-                         meshToWorld);
+        for (const DecodedPrimitive& primitive : decodedMesh(size_t(node.mesh))) {
+            addPrimitive(primitive, meshToWorld);
         }
         instance.triangleCount = uint32_t(scene_.triangles.size()) - instance.firstTriangle;
         instances_.push_back(std::move(instance));
     }
 
-    void addPrimitive(const tinygltf::Primitive& primitive, const std::string& field,
-                      const glm::mat4& meshToWorld) {
+    // Each mesh is read once, however often the hierarchy instances it.
+    const std::vector<DecodedPrimitive>& decodedMesh(size_t meshIndex) {
+        auto found = decodedMeshes_.find(meshIndex);
+        if (found != decodedMeshes_.end()) {
+            return found->second;
+        }
+        const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
+        std::vector<DecodedPrimitive> primitives;
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            primitives.push_back(decodePrimitive(mesh.primitives[p],
+                                                 indexed(indexed("meshes", meshIndex) + ".primitives", p)));
+        }
+        return decodedMeshes_.emplace(meshIndex, std::move(primitives)).first->second;
+    }
+
+    DecodedPrimitive decodePrimitive(const tinygltf::Primitive& primitive, const std::string& field) {
         int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -123,56 +177,73 @@ private:
         if (!primitive.targets.empty()) {
             diagnostics_.warn(field + ".targets", "morph targets are ignored");
         }
-        std::vector<glm::vec3> positions =
-            readPositions(model_, position->second, diagnostics_, field + ".attributes.POSITION");
-        std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
+        DecodedPrimitive decoded;
+        decoded.field = field;
+        decoded.positions = readPositions(model_, position->second, diagnostics_, field + ".attributes.POSITION");
+        decoded.uvs.assign(decoded.positions.size(), glm::vec2(0.0f));
         if (auto texcoord = primitive.attributes.find("TEXCOORD_0");
             texcoord != primitive.attributes.end()) {
-            uvs = readTexcoords(model_, texcoord->second, diagnostics_, field + ".attributes.TEXCOORD_0");
-            if (uvs.size() != positions.size()) {
+            decoded.uvs = readTexcoords(model_, texcoord->second, diagnostics_, field + ".attributes.TEXCOORD_0");
+            if (decoded.uvs.size() != decoded.positions.size()) {
                 diagnostics_.fail(field + ".attributes.TEXCOORD_0",
-                                  std::to_string(uvs.size()) + " elements, POSITION has " +
-                                      std::to_string(positions.size()));
+                                  std::to_string(decoded.uvs.size()) + " elements, POSITION has " +
+                                      std::to_string(decoded.positions.size()));
             }
         }
         std::vector<uint32_t> indices;
         if (primitive.indices >= 0) {
             indices = readIndices(model_, primitive.indices, diagnostics_, field + ".indices");
         } else {
-            indices.resize(positions.size());
+            indices.resize(decoded.positions.size());
             for (size_t i = 0; i < indices.size(); ++i) {
                 indices[i] = uint32_t(i);
             }
         }
         for (uint32_t index : indices) {
-            if (index >= positions.size()) {
+            if (index >= decoded.positions.size()) {
                 diagnostics_.fail(field + ".indices", "vertex index " + std::to_string(index) +
                                                           " out of range (" +
-                                                          std::to_string(positions.size()) +
+                                                          std::to_string(decoded.positions.size()) +
                                                           " vertices)");
             }
         }
-        uint32_t material = materialIndex(primitive.material, field + ".material");
+        decoded.triangles = triangleList(mode, indices, field);
+        decoded.material = materialIndex(primitive.material, field + ".material");
+        return decoded;
+    }
+
+    void addPrimitive(const DecodedPrimitive& primitive, const glm::mat4& meshToWorld) {
+        requireRoomFor(primitive.positions.size(), primitive.triangles.size(), primitive.field);
         // A mirroring transform turns counter-clockwise triangles clockwise (glTF spec,
         // "Meshes": the determinant decides the winding), so swap two corners back.
         bool mirrored = glm::determinant(glm::mat3(meshToWorld)) < 0.0f;
 
         uint32_t base = uint32_t(scene_.positions.size());
-        for (size_t v = 0; v < positions.size(); ++v) {
-            glm::vec3 world = glm::vec3(meshToWorld * glm::vec4(positions[v], 1.0f));
+        for (size_t v = 0; v < primitive.positions.size(); ++v) {
+            glm::vec3 world = glm::vec3(meshToWorld * glm::vec4(primitive.positions[v], 1.0f));
             if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z)) {
-                diagnostics_.fail(field + ".attributes.POSITION",
+                diagnostics_.fail(primitive.field + ".attributes.POSITION",
                                   "vertex " + std::to_string(v) + " is not finite in world space");
             }
             scene_.positions.push_back(world);
         }
-        scene_.uvs.insert(scene_.uvs.end(), uvs.begin(), uvs.end());
-        for (glm::uvec3 triangle : triangleList(mode, indices, field)) {
+        scene_.uvs.insert(scene_.uvs.end(), primitive.uvs.begin(), primitive.uvs.end());
+        for (glm::uvec3 triangle : primitive.triangles) {
             if (mirrored) {
                 std::swap(triangle.y, triangle.z);
             }
             scene_.triangles.push_back(triangle + glm::uvec3(base));
-            scene_.triangleMaterial.push_back(material);
+            scene_.triangleMaterial.push_back(primitive.material);
+        }
+    }
+
+    // Keeps every vertex index within 32 bits and the scene within memory.
+    void requireRoomFor(size_t vertices, size_t triangles, const std::string& field) const {
+        if (scene_.positions.size() + vertices > kMaxSceneVertices ||
+            scene_.triangles.size() + triangles > kMaxSceneTriangles) {
+            diagnostics_.fail(field, "the scene would exceed " + std::to_string(kMaxSceneTriangles) +
+                                         " triangles or " + std::to_string(kMaxSceneVertices) +
+                                         " vertices with all mesh instances");
         }
     }
 
@@ -246,6 +317,13 @@ private:
             diagnostics_.fail(cameraField + ".perspective.yfov",
                               "must be in (0, pi), got " + formatNumber(source.perspective.yfov));
         }
+        // Absent is 0 (the image's aspect ratio decides); a wider camera than 1e4 : 1
+        // makes no image of at most 16384 pixels a side.
+        double aspect = source.perspective.aspectRatio;
+        if (aspect != 0.0 && !(aspect >= 1e-4 && aspect <= 1e4)) {
+            diagnostics_.fail(cameraField + ".perspective.aspectRatio",
+                              "must be in [1e-4, 1e4], got " + formatNumber(aspect));
+        }
         Camera camera;
         camera.name = !node.name.empty() ? node.name : !source.name.empty() ? source.name : cameraField;
         // Rays are built from the axes, so keep the rotation and position only.
@@ -253,6 +331,12 @@ private:
                                          glm::vec4(glm::normalize(glm::vec3(cameraToWorld[1])), 0.0f),
                                          glm::vec4(glm::normalize(glm::vec3(cameraToWorld[2])), 0.0f),
                                          cameraToWorld[3]);
+        for (int column = 0; column < 4; ++column) {
+            glm::vec4 axis = camera.cameraToWorld[column];
+            if (!std::isfinite(axis.x) || !std::isfinite(axis.y) || !std::isfinite(axis.z)) {
+                diagnostics_.fail(nodeField, "the camera's transform is degenerate (a zero scale) or not finite");
+            }
+        }
         camera.yfov = float(source.perspective.yfov);
         camera.aspectRatio = float(source.perspective.aspectRatio);
         scene_.cameras.push_back(std::move(camera));
@@ -261,7 +345,10 @@ private:
     const tinygltf::Model& model_;
     GltfDiagnostics& diagnostics_;
     Scene& scene_;
+    std::string rootsField_;      // the JSON path of the root list
     std::vector<bool> visiting_;  // nodes on the current root-to-node path
+    size_t visits_ = 0;           // nodes visited, counting each instance
+    std::map<size_t, std::vector<DecodedPrimitive>> decodedMeshes_;  // by mesh index
     std::optional<uint32_t> defaultMaterial_;
     std::vector<MeshInstance> instances_;
 };
@@ -299,10 +386,10 @@ std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model,
 
 std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnostics& diagnostics,
                                        Scene& scene) {
-    NodeFlattener flattener(model, diagnostics, scene);
     auto [roots, field] = rootNodes(model, diagnostics);
+    NodeFlattener flattener(model, diagnostics, scene, field);
     for (size_t r = 0; r < roots.size(); ++r) {
-        flattener.visit(roots[r], glm::mat4(1.0f), indexed(field, r));
+        flattener.visit(roots[r], glm::mat4(1.0f), {-1, r});
     }
     return flattener.takeInstances();
 }

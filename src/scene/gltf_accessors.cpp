@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <initializer_list>
+#include <optional>
 
 namespace vkdr {
 namespace {
@@ -13,6 +14,19 @@ struct ElementRange {
     size_t count = 0;
     int componentType = 0;
 };
+
+// Where the last of `count` elements ends: byteOffset + stride * (count - 1) + elementSize
+// (byteOffset for none), or nothing when a corrupt file's huge count or offset makes
+// that overflow.
+std::optional<size_t> bytesNeeded(size_t byteOffset, size_t stride, size_t count, size_t elementSize) {
+    if (count == 0) return byteOffset;
+    size_t span = 0, end = 0;
+    if (__builtin_mul_overflow(stride, count - 1, &span) || __builtin_add_overflow(span, elementSize, &end) ||
+        __builtin_add_overflow(end, byteOffset, &end)) {
+        return std::nullopt;
+    }
+    return end;
+}
 
 ElementRange checkedElements(const tinygltf::Model& model, int accessorIndex, int type,
                              std::initializer_list<int> componentTypes,
@@ -52,7 +66,8 @@ ElementRange checkedElements(const tinygltf::Model& model, int accessorIndex, in
                                                     " buffers)");
     }
     const tinygltf::Buffer& buffer = model.buffers[size_t(view.buffer)];
-    if (view.byteOffset + view.byteLength > buffer.data.size()) {
+    // Compared without adding, so that offsets near SIZE_MAX cannot wrap around.
+    if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset) {
         diagnostics.fail(viewField, "byteOffset + byteLength = " +
                                         std::to_string(view.byteOffset + view.byteLength) +
                                         " exceeds the " + std::to_string(buffer.data.size()) +
@@ -67,13 +82,11 @@ ElementRange checkedElements(const tinygltf::Model& model, int accessorIndex, in
                          "stride " + std::to_string(stride) + " is smaller than the " +
                              std::to_string(elementSize) + "-byte elements of " + accessorField);
     }
-    size_t needed = accessor.count == 0
-                        ? 0
-                        : accessor.byteOffset + stride * (accessor.count - 1) + elementSize;
-    if (needed > view.byteLength) {
+    std::optional<size_t> needed = bytesNeeded(accessor.byteOffset, stride, accessor.count, elementSize);
+    if (!needed || *needed > view.byteLength) {
         diagnostics.fail(accessorField, std::to_string(accessor.count) + " elements need " +
-                                            std::to_string(needed) + " bytes but " + viewField +
-                                            " holds " + std::to_string(view.byteLength));
+                                            (needed ? std::to_string(*needed) : "more than 2^64") + " bytes but " +
+                                            viewField + " holds " + std::to_string(view.byteLength));
     }
     return {buffer.data.data() + view.byteOffset + accessor.byteOffset, stride, accessor.count,
             accessor.componentType};

@@ -7,6 +7,7 @@
 #include "vk/context.h"
 #include "vk/dispatch_timer.h"
 #include "vk/pipeline.h"
+#include "vk/simulated_device_loss.h"
 
 namespace vkdr {
 
@@ -106,7 +107,9 @@ void CommandRecorder::submitAndWait() {
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &commands_;
-    checkVk(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "vkQueueSubmit");
+    VkResult submitted =
+        deviceLossSimulated() ? VK_ERROR_DEVICE_LOST : vkQueueSubmit(context_.queue(), 1, &submit, fence_);
+    checkVk(submitted, "vkQueueSubmit");
     checkVk(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for the device");
     checkVk(vkResetFences(context_.device(), 1, &fence_), "vkResetFences");
     if (timer_) {

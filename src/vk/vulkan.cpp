@@ -27,9 +27,10 @@ void checkVk(VkResult result, const char* what) {
     }
     std::string message = std::string(what) + " failed: " + vkResultName(result);
     if (result == VK_ERROR_DEVICE_LOST) {
-        message += " (the GPU driver reset the device; a very long pass can trigger its "
-                   "watchdog: try fewer samples per pass or a smaller image)";
-    } else if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+        throw DeviceLostError(message + " (the GPU driver reset the device; a very long pass can trigger its "
+                                        "watchdog: try fewer --paths-per-pass or a smaller image)");
+    }
+    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
         message += " (the scene or the image does not fit: try a smaller --width/--height)";
     }
     throw Error(message);

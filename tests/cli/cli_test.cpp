@@ -1,34 +1,18 @@
 // The command line as a user meets it: help, bad input (one clear message, exit code 2,
 // nothing written over a previous result), and a real render.
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
 #include "image/image.h"
 
 namespace vkdr::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct RunResult {
-    int exitCode;
-    std::string out;
-    std::string err;
-};
-
-std::string slurp(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 class CliTest : public ::testing::Test {
 protected:
@@ -39,12 +23,7 @@ protected:
         fs::create_directories(dir_);
     }
 
-    RunResult run(const std::string& args) {
-        std::string command = std::string(VKDR_CLI_PATH) + " " + args + " > " + (dir_ / "stdout").string() + " 2> " +
-                              (dir_ / "stderr").string() + " < /dev/null";
-        int status = std::system(command.c_str());
-        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
-    }
+    RunResult run(const std::string& args) { return runCli(args, dir_); }
 
     // A failed command must say "error:" once, name `what`, exit with 2, and leave
     // the previous output file as it was.

@@ -41,6 +41,19 @@ TEST(AtomicWrite, FailureLeavesThePreviousFileAndNoTemporary) {
     EXPECT_EQ(dir.fileCount(), 1u);
 }
 
+TEST(AtomicWrite, RemovesTheTemporariesOfKilledWritersOnly) {
+    test::ScratchDirectory dir;
+    // No process has an id above the kernel's pid_max (at most 2^22).
+    test::writeBytes(dir / ".log.jsonl.tmp-2000000000-3", "half of a line");
+    std::string ours = ".params.json.tmp-" + std::to_string(getpid()) + "-0";
+    test::writeBytes(dir / ours, "being written");
+    test::writeBytes(dir / "notes.tmp-2000000000-1", "not a temporary: no leading dot");
+    EXPECT_EQ(removeStaleTemporaries(dir.path()), 1u);
+    EXPECT_FALSE(std::filesystem::exists(dir / ".log.jsonl.tmp-2000000000-3"));
+    EXPECT_TRUE(std::filesystem::exists(dir / ours));
+    EXPECT_EQ(dir.fileCount(), 2u);
+}
+
 TEST(AtomicWrite, SuccessReplacesTheFile) {
     test::ScratchDirectory dir;
     test::writeBytes(dir / "out.exr", "old");

@@ -81,6 +81,14 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
     experiment["spp"] = "many";
     expectReadError(scratch, experiment, {"spp", "integer"});
 
+    // Sizes and sample counts beyond the command line's bounds would overflow the renderer's counts.
+    experiment = fogExperiment(scratch.path());
+    experiment["target_spp"] = 4294967295u;
+    expectReadError(scratch, experiment, {"target_spp", "<= 1048576"});
+    experiment = fogExperiment(scratch.path());
+    experiment["width"] = 3000000000u;
+    expectReadError(scratch, experiment, {"width", "<= 16384"});
+
     experiment = fogExperiment(scratch.path());
     experiment["scene"] = "nowhere.gltf";
     expectReadError(scratch, experiment, {"scene", "nowhere.gltf", "no such file"});

@@ -165,6 +165,22 @@ TEST(OptimizeLoop, StopsOnANonFiniteGradientNamingTheParameterAndIteration) {
     EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), valuesAfterIteration2);
 }
 
+TEST(OptimizeLoop, StopsOnAStepBeyondFloatRangeBeforeItReachesTheScene) {
+    Scene scene = sceneWithParameters();
+    // SGD's step is rate * 2 (sigma - 1e30): far beyond float range for this rate.
+    QuadraticLossGradient loss({{"media/fog/sigma_s", {1e30, 1e30, 1e30}}});
+    std::vector<float> before = getParameter(scene, "media/fog/sigma_s");
+    try {
+        optimize(loss, scene, optionsFor({"media/fog/sigma_s"}, OptimizerKind::Sgd, 1e20, 5));
+        FAIL() << "no error";
+    } catch (const Error& error) {
+        std::string message = error.what();
+        EXPECT_NE(message.find("iteration 0"), std::string::npos) << message;
+        EXPECT_NE(message.find("media/fog/sigma_s"), std::string::npos) << message;
+    }
+    EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), before);
+}
+
 TEST(OptimizeLoop, RejectsUnknownRepeatedAndMissingParameters) {
     Scene scene = sceneWithParameters();
     QuadraticLossGradient loss({});

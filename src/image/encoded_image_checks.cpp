@@ -1,0 +1,87 @@
+#include "image/encoded_image_checks.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+
+namespace vkdr {
+
+namespace {
+
+const unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+const unsigned char kJpegStart[3] = {0xff, 0xd8, 0xff};  // start of image, then a marker
+
+// The Huffman tables of one DHT segment: a class and id byte, 16 code counts, the codes.
+std::string huffmanTableProblem(const unsigned char* segment, size_t length, size_t offset) {
+    size_t position = 0;
+    while (position < length) {
+        if (length - position < 17) return "a Huffman table at byte " + std::to_string(offset) + " is cut short";
+        size_t codes = 0;
+        for (size_t i = 1; i <= 16; ++i) codes += segment[position + i];
+        if (codes > 256) {
+            return "a Huffman table at byte " + std::to_string(offset) + " declares " + std::to_string(codes) +
+                   " codes; at most 256 exist";
+        }
+        position += 17 + codes;
+    }
+    return {};
+}
+
+bool startsWith(const unsigned char* bytes, size_t size, const unsigned char* prefix, size_t length) {
+    return size >= length && std::memcmp(bytes, prefix, length) == 0;
+}
+
+}  // namespace
+
+bool isPngOrJpeg(const unsigned char* bytes, size_t size) {
+    return startsWith(bytes, size, kPngSignature, sizeof(kPngSignature)) ||
+           startsWith(bytes, size, kJpegStart, sizeof(kJpegStart));
+}
+
+std::string pngChunkProblem(const unsigned char* bytes, size_t size) {
+    if (!startsWith(bytes, size, kPngSignature, sizeof(kPngSignature))) return {};
+    // Each chunk: a big-endian 32-bit data length, a 4-byte type, the data, a 4-byte CRC.
+    size_t offset = sizeof(kPngSignature);
+    while (size - offset >= 8) {
+        uint32_t length = uint32_t(bytes[offset]) << 24 | uint32_t(bytes[offset + 1]) << 16 |
+                          uint32_t(bytes[offset + 2]) << 8 | uint32_t(bytes[offset + 3]);
+        std::string type(reinterpret_cast<const char*>(bytes + offset + 4), 4);
+        size_t left = size - offset - 8;
+        if (length > left) {
+            return "the PNG chunk '" + type + "' at byte " + std::to_string(offset) + " declares " +
+                   std::to_string(length) + " bytes, but " + std::to_string(left) + " follow";
+        }
+        if (type == "IEND") return {};
+        offset += 8 + size_t(length) + std::min<size_t>(4, left - length);  // a cut-off CRC ends the walk
+    }
+    return {};
+}
+
+std::string jpegProblem(const unsigned char* bytes, size_t size) {
+    if (!startsWith(bytes, size, kJpegStart, sizeof(kJpegStart))) return {};
+    size_t offset = 2;
+    while (offset < size) {
+        if (bytes[offset] != 0xff) return {};  // not a marker: left to the decoder to refuse
+        while (offset < size && bytes[offset] == 0xff) ++offset;  // fill bytes before a marker
+        if (offset >= size) return {};
+        unsigned char marker = bytes[offset++];
+        bool standalone = marker == 0x01 || (marker >= 0xd0 && marker <= 0xd9);  // TEM, RSTn, SOI, EOI
+        if (standalone) continue;
+        if (size - offset < 2) return "a JPEG marker segment at byte " + std::to_string(offset) + " is cut short";
+        size_t length = size_t(bytes[offset]) << 8 | bytes[offset + 1];  // including these two bytes
+        if (length < 2 || length > size - offset) {
+            return "a JPEG marker segment at byte " + std::to_string(offset) + " declares " +
+                   std::to_string(length) + " bytes, but " + std::to_string(size - offset) + " follow";
+        }
+        if (marker == 0xc4) {
+            if (std::string problem = huffmanTableProblem(bytes + offset + 2, length - 2, offset); !problem.empty()) {
+                return problem;
+            }
+        }
+        if (marker == 0xda) return {};  // start of scan: entropy-coded data follows
+        offset += length;
+    }
+    return {};
+}
+
+}  // namespace vkdr

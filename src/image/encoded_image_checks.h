@@ -1,0 +1,27 @@
+#pragma once
+#include <cstddef>
+#include <string>
+
+namespace vkdr {
+
+// Checks on encoded bytes before stb_image decodes them.
+
+// Whether the bytes start as a PNG or a JPEG file does. stb_image also reads TGA, PSD,
+// PNM and others by their content, and some of those decode a header of a few bytes into
+// a huge image of zeros; targets may only be PNG or JPEG (or EXR), so the rest are refused.
+bool isPngOrJpeg(const unsigned char* bytes, size_t size);
+
+// For bytes that start with the PNG signature: what is wrong when a chunk declares more
+// bytes than follow it (empty when every chunk fits, or the bytes are not a PNG).
+// stb_image sizes its buffer for the compressed data by the declared lengths before
+// reading them, so a few corrupt bytes could make it claim gigabytes; callers check this
+// first.
+std::string pngChunkProblem(const unsigned char* bytes, size_t size);
+
+// For bytes that start as a JPEG: what is wrong when a marker segment before the scan
+// data is longer than the file, or a Huffman table declares more than 256 codes (empty
+// when neither, or the bytes are not a JPEG). Debian's stb_image writes past its
+// Huffman arrays for such a table (found by tools/fuzz.sh), so callers check this first.
+std::string jpegProblem(const unsigned char* bytes, size_t size);
+
+}  // namespace vkdr

@@ -1,0 +1,123 @@
+#include "optimize/checkpoint.h"
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "image/atomic_write.h"
+
+namespace vkdr {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// Names the file format, so that another JSON file is not taken for a checkpoint and a
+// later format can be told apart.
+constexpr const char* kFormat = "vkdiffrender optimize checkpoint 1";
+
+class CheckpointReader {
+public:
+    explicit CheckpointReader(std::filesystem::path file) : file_(std::move(file)) {}
+
+    [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+        throw Error(file_.string() + ": " + (key.empty() ? "" : key + ": ") + problem);
+    }
+
+    Json parse() const {
+        std::ifstream in(file_);
+        if (!in) fail("", "cannot open the checkpoint");
+        Json document = Json::parse(in, nullptr, false);
+        if (document.is_discarded() || !document.is_object()) fail("", "not a JSON object");
+        if (!document.contains("format") || document["format"] != kFormat) {
+            fail("format", std::string("not a checkpoint (expected \"") + kFormat + "\")");
+        }
+        return document;
+    }
+
+    const Json& member(const Json& object, const std::string& key) const {
+        if (!object.is_object() || !object.contains(key)) fail(key, "missing");
+        return object.at(key);
+    }
+
+    uint64_t count(const Json& object, const std::string& key) const {
+        const Json& value = member(object, key);
+        if (!value.is_number_unsigned()) fail(key, "expected an integer >= 0");
+        return value.get<uint64_t>();
+    }
+
+    double number(const Json& object, const std::string& key) const {
+        const Json& value = member(object, key);
+        if (!value.is_number() || !std::isfinite(value.get<double>())) fail(key, "expected a finite number");
+        return value.get<double>();
+    }
+
+    std::vector<double> numbers(const Json& object, const std::string& key) const {
+        const Json& array = member(object, key);
+        if (!array.is_array()) fail(key, "expected an array of numbers");
+        std::vector<double> values;
+        for (const Json& value : array) {
+            if (!value.is_number() || !std::isfinite(value.get<double>())) fail(key, "expected finite numbers");
+            values.push_back(value.get<double>());
+        }
+        return values;
+    }
+
+    RunIdentity run(const Json& object) const {
+        const Json& entries = member(object, "run");
+        if (!entries.is_object()) fail("run", "expected an object of strings");
+        RunIdentity identity;
+        for (const auto& [name, value] : entries.items()) {
+            if (!value.is_string()) fail("run." + name, "expected a string");
+            identity[name] = value.get<std::string>();
+        }
+        return identity;
+    }
+
+private:
+    std::filesystem::path file_;
+};
+
+}  // namespace
+
+void writeCheckpoint(const std::filesystem::path& file, const Checkpoint& checkpoint) {
+    const LoopState& state = checkpoint.state;
+    Json run = Json::object();
+    for (const auto& [name, value] : checkpoint.run) run[name] = value;
+    Json document = {{"format", kFormat},
+                     {"run", run},
+                     {"iteration", state.iteration},
+                     {"values", state.values},
+                     {"optimizer",
+                      {{"steps", state.optimizer.steps},
+                       {"mean", state.optimizer.mean},
+                       {"mean_square", state.optimizer.meanSquare}}},
+                     {"losses", state.losses},
+                     {"forward_ms", state.forwardMs},
+                     {"adjoint_ms", state.adjointMs}};
+    writeAtomically(file, [&](std::ofstream& out) { out << document.dump(1) << "\n"; });
+}
+
+Checkpoint readCheckpoint(const std::filesystem::path& file) {
+    CheckpointReader reader(file);
+    Json document = reader.parse();
+    Checkpoint checkpoint;
+    checkpoint.run = reader.run(document);
+    LoopState& state = checkpoint.state;
+    uint64_t iteration = reader.count(document, "iteration");
+    if (iteration > UINT32_MAX) reader.fail("iteration", "out of range");
+    state.iteration = uint32_t(iteration);
+    state.values = reader.numbers(document, "values");
+    const Json& optimizer = reader.member(document, "optimizer");
+    state.optimizer.steps = reader.count(optimizer, "steps");
+    state.optimizer.mean = reader.numbers(optimizer, "mean");
+    state.optimizer.meanSquare = reader.numbers(optimizer, "mean_square");
+    state.losses = reader.numbers(document, "losses");
+    state.forwardMs = reader.number(document, "forward_ms");
+    state.adjointMs = reader.number(document, "adjoint_ms");
+    return checkpoint;
+}
+
+}  // namespace vkdr

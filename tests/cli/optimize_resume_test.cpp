@@ -1,0 +1,90 @@
+// optimize as a user meets a crash: the device is lost mid-run (simulated, see
+// vk/simulated_device_loss.h), the run stops with one message and leaves its last
+// checkpoint, and --resume finishes with the values of a run that never stopped.
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "cli_run.h"
+
+namespace vkdr::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Setting up takes about twenty queue submissions and each iteration of this small
+// problem about twenty more, so the device is lost in iteration 5 of 8: after the
+// checkpoint at 4, with iteration 4 logged past it.
+constexpr const char* kLoseDeviceMidRun = "VKDR_SIMULATE_DEVICE_LOST=130";
+
+class OptimizeResume : public ::testing::Test {
+protected:
+    void SetUp() override {
+        scratch_ = fs::temp_directory_path() / ("vkdr-optimize-resume-" + std::to_string(getpid()));
+        fs::remove_all(scratch_);
+        fs::create_directories(scratch_);
+        std::string fog = std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf";
+        RunResult target = runCli("render " + fog + " --width 8 --height 8 --spp 4 --max-depth 2 -o " +
+                                      (scratch_ / "target.exr").string(),
+                                  scratch_);
+        ASSERT_EQ(target.exitCode, 0) << target.err;
+        command_ = "optimize " + fog + " --target " + (scratch_ / "target.exr").string() +
+                   " --param media/fog/sigma_a --iters 8 --spp 1 --max-depth 2 --checkpoint-every 2";
+    }
+    void TearDown() override { fs::remove_all(scratch_); }
+
+    fs::path scratch_;
+    std::string command_;
+};
+
+TEST_F(OptimizeResume, ADeviceLostMidRunLeavesTheCheckpointAndResumeFinishesTheRun) {
+    fs::path whole = scratch_ / "whole", cut = scratch_ / "cut";
+    RunResult uninterrupted = runCli(command_ + " --out " + whole.string(), scratch_);
+    ASSERT_EQ(uninterrupted.exitCode, 0) << uninterrupted.err;
+
+    RunResult lost = runCli(command_ + " --out " + cut.string(), scratch_, kLoseDeviceMidRun);
+    EXPECT_EQ(lost.exitCode, 2) << lost.err;
+    EXPECT_EQ(lost.err.find("error: "), lost.err.rfind("error: ")) << lost.err;
+    EXPECT_NE(lost.err.find("VK_ERROR_DEVICE_LOST"), std::string::npos) << lost.err;
+    EXPECT_NE(lost.err.find("checkpoint.json is intact: run the same command with --resume"), std::string::npos)
+        << lost.err;
+    for (const char* file : {"params.json", "scene.gltf", "final.exr"}) {
+        EXPECT_FALSE(fs::exists(cut / file)) << file;
+    }
+    nlohmann::json checkpoint = nlohmann::json::parse(slurp(cut / "checkpoint.json"));
+    EXPECT_GE(checkpoint["iteration"].get<int>(), 2);
+
+    RunResult resumed = runCli(command_ + " --resume " + cut.string(), scratch_);
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_EQ(slurp(cut / "params.json"), slurp(whole / "params.json"));
+    std::istringstream log(slurp(cut / "log.jsonl"));
+    int expected = 0;
+    for (std::string line; std::getline(log, line); ++expected) {
+        EXPECT_EQ(nlohmann::json::parse(line)["iteration"], expected);
+    }
+    EXPECT_EQ(expected, 8);
+}
+
+TEST_F(OptimizeResume, RefusesAResumeWithOtherOptionsOrAnotherOut) {
+    fs::path cut = scratch_ / "cut";
+    ASSERT_EQ(runCli(command_ + " --out " + cut.string(), scratch_, kLoseDeviceMidRun).exitCode, 2);
+    std::string checkpoint = slurp(cut / "checkpoint.json");
+
+    RunResult otherRate = runCli(command_ + " --lr 0.5 --resume " + cut.string(), scratch_);
+    EXPECT_EQ(otherRate.exitCode, 2);
+    EXPECT_NE(otherRate.err.find("learning_rate '0.01"), std::string::npos) << otherRate.err;
+    RunResult otherOut = runCli(command_ + " --resume " + cut.string() + " --out elsewhere", scratch_);
+    EXPECT_EQ(otherOut.exitCode, 2);
+    EXPECT_NE(otherOut.err.find("--out elsewhere"), std::string::npos) << otherOut.err;
+    RunResult nothing = runCli(command_ + " --resume " + (scratch_ / "empty").string(), scratch_);
+    EXPECT_EQ(nothing.exitCode, 2);
+    EXPECT_NE(nothing.err.find("no checkpoint.json"), std::string::npos) << nothing.err;
+    EXPECT_EQ(slurp(cut / "checkpoint.json"), checkpoint);
+}
+
+}  // namespace
+}  // namespace vkdr::test

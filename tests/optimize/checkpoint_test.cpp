@@ -1,0 +1,170 @@
+// Checkpoints and --resume: a run stopped at any point and resumed ends exactly where
+// the uninterrupted run ends; a resume that does not match its checkpoint is refused.
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "../image/scratch_directory.h"
+#include "core/error.h"
+#include "expect_error.h"
+#include "optimize/adam.h"
+#include "optimize/checkpoint.h"
+#include "optimize/optimization_run.h"
+#include "quadratic_loss_gradient.h"
+#include "scene/load_scene.h"
+#include "scene/parameters.h"
+
+namespace vkdr::test {
+namespace {
+
+const std::filesystem::path kFogScene = std::filesystem::path(VKDR_TEST_SCENES_DIR) / "cornell_fog.gltf";
+
+QuadraticLossGradient::Minima fogMinima() { return {{"media/fog/sigma_a", {0.05, 0.1, 0.2}}, {"media/fog/g", {0.3}}}; }
+
+OptimizationJob fogJob(const std::filesystem::path& directory, uint32_t iterations) {
+    OptimizationJob job;
+    job.sceneFile = kFogScene;
+    job.outputDirectory = directory;
+    job.options.parameters = {"media/fog/sigma_a", "media/fog/g"};
+    job.options.learningRate = 0.01;
+    job.options.learningRateDecay = 0.5;
+    job.options.iterations = iterations;
+    job.options.seed = 7;
+    job.options.checkpointEvery = 10;
+    job.identity = {{"spp", "4"}};
+    job.firstTarget = Image{4, 3, std::vector<float>(4 * 3 * 3, 0.05f)};
+    return job;
+}
+
+// Runs `job` until the evaluation `stopAt` fails, as a killed process would stop.
+void runUntil(const OptimizationJob& job, size_t stopAt) {
+    Scene scene = loadScene(kFogScene).scene;
+    QuadraticLossGradient loss(fogMinima());
+    loss.failFrom(stopAt, "media/fog/g");
+    EXPECT_THROW(runOptimization(loss, scene, job), Error);
+}
+
+TEST(Checkpoint, AResumedRunEndsExactlyWhereTheUninterruptedRunEnds) {
+    ScratchDirectory scratch;
+    Scene whole = loadScene(kFogScene).scene;
+    QuadraticLossGradient wholeLoss(fogMinima());
+    runOptimization(wholeLoss, whole, fogJob(scratch / "whole", 40));
+
+    // Stopped two iterations after the checkpoint at 20: those two are logged but lost.
+    OptimizationJob job = fogJob(scratch / "resumed", 40);
+    runUntil(job, 22);
+    ASSERT_EQ(readCheckpoint(scratch / "resumed" / kCheckpointFileName).state.iteration, 20u);
+
+    job.resume = true;
+    Scene resumed = loadScene(kFogScene).scene;
+    QuadraticLossGradient resumedLoss(fogMinima());
+    OptimizationReport report = runOptimization(resumedLoss, resumed, job);
+    EXPECT_EQ(resumedLoss.seeds().front(), 7u + 20u);  // iteration i still renders with seed + i
+    EXPECT_EQ(resumedLoss.seeds().size(), 20u);
+    EXPECT_EQ(report.result.losses.size(), 40u);
+
+    for (const char* name : {"media/fog/sigma_a", "media/fog/g"}) {
+        EXPECT_EQ(getParameter(resumed, name), getParameter(whole, name)) << name;
+    }
+    // Every line once, and bit for bit what the uninterrupted run logged.
+    for (const char* file : {"log.jsonl", "params.json", "loss.svg", "scene.gltf"}) {
+        EXPECT_EQ(readBytes(scratch / "resumed" / file), readBytes(scratch / "whole" / file)) << file;
+    }
+}
+
+TEST(Checkpoint, IsWrittenEveryKIterationsButNotAfterTheLast) {
+    ScratchDirectory scratch;
+    OptimizationJob job = fogJob(scratch.path(), 30);
+    job.options.checkpointEvery = 7;
+    Scene scene = loadScene(kFogScene).scene;
+    QuadraticLossGradient loss(fogMinima());
+    runOptimization(loss, scene, job);
+    Checkpoint checkpoint = readCheckpoint(scratch / kCheckpointFileName);
+    EXPECT_EQ(checkpoint.state.iteration, 28u);
+    EXPECT_EQ(checkpoint.state.losses.size(), 28u);
+    EXPECT_EQ(checkpoint.state.optimizer.steps, 28u);
+    EXPECT_EQ(checkpoint.state.optimizer.mean.size(), 4u);  // three sigma_a values and g
+    EXPECT_EQ(checkpoint.run.at("optimizer"), "adam");
+    EXPECT_EQ(checkpoint.run.at("spp"), "4");
+
+    ScratchDirectory never;
+    job = fogJob(never.path(), 30);
+    job.options.checkpointEvery = 0;
+    runOptimization(loss, scene, job);
+    EXPECT_FALSE(std::filesystem::exists(never / kCheckpointFileName));
+}
+
+TEST(Checkpoint, ANonFiniteGradientLeavesTheLastCheckpointIntact) {
+    ScratchDirectory scratch;
+    OptimizationJob job = fogJob(scratch.path(), 40);
+    runUntil(job, 25);
+    EXPECT_EQ(readCheckpoint(scratch / kCheckpointFileName).state.iteration, 20u);
+    for (const char* file : {"scene.gltf", "params.json", "final.exr", "loss.svg"}) {
+        EXPECT_FALSE(std::filesystem::exists(scratch / file)) << file;
+    }
+    EXPECT_EQ(scratch.fileCount(), 2u);  // log.jsonl and checkpoint.json, no temporary files
+}
+
+TEST(Checkpoint, ResumeRefusesADifferentRun) {
+    ScratchDirectory scratch;
+    runUntil(fogJob(scratch.path(), 40), 15);
+    auto expectRefused = [&](OptimizationJob job, const std::string& what) {
+        job.resume = true;
+        Scene scene = loadScene(job.sceneFile).scene;
+        QuadraticLossGradient loss(fogMinima());
+        expectErrorMentioning([&] { runOptimization(loss, scene, job); }, {"checkpoint.json", what});
+    };
+    OptimizationJob job = fogJob(scratch.path(), 40);
+    job.options.learningRate = 0.02;
+    expectRefused(job, "learning_rate");
+    job = fogJob(scratch.path(), 40);
+    job.options.optimizer = OptimizerKind::Sgd;
+    expectRefused(job, "optimizer 'adam', but this run has 'sgd'");
+    job = fogJob(scratch.path(), 40);
+    job.options.parameters = {"media/fog/sigma_a"};
+    expectRefused(job, "parameters");
+    job = fogJob(scratch.path(), 40);
+    job.identity["spp"] = "8";
+    expectRefused(job, "spp");
+
+    std::filesystem::path edited = scratch / "edited.gltf";
+    std::filesystem::copy_file(kFogScene, edited);
+    std::ofstream(edited, std::ios::app) << "\n";
+    job = fogJob(scratch.path(), 40);
+    job.sceneFile = edited;
+    expectRefused(job, "scene");
+    EXPECT_EQ(readCheckpoint(scratch / kCheckpointFileName).state.iteration, 10u);  // untouched
+}
+
+TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {
+    ScratchDirectory scratch;
+    OptimizationJob job = fogJob(scratch.path(), 40);
+    job.resume = true;
+    Scene scene = loadScene(kFogScene).scene;
+    QuadraticLossGradient loss(fogMinima());
+    expectErrorMentioning([&] { runOptimization(loss, scene, job); }, {"--resume", "no checkpoint.json"});
+
+    writeBytes(scratch / kCheckpointFileName, "{\"format\": \"vkdiffrender optimize checkpoint 1\", \"run\": {");
+    expectErrorMentioning([&] { runOptimization(loss, scene, job); }, {"checkpoint.json", "not a JSON object"});
+    writeBytes(scratch / kCheckpointFileName, "{\"format\": \"vkdiffrender optimize checkpoint 1\", \"run\": {}}");
+    expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); }, {"checkpoint.json", "iteration"});
+    writeBytes(scratch / kCheckpointFileName, "[1, 2]");
+    expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); }, {"checkpoint.json"});
+}
+
+TEST(Checkpoint, AdamContinuesFromItsStateExactly) {
+    AdamOptimizer first(std::vector<double>(2, 0.1)), second(std::vector<double>(2, 0.1));
+    std::vector<double> x = {1.0, -1.0}, y = x;
+    std::vector<double> gradient = {0.3, -2.0};
+    first.step(x, gradient);
+    second.restore(first.state());
+    y = x;
+    first.step(x, gradient);
+    second.step(y, gradient);
+    EXPECT_EQ(x, y);
+    EXPECT_THROW(second.restore(OptimizerState{1, {0.0}, {0.0}}), Error);
+}
+
+}  // namespace
+}  // namespace vkdr::test
