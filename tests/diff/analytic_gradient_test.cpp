@@ -6,8 +6,8 @@
 // medium enclosed in a box that the camera ray enters and every shadow ray leaves.
 #include <cmath>
 
-#include "core/sample_statistics.h"
 #include "diff/rendered_loss_gradient.h"
+#include "gradient_over_seeds.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
 #include "single_scattering_quadrature.h"
@@ -49,18 +49,10 @@ TEST_P(FogGradientTest, MatchesQuadrature) {
 
     Image target{1, 1, {float(kTarget.x), float(kTarget.y), float(kTarget.z)}};
     RenderedLossGradient lg(testContext(), scene, {{"", target}}, names, {.spp = 4096, .maxDepth = 1}, LossKind::L2);
-    std::vector<std::vector<std::vector<double>>> samples(names.size(), std::vector<std::vector<double>>(3));
-    for (uint32_t seed = 0; seed < kSeeds; ++seed) {
-        GradientResult r = lg.evaluate(scene, seed);
-        for (size_t p = 0; p < names.size(); ++p) {
-            for (size_t c = 0; c < r.parameters[p].gradient.size(); ++c) {
-                samples[p][c].push_back(r.parameters[p].gradient[c]);
-            }
-        }
-    }
+    const std::vector<std::vector<MeanAndError>> gradients = gradientOverSeeds(lg, scene, kSeeds);
     for (size_t p = 0; p < names.size(); ++p) {
         for (size_t c = 0; c < expected[p].size(); ++c) {
-            MeanAndError adjoint = meanAndError(samples[p][c]);
+            const MeanAndError& adjoint = gradients[p][c];
             EXPECT_NEAR(adjoint.mean, expected[p][c], 5.0 * adjoint.error + 1e-3 * std::abs(expected[p][c]))
                 << names[p] << "[" << c << "]: standard error " << adjoint.error;
         }

@@ -6,8 +6,8 @@
 // than a few expensive ones) give a standard error that can be trusted.
 #include <cmath>
 
-#include "core/sample_statistics.h"
 #include "diff/rendered_loss_gradient.h"
+#include "gradient_over_seeds.h"
 #include "furnace_scene.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
@@ -36,18 +36,10 @@ TEST_F(FurnaceGradientTest, ScatteringAndAnisotropyDoNotChangeTheImage) {
                                             "media/right/g",     "media/fog/sigma_a"};
     // Deep enough that truncation, which does depend on sigma_s, is far below the noise.
     RenderedLossGradient lg(testContext(), scene, {{"", black}}, names, {.spp = 8, .maxDepth = 400}, LossKind::L2);
-    std::vector<std::vector<std::vector<double>>> samples(names.size(), std::vector<std::vector<double>>(3));
-    for (uint32_t seed = 0; seed < kSeeds; ++seed) {
-        GradientResult r = lg.evaluate(scene, seed);
-        for (size_t p = 0; p < names.size(); ++p) {
-            for (size_t c = 0; c < r.parameters[p].gradient.size(); ++c) {
-                samples[p][c].push_back(r.parameters[p].gradient[c]);
-            }
-        }
-    }
+    const std::vector<std::vector<MeanAndError>> gradients = gradientOverSeeds(lg, scene, kSeeds);
     for (size_t p = 0; p < names.size(); ++p) {
-        for (size_t c = 0; c < samples[p].size() && !samples[p][c].empty(); ++c) {
-            MeanAndError gradient = meanAndError(samples[p][c]);
+        for (size_t c = 0; c < gradients[p].size(); ++c) {
+            const MeanAndError& gradient = gradients[p][c];
             ASSERT_GT(gradient.error, 0.0) << names[p] << "[" << c << "]";
             if (names[p] == "media/fog/sigma_a") {
                 EXPECT_LT(gradient.mean, -10.0 * gradient.error) << names[p] << "[" << c << "]";
