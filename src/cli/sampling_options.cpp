@@ -6,7 +6,7 @@ SamplingOptions addSamplingOptions(CLI::App& command, RenderSettings& settings) 
     SamplingOptions options;
     options.spp = command.add_option("--spp", settings.spp, "Samples per pixel")
                       ->default_val(settings.spp)
-                      ->check(CLI::Range(1u, 1u << 20));
+                      ->check(CLI::Range(1u, kMaxSamplesPerPixel));
     options.maxDepth =
         command
             .add_option("--max-depth", settings.maxDepth,

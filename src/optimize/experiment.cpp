@@ -142,7 +142,7 @@ private:
 void readRenderSettings(const ExperimentReader& reader, const Json& document, Experiment& experiment) {
     RenderSettings& render = experiment.render;
     render.width = 128;
-    const uint32_t maxSide = kMaxImageSide, maxSpp = 1u << 20, maxDepth = 100000;
+    const uint32_t maxSide = kMaxImageSide, maxSpp = kMaxSamplesPerPixel, maxDepth = 100000;
     if (document.contains("width")) render.width = int(reader.count(document["width"], "width", 1, maxSide));
     if (document.contains("height")) render.height = int(reader.count(document["height"], "height", 1, maxSide));
     if (document.contains("spp")) render.spp = reader.count(document["spp"], "spp", 1, maxSpp);

@@ -7,6 +7,8 @@ namespace vkdr {
 // The largest image side rendered: 16384^2 pixels keep pixel indices and every per-pixel
 // buffer size within 32 bits.
 inline constexpr int kMaxImageSide = 16384;
+// The pass loop counts samples in 32 bits; far more than any render needs.
+inline constexpr uint32_t kMaxSamplesPerPixel = 1u << 20;
 
 struct RenderSettings {
     std::string camera;      // empty: the scene's first perspective camera

@@ -61,8 +61,9 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context),
       lossKind_(LossKind::L2) {
-    if (settings.spp == 0) {
-        throw Error("--spp must be at least 1");
+    if (settings.spp == 0 || settings.spp > kMaxSamplesPerPixel) {
+        throw Error("--spp must be in [1, " + std::to_string(kMaxSamplesPerPixel) + "], got " +
+                    std::to_string(settings.spp));
     }
     uint32_t pixels = camera_.width * camera_.height;
     paths_ = std::make_unique<PathBuffers>(context, pathCapacity(context, settings, pixels), pixels);
