@@ -17,7 +17,10 @@ compiler=g++
 flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 
 mkdir -p "$build"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER="$compiler" \
+# -O1 -g1, as the sanitizers' documentation suggests: fast enough, readable stack
+# traces, and a quicker build than -O2 -g.
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+  -DCMAKE_CXX_COMPILER="$compiler" \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DVKDR_TINYGLTF_FROM_HEADER=ON \
   > "$build/configure.log" || { cat "$build/configure.log"; exit 1; }
 
