@@ -91,41 +91,47 @@ TEST(OptimizeLoop, UsesPerParameterLearningRates) {
     }
 }
 
-TEST(OptimizeLoop, DecaysTheLearningRateExponentiallyToTheGivenFraction) {
+// Runs SGD on media/fog/g towards -100 with a base rate of 1e-4 for rates.size()
+// iterations and expects iteration i to use rates[i]: SGD's step is rate * 2 (g + 100),
+// so the steps show the rates.
+void expectSgdRates(OptimizeOptions options, const std::vector<double>& rates) {
     Scene scene = sceneWithParameters();
-    // SGD's step is rate * 2 (g + 100): the steps show the rates.
     QuadraticLossGradient loss({{"media/fog/g", {-100.0}}});
-    OptimizeOptions options = optionsFor({"media/fog/g"}, OptimizerKind::Sgd, 1e-4, 3);
-    options.learningRateDecay = 0.25;
+    options.parameters = {"media/fog/g"};
+    options.optimizer = OptimizerKind::Sgd;
+    options.learningRate = 1e-4;
+    options.iterations = uint32_t(rates.size());
     std::vector<double> values;
     optimize(loss, scene, options, {{}, [&](const IterationRecord& record) { values.push_back(record.parameters[0].value[0]); }});
     values.push_back(getParameter(scene, "media/fog/g")[0]);
-    ASSERT_EQ(values.size(), 4u);
-    std::vector<double> rates = {1e-4, 0.5e-4, 0.25e-4};  // 0.25^(i/2)
-    for (size_t i = 0; i < 3; ++i) {
+    ASSERT_EQ(values.size(), rates.size() + 1);
+    for (size_t i = 0; i < rates.size(); ++i) {
         EXPECT_NEAR(values[i] - values[i + 1], rates[i] * 2.0 * (values[i] + 100.0), 1e-7) << i;
     }
+}
 
+TEST(OptimizeLoop, DecaysTheLearningRateExponentiallyToTheGivenFraction) {
+    OptimizeOptions options;
+    options.learningRateDecay = 0.25;
+    expectSgdRates(options, {1e-4, 0.5e-4, 0.25e-4});  // 0.25^(i/2)
+
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/g", {-100.0}}});
+    options = optionsFor({"media/fog/g"}, OptimizerKind::Sgd, 1e-4, 3);
     options.learningRateDecay = 1.5;
     EXPECT_THROW(optimize(loss, scene, options), Error);
 }
 
 TEST(OptimizeLoop, HoldsTheLearningRateUntilTheDecayStarts) {
-    Scene scene = sceneWithParameters();
-    QuadraticLossGradient loss({{"media/fog/g", {-100.0}}});
-    OptimizeOptions options = optionsFor({"media/fog/g"}, OptimizerKind::Sgd, 1e-4, 5);
+    OptimizeOptions options;
     options.learningRateDecay = 0.25;
     options.learningRateDecayStart = 0.5;
-    std::vector<double> values;
-    optimize(loss, scene, options, {{}, [&](const IterationRecord& record) { values.push_back(record.parameters[0].value[0]); }});
-    values.push_back(getParameter(scene, "media/fog/g")[0]);
-    ASSERT_EQ(values.size(), 6u);
     // Iterations 0-2 at the full rate, then 0.25^(1/2) and 0.25^1 at iterations 3 and 4.
-    std::vector<double> rates = {1e-4, 1e-4, 1e-4, 0.5e-4, 0.25e-4};
-    for (size_t i = 0; i < 5; ++i) {
-        EXPECT_NEAR(values[i] - values[i + 1], rates[i] * 2.0 * (values[i] + 100.0), 1e-7) << i;
-    }
+    expectSgdRates(options, {1e-4, 1e-4, 1e-4, 0.5e-4, 0.25e-4});
 
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/g", {-100.0}}});
+    options = optionsFor({"media/fog/g"}, OptimizerKind::Sgd, 1e-4, 5);
     options.learningRateDecayStart = 1.0;
     EXPECT_THROW(optimize(loss, scene, options), Error);
 }
