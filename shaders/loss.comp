@@ -1,8 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The loss of the rendered film against the target, per pixel, and the image adjoint
-// dLoss/dI that seeds the adjoint pass (divided by the samples per pixel, so each
-// replayed path carries its share). L2: mean of (I - T)^2; L1: mean of |I - T|.
+// The loss of a rendered image against the target, per pixel, and the image adjoint
+// dLoss/dI that seeds the adjoint pass. L2: mean of (I - T)^2; L1: mean of |I - T|.
+// The image is the film (or the film less filmBaseline, see pass.lossImage) divided by
+// the pass.samplesInPass samples it sums. dLoss/dI is divided by the full samples per
+// pixel, so every path of the render carries its share whichever image it was taken at.
 #include "lib/stage_common.glsl"
 
 void main() {
@@ -10,7 +12,11 @@ void main() {
     if (p >= pass.pixelCount) {
         return;
     }
-    vec3 difference = P.film.v[p].rgb * P.filmScale - P.target.v[p].rgb;
+    vec3 film = P.film.v[p].rgb;
+    if (pass.lossImage == kLossImageFilmMinusBaseline) {
+        film -= P.filmBaseline.v[p].rgb;
+    }
+    vec3 difference = film / float(pass.samplesInPass) - P.target.v[p].rgb;
     float loss;
     vec3 dLossDI;
     if (P.lossKind == kLossL1) {

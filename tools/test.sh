@@ -13,7 +13,7 @@ cd "$root/build"
 export LP_NUM_THREADS=2
 ctest --output-on-failure --timeout 600
 # The benchmark harness runs once on a tiny setting: it must work; its times gate nothing.
-"$root/build/src/cli/vkdiffrender" bench cornell_fog room_10k --width 32 --spp 1 --iters 1 \
+"$root/build/src/cli/vkdiffrender" bench cornell_fog room_10k --width 32 --spp 2 --iters 1 \
   --json "$root/build/bench-smoke.json"
 echo "AddressSanitizer and UndefinedBehaviorSanitizer over the suites that need no device:"
 "$root/tools/sanitize.sh"

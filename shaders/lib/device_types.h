@@ -33,6 +33,10 @@ const uint kVertexMedium = 1u;
 // Loss kinds (RenderParams.lossKind).
 const uint kLossL2 = 0u;
 const uint kLossL1 = 1u;
+// The image the loss stage compares with the target (PassConstants.lossImage): the
+// film, or the film less the copy in filmBaseline (the samples added since the copy).
+const uint kLossImageFilm = 0u;
+const uint kLossImageFilmMinusBaseline = 1u;
 
 // Medium gradients: sigma_a rgb, sigma_s rgb, g, unused.
 const uint kMediumGradientStride = 8u;
@@ -146,6 +150,7 @@ struct RenderParams {
     VKDR_BUFFER(Vec4Buffer) target;                 // per pixel: rgb target image
     VKDR_BUFFER(Vec4Buffer) imageAdjoint;           // per pixel: rgb dLoss/dI, divided by spp
     VKDR_BUFFER(FloatBuffer) lossSum;               // [0]: sum of the per-pixel losses
+    VKDR_BUFFER(Vec4Buffer) filmBaseline;           // per pixel: a copy of the film, subtracted by the loss stage on request
     VKDR_BUFFER(FloatBuffer) mediumGradients;       // kMediumGradientStride per medium
     VKDR_BUFFER(FloatBuffer) baseColorGradients;    // 4 per material: rgb
     VKDR_BUFFER(FloatBuffer) emissionGradients;     // 4 per material: rgb
@@ -165,7 +170,7 @@ struct RenderParams {
     uint lossKind;                                  // kLossL2 or kLossL1
     float filmScale;                                // 1 / spp: film sum to pixel value
     float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels
-    uint pad0, pad1, pad2, pad3, pad4;
+    uint pad0, pad1, pad2;
 };
 
 // Per dispatch values, in push constants next to the RenderParams address.
@@ -177,7 +182,7 @@ struct PassConstants {
     uint currentRays;       // kQueueRays0 or kQueueRays1: the queue traced this segment
     uint queueArg;          // queue_prepare: which queue's dispatch to size
     uint clearMask;         // queue_prepare: bit q set -> counts[q] = 0
-    uint pad;
+    uint lossImage;         // loss: kLossImageFilm or kLossImageFilmMinusBaseline
 };
 
 #ifdef __cplusplus

@@ -25,12 +25,13 @@ struct SceneBenchmark {
     uint32_t spp = 0, maxDepth = 0;
     double bvhBuildMs = 0.0;
     double forwardMs = 0.0;   // Renderer::render(), wall clock
-    double gradientMs = 0.0;  // render(), loss() and backpropagate(), wall clock
+    double gradientMs = 0.0;  // Renderer::renderWithGradients(), wall clock
     uint64_t paths = 0;       // of one forward pass
     uint64_t rays = 0;        // closest-hit and shadow rays of one forward pass
-    // GPU milliseconds by stage (DispatchTimer): the forward pass's generate, intersect,
-    // medium_sample, shade, shadow, queue_prepare and film; then loss; replay, the primal
-    // passes backpropagate() renders again; adjoint, all of its adjoint-mode passes.
+    // GPU milliseconds by stage (DispatchTimer) in a gradient iteration: its rendering
+    // passes' generate, intersect, medium_sample, shade, shadow, queue_prepare and film;
+    // then loss; replay, primal passes rendered again for the adjoint (none when the
+    // samples split, Renderer::renderWithGradients); adjoint, its adjoint-mode passes.
     std::map<std::string, double> stagesMs;
     std::map<std::string, double> adjointStagesMs;  // "adjoint" by stage
     uint64_t peakAllocatedDeviceBytes = 0;          // the most held at once by our buffers

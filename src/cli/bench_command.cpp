@@ -17,7 +17,7 @@ namespace {
 
 // Small enough that the default scenes run in minutes on lavapipe.
 constexpr int kDefaultWidth = 256;
-constexpr uint32_t kDefaultSpp = 1;
+constexpr uint32_t kDefaultSpp = 2;
 
 struct BenchOptions {
     std::vector<std::string> scenes;

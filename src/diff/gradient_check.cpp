@@ -4,17 +4,21 @@
 #include <functional>
 
 #include "core/sample_statistics.h"
+#include "diff/gradient_over_seeds.h"
 #include "optimize/constraints.h"
-
 #include "scene/parameters.h"
 
 namespace vkdr {
 namespace {
 
+// The adjoint's gradient at seed s is taken from the render at seed s; the finite
+// differences use seeds from here on, so the two estimates are independent and their
+// standard errors combine as those of independent means.
+constexpr uint32_t kFirstFiniteDifferenceSeed = 1u << 20;
+
 bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
-
 
 double lossWith(RenderedLossGradient& lg, const Scene& scene, const std::string& name, int component, float value,
                 uint32_t seed) {
@@ -56,16 +60,7 @@ double finiteDifferenceStep(const std::string& parameter, float value) {
 
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds) {
-    std::vector<std::vector<std::vector<double>>> adjoint(parameters.size());
-    for (int s = 0; s < seeds; ++s) {
-        GradientResult r = lg.evaluate(scene, uint32_t(s));
-        for (size_t p = 0; p < parameters.size(); ++p) {
-            adjoint[p].resize(r.parameters[p].gradient.size());
-            for (size_t c = 0; c < r.parameters[p].gradient.size(); ++c) {
-                adjoint[p][c].push_back(r.parameters[p].gradient[c]);
-            }
-        }
-    }
+    const std::vector<std::vector<MeanAndError>> adjoint = gradientOverSeeds(lg, scene, uint32_t(seeds));
     std::vector<GradientCheckRow> rows;
     for (size_t p = 0; p < parameters.size(); ++p) {
         const std::vector<float> value = getParameter(scene, parameters[p]);
@@ -75,11 +70,12 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
             const double h = finiteDifferenceStep(parameters[p], x);
             std::vector<double> differences;
             for (int s = 0; s < seeds; ++s) {
-                auto loss = [&](double at) { return lossWith(lg, scene, parameters[p], int(c), float(at), uint32_t(s)); };
+                const uint32_t seed = kFirstFiniteDifferenceSeed + uint32_t(s);
+                auto loss = [&](double at) { return lossWith(lg, scene, parameters[p], int(c), float(at), seed); };
                 differences.push_back(finiteDifference(loss, x, h, bounds));
             }
-            MeanAndError a = meanAndError(adjoint[p][c]);
-            MeanAndError f = meanAndError(differences);
+            const MeanAndError& a = adjoint[p][c];
+            const MeanAndError f = meanAndError(differences);
             rows.push_back({parameters[p], int(c), a.mean, a.error, f.mean, f.error, h});
         }
     }

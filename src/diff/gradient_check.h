@@ -17,9 +17,10 @@ struct GradientCheckRow {
     double step = 0.0;
 };
 
-// Step per parameter: h = 1e-2 * max(|value|, 0.1) for base colour and emission, 1e-2
-// for g, and 0.15 * max(|value|, 0.1) for sigma_a and sigma_s: a changed sigma re-routes
-// some free flights (one now ends before a surface instead of after), which makes small
+// Step per parameter: h = 1e-2 * max(|value|, 0.1) for emission, 5e-2 * max(|value|, 0.1)
+// for base colour (Russian roulette follows the throughput), 1e-2 for g, and
+// 0.15 * max(|value|, 0.1) for sigma_a and sigma_s: a changed sigma re-routes some free
+// flights (one now ends before a surface instead of after), which makes small
 // steps drown in noise; the central difference's error, O((h d)^2) over optical paths
 // of length d, stays below 1 % while sigma d < 1. Where value - h would leave the
 // valid range (sigma = 0, base colour 0), the second-order one-sided difference

@@ -10,9 +10,9 @@ namespace vkdr {
 
 class VulkanContext;
 
-// LossGradient by path replay on the GPU: an independent primal render gives the image
-// and dLoss/dI, then each pass renders its paths again and replays them in adjoint
-// mode, accumulating parameter gradients with atomic adds (DESIGN.md, "Adjoint").
+// LossGradient by path replay on the GPU: each view is rendered, and its paths are
+// replayed in adjoint mode, accumulating parameter gradients with atomic adds
+// (DESIGN.md, "Adjoint"; Renderer::renderWithGradients).
 // The scene's geometry is fixed at construction; evaluate() takes new parameter values.
 class RenderedLossGradient : public LossGradient {
 public:
@@ -22,8 +22,8 @@ public:
     ~RenderedLossGradient() override;
 
     GradientResult evaluate(const Scene& scene, uint32_t seed) override;
-    // The loss alone, rendered with the same random numbers evaluate() uses for its
-    // image: finite differences over it share their noise (common random numbers).
+    // The loss alone, rendered with the random numbers evaluate() uses for its image:
+    // finite differences over it share their noise (common random numbers).
     double loss(const Scene& scene, uint32_t seed);
 
 private:

@@ -18,7 +18,7 @@ static_assert(offsetof(QueueCountersData, dispatch) == 16);
 static_assert(sizeof(QueueCountersData) == 96);
 static_assert(offsetof(RenderParams, background) == 80);
 static_assert(offsetof(RenderParams, triangleVertices) == 96);
-static_assert(offsetof(RenderParams, pathCapacity) == 96 + 37 * 8);
+static_assert(offsetof(RenderParams, pathCapacity) == 96 + 38 * 8);
 static_assert(sizeof(RenderParams) % 16 == 0);
 static_assert(sizeof(PassConstants) == 32);
 

@@ -36,7 +36,8 @@ uint64_t PathBuffers::deviceBytes() const {
 }
 
 AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount,
-                               uint32_t mediumCount, uint32_t materialCount, uint32_t texelCount)
+                               uint32_t mediumCount, uint32_t materialCount, uint32_t texelCount,
+                               uint64_t keptPaths)
     : pendingFactor(perPath(context, capacity, "pending factor")),
       adjointState(perPath(context, capacity, "adjoint state")),
       vertexUv(perPath(context, capacity, "vertex uv")),
@@ -46,15 +47,21 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
       target(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "target"),
       imageAdjoint(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "image adjoint"),
       lossSum(context, 16, MemoryUse::Device, "loss sum"),
+      filmBaseline(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "film baseline"),
       mediumGradients(context, std::max(1u, mediumCount) * gpu::kMediumGradientStride * 4, MemoryUse::Device,
                       "medium gradients"),
       baseColorGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "base colour gradients"),
       emissionGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "emission gradients"),
-      texelGradients(context, std::max(1u, texelCount) * 16, MemoryUse::Device, "texel gradients") {}
+      texelGradients(context, std::max(1u, texelCount) * 16, MemoryUse::Device, "texel gradients") {
+    if (keptPaths > 0) {
+        keptRadiance = Buffer(context, keptPaths * 16, MemoryUse::Device, "kept radiance");
+    }
+}
 
 uint64_t AdjointBuffers::deviceBytes() const {
-    return pendingFactor.size() * 6 + target.size() + imageAdjoint.size() + mediumGradients.size() +
-           baseColorGradients.size() + emissionGradients.size() + texelGradients.size();
+    return pendingFactor.size() * 6 + target.size() + imageAdjoint.size() + filmBaseline.size() +
+           mediumGradients.size() + baseColorGradients.size() + emissionGradients.size() + texelGradients.size() +
+           keptRadiance.size();
 }
 
 }  // namespace vkdr

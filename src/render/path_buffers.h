@@ -26,15 +26,17 @@ struct PathBuffers {
     uint64_t deviceBytes() const;
 };
 
-// What the adjoint pass adds: per path slot its replay state, per pixel the target and
-// dLoss/dI, per parameter the gradient accumulators.
+// What the adjoint pass adds: per path slot its replay state, per pixel the target,
+// dLoss/dI and a copy of the film, per parameter the gradient accumulators, and
+// optionally the radiance of `keptPaths` rendered paths, kept for their adjoint pass.
 struct AdjointBuffers {
     AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount, uint32_t mediumCount,
-                   uint32_t materialCount, uint32_t texelCount);
+                   uint32_t materialCount, uint32_t texelCount, uint64_t keptPaths);
 
     Buffer pendingFactor, adjointState, vertexUv, shadowScatterGradient, shadowEmissionGradient, shadowVertex;
-    Buffer target, imageAdjoint, lossSum;
+    Buffer target, imageAdjoint, lossSum, filmBaseline;
     Buffer mediumGradients, baseColorGradients, emissionGradients, texelGradients;
+    Buffer keptRadiance;  // 16 bytes per kept path; empty (size 0) when none are kept
 
     static constexpr uint64_t kBytesPerPath = 6 * 16;
     uint64_t deviceBytes() const;

@@ -19,6 +19,10 @@ struct RenderSettings {
     uint32_t seed = 0;
     // Upper bound on paths in flight per pass; 0 picks one from the device's memory.
     uint32_t pathsPerPass = 0;
+    // Device memory a gradient evaluation may spend keeping half of its paths' radiance
+    // (16 bytes a path) instead of rendering them again (Renderer::renderWithGradients);
+    // at most an eighth of the device's memory is used whatever this says.
+    uint64_t keptRadianceBytes = uint64_t(256) << 20;
 };
 
 }  // namespace vkdr

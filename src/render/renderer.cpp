@@ -20,6 +20,9 @@ constexpr uint64_t kDefaultPathsPerPass = 1u << 20;
 constexpr uint64_t kMaxPathsPerPass = 1u << 21;
 // Segments recorded before the host looks whether any path is still alive.
 constexpr uint32_t kSegmentsPerBatch = 8;
+// Flipped in the seed of the paths replayed when the image cannot lend them its
+// samples: far from the seeds of neighbouring optimisation iterations.
+constexpr uint32_t kIndependentSeedBit = 1u << 31;
 
 // Pass-through boundaries add segments without adding depth; the limit only guards
 // against a path caught between boundaries by round-off.
@@ -45,6 +48,10 @@ uint32_t pathCapacity(const VulkanContext& context, const RenderSettings& settin
     uint64_t affordable = context.deviceLocalHeapBytes() / 4 / PathBuffers::kBytesPerPath;
     uint64_t needed = pixels * settings.spp;
     return static_cast<uint32_t>(std::max<uint64_t>(1, std::min({wanted, affordable, needed})));
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -127,6 +134,7 @@ void Renderer::uploadParams() {
         p.target = a.target.address();
         p.imageAdjoint = a.imageAdjoint.address();
         p.lossSum = a.lossSum.address();
+        p.filmBaseline = a.filmBaseline.address();
         p.mediumGradients = a.mediumGradients.address();
         p.baseColorGradients = a.baseColorGradients.address();
         p.emissionGradients = a.emissionGradients.address();
@@ -143,19 +151,20 @@ void Renderer::uploadParams() {
     params_ = uploadBuffer(context_, std::as_bytes(std::span(&p, 1)), "render params");
 }
 
-void Renderer::forEachPass(const std::function<void(const PassRange&)>& pass, const ProgressCallback& progress) {
+void Renderer::forEachPass(SampleRange samples, const std::function<void(const PassRange&)>& pass,
+                           const ProgressCallback& progress) {
     // A pass covers whole samples of as many pixels as fit, or several samples of every pixel.
     const uint32_t pixels = camera_.width * camera_.height;
     const uint32_t capacity = paths_->capacity;
     const uint32_t pixelsPerPass = std::min(pixels, capacity);
-    const uint32_t samplesPerPass = std::max(1u, std::min(settings_.spp, capacity / pixels));
+    const uint32_t samplesPerPass = std::max(1u, std::min(samples.count, capacity / pixels));
     const uint64_t totalPasses = uint64_t((pixels + pixelsPerPass - 1) / pixelsPerPass) *
-                                 ((settings_.spp + samplesPerPass - 1) / samplesPerPass);
+                                 ((samples.count + samplesPerPass - 1) / samplesPerPass);
+    const uint32_t end = samples.first + samples.count;
     uint64_t passesDone = 0;
-    for (uint32_t sample = 0; sample < settings_.spp; sample += samplesPerPass) {
+    for (uint32_t sample = samples.first; sample < end; sample += samplesPerPass) {
         for (uint32_t pixel = 0; pixel < pixels; pixel += pixelsPerPass) {
-            pass({pixel, std::min(pixelsPerPass, pixels - pixel), sample,
-                  std::min(samplesPerPass, settings_.spp - sample)});
+            pass({pixel, std::min(pixelsPerPass, pixels - pixel), sample, std::min(samplesPerPass, end - sample)});
             if (progress) {
                 progress(double(++passesDone) / double(totalPasses));
             }
@@ -163,18 +172,15 @@ void Renderer::forEachPass(const std::function<void(const PassRange&)>& pass, co
     }
 }
 
-Image Renderer::render(const ProgressCallback& progress) {
-    auto start = std::chrono::steady_clock::now();
-    stats_ = {};
-    const uint32_t pixels = camera_.width * camera_.height;
-    {
-        CommandRecorder recorder(context_);
-        recorder.fill(paths_->film, 0);
-        recorder.fill(paths_->queueCounters, 0);
-        recorder.submitAndWait();
-    }
-    forEachPass([this](const PassRange& range) { runPass(range, PassMode::Film); }, progress);
+void Renderer::clearFilm() {
+    CommandRecorder recorder(context_);
+    recorder.fill(paths_->film, 0);
+    recorder.fill(paths_->queueCounters, 0);
+    recorder.submitAndWait();
+}
 
+Image Renderer::downloadFilm() {
+    const uint32_t pixels = camera_.width * camera_.height;
     Image image;
     image.width = int(camera_.width);
     image.height = int(camera_.height);
@@ -187,7 +193,16 @@ Image Renderer::render(const ProgressCallback& progress) {
             image.rgb[3 * i + c] = film[i][c] * scale;
         }
     }
-    stats_.paths = uint64_t(pixels) * settings_.spp;
+    return image;
+}
+
+Image Renderer::render(const ProgressCallback& progress) {
+    auto start = std::chrono::steady_clock::now();
+    stats_ = {};
+    clearFilm();
+    forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, progress);
+    Image image = downloadFilm();
+    stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
     stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return image;
 }
@@ -200,8 +215,13 @@ void Renderer::enableGradients(const Image& target, LossKind loss) {
     if (!pipelines_.gradient) {
         pipelines_.gradient = std::make_unique<GradientPipelines>(context_);
     }
+    // The first half of the samples keeps its paths' radiance while the second half
+    // renders (backpropagateSplitSamples), when that fits in its budget.
+    const uint64_t keptPaths = uint64_t(camera_.width) * camera_.height * (settings_.spp / 2);
+    const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
-                                                mediumCount_, materialCount_, texelCount_);
+                                                mediumCount_, materialCount_, texelCount_,
+                                                keptPaths * 16 <= keptBudget ? keptPaths : 0);
     lossKind_ = loss;
     std::vector<glm::vec4> texels(size_t(target.width) * target.height);
     for (size_t i = 0; i < texels.size(); ++i) {
@@ -215,7 +235,12 @@ void Renderer::enableGradients(const Image& target, LossKind loss) {
 }
 
 double Renderer::loss() {
-    PushConstants push{params_.address(), {0, camera_.width * camera_.height, 0, 0, 0, 0, 0, 0}};
+    return dispatchLoss(settings_.spp, gpu::kLossImageFilm);
+}
+
+double Renderer::dispatchLoss(uint32_t samples, uint32_t image) {
+    gpu::PassConstants constants{0, camera_.width * camera_.height, 0, samples, 0, 0, 0, image};
+    PushConstants push{params_.address(), constants};
     if (timer_) {
         timer_->setScope("loss");
     }
@@ -229,23 +254,46 @@ double Renderer::loss() {
     return sum[0];
 }
 
-SceneGradients Renderer::backpropagate() {
+void Renderer::keepRadiance(const PassRange& range) {
+    const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
+    CommandRecorder recorder(context_);
+    recorder.copyRange(paths_->radiance, 0, adjoint_->keptRadiance, (range.firstSample * pixels + range.firstPixel) * 16,
+                       uint64_t(range.pixelCount) * range.samplesInPass * 16);
+    recorder.submitAndWait();
+}
+
+void Renderer::restoreRadiance(const PassRange& range) {
+    const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
+    CommandRecorder recorder(context_);
+    recorder.copyRange(adjoint_->keptRadiance, (range.firstSample * pixels + range.firstPixel) * 16, paths_->radiance, 0,
+                       uint64_t(range.pixelCount) * range.samplesInPass * 16);
+    recorder.submitAndWait();
+}
+
+GradientEvaluation Renderer::renderWithGradients() {
+    stats_ = {};
     {
         CommandRecorder recorder(context_);
         recorder.fill(adjoint_->mediumGradients, 0);
         recorder.fill(adjoint_->baseColorGradients, 0);
         recorder.fill(adjoint_->emissionGradients, 0);
         recorder.fill(adjoint_->texelGradients, 0);
-        recorder.fill(paths_->queueCounters, 0);
         recorder.submitAndWait();
     }
-    forEachPass(
-        [this](const PassRange& range) {
-            runPass(range, PassMode::Replay);
-            runPass(range, PassMode::Adjoint);
-        },
-        {});
-    SceneGradients g;
+    clearFilm();
+    GradientEvaluation result;
+    if (settings_.spp >= 2) {
+        backpropagateSplitSamples(result);
+    } else {
+        backpropagateWithReplay(result);
+    }
+    auto start = std::chrono::steady_clock::now();
+    result.loss = dispatchLoss(settings_.spp, gpu::kLossImageFilm);
+    result.adjointMs += millisecondsSince(start);
+    result.image = downloadFilm();
+    stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
+
+    SceneGradients& g = result.gradients;
     g.media.resize(adjoint_->mediumGradients.size() / 4);
     g.baseColors.resize(adjoint_->baseColorGradients.size() / 4);
     g.emissions.resize(adjoint_->emissionGradients.size() / 4);
@@ -254,7 +302,70 @@ SceneGradients Renderer::backpropagate() {
     downloadBuffer(context_, adjoint_->baseColorGradients, std::as_writable_bytes(std::span(g.baseColors)));
     downloadBuffer(context_, adjoint_->emissionGradients, std::as_writable_bytes(std::span(g.emissions)));
     downloadBuffer(context_, adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels)));
-    return g;
+    return result;
+}
+
+// The gradient of a nonlinear loss multiplies dLoss/dI by dI/dtheta; taking both from
+// the same samples would bias it by O(1/spp). So the samples are split in halves A and
+// B: A's paths are differentiated at the image of B and B's at the image of A, each
+// weighted by its share of the samples, which is unbiased and renders every path once.
+// The film then holds the whole render.
+void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
+    const SampleRange a{0, settings_.spp / 2};
+    const SampleRange b{a.count, settings_.spp - a.count};
+    const bool keptFits = adjoint_->keptRadiance.size() > 0;
+    auto timed = [](double& ms, const std::function<void()>& work) {
+        auto start = std::chrono::steady_clock::now();
+        work();
+        ms += millisecondsSince(start);
+    };
+    timed(result.forwardMs, [&] {
+        forEachPass(a, [&](const PassRange& range) {
+            runPass(range, PassMode::Film);
+            if (keptFits) {
+                keepRadiance(range);
+            }
+        }, {});
+    });
+    timed(result.adjointMs, [&] {
+        CommandRecorder recorder(context_);
+        recorder.copy(paths_->film, adjoint_->filmBaseline, paths_->film.size());
+        recorder.submitAndWait();
+        dispatchLoss(a.count, gpu::kLossImageFilm);
+    });
+    forEachPass(b, [&](const PassRange& range) {
+        timed(result.forwardMs, [&] { runPass(range, PassMode::Film); });
+        timed(result.adjointMs, [&] { runPass(range, PassMode::Adjoint); });
+    }, {});
+    timed(result.adjointMs, [&] {
+        dispatchLoss(b.count, gpu::kLossImageFilmMinusBaseline);
+        forEachPass(a, [&](const PassRange& range) {
+            if (keptFits) {
+                restoreRadiance(range);
+            } else {
+                runPass(range, PassMode::Replay);
+            }
+            runPass(range, PassMode::Adjoint);
+        }, {});
+    });
+}
+
+// One sample per pixel cannot be split: dLoss/dI comes from the image, and the adjoint
+// replays paths with independent random numbers.
+void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
+    auto start = std::chrono::steady_clock::now();
+    forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, {});
+    result.forwardMs += millisecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    dispatchLoss(settings_.spp, gpu::kLossImageFilm);
+    const uint32_t seed = settings_.seed;
+    setSeed(seed ^ kIndependentSeedBit);
+    forEachPass({0, settings_.spp}, [this](const PassRange& range) {
+        runPass(range, PassMode::Replay);
+        runPass(range, PassMode::Adjoint);
+    }, {});
+    setSeed(seed);
+    result.adjointMs += millisecondsSince(start);
 }
 
 void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,

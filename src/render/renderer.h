@@ -37,6 +37,15 @@ struct SceneGradients {
     std::vector<float> texels;      // 4 per texel, textures one after another as in Scene::textures
 };
 
+// One render with its loss and the loss's gradient (Renderer::renderWithGradients).
+struct GradientEvaluation {
+    Image image;  // as render() gives it at the same seed
+    double loss = 0.0;
+    SceneGradients gradients;
+    double forwardMs = 0.0;  // wall time of the passes that render the image
+    double adjointMs = 0.0;  // wall time of the rest: replays, adjoint passes and losses
+};
+
 // The wavefront path tracer: uploads a scene once, then renders it pass by pass; with
 // gradients enabled it also evaluates a loss against a target and back-propagates it.
 class Renderer {
@@ -60,23 +69,37 @@ public:
     void setDispatchTimer(DispatchTimer* timer) { timer_ = timer; }
 
     // Gradient support. enableGradients() allocates the adjoint state. loss() compares
-    // the last render() with the target and keeps dLoss/dI; backpropagate() replays
-    // every path of a render with the current seed and returns dLoss/dparameters.
+    // the last render() with the target. renderWithGradients() renders at the current
+    // seed and back-propagates the loss of that image to the parameters.
     void enableGradients(const Image& target, LossKind loss);
     double loss();
-    SceneGradients backpropagate();
+    GradientEvaluation renderWithGradients();
 
 private:
     enum class PassMode {
-        Film,    // render and add to the film
-        Replay,  // render, keep each path's radiance for the adjoint pass
-        Adjoint, // replay in adjoint mode
+        Film,    // render and add to the film; each path's radiance stays in its slot
+        Replay,  // render without adding to the film
+        Adjoint, // replay in adjoint mode the paths whose radiance is in their slots
+    };
+    struct SampleRange {
+        uint32_t first, count;
     };
     struct PassRange {
         uint32_t firstPixel, pixelCount, firstSample, samplesInPass;
     };
-    void forEachPass(const std::function<void(const PassRange&)>& pass, const ProgressCallback& progress);
+    void forEachPass(SampleRange samples, const std::function<void(const PassRange&)>& pass,
+                     const ProgressCallback& progress);
     void runPass(const PassRange& range, PassMode mode);
+    // Copies the radiance of a pass's paths to or from AdjointBuffers::keptRadiance.
+    void keepRadiance(const PassRange& range);
+    void restoreRadiance(const PassRange& range);
+    void clearFilm();
+    // Runs the loss stage on the film's `samples` samples (less the baseline copy if
+    // asked), leaving dLoss/dI in imageAdjoint; returns the loss.
+    double dispatchLoss(uint32_t samples, uint32_t image);
+    Image downloadFilm();
+    void backpropagateWithReplay(GradientEvaluation& result);
+    void backpropagateSplitSamples(GradientEvaluation& result);
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
                        uint32_t currentRays);
     void uploadParams();

@@ -46,7 +46,12 @@ void CommandRecorder::begin() {
 }
 
 void CommandRecorder::copy(const Buffer& from, const Buffer& to, VkDeviceSize bytes) {
-    VkBufferCopy region{0, 0, bytes};
+    copyRange(from, 0, to, 0, bytes);
+}
+
+void CommandRecorder::copyRange(const Buffer& from, VkDeviceSize fromOffset, const Buffer& to, VkDeviceSize toOffset,
+                                VkDeviceSize bytes) {
+    VkBufferCopy region{fromOffset, toOffset, bytes};
     vkCmdCopyBuffer(commands_, from.handle(), to.handle(), 1, &region);
 }
 

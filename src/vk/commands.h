@@ -23,6 +23,8 @@ public:
     CommandRecorder& operator=(const CommandRecorder&) = delete;
 
     void copy(const Buffer& from, const Buffer& to, VkDeviceSize bytes);
+    void copyRange(const Buffer& from, VkDeviceSize fromOffset, const Buffer& to, VkDeviceSize toOffset,
+                   VkDeviceSize bytes);
     void fill(const Buffer& buffer, uint32_t value);
     void fillRange(const Buffer& buffer, VkDeviceSize offset, VkDeviceSize bytes, uint32_t value);
     void dispatch(const ComputePipeline& pipeline, uint32_t threads, std::span<const std::byte> pushConstants);

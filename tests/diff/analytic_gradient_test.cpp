@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "diff/rendered_loss_gradient.h"
-#include "gradient_over_seeds.h"
+#include "diff/gradient_over_seeds.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
 #include "single_scattering_quadrature.h"

@@ -20,9 +20,7 @@ TEST_F(MemoryTest, DepthDoesNotChangeDeviceMemory) {
     for (int i = 0; i < 2; ++i) {
         Renderer renderer(testContext(), scene, bvh, {.width = 16, .height = 16, .spp = 4, .maxDepth = depths[i]});
         renderer.enableGradients(target, LossKind::L2);
-        renderer.render();
-        renderer.loss();
-        renderer.backpropagate();
+        renderer.renderWithGradients();
         bytes[i] = renderer.pathMemoryBytes();
     }
     EXPECT_GT(bytes[0], 0u);

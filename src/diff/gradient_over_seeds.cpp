@@ -1,19 +1,11 @@
-#pragma once
-// The adjoint's gradient of every parameter component as a mean and standard error
-// over independent evaluations: the left-hand side of every statistical gradient test.
-#include <cstdint>
-#include <vector>
+#include "diff/gradient_over_seeds.h"
 
-#include "core/sample_statistics.h"
-#include "diff/loss_gradient.h"
+namespace vkdr {
 
-namespace vkdr::test {
-
-// [parameter][component], over evaluations with seeds 0 .. seeds - 1.
-inline std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradient, const Scene& scene,
-                                                               uint32_t seeds) {
-    std::vector<std::vector<std::vector<double>>> samples;
-    for (uint32_t seed = 0; seed < seeds; ++seed) {
+std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradient, const Scene& scene,
+                                                         uint32_t seeds, uint32_t firstSeed) {
+    std::vector<std::vector<std::vector<double>>> samples;  // [parameter][component][seed]
+    for (uint32_t seed = firstSeed; seed < firstSeed + seeds; ++seed) {
         GradientResult result = lossGradient.evaluate(scene, seed);
         samples.resize(result.parameters.size());
         for (size_t p = 0; p < result.parameters.size(); ++p) {
@@ -32,4 +24,4 @@ inline std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lo
     return gradients;
 }
 
-}  // namespace vkdr::test
+}  // namespace vkdr

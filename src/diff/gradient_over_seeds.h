@@ -1,0 +1,15 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/sample_statistics.h"
+#include "diff/loss_gradient.h"
+
+namespace vkdr {
+
+// The gradient of every parameter component as a mean and standard error over
+// evaluations with seeds firstSeed .. firstSeed + seeds - 1: [parameter][component].
+std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradient, const Scene& scene,
+                                                         uint32_t seeds, uint32_t firstSeed = 0);
+
+}  // namespace vkdr
