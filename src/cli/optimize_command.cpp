@@ -13,6 +13,7 @@
 #include "image/image.h"
 #include "optimize/checkpoint.h"
 #include "optimize/experiment_run.h"
+#include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/optimization_run.h"
 #include "optimize/parameter_vector.h"
@@ -45,6 +46,7 @@ struct ExperimentOverrides {
     CLI::Option* learningRate;
     CLI::Option* learningRateDecay;
     CLI::Option* learningRateDecayStart;
+    CLI::Option* logParameters;
     CLI::Option* optimizer;
     CLI::Option* spp;
     CLI::Option* maxDepth;
@@ -122,6 +124,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
 
     Scene scene = loadSceneWithOverrides(options.scene);
     requireOptimisableParameters(scene, options.optimize.parameters);
+    LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
     std::vector<TargetView> views;
     for (const std::string& target : options.targets) views.push_back(readTarget(target, scene));
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views[0].target};
@@ -157,6 +160,7 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.learningRateDecayStart->count()) {
         experiment.optimize.learningRateDecayStart = options.optimize.learningRateDecayStart;
     }
+    if (given.logParameters->count()) experiment.optimize.logParameters = options.optimize.logParameters;
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
     if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
     if (given.spp->count()) experiment.render.spp = options.settings.spp;
@@ -237,6 +241,10 @@ CommandAction addOptimizeCommand(CLI::App& app) {
         command->add_option("--lr-decay-start", options->optimize.learningRateDecayStart,
                             "The fraction of the iterations run at the full rate before the decay starts")
             ->default_val(options->optimize.learningRateDecayStart)->check(CLI::Range(0.0, 0.999));
+    overrides.logParameters =
+        command->add_option("--log-param", options->optimize.logParameters,
+                            "Optimise this parameter (one of the --param, positive) as the logarithm of its value: "
+                            "steps are relative changes and --lr is in log units (repeatable)");
     overrides.optimizer = command->add_option("--optimizer", options->optimizer, "adam or sgd")
                               ->default_val(options->optimizer)->check(CLI::IsMember({"adam", "sgd"}));
     SamplingOptions sampling = addSamplingOptions(*command, options->settings);

@@ -9,8 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "optimize/parameter_vector.h"
+#include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
+#include "optimize/parameter_vector.h"
 #include "scene/parameters.h"
 
 namespace vkdr {
@@ -20,7 +21,8 @@ using Json = nlohmann::ordered_json;  // keeps "start" in file order: the defaul
 
 const std::set<std::string> kKeys = {"scene", "views", "cameras", "width", "height", "spp", "target_spp",
                                      "max_depth", "seed", "iterations", "optimizer", "learning_rate",
-                                     "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "loss", "true", "start", "parameters"};
+                                     "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "log_parameters", "loss", "true", "start",
+                                     "parameters"};
 const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees"};
 
 // Reads one experiment file, prefixing every error with the file and the key at fault.
@@ -197,6 +199,9 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
     if (options.parameters.empty()) {
         reader.fail("parameters", "nothing to optimise: list names in \"parameters\" or give \"start\" values");
     }
+    if (document.contains("log_parameters")) {
+        options.logParameters = reader.strings(document["log_parameters"], "log_parameters");
+    }
 }
 
 // Checks `values` against the scene by setting them on a copy: the same messages as --set.
@@ -285,6 +290,13 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
     }
     checkValues(reader, scene, experiment.trueValues, "true");
     checkValues(reader, scene, experiment.startValues, "start");
+    Scene started = scene;
+    for (const ParameterValue& start : experiment.startValues) setParameter(started, start.name, start.values);
+    try {
+        LogSpace(ParameterVector(started, experiment.optimize.parameters), experiment.optimize.logParameters);
+    } catch (const Error& e) {
+        reader.fail("log_parameters", e.what());
+    }
 }
 
 }  // namespace vkdr

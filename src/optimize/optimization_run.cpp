@@ -66,6 +66,9 @@ RunIdentity identityOf(const OptimizationJob& job) {
     identity["learning_rates"] = rates;
     identity["learning_rate_decay"] = numberText(options.learningRateDecay);
     identity["learning_rate_decay_start"] = numberText(options.learningRateDecayStart);
+    std::string logNames;
+    for (const std::string& name : options.logParameters) logNames += (logNames.empty() ? "" : " ") + name;
+    identity["log_parameters"] = logNames;
     identity["iterations"] = std::to_string(options.iterations);
     identity["seed"] = std::to_string(options.seed);
     identity["loss"] = lossKindName(job.loss);

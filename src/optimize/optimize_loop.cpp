@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "optimize/log_space.h"
 #include "optimize/parameter_vector.h"
 
 namespace vkdr {
@@ -128,13 +129,16 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         parameters.writeTo(scene);
         first = resume->iteration;
     }
+    const LogSpace logSpace(parameters, options.logParameters);
     for (uint32_t iteration = first; iteration < options.iterations; ++iteration) {
         GradientResult evaluation = lossGradient.evaluate(scene, options.seed + iteration);
         requireFinite(evaluation, iteration);
         std::vector<double> gradient = flatGradient(parameters, evaluation);
 
         optimizer->setLearningRateScale(std::pow(options.learningRateDecay, decayProgress(options, iteration)));
+        logSpace.enter(parameters.values(), gradient);
         optimizer->step(parameters.values(), gradient);
+        logSpace.leave(parameters.values());
         parameters.project();
         requireFiniteSteps(parameters, iteration);
         parameters.writeTo(scene);

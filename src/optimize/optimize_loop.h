@@ -17,6 +17,9 @@ struct OptimizeOptions {
     OptimizerKind optimizer = OptimizerKind::Adam;
     double learningRate = 0.01;
     std::map<std::string, double> learningRates;  // per-parameter overrides of learningRate
+    // Parameters stepped as log(value) (optimize/log_space.h); their rates are in log
+    // units, a relative change per step.
+    std::vector<std::string> logParameters;
     // The rates at the last iteration as a fraction of the first, decaying exponentially:
     // iteration i uses rate * learningRateDecay^p, where p rises from 0 at
     // learningRateDecayStart * (iterations - 1) to 1 at the last iteration. Below 1 it damps

@@ -145,12 +145,17 @@ json document(const RoomSceneOptions& options, const RoomGeometry& room, const S
                                    {"type", "perspective"},
                                    {"perspective", {{"yfov", 1.0}, {"aspectRatio", 1.5}, {"znear", 0.01}}}}});
     // Near the front wall, pitched 12 degrees down (a rotation about x).
+    const double k = options.scale;
     doc["nodes"] = json::array({
         {{"name", "room"}, {"mesh", 0}},
         {{"name", "spheres"}, {"mesh", 1}},
-        {{"name", "camera"}, {"camera", 0}, {"translation", {0.0, 3.0, 4.8}},
+        {{"name", "camera"}, {"camera", 0}, {"translation", {0.0, 3.0 * k, 4.8 * k}},
          {"rotation", {-0.10452846, 0.0, 0.0, 0.99452190}}},
     });
+    if (options.scale != 1.0f) {
+        doc["nodes"][0]["scale"] = {k, k, k};
+        doc["nodes"][1]["scale"] = {k, k, k};
+    }
     doc["scenes"] = json::array({{{"nodes", {0, 1, 2}}}});
     doc["scene"] = 0;
     if (options.fog) {

@@ -21,7 +21,7 @@ constexpr uint64_t kMaxPathsPerPass = 1u << 21;
 // Segments recorded before the host looks whether any path is still alive.
 constexpr uint32_t kSegmentsPerBatch = 8;
 // Flipped in the seed of the paths replayed when the image cannot lend them its
-// samples: far from the seeds of neighbouring optimisation iterations.
+// samples (one sample per pixel), which makes them independent of the image's.
 constexpr uint32_t kIndependentSeedBit = 1u << 31;
 
 // Pass-through boundaries add segments without adding depth; the limit only guards

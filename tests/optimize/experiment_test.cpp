@@ -125,6 +125,19 @@ TEST(Experiment, RejectsUnknownParametersValuesAndViewsAgainstTheScene) {
     experiment = fogExperiment(scratch.path());
     experiment["learning_rates"] = {{"media/fog/sigma_s", 0.1}};
     expectPrepareError(scratch, experiment, {"learning_rates.media/fog/sigma_s", "not one of the parameters"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["log_parameters"] = {"media/fog/sigma_s"};
+    expectPrepareError(scratch, experiment, {"log_parameters", "media/fog/sigma_s", "not being optimised"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["log_parameters"] = {"media/fog/g"};
+    expectPrepareError(scratch, experiment, {"log_parameters", "media/fog/g", "can be negative"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["start"]["media/fog/sigma_a"] = {0.3, 0.0, 0.3};
+    experiment["log_parameters"] = {"media/fog/sigma_a"};
+    expectPrepareError(scratch, experiment, {"log_parameters", "media/fog/sigma_a", "positive value"});
 }
 
 TEST(Experiment, AddsItsCamerasToTheScene) {

@@ -1,5 +1,7 @@
 // The optimiser loop against an analytic loss: convergence, constraints, seeds, and
 // stopping on a non-finite gradient.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -201,6 +203,47 @@ TEST(OptimizeLoop, RejectsUnknownRepeatedAndMissingParameters) {
     expectError({"media/haze/sigma_a"}, "media/fog/sigma_a");  // lists the valid names
     expectError({"media/fog/g", "media/fog/g"}, "twice");
     expectError({}, "no parameters");
+}
+
+// In log space Adam's first step, which is the rate, is a factor of exp(-rate), and a fit
+// from four times the minimum ends on it.
+TEST(OptimizeLoop, StepsLogParametersByFactors) {
+    Scene scene = sceneWithParameters();
+    setParameter(scene, "media/fog/sigma_s", std::vector<float>{0.2f, 0.2f, 0.2f});
+    QuadraticLossGradient loss({{"media/fog/sigma_s", {0.05, 0.05, 0.05}}, {"media/fog/g", {0.5}}});
+    OptimizeOptions options = optionsFor({"media/fog/sigma_s", "media/fog/g"}, OptimizerKind::Adam, 0.1, 1);
+    options.logParameters = {"media/fog/sigma_s"};
+    optimize(loss, scene, options);
+    const float once = 0.2f * std::exp(-0.1f);
+    expectValues(scene, "media/fog/sigma_s", {once, once, once}, 1e-7f);
+    expectValues(scene, "media/fog/g", {0.3f}, 1e-6f);  // g, not in log space, moves by the rate from 0.2
+
+    setParameter(scene, "media/fog/sigma_s", std::vector<float>{0.2f, 0.2f, 0.2f});
+    options.learningRate = 0.05;
+    options.iterations = 1000;
+    options.learningRateDecay = 0.01;
+    optimize(loss, scene, options);
+    expectValues(scene, "media/fog/sigma_s", {0.05f, 0.05f, 0.05f}, 1e-4f);
+}
+
+TEST(OptimizeLoop, RejectsLogSpaceForNegativeZeroOrMissingParameters) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {0.1, 0.1, 0.1}}, {"media/fog/g", {0.0}}});
+    auto expectError = [&](const std::string& logParameter, const std::string& part) {
+        OptimizeOptions options = optionsFor({"media/fog/sigma_a", "media/fog/g"}, OptimizerKind::Adam, 0.01, 1);
+        options.logParameters = {logParameter};
+        try {
+            optimize(loss, scene, options);
+            ADD_FAILURE() << "no error for " << logParameter;
+        } catch (const Error& error) {
+            EXPECT_NE(std::string(error.what()).find(logParameter), std::string::npos) << error.what();
+            EXPECT_NE(std::string(error.what()).find(part), std::string::npos) << error.what();
+        }
+    };
+    expectError("media/fog/g", "can be negative");
+    expectError("media/fog/sigma_s", "not being optimised");
+    setParameter(scene, "media/fog/sigma_a", std::vector<float>{0.1f, 0.0f, 0.1f});
+    expectError("media/fog/sigma_a", "positive value");
 }
 
 TEST(Constraints, FollowTheLastComponentOfTheName) {

@@ -43,6 +43,21 @@ TEST(MakeScene, AddsTheFogMedium) {
     EXPECT_EQ(scene.media[size_t(scene.sceneMedium)].sigma_s, glm::vec3(0.1f));
 }
 
+// --scale multiplies every length: the bounds of the geometry and the camera position.
+TEST(MakeScene, ScalesTheRoomAndTheCamera) {
+    TemporaryDirectory directory;
+    const Scene unit = makeAndLoad(directory, "--triangles 3000").scene;
+    const Scene scaled = makeAndLoad(directory, "--triangles 3000 --scale 40").scene;
+    ASSERT_EQ(unit.positions.size(), scaled.positions.size());
+    for (size_t i = 0; i < unit.positions.size(); ++i) {
+        EXPECT_NEAR(glm::distance(scaled.positions[i], 40.0f * unit.positions[i]), 0.0f, 1e-3f) << i;
+    }
+    const glm::vec3 unitCamera = unit.cameras[0].cameraToWorld[3];
+    const glm::vec3 scaledCamera = scaled.cameras[0].cameraToWorld[3];
+    EXPECT_NEAR(glm::distance(scaledCamera, 40.0f * unitCamera), 0.0f, 1e-4f);
+    EXPECT_NE(unitCamera, glm::vec3(0.0f));
+}
+
 TEST(MakeScene, SpheresFaceOutwards) {
     TemporaryDirectory directory;
     Scene scene = makeAndLoad(directory, "--triangles 3000").scene;

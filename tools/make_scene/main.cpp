@@ -1,5 +1,5 @@
 // vkdr-make-scene: writes a procedural room scene of about N triangles as .glb.
-//   vkdr-make-scene --triangles N -o scene.glb [--fog SIGMA_A,SIGMA_S]
+//   vkdr-make-scene --triangles N -o scene.glb [--fog SIGMA_A,SIGMA_S] [--scale S]
 #include <charconv>
 #include <cstdio>
 #include <string>
@@ -11,9 +11,10 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: vkdr-make-scene --triangles N -o FILE.glb [--fog SIGMA_A,SIGMA_S]\n"
-    "  A closed room with an area light and a camera, filled with a grid of bumpy\n"
-    "  spheres totalling about N triangles; --fog adds the scene-wide medium \"fog\".\n";
+    "usage: vkdr-make-scene --triangles N -o FILE.glb [--fog SIGMA_A,SIGMA_S] [--scale S]\n"
+    "  A closed room (10 x 5 x 10 times S, default 1) with an area light and a camera,\n"
+    "  filled with a grid of bumpy spheres totalling about N triangles; --fog adds the\n"
+    "  scene-wide medium \"fog\".\n";
 
 template <typename Number>
 Number parseNumber(std::string_view text, std::string_view option) {
@@ -50,6 +51,11 @@ vkdr::RoomSceneOptions parseArguments(int argc, char** argv) {
                 throw vkdr::Error("--fog: sigma_a and sigma_s must be >= 0");
             }
             options.fog = fog;
+        } else if (option == "--scale") {
+            options.scale = parseNumber<float>(value, option);
+            if (!(options.scale > 0.0f && options.scale <= 1e6f)) {
+                throw vkdr::Error("--scale: expected a number in (0, 1e6]");
+            }
         } else {
             throw vkdr::Error(std::string(option) + ": unknown option");
         }

@@ -1,0 +1,50 @@
+#include "optimize/log_space.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "optimize/constraints.h"
+
+namespace vkdr {
+
+LogSpace::LogSpace(const ParameterVector& parameters, const std::vector<std::string>& logParameters)
+    : logValue_(parameters.size(), false) {
+    const std::vector<std::string>& names = parameters.names();
+    for (const std::string& name : logParameters) {
+        auto found = std::find(names.begin(), names.end(), name);
+        if (found == names.end()) {
+            throw Error("'" + name + "' is to be optimised in log space but is not being optimised");
+        }
+        if (boundsForParameter(name).lower < 0.0) {
+            throw Error("'" + name + "' can be negative, so it cannot be optimised in log space");
+        }
+        const size_t p = size_t(found - names.begin());
+        for (size_t i = parameters.offset(p); i < parameters.offset(p) + parameters.count(p); ++i) {
+            if (!(parameters.values()[i] > 0.0)) {
+                throw Error("'" + name + "' starts at " + std::to_string(parameters.values()[i]) +
+                            "; optimising it in log space needs a positive value");
+            }
+            logValue_[i] = true;
+        }
+    }
+}
+
+void LogSpace::enter(std::span<double> values, std::span<double> gradient) const {
+    for (size_t i = 0; i < values.size(); ++i) {
+        if (logValue_[i]) {
+            gradient[i] *= values[i];
+            values[i] = std::log(values[i]);
+        }
+    }
+}
+
+void LogSpace::leave(std::span<double> values) const {
+    for (size_t i = 0; i < values.size(); ++i) {
+        if (logValue_[i]) {
+            values[i] = std::exp(values[i]);
+        }
+    }
+}
+
+}  // namespace vkdr
