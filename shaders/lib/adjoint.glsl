@@ -13,10 +13,8 @@
 #define VKDR_ADJOINT_GLSL
 #include "scene_access.glsl"
 
-// Derivative-mode targets, and factors whose gradient waits for the next segment.
-const uint kTargetNone = 0u;
-const uint kTargetMediumScattering = 1u;  // sigma_s of a medium
-const uint kTargetBaseColor = 2u;         // base colour of a material
+// Factors whose gradient waits for the next segment (derivative-mode targets are in
+// device_types.h).
 const uint kPendingNone = 0u;
 const uint kPendingBaseColor = 1u;        // Lambertian continuation weight (albedo at vertexUv)
 const uint kPendingPhaseG = 2u;           // phase-function continuation weight (pdf held fixed)
@@ -137,6 +135,9 @@ vec3 factorGradient(uint slot, AdjointState s, vec3 delta, vec3 dLogF) {
 // derivative mode for (kind, index), carrying `derivative` (the factor's derivative,
 // times the throughput before it) instead of zero. Returns the new throughput.
 vec3 enterDerivativeMode(inout AdjointState s, vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index) {
+    if ((P.derivativeTargets & (1u << kind)) == 0u) {
+        return betaAfter;  // no gradient of this kind is wanted: the path ends as in the primal pass
+    }
     bool sameTarget = s.targetKind == kTargetNone || (s.targetKind == kind && s.targetIndex == index);
     for (uint c = 0u; c < 3u; ++c) {
         bool normal = (s.derivativeChannels & (1u << c)) == 0u;

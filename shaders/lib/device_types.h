@@ -38,6 +38,13 @@ const uint kLossL1 = 1u;
 const uint kLossImageFilm = 0u;
 const uint kLossImageFilmMinusBaseline = 1u;
 
+// Derivative-mode targets of the adjoint pass (shaders/lib/adjoint.glsl): the kinds of
+// parameter whose zero-valued factors it follows. RenderParams.derivativeTargets has
+// bit (1 << kind) set for each kind whose gradient is wanted.
+const uint kTargetNone = 0u;
+const uint kTargetMediumScattering = 1u;  // sigma_s of a medium
+const uint kTargetBaseColor = 2u;         // base colour of a material (factor or texels)
+
 // Medium gradients: sigma_a rgb, sigma_s rgb, g, unused.
 const uint kMediumGradientStride = 8u;
 
@@ -86,7 +93,8 @@ struct GpuCamera {
     uint width;                // pixels
     uint height;
     uint medium;               // medium containing the camera, kNoMediumIndex: vacuum
-    uint pad0, pad1, pad2;
+    uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
+    uint pad0, pad1;
 };
 
 // Dispatch sizes written on the device so stages can be launched indirectly.
@@ -170,7 +178,8 @@ struct RenderParams {
     uint lossKind;                                  // kLossL2 or kLossL1
     float filmScale;                                // 1 / spp: film sum to pixel value
     float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels
-    uint pad0, pad1, pad2;
+    uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
+    uint pad0, pad1;
 };
 
 // Per dispatch values, in push constants next to the RenderParams address.

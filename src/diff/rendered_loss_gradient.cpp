@@ -31,6 +31,12 @@ RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const S
         throw Error("no target image given");
     }
     impl_->slots = resolveParameterSlots(scene, parameters);
+    DerivativeTargets derivativeTargets{false, false};
+    for (const ParameterSlot& slot : impl_->slots) {
+        derivativeTargets.mediumScattering |= slot.kind == ParameterSlot::Kind::SigmaS;
+        derivativeTargets.baseColor |=
+            slot.kind == ParameterSlot::Kind::BaseColor || slot.kind == ParameterSlot::Kind::BaseColorTexture;
+    }
     Bvh bvh = buildBvh(scene.positions, scene.triangles);
     for (const TargetView& view : views) {
         RenderSettings viewSettings = settings;
@@ -38,7 +44,7 @@ RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const S
         viewSettings.width = view.target.width;
         viewSettings.height = view.target.height;
         auto renderer = std::make_unique<Renderer>(context, scene, bvh, viewSettings);
-        renderer->enableGradients(view.target, loss);
+        renderer->enableGradients(view.target, loss, derivativeTargets);
         impl_->views.push_back(std::move(renderer));
     }
 }

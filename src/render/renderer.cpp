@@ -146,6 +146,7 @@ void Renderer::uploadParams() {
         p.shadowEmissionGradient = a.shadowEmissionGradient.address();
         p.shadowVertex = a.shadowVertex.address();
         p.lossKind = lossKind_ == LossKind::L1 ? gpu::kLossL1 : gpu::kLossL2;
+        p.derivativeTargets = derivativeTargets_;
         p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));
     }
     params_ = uploadBuffer(context_, std::as_bytes(std::span(&p, 1)), "render params");
@@ -207,7 +208,7 @@ Image Renderer::render(const ProgressCallback& progress) {
     return image;
 }
 
-void Renderer::enableGradients(const Image& target, LossKind loss) {
+void Renderer::enableGradients(const Image& target, LossKind loss, const DerivativeTargets& derivativeTargets) {
     if (target.width != width() || target.height != height()) {
         throw Error("the target is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
                     " but the render is " + std::to_string(width()) + "x" + std::to_string(height()));
@@ -223,6 +224,8 @@ void Renderer::enableGradients(const Image& target, LossKind loss) {
                                                 mediumCount_, materialCount_, texelCount_,
                                                 keptPaths * 16 <= keptBudget ? keptPaths : 0);
     lossKind_ = loss;
+    derivativeTargets_ = (derivativeTargets.mediumScattering ? 1u << gpu::kTargetMediumScattering : 0u) |
+                         (derivativeTargets.baseColor ? 1u << gpu::kTargetBaseColor : 0u);
     std::vector<glm::vec4> texels(size_t(target.width) * target.height);
     for (size_t i = 0; i < texels.size(); ++i) {
         texels[i] = glm::vec4(target.rgb[3 * i], target.rgb[3 * i + 1], target.rgb[3 * i + 2], 0.0f);

@@ -37,6 +37,16 @@ struct SceneGradients {
     std::vector<float> texels;      // 4 per texel, textures one after another as in Scene::textures
 };
 
+// The kinds of parameter whose gradient is wanted, as far as the adjoint's cost depends
+// on them. A path that meets a zero-valued factor (sigma_s = 0, a base colour of 0) goes
+// on in derivative mode to find that factor's gradient (docs/gradients.md), which costs
+// as much as the rest of a path; where that gradient is not wanted the path ends there,
+// as in the primal pass, and the other gradients are the same.
+struct DerivativeTargets {
+    bool mediumScattering = true;
+    bool baseColor = true;
+};
+
 // One render with its loss and the loss's gradient (Renderer::renderWithGradients).
 struct GradientEvaluation {
     Image image;  // as render() gives it at the same seed
@@ -71,7 +81,7 @@ public:
     // Gradient support. enableGradients() allocates the adjoint state. loss() compares
     // the last render() with the target. renderWithGradients() renders at the current
     // seed and back-propagates the loss of that image to the parameters.
-    void enableGradients(const Image& target, LossKind loss);
+    void enableGradients(const Image& target, LossKind loss, const DerivativeTargets& derivativeTargets = {});
     double loss();
     GradientEvaluation renderWithGradients();
 
@@ -117,6 +127,7 @@ private:
     std::unique_ptr<PathBuffers> paths_;
     std::unique_ptr<AdjointBuffers> adjoint_;
     LossKind lossKind_;
+    uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
     Buffer params_;
     RenderStats stats_;
     DispatchTimer* timer_ = nullptr;

@@ -81,5 +81,32 @@ INSTANTIATE_TEST_SUITE_P(
                                    "materials/walls/base_color=0"}),
     [](const ::testing::TestParamInfo<GradientCase>& info) { return std::string(info.param.label); });
 
+// A path that meets sigma_s = 0 or a black wall goes on in derivative mode only for a
+// gradient that was asked for; the gradients of the other parameters are the same
+// either way (only the order of the float atomics differs).
+TEST_F(RenderTest, UnwantedZeroFactorsLeaveTheOtherGradientsAlone) {
+    Scene scene = loadScene(foggyRoom().write(tempDir(), "scene")).scene;
+    applyAssignment(scene, "media/fog/sigma_s=0");
+    applyAssignment(scene, "materials/walls/base_color=0.6,0,0.4");
+    // Grey, so that dLoss/dI is not zero where the image is black (green everywhere).
+    Image grey{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.5f)};
+    auto evaluate = [&](const std::vector<std::string>& names) {
+        RenderedLossGradient lg(testContext(), scene, {{"", grey}}, names, {.spp = 8, .maxDepth = 6}, LossKind::L2);
+        return lg.evaluate(scene, 5);
+    };
+    const GradientResult alone = evaluate({"media/fog/sigma_a", "lights/lamp/emission"});
+    const GradientResult all =
+        evaluate({"media/fog/sigma_a", "lights/lamp/emission", "media/fog/sigma_s", "materials/walls/base_color"});
+    for (size_t p = 0; p < 2; ++p) {
+        for (size_t c : {0, 2}) {  // green light never reaches the camera
+            const double a = alone.parameters[p].gradient[c], b = all.parameters[p].gradient[c];
+            EXPECT_NE(a, 0.0) << alone.parameters[p].name << "[" << c << "]";
+            EXPECT_NEAR(a, b, 1e-4 * std::max(std::abs(a), std::abs(b))) << alone.parameters[p].name << "[" << c << "]";
+        }
+    }
+    EXPECT_NE(all.parameters[2].gradient[0], 0.0);  // derivative mode found sigma_s's gradient
+    EXPECT_NE(all.parameters[3].gradient[1], 0.0);  // and the green base colour's
+}
+
 }  // namespace
 }  // namespace vkdr::test
