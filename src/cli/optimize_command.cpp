@@ -47,6 +47,7 @@ struct ExperimentOverrides {
     CLI::Option* learningRateDecay;
     CLI::Option* learningRateDecayStart;
     CLI::Option* logParameters;
+    CLI::Option* adamEpsilon;
     CLI::Option* optimizer;
     CLI::Option* spp;
     CLI::Option* maxDepth;
@@ -161,6 +162,7 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
         experiment.optimize.learningRateDecayStart = options.optimize.learningRateDecayStart;
     }
     if (given.logParameters->count()) experiment.optimize.logParameters = options.optimize.logParameters;
+    if (given.adamEpsilon->count()) experiment.optimize.adamEpsilon = options.optimize.adamEpsilon;
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
     if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
     if (given.spp->count()) experiment.render.spp = options.settings.spp;
@@ -245,6 +247,10 @@ CommandAction addOptimizeCommand(CLI::App& app) {
         command->add_option("--log-param", options->optimize.logParameters,
                             "Optimise this parameter (one of the --param, positive) as the logarithm of its value: "
                             "steps are relative changes and --lr is in log units (repeatable)");
+    overrides.adamEpsilon =
+        command->add_option("--adam-epsilon", options->optimize.adamEpsilon,
+                            "Adam's epsilon, in the gradient's units: make it smaller than the gradients")
+            ->default_val(options->optimize.adamEpsilon)->check(CLI::PositiveNumber);
     overrides.optimizer = command->add_option("--optimizer", options->optimizer, "adam or sgd")
                               ->default_val(options->optimizer)->check(CLI::IsMember({"adam", "sgd"}));
     SamplingOptions sampling = addSamplingOptions(*command, options->settings);

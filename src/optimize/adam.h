@@ -9,7 +9,9 @@ namespace vkdr {
 struct AdamMoments {
     double beta1 = 0.9;     // decay of the running mean of gradients
     double beta2 = 0.999;   // decay of the running mean of squared gradients
-    double epsilon = 1e-8;  // keeps the step finite where gradients vanish
+    // Keeps the step finite where gradients vanish. It is in the gradient's units: a
+    // gradient far below it gets a step far below the rate.
+    double epsilon = 1e-8;
 };
 
 // Adam (Kingma and Ba 2015) with bias-corrected moments: each value moves by about its

@@ -21,7 +21,7 @@ using Json = nlohmann::ordered_json;  // keeps "start" in file order: the defaul
 
 const std::set<std::string> kKeys = {"scene", "views", "cameras", "width", "height", "spp", "target_spp",
                                      "max_depth", "seed", "iterations", "optimizer", "learning_rate",
-                                     "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "log_parameters", "loss", "true", "start",
+                                     "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "log_parameters", "adam_epsilon", "loss", "true", "start",
                                      "parameters"};
 const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees"};
 
@@ -175,6 +175,9 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
             reader.fail("learning_rate_decay_start", "expected a number in [0, 1)");
         }
         options.learningRateDecayStart = start.get<double>();
+    }
+    if (document.contains("adam_epsilon")) {
+        options.adamEpsilon = reader.positive(document["adam_epsilon"], "adam_epsilon");
     }
     if (document.contains("learning_rates")) {
         const Json& rates = document["learning_rates"];

@@ -69,6 +69,7 @@ RunIdentity identityOf(const OptimizationJob& job) {
     std::string logNames;
     for (const std::string& name : options.logParameters) logNames += (logNames.empty() ? "" : " ") + name;
     identity["log_parameters"] = logNames;
+    identity["adam_epsilon"] = numberText(options.adamEpsilon);
     identity["iterations"] = std::to_string(options.iterations);
     identity["seed"] = std::to_string(options.seed);
     identity["loss"] = lossKindName(job.loss);

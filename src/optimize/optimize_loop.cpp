@@ -121,7 +121,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
                     std::to_string(options.learningRateDecayStart));
     }
     ParameterVector parameters(scene, options.parameters);
-    std::unique_ptr<Optimizer> optimizer = makeOptimizer(options.optimizer, perValueLearningRates(parameters, options));
+    std::unique_ptr<Optimizer> optimizer = makeOptimizer(options.optimizer, perValueLearningRates(parameters, options), options.adamEpsilon);
     OptimizeResult result;
     uint32_t first = 0;
     if (resume) {

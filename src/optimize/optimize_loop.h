@@ -20,6 +20,9 @@ struct OptimizeOptions {
     // Parameters stepped as log(value) (optimize/log_space.h); their rates are in log
     // units, a relative change per step.
     std::vector<std::string> logParameters;
+    // Adam's epsilon (optimize/adam.h), in the units of the gradient it is added to: a
+    // loss whose gradients are far smaller (a faint image) needs a smaller one.
+    double adamEpsilon = 1e-8;
     // The rates at the last iteration as a fraction of the first, decaying exponentially:
     // iteration i uses rate * learningRateDecay^p, where p rises from 0 at
     // learningRateDecayStart * (iterations - 1) to 1 at the last iteration. Below 1 it damps

@@ -41,8 +41,9 @@ protected:
     double learningRateScale_ = 1.0;
 };
 
-// One learning rate per value (a parameter's rate repeated for each of its values).
-// Throws vkdr::Error for a rate that is not > 0.
-std::unique_ptr<Optimizer> makeOptimizer(OptimizerKind kind, std::vector<double> learningRates);
+// One learning rate per value (a parameter's rate repeated for each of its values), and
+// Adam's epsilon (adam.h). Throws vkdr::Error for a rate or an epsilon that is not > 0.
+std::unique_ptr<Optimizer> makeOptimizer(OptimizerKind kind, std::vector<double> learningRates,
+                                         double adamEpsilon);
 
 }  // namespace vkdr

@@ -32,6 +32,19 @@ TEST(Adam, FirstStepMovesEachValueByItsLearningRateWhateverTheGradientScale) {
     EXPECT_NEAR(x[1], 1.01, 1e-9);
 }
 
+// Epsilon is in the gradient's units: a gradient of 1e-10 moves a value by a hundredth
+// of its rate with the default 1e-8, and by the rate with an epsilon far below it.
+TEST(Adam, EpsilonDecidesWhetherATinyGradientTakesAFullStep) {
+    std::vector<double> x = {1.0};
+    AdamOptimizer standard({0.1});
+    standard.step(x, std::vector<double>{1e-10});
+    EXPECT_NEAR(x[0], 1.0 - 0.1 * 1e-10 / (1e-10 + 1e-8), 1e-12);
+    x = {1.0};
+    std::unique_ptr<Optimizer> small = makeOptimizer(OptimizerKind::Adam, {0.1}, 1e-20);
+    small->step(x, std::vector<double>{1e-10});
+    EXPECT_NEAR(x[0], 0.9, 1e-9);
+}
+
 TEST(Adam, MinimisesAQuadraticWhoseCurvaturesDifferByOrdersOfMagnitude) {
     AdamOptimizer adam(std::vector<double>(3, 0.02));
     std::vector<double> x = minimise(adam, {0.5, -0.25, 0.05}, {1e-4, 1.0, 1e4}, 2000);
@@ -62,9 +75,10 @@ TEST(Optimizer, ParsesNamesAndRejectsOthers) {
 }
 
 TEST(Optimizer, RejectsALearningRateThatIsNotPositive) {
-    EXPECT_THROW(makeOptimizer(OptimizerKind::Adam, {0.1, 0.0}), Error);
-    EXPECT_THROW(makeOptimizer(OptimizerKind::Sgd, {-1.0}), Error);
-    EXPECT_THROW(makeOptimizer(OptimizerKind::Sgd, {NAN}), Error);
+    EXPECT_THROW(makeOptimizer(OptimizerKind::Adam, {0.1, 0.0}, 1e-8), Error);
+    EXPECT_THROW(makeOptimizer(OptimizerKind::Sgd, {-1.0}, 1e-8), Error);
+    EXPECT_THROW(makeOptimizer(OptimizerKind::Sgd, {NAN}, 1e-8), Error);
+    EXPECT_THROW(makeOptimizer(OptimizerKind::Adam, {0.1}, 0.0), Error);
 }
 
 }  // namespace
