@@ -20,9 +20,6 @@ constexpr uint64_t kDefaultPathsPerPass = 1u << 20;
 constexpr uint64_t kMaxPathsPerPass = 1u << 21;
 // Segments recorded before the host looks whether any path is still alive.
 constexpr uint32_t kSegmentsPerBatch = 8;
-// Flipped in the seed of the paths replayed when the image cannot lend them its
-// samples (one sample per pixel), which makes them independent of the image's.
-constexpr uint32_t kIndependentSeedBit = 1u << 31;
 
 // Pass-through boundaries add segments without adding depth; the limit only guards
 // against a path caught between boundaries by round-off.
@@ -48,10 +45,6 @@ uint32_t pathCapacity(const VulkanContext& context, const RenderSettings& settin
     uint64_t affordable = context.deviceLocalHeapBytes() / 4 / PathBuffers::kBytesPerPath;
     uint64_t needed = pixels * settings.spp;
     return static_cast<uint32_t>(std::max<uint64_t>(1, std::min({wanted, affordable, needed})));
-}
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -206,169 +199,6 @@ Image Renderer::render(const ProgressCallback& progress) {
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
     stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return image;
-}
-
-void Renderer::enableGradients(const Image& target, LossKind loss, const DerivativeTargets& derivativeTargets) {
-    if (target.width != width() || target.height != height()) {
-        throw Error("the target is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
-                    " but the render is " + std::to_string(width()) + "x" + std::to_string(height()));
-    }
-    if (!pipelines_.gradient) {
-        pipelines_.gradient = std::make_unique<GradientPipelines>(context_);
-    }
-    // The first half of the samples keeps its paths' radiance while the second half
-    // renders (backpropagateSplitSamples), when that fits in its budget.
-    const uint64_t keptPaths = uint64_t(camera_.width) * camera_.height * (settings_.spp / 2);
-    const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
-    adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
-                                                mediumCount_, materialCount_, texelCount_,
-                                                keptPaths * 16 <= keptBudget ? keptPaths : 0);
-    lossKind_ = loss;
-    derivativeTargets_ = (derivativeTargets.mediumScattering ? 1u << gpu::kTargetMediumScattering : 0u) |
-                         (derivativeTargets.baseColor ? 1u << gpu::kTargetBaseColor : 0u);
-    std::vector<glm::vec4> texels(size_t(target.width) * target.height);
-    for (size_t i = 0; i < texels.size(); ++i) {
-        texels[i] = glm::vec4(target.rgb[3 * i], target.rgb[3 * i + 1], target.rgb[3 * i + 2], 0.0f);
-    }
-    Buffer staging = uploadVector<glm::vec4>(context_, texels, "target (staging)");
-    CommandRecorder recorder(context_);
-    recorder.copy(staging, adjoint_->target, adjoint_->target.size());
-    recorder.submitAndWait();
-    uploadParams();
-}
-
-double Renderer::loss() {
-    return dispatchLoss(settings_.spp, gpu::kLossImageFilm);
-}
-
-double Renderer::dispatchLoss(uint32_t samples, uint32_t image) {
-    gpu::PassConstants constants{0, camera_.width * camera_.height, 0, samples, 0, 0, 0, image};
-    PushConstants push{params_.address(), constants};
-    if (timer_) {
-        timer_->setScope("loss");
-    }
-    CommandRecorder recorder(context_, timer_);
-    recorder.fill(adjoint_->lossSum, 0);
-    recorder.barrier();
-    recorder.dispatch(pipelines_.gradient->loss, camera_.width * camera_.height, push.bytes());
-    recorder.submitAndWait();
-    float sum[4];
-    downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(sum)));
-    return sum[0];
-}
-
-void Renderer::keepRadiance(const PassRange& range) {
-    const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
-    CommandRecorder recorder(context_);
-    recorder.copyRange(paths_->radiance, 0, adjoint_->keptRadiance, (range.firstSample * pixels + range.firstPixel) * 16,
-                       uint64_t(range.pixelCount) * range.samplesInPass * 16);
-    recorder.submitAndWait();
-}
-
-void Renderer::restoreRadiance(const PassRange& range) {
-    const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
-    CommandRecorder recorder(context_);
-    recorder.copyRange(adjoint_->keptRadiance, (range.firstSample * pixels + range.firstPixel) * 16, paths_->radiance, 0,
-                       uint64_t(range.pixelCount) * range.samplesInPass * 16);
-    recorder.submitAndWait();
-}
-
-GradientEvaluation Renderer::renderWithGradients() {
-    stats_ = {};
-    {
-        CommandRecorder recorder(context_);
-        recorder.fill(adjoint_->mediumGradients, 0);
-        recorder.fill(adjoint_->baseColorGradients, 0);
-        recorder.fill(adjoint_->emissionGradients, 0);
-        recorder.fill(adjoint_->texelGradients, 0);
-        recorder.submitAndWait();
-    }
-    clearFilm();
-    GradientEvaluation result;
-    if (settings_.spp >= 2) {
-        backpropagateSplitSamples(result);
-    } else {
-        backpropagateWithReplay(result);
-    }
-    auto start = std::chrono::steady_clock::now();
-    result.loss = dispatchLoss(settings_.spp, gpu::kLossImageFilm);
-    result.adjointMs += millisecondsSince(start);
-    result.image = downloadFilm();
-    stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
-
-    SceneGradients& g = result.gradients;
-    g.media.resize(adjoint_->mediumGradients.size() / 4);
-    g.baseColors.resize(adjoint_->baseColorGradients.size() / 4);
-    g.emissions.resize(adjoint_->emissionGradients.size() / 4);
-    g.texels.resize(adjoint_->texelGradients.size() / 4);
-    downloadBuffer(context_, adjoint_->mediumGradients, std::as_writable_bytes(std::span(g.media)));
-    downloadBuffer(context_, adjoint_->baseColorGradients, std::as_writable_bytes(std::span(g.baseColors)));
-    downloadBuffer(context_, adjoint_->emissionGradients, std::as_writable_bytes(std::span(g.emissions)));
-    downloadBuffer(context_, adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels)));
-    return result;
-}
-
-// The gradient of a nonlinear loss multiplies dLoss/dI by dI/dtheta; taking both from
-// the same samples would bias it by O(1/spp). So the samples are split in halves A and
-// B: A's paths are differentiated at the image of B and B's at the image of A, each
-// weighted by its share of the samples, which is unbiased and renders every path once.
-// The film then holds the whole render.
-void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
-    const SampleRange a{0, settings_.spp / 2};
-    const SampleRange b{a.count, settings_.spp - a.count};
-    const bool keptFits = adjoint_->keptRadiance.size() > 0;
-    auto timed = [](double& ms, const std::function<void()>& work) {
-        auto start = std::chrono::steady_clock::now();
-        work();
-        ms += millisecondsSince(start);
-    };
-    timed(result.forwardMs, [&] {
-        forEachPass(a, [&](const PassRange& range) {
-            runPass(range, PassMode::Film);
-            if (keptFits) {
-                keepRadiance(range);
-            }
-        }, {});
-    });
-    timed(result.adjointMs, [&] {
-        CommandRecorder recorder(context_);
-        recorder.copy(paths_->film, adjoint_->filmBaseline, paths_->film.size());
-        recorder.submitAndWait();
-        dispatchLoss(a.count, gpu::kLossImageFilm);
-    });
-    forEachPass(b, [&](const PassRange& range) {
-        timed(result.forwardMs, [&] { runPass(range, PassMode::Film); });
-        timed(result.adjointMs, [&] { runPass(range, PassMode::Adjoint); });
-    }, {});
-    timed(result.adjointMs, [&] {
-        dispatchLoss(b.count, gpu::kLossImageFilmMinusBaseline);
-        forEachPass(a, [&](const PassRange& range) {
-            if (keptFits) {
-                restoreRadiance(range);
-            } else {
-                runPass(range, PassMode::Replay);
-            }
-            runPass(range, PassMode::Adjoint);
-        }, {});
-    });
-}
-
-// One sample per pixel cannot be split: dLoss/dI comes from the image, and the adjoint
-// replays paths with independent random numbers.
-void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
-    auto start = std::chrono::steady_clock::now();
-    forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, {});
-    result.forwardMs += millisecondsSince(start);
-    start = std::chrono::steady_clock::now();
-    dispatchLoss(settings_.spp, gpu::kLossImageFilm);
-    const uint32_t seed = settings_.seed;
-    setSeed(seed ^ kIndependentSeedBit);
-    forEachPass({0, settings_.spp}, [this](const PassRange& range) {
-        runPass(range, PassMode::Replay);
-        runPass(range, PassMode::Adjoint);
-    }, {});
-    setSeed(seed);
-    result.adjointMs += millisecondsSince(start);
 }
 
 void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
