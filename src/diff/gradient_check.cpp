@@ -48,7 +48,9 @@ double finiteDifferenceStep(const std::string& parameter, float value) {
         return 1e-2;
     }
     if (endsWith(parameter, "/sigma_a") || endsWith(parameter, "/sigma_s")) {
-        return 0.15 * std::max(std::abs(double(value)), 0.1);
+        // Relative, so that a fog of sigma = 1e-3 (a scene hundreds of units across)
+        // gets a step of its own scale; at 0 the one-sided difference steps to 0.015.
+        return value > 0.0f ? 0.15 * double(value) : 0.015;
     }
     // Russian roulette follows the throughput, so an albedo step flips a few roulette
     // decisions even with common random numbers: a larger step keeps that noise down.

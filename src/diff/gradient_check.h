@@ -19,7 +19,7 @@ struct GradientCheckRow {
 
 // Step per parameter: h = 1e-2 * max(|value|, 0.1) for emission, 5e-2 * max(|value|, 0.1)
 // for base colour (Russian roulette follows the throughput), 1e-2 for g, and
-// 0.15 * max(|value|, 0.1) for sigma_a and sigma_s: a changed sigma re-routes some free
+// 0.15 * value (0.015 at 0) for sigma_a and sigma_s: a changed sigma re-routes some free
 // flights (one now ends before a surface instead of after), which makes small
 // steps drown in noise; the central difference's error, O((h d)^2) over optical paths
 // of length d, stays below 1 % while sigma d < 1. Where value - h would leave the

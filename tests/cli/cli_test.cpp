@@ -118,6 +118,25 @@ TEST_F(CliTest, GradPrintsOneJsonObject) {
     EXPECT_EQ(out.size(), 2u);
 }
 
+// --check adds, per component, the adjoint and the finite difference with their
+// standard errors and the step: relative for sigma, so a thin fog gets a thin step.
+TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
+    fs::path target = dir_ / "target.exr";
+    ASSERT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 2 -o " + target.string()).exitCode, 0);
+    RunResult r = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                      " --param media/fog/sigma_a --set media/fog/sigma_a=0.002 --spp 2 --check --check-seeds 2 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    nlohmann::json out = nlohmann::json::parse(r.out);
+    ASSERT_EQ(out["check"].size(), 3u);
+    for (const nlohmann::json& row : out["check"]) {
+        EXPECT_EQ(row["parameter"], "media/fog/sigma_a");
+        for (const char* key : {"adjoint", "adjoint_error", "finite_difference", "finite_difference_error"}) {
+            EXPECT_TRUE(row[key].is_number()) << key;
+        }
+        EXPECT_NEAR(row["step"].get<double>(), 0.15 * 0.002, 1e-9);
+    }
+}
+
 TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
     fs::path target = dir_ / "target.exr";
     ASSERT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string()).exitCode, 0);
