@@ -1,12 +1,12 @@
 #include "bench/scene_benchmark.h"
 
 #include <algorithm>
-#include <chrono>
 #include <vector>
 
 #include "bench/host_memory.h"
 #include "bench/median.h"
 #include "bvh/bvh.h"
+#include "core/milliseconds_of.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 #include "vk/dispatch_timer.h"
@@ -17,13 +17,6 @@ namespace {
 // The target is rendered with one seed, forward passes and gradient iterations with another.
 constexpr uint32_t kTargetSeed = 1;
 constexpr uint32_t kImageSeed = 2;
-
-template <typename Work>
-double millisecondsOf(Work&& work) {
-    auto start = std::chrono::steady_clock::now();
-    work();
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Pipeline names (render/stage_pipelines.cpp) to stage names: the adjoint variants
 // count as their stage, and "intersect (shadow)" is the shadow stage.

@@ -100,14 +100,16 @@ private:
     void forEachPass(SampleRange samples, const std::function<void(const PassRange&)>& pass,
                      const ProgressCallback& progress);
     void runPass(const PassRange& range, PassMode mode);
-    // Copies the radiance of a pass's paths to or from AdjointBuffers::keptRadiance.
-    void keepRadiance(const PassRange& range);
-    void restoreRadiance(const PassRange& range);
+    // Copies the radiance of a pass's paths to AdjointBuffers::keptRadiance (keep), or
+    // back into their slots.
+    void copyKeptRadiance(const PassRange& range, bool keep);
     void clearFilm();
     // Runs the loss stage on the film's `samples` samples (less the baseline copy if
     // asked), leaving dLoss/dI in imageAdjoint; returns the loss.
     double dispatchLoss(uint32_t samples, uint32_t image);
     Image downloadFilm();
+    // Both leave the image in the film, dLoss/dparameters in the gradient buffers, and
+    // set result's loss and times.
     void backpropagateWithReplay(GradientEvaluation& result);
     void backpropagateSplitSamples(GradientEvaluation& result);
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,

@@ -2,9 +2,8 @@
 // of renderWithGradients() (docs/gradients.md, "The estimator").
 #include "render/renderer.h"
 
-#include <chrono>
-
 #include "core/error.h"
+#include "core/milliseconds_of.h"
 #include "render/push_constants.h"
 #include "vk/commands.h"
 #include "vk/context.h"
@@ -16,10 +15,6 @@ namespace {
 // Flipped in the seed of the paths replayed when the image cannot lend them its
 // samples (one sample per pixel), which makes them independent of the image's.
 constexpr uint32_t kIndependentSeedBit = 1u << 31;
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 
@@ -72,19 +67,17 @@ double Renderer::dispatchLoss(uint32_t samples, uint32_t image) {
     return sum[0];
 }
 
-void Renderer::keepRadiance(const PassRange& range) {
+void Renderer::copyKeptRadiance(const PassRange& range, bool keep) {
+    // keptRadiance holds a path at sample * pixels + pixel, the slots of a pass from 0.
     const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
+    const uint64_t keptOffset = (range.firstSample * pixels + range.firstPixel) * 16;
+    const uint64_t bytes = uint64_t(range.pixelCount) * range.samplesInPass * 16;
     CommandRecorder recorder(context_);
-    recorder.copyRange(paths_->radiance, 0, adjoint_->keptRadiance, (range.firstSample * pixels + range.firstPixel) * 16,
-                       uint64_t(range.pixelCount) * range.samplesInPass * 16);
-    recorder.submitAndWait();
-}
-
-void Renderer::restoreRadiance(const PassRange& range) {
-    const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
-    CommandRecorder recorder(context_);
-    recorder.copyRange(adjoint_->keptRadiance, (range.firstSample * pixels + range.firstPixel) * 16, paths_->radiance, 0,
-                       uint64_t(range.pixelCount) * range.samplesInPass * 16);
+    if (keep) {
+        recorder.copyRange(paths_->radiance, 0, adjoint_->keptRadiance, keptOffset, bytes);
+    } else {
+        recorder.copyRange(adjoint_->keptRadiance, keptOffset, paths_->radiance, 0, bytes);
+    }
     recorder.submitAndWait();
 }
 
@@ -105,9 +98,6 @@ GradientEvaluation Renderer::renderWithGradients() {
     } else {
         backpropagateWithReplay(result);
     }
-    auto start = std::chrono::steady_clock::now();
-    result.loss = dispatchLoss(settings_.spp, gpu::kLossImageFilm);
-    result.adjointMs += millisecondsSince(start);
     result.image = downloadFilm();
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
 
@@ -132,58 +122,54 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
     const SampleRange a{0, settings_.spp / 2};
     const SampleRange b{a.count, settings_.spp - a.count};
     const bool keptFits = adjoint_->keptRadiance.size() > 0;
-    auto timed = [](double& ms, const std::function<void()>& work) {
-        auto start = std::chrono::steady_clock::now();
-        work();
-        ms += millisecondsSince(start);
-    };
-    timed(result.forwardMs, [&] {
+    result.forwardMs += millisecondsOf([&] {
         forEachPass(a, [&](const PassRange& range) {
             runPass(range, PassMode::Film);
             if (keptFits) {
-                keepRadiance(range);
+                copyKeptRadiance(range, true);
             }
         }, {});
     });
-    timed(result.adjointMs, [&] {
+    result.adjointMs += millisecondsOf([&] {
         CommandRecorder recorder(context_);
         recorder.copy(paths_->film, adjoint_->filmBaseline, paths_->film.size());
         recorder.submitAndWait();
         dispatchLoss(a.count, gpu::kLossImageFilm);
     });
     forEachPass(b, [&](const PassRange& range) {
-        timed(result.forwardMs, [&] { runPass(range, PassMode::Film); });
-        timed(result.adjointMs, [&] { runPass(range, PassMode::Adjoint); });
+        result.forwardMs += millisecondsOf([&] { runPass(range, PassMode::Film); });
+        result.adjointMs += millisecondsOf([&] { runPass(range, PassMode::Adjoint); });
     }, {});
-    timed(result.adjointMs, [&] {
+    result.adjointMs += millisecondsOf([&] {
         dispatchLoss(b.count, gpu::kLossImageFilmMinusBaseline);
         forEachPass(a, [&](const PassRange& range) {
             if (keptFits) {
-                restoreRadiance(range);
+                copyKeptRadiance(range, false);
             } else {
                 runPass(range, PassMode::Replay);
             }
             runPass(range, PassMode::Adjoint);
         }, {});
+        result.loss = dispatchLoss(settings_.spp, gpu::kLossImageFilm);
     });
 }
 
 // One sample per pixel cannot be split: dLoss/dI comes from the image, and the adjoint
 // replays paths with independent random numbers.
 void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
-    auto start = std::chrono::steady_clock::now();
-    forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, {});
-    result.forwardMs += millisecondsSince(start);
-    start = std::chrono::steady_clock::now();
-    dispatchLoss(settings_.spp, gpu::kLossImageFilm);
-    const uint32_t seed = settings_.seed;
-    setSeed(seed ^ kIndependentSeedBit);
-    forEachPass({0, settings_.spp}, [this](const PassRange& range) {
-        runPass(range, PassMode::Replay);
-        runPass(range, PassMode::Adjoint);
-    }, {});
-    setSeed(seed);
-    result.adjointMs += millisecondsSince(start);
+    result.forwardMs += millisecondsOf([&] {
+        forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, {});
+    });
+    result.adjointMs += millisecondsOf([&] {
+        result.loss = dispatchLoss(settings_.spp, gpu::kLossImageFilm);
+        const uint32_t seed = settings_.seed;
+        setSeed(seed ^ kIndependentSeedBit);
+        forEachPass({0, settings_.spp}, [this](const PassRange& range) {
+            runPass(range, PassMode::Replay);
+            runPass(range, PassMode::Adjoint);
+        }, {});
+        setSeed(seed);
+    });
 }
 
 }  // namespace vkdr

@@ -40,6 +40,14 @@ protected:
 
     std::string scene(const char* name) const { return std::string(VKDR_TEST_SCENES_DIR) + "/" + name; }
 
+    // An 8x8 render of the fog Cornell box to differentiate against.
+    fs::path fogTarget(int spp) {
+        fs::path target = dir_ / "target.exr";
+        EXPECT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp " + std::to_string(spp) +
+                      " -o " + target.string()).exitCode, 0);
+        return target;
+    }
+
     fs::path dir_;
 };
 
@@ -106,8 +114,7 @@ TEST_F(CliTest, RendersExrAndPngDeterministically) {
 }
 
 TEST_F(CliTest, GradPrintsOneJsonObject) {
-    fs::path target = dir_ / "target.exr";
-    ASSERT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 2 -o " + target.string()).exitCode, 0);
+    fs::path target = fogTarget(2);
     RunResult r = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
                       " --param media/fog/sigma_a --param media/fog/g --set media/fog/sigma_a=0.05 --spp 2 --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -121,8 +128,7 @@ TEST_F(CliTest, GradPrintsOneJsonObject) {
 // --check adds, per component, the adjoint and the finite difference with their
 // standard errors and the step: relative for sigma, so a thin fog gets a thin step.
 TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
-    fs::path target = dir_ / "target.exr";
-    ASSERT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 2 -o " + target.string()).exitCode, 0);
+    fs::path target = fogTarget(2);
     RunResult r = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
                       " --param media/fog/sigma_a --set media/fog/sigma_a=0.002 --spp 2 --check --check-seeds 2 --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -138,8 +144,7 @@ TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
 }
 
 TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
-    fs::path target = dir_ / "target.exr";
-    ASSERT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string()).exitCode, 0);
+    fs::path target = fogTarget(1);
     RunResult unknown = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() + " --param media/smog/g");
     EXPECT_EQ(unknown.exitCode, 2);
     EXPECT_NE(unknown.err.find("media/fog/g"), std::string::npos) << unknown.err;
