@@ -49,12 +49,15 @@ vec3 pathAdjoint(uint slot) {
     return P.imageAdjoint.v[P.pathInfo.v[slot].x].rgb;
 }
 
-// Adds g to gradients[first], [first + 1], [first + 2]. Most lanes of a subgroup add
-// to the same few parameters, and float atomics on one address serialise, so the lanes
-// that share `first` sum their values first and one of them adds the sum: the loop
-// peels off one distinct `first` per iteration. A call site must pass one buffer for
-// all its lanes, since the lanes are grouped by `first` alone.
-void addGradient(FloatBuffer gradients, uint first, vec3 g) {
+// Adds g to gradients[first], [first + 1], [first + 2] of this subgroup's copy (copies
+// `copyStride` floats apart; kGradientCopies in device_types.h). Most lanes of a
+// subgroup add to the same few parameters, and float atomics on one address serialise,
+// so the lanes that share `first` sum their values first and one of them adds the sum:
+// the loop peels off one distinct `first` per iteration. A call site must pass one
+// buffer for all its lanes, since the lanes are grouped by `first` alone.
+void addGradient(FloatBuffer gradients, uint copyStride, uint first, vec3 g) {
+    uint copy = (gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID) % kGradientCopies;
+    uint base = copy * copyStride + first;
     for (;;) {
         uint leader = subgroupBroadcastFirst(first);
         if (first == leader) {
@@ -62,7 +65,7 @@ void addGradient(FloatBuffer gradients, uint first, vec3 g) {
             if (subgroupElect()) {
                 for (uint c = 0u; c < 3u; ++c) {
                     if (sum[c] != 0.0f) {
-                        atomicAdd(gradients.v[first + c], sum[c]);
+                        atomicAdd(gradients.v[base + c], sum[c]);
                     }
                 }
             }
@@ -72,7 +75,7 @@ void addGradient(FloatBuffer gradients, uint first, vec3 g) {
 }
 
 void addMediumGradient(uint medium, uint firstComponent, vec3 g) {
-    addGradient(P.mediumGradients, medium * kMediumGradientStride + firstComponent, g);
+    addGradient(P.mediumGradients, P.mediumGradientCopyStride, medium * kMediumGradientStride + firstComponent, g);
 }
 
 void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
@@ -81,22 +84,22 @@ void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
 }
 
 void addPhaseGGradient(uint medium, float g) {
-    addGradient(P.mediumGradients, medium * kMediumGradientStride + 6u, vec3(g, 0.0f, 0.0f));
+    addMediumGradient(medium, 6u, vec3(g, 0.0f, 0.0f));
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
-    addGradient(P.baseColorGradients, material * 4u, g);
+    addGradient(P.baseColorGradients, P.materialGradientCopyStride, material * 4u, g);
 }
 
 void addEmissionGradient(uint material, vec3 g) {
-    addGradient(P.emissionGradients, material * 4u, g);
+    addGradient(P.emissionGradients, P.materialGradientCopyStride, material * 4u, g);
 }
 
 // g = dLoss/d(texture value at uv), spread over the texels the lookup blends.
 void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
     BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
     for (int corner = 0; corner < 4; ++corner) {
-        addGradient(P.texelGradients, footprint.texel[corner] * 4u, g * footprint.weight[corner]);
+        addGradient(P.texelGradients, 0u, footprint.texel[corner] * 4u, g * footprint.weight[corner]);
     }
 }
 

@@ -48,6 +48,14 @@ const uint kTargetBaseColor = 2u;         // base colour of a material (factor o
 // Medium gradients: sigma_a rgb, sigma_s rgb, g, unused.
 const uint kMediumGradientStride = 8u;
 
+// The medium, base colour and emission gradients have kGradientCopies copies, a
+// RenderParams...CopyStride apart: a subgroup adds to the copy of its index modulo
+// kGradientCopies, so that fewer subgroups contend for one address (float atomics on
+// one address serialise on a GPU), and the host sums the copies. Texel gradients
+// spread over the texels already and have one copy.
+const uint kGradientCopies = 32u;
+const uint kGradientCopyAlignment = 32u;  // floats: copies start 128 bytes apart
+
 // Queues: indices into QueueCounters.counts and .dispatch.
 const uint kQueueRays0 = 0u;   // rays to trace this segment (double-buffered with kQueueRays1)
 const uint kQueueRays1 = 1u;
@@ -93,8 +101,7 @@ struct GpuCamera {
     uint width;                // pixels
     uint height;
     uint medium;               // medium containing the camera, kNoMediumIndex: vacuum
-    uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
-    uint pad0, pad1;
+    uint pad0, pad1, pad2;
 };
 
 // Dispatch sizes written on the device so stages can be launched indirectly.
@@ -159,9 +166,9 @@ struct RenderParams {
     VKDR_BUFFER(Vec4Buffer) imageAdjoint;           // per pixel: rgb dLoss/dI, divided by spp
     VKDR_BUFFER(FloatBuffer) lossSum;               // [0]: sum of the per-pixel losses
     VKDR_BUFFER(Vec4Buffer) filmBaseline;           // per pixel: a copy of the film, subtracted by the loss stage on request
-    VKDR_BUFFER(FloatBuffer) mediumGradients;       // kMediumGradientStride per medium
-    VKDR_BUFFER(FloatBuffer) baseColorGradients;    // 4 per material: rgb
-    VKDR_BUFFER(FloatBuffer) emissionGradients;     // 4 per material: rgb
+    VKDR_BUFFER(FloatBuffer) mediumGradients;       // kGradientCopies copies of kMediumGradientStride per medium
+    VKDR_BUFFER(FloatBuffer) baseColorGradients;    // kGradientCopies copies of 4 per material: rgb
+    VKDR_BUFFER(FloatBuffer) emissionGradients;     // kGradientCopies copies of 4 per material: rgb
     VKDR_BUFFER(FloatBuffer) texelGradients;        // 4 per texel (the layout of texels): rgb
     VKDR_BUFFER(Vec4Buffer) pendingFactor;          // per slot: rgb d log f / d theta of the last scattering factor
     VKDR_BUFFER(UVec4Buffer) adjointState;          // per slot, see AdjointState in adjoint.glsl
@@ -179,7 +186,8 @@ struct RenderParams {
     float filmScale;                                // 1 / spp: film sum to pixel value
     float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels
     uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
-    uint pad0, pad1;
+    uint mediumGradientCopyStride;                  // floats from one copy of mediumGradients to the next
+    uint materialGradientCopyStride;                // the same for baseColorGradients and emissionGradients
 };
 
 // Per dispatch values, in push constants next to the RenderParams address.

@@ -16,7 +16,7 @@ SamplingOptions addSamplingOptions(CLI::App& command, RenderSettings& settings) 
     options.seed = command.add_option("--seed", settings.seed, "Random seed; the same seed gives the same image")
                        ->default_val(settings.seed);
     command.add_option("--paths-per-pass", settings.pathsPerPass,
-                       "Paths in flight per pass (default: up to 2^20, as device memory allows)")
+                       "Paths in flight per pass (default: up to 2^21 on a GPU, 2^20 on a CPU, as device memory allows)")
         ->check(CLI::Range(1u, 1u << 21));
     return options;
 }

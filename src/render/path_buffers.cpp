@@ -13,6 +13,24 @@ Buffer perPath(const VulkanContext& context, uint32_t capacity, const char* name
 
 }  // namespace
 
+GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floats, const char* name)
+    : floats(floats),
+      copyStride((floats + gpu::kGradientCopyAlignment - 1) / gpu::kGradientCopyAlignment *
+                 gpu::kGradientCopyAlignment),
+      buffer(context, uint64_t(gpu::kGradientCopies) * copyStride * 4, MemoryUse::Device, name) {}
+
+std::vector<float> GradientCopies::download(const VulkanContext& context) const {
+    std::vector<float> copies(size_t(gpu::kGradientCopies) * copyStride);
+    downloadBuffer(context, buffer, std::as_writable_bytes(std::span(copies)));
+    std::vector<float> sum(floats, 0.0f);
+    for (uint32_t copy = 0; copy < gpu::kGradientCopies; ++copy) {
+        for (uint32_t i = 0; i < floats; ++i) {
+            sum[i] += copies[size_t(copy) * copyStride + i];
+        }
+    }
+    return sum;
+}
+
 PathBuffers::PathBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount)
     : capacity(capacity),
       rayOrigin(perPath(context, capacity, "ray origin")),
@@ -48,10 +66,9 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
       imageAdjoint(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "image adjoint"),
       lossSum(context, 16, MemoryUse::Device, "loss sum"),
       filmBaseline(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "film baseline"),
-      mediumGradients(context, std::max(1u, mediumCount) * gpu::kMediumGradientStride * 4, MemoryUse::Device,
-                      "medium gradients"),
-      baseColorGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "base colour gradients"),
-      emissionGradients(context, std::max(1u, materialCount) * 16, MemoryUse::Device, "emission gradients"),
+      mediumGradients(context, std::max(1u, mediumCount) * gpu::kMediumGradientStride, "medium gradients"),
+      baseColorGradients(context, std::max(1u, materialCount) * 4, "base colour gradients"),
+      emissionGradients(context, std::max(1u, materialCount) * 4, "emission gradients"),
       texelGradients(context, std::max(1u, texelCount) * 16, MemoryUse::Device, "texel gradients") {
     if (keptPaths > 0) {
         keptRadiance = Buffer(context, keptPaths * 16, MemoryUse::Device, "kept radiance");
@@ -60,7 +77,8 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
 
 uint64_t AdjointBuffers::deviceBytes() const {
     return pendingFactor.size() * 6 + target.size() + imageAdjoint.size() + filmBaseline.size() +
-           mediumGradients.size() + baseColorGradients.size() + emissionGradients.size() + texelGradients.size() +
+           mediumGradients.buffer.size() + baseColorGradients.buffer.size() + emissionGradients.buffer.size() +
+           texelGradients.size() +
            keptRadiance.size();
 }
 

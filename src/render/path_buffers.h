@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "device_types.h"
 #include "vk/buffer.h"
@@ -26,6 +27,19 @@ struct PathBuffers {
     uint64_t deviceBytes() const;
 };
 
+// gpu::kGradientCopies copies of `floats` gradient accumulators, `copyStride` floats
+// apart (device_types.h): subgroups add to different copies, and the host sums them.
+struct GradientCopies {
+    GradientCopies(const VulkanContext& context, uint32_t floats, const char* name);
+
+    uint32_t floats;
+    uint32_t copyStride;
+    Buffer buffer;
+
+    // The `floats` accumulators, summed over the copies.
+    std::vector<float> download(const VulkanContext& context) const;
+};
+
 // What the adjoint pass adds: per path slot its replay state, per pixel the target,
 // dLoss/dI and a copy of the film, per parameter the gradient accumulators, and
 // optionally the radiance of `keptPaths` rendered paths, kept for their adjoint pass.
@@ -35,7 +49,8 @@ struct AdjointBuffers {
 
     Buffer pendingFactor, adjointState, vertexUv, shadowScatterGradient, shadowEmissionGradient, shadowVertex;
     Buffer target, imageAdjoint, lossSum, filmBaseline;
-    Buffer mediumGradients, baseColorGradients, emissionGradients, texelGradients;
+    GradientCopies mediumGradients, baseColorGradients, emissionGradients;
+    Buffer texelGradients;
     Buffer keptRadiance;  // 16 bytes per kept path; empty (size 0) when none are kept
 
     static constexpr uint64_t kBytesPerPath = 6 * 16;

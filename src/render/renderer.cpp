@@ -14,10 +14,15 @@
 namespace vkdr {
 namespace {
 
-// Paths in flight per pass: enough to fill a large GPU, and a bound on memory.
-constexpr uint64_t kDefaultPathsPerPass = 1u << 20;
 // One thread per path in a 1D dispatch of at most 65535 workgroups of 64.
 constexpr uint64_t kMaxPathsPerPass = 1u << 21;
+// Paths in flight per pass unless the user says otherwise. A GPU pays a fixed cost per
+// pass (host round trips, barriers between short dispatches): on an H100, 2^21 paths
+// per pass took 15-20 % less time than 2^20 (docs/performance.md). A CPU device gains
+// nothing from wider passes, only memory.
+uint64_t defaultPathsPerPass(const VulkanContext& context) {
+    return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1u << 20 : kMaxPathsPerPass;
+}
 // Segments recorded before the host looks whether any path is still alive.
 constexpr uint32_t kSegmentsPerBatch = 8;
 
@@ -40,7 +45,8 @@ uint32_t bit(uint32_t queue) {
 }
 
 uint32_t pathCapacity(const VulkanContext& context, const RenderSettings& settings, uint64_t pixels) {
-    uint64_t wanted = std::min(settings.pathsPerPass > 0 ? settings.pathsPerPass : kDefaultPathsPerPass, kMaxPathsPerPass);
+    uint64_t wanted =
+        std::min(settings.pathsPerPass > 0 ? settings.pathsPerPass : defaultPathsPerPass(context), kMaxPathsPerPass);
     // Leave most of the device's memory to the scene.
     uint64_t affordable = context.deviceLocalHeapBytes() / 4 / PathBuffers::kBytesPerPath;
     uint64_t needed = pixels * settings.spp;
@@ -128,9 +134,11 @@ void Renderer::uploadParams() {
         p.imageAdjoint = a.imageAdjoint.address();
         p.lossSum = a.lossSum.address();
         p.filmBaseline = a.filmBaseline.address();
-        p.mediumGradients = a.mediumGradients.address();
-        p.baseColorGradients = a.baseColorGradients.address();
-        p.emissionGradients = a.emissionGradients.address();
+        p.mediumGradients = a.mediumGradients.buffer.address();
+        p.baseColorGradients = a.baseColorGradients.buffer.address();
+        p.emissionGradients = a.emissionGradients.buffer.address();
+        p.mediumGradientCopyStride = a.mediumGradients.copyStride;
+        p.materialGradientCopyStride = a.baseColorGradients.copyStride;
         p.texelGradients = a.texelGradients.address();
         p.pendingFactor = a.pendingFactor.address();
         p.adjointState = a.adjointState.address();

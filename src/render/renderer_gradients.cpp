@@ -85,9 +85,9 @@ GradientEvaluation Renderer::renderWithGradients() {
     stats_ = {};
     {
         CommandRecorder recorder(context_);
-        recorder.fill(adjoint_->mediumGradients, 0);
-        recorder.fill(adjoint_->baseColorGradients, 0);
-        recorder.fill(adjoint_->emissionGradients, 0);
+        recorder.fill(adjoint_->mediumGradients.buffer, 0);
+        recorder.fill(adjoint_->baseColorGradients.buffer, 0);
+        recorder.fill(adjoint_->emissionGradients.buffer, 0);
         recorder.fill(adjoint_->texelGradients, 0);
         recorder.submitAndWait();
     }
@@ -102,13 +102,10 @@ GradientEvaluation Renderer::renderWithGradients() {
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
 
     SceneGradients& g = result.gradients;
-    g.media.resize(adjoint_->mediumGradients.size() / 4);
-    g.baseColors.resize(adjoint_->baseColorGradients.size() / 4);
-    g.emissions.resize(adjoint_->emissionGradients.size() / 4);
+    g.media = adjoint_->mediumGradients.download(context_);
+    g.baseColors = adjoint_->baseColorGradients.download(context_);
+    g.emissions = adjoint_->emissionGradients.download(context_);
     g.texels.resize(adjoint_->texelGradients.size() / 4);
-    downloadBuffer(context_, adjoint_->mediumGradients, std::as_writable_bytes(std::span(g.media)));
-    downloadBuffer(context_, adjoint_->baseColorGradients, std::as_writable_bytes(std::span(g.baseColors)));
-    downloadBuffer(context_, adjoint_->emissionGradients, std::as_writable_bytes(std::span(g.emissions)));
     downloadBuffer(context_, adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels)));
     return result;
 }
