@@ -89,6 +89,20 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
 
 void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std::span<const uint32_t> triangleOrder,
                            GpuScene& gpu) {
+    const std::vector<gpu::GpuMaterial> materials = deviceMaterials(scene);
+    const std::vector<gpu::GpuMedium> media = deviceMedia(scene);
+    overwriteBuffer(context, gpu.materials, std::as_bytes(std::span(materials)), "materials");
+    overwriteBuffer(context, gpu.media, std::as_bytes(std::span(media)), "media");
+    std::vector<glm::vec4> texels = allTexels(scene);
+    overwriteBuffer(context, gpu.texels, std::as_bytes(std::span(texels)), "texels");
+
+    std::vector<glm::vec3> emission;
+    for (const Material& m : scene.materials) {
+        emission.push_back(m.emission);
+    }
+    if (gpu.triangleInfo.size() > 0 && emission == gpu.emitterEmission && texels == gpu.emitterTexels) {
+        return;
+    }
     LightDistribution lights = buildLightDistribution(scene);
     std::vector<gpu::GpuTriangleInfo> info(triangleOrder.size());
     std::vector<uint32_t> bvhPosition(scene.triangles.size());
@@ -101,13 +115,12 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
     for (uint32_t t : lights.triangles) {
         lightTriangles.push_back(bvhPosition[t]);
     }
-    gpu.triangleInfo = uploadVector<gpu::GpuTriangleInfo>(context, info, "triangle info");
-    gpu.materials = uploadVector<gpu::GpuMaterial>(context, deviceMaterials(scene), "materials");
-    gpu.media = uploadVector<gpu::GpuMedium>(context, deviceMedia(scene), "media");
-    gpu.texels = uploadVector<glm::vec4>(context, allTexels(scene), "texels");
-    gpu.lightTriangles = uploadVector<uint32_t>(context, lightTriangles, "light triangles");
-    gpu.lightCdf = uploadVector<float>(context, lights.cdf, "light cdf");
+    overwriteBuffer(context, gpu.triangleInfo, std::as_bytes(std::span(info)), "triangle info");
+    overwriteBuffer(context, gpu.lightTriangles, std::as_bytes(std::span(lightTriangles)), "light triangles");
+    overwriteBuffer(context, gpu.lightCdf, std::as_bytes(std::span(lights.cdf)), "light cdf");
     gpu.lightCount = static_cast<uint32_t>(lightTriangles.size());
+    gpu.emitterEmission = std::move(emission);
+    gpu.emitterTexels = std::move(texels);
 }
 
 }  // namespace vkdr

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "bvh/bvh.h"
 #include "scene/scene.h"
@@ -25,12 +26,18 @@ struct GpuScene {
     Buffer lightCdf;
     uint32_t lightCount = 0;
     float rayEpsilon = 0.0f;  // scene units
+    // What the emitter distribution was last built from: each material's emission and
+    // every texel (a texture may be emissive).
+    std::vector<glm::vec3> emitterEmission;
+    std::vector<glm::vec4> emitterTexels;
 };
 
 GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh);
 
-// Uploads what the differentiable parameters change (materials, media, texels, the
-// emitter distribution) again, for new parameter values of the same geometry.
+// Uploads what the differentiable parameters change, for new parameter values of the
+// same geometry: materials, media and texels, written in place, and the emitter
+// distribution (per triangle, as large as the geometry) only when an emission or a
+// texel changed since it was built.
 void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std::span<const uint32_t> triangleOrder,
                            GpuScene& gpu);
 

@@ -150,7 +150,7 @@ void Renderer::uploadParams() {
         p.derivativeTargets = derivativeTargets_;
         p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));
     }
-    params_ = uploadBuffer(context_, std::as_bytes(std::span(&p, 1)), "render params");
+    overwriteBuffer(context_, params_, std::as_bytes(std::span(&p, 1)), "render params");
 }
 
 void Renderer::forEachPass(SampleRange samples, const std::function<void(const PassRange&)>& pass,

@@ -111,6 +111,23 @@ Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> byt
     return buffer;
 }
 
+void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<const std::byte> bytes,
+                     const std::string& name) {
+    if (buffer.size() != paddedSize(bytes.size())) {
+        buffer = uploadBuffer(context, bytes, name);
+        return;
+    }
+    // As uploadBuffer() leaves it: the bytes, then zeros up to the padded size.
+    Buffer staging(context, bytes.size(), MemoryUse::Upload, name + " (staging)");
+    std::memset(staging.mapped(), 0, staging.size());
+    if (!bytes.empty()) {
+        std::memcpy(staging.mapped(), bytes.data(), bytes.size());
+    }
+    CommandRecorder recorder(context);
+    recorder.copy(staging, buffer, buffer.size());
+    recorder.submitAndWait();
+}
+
 void downloadBuffer(const VulkanContext& context, const Buffer& buffer, std::span<std::byte> bytes) {
     Buffer readback(context, bytes.size(), MemoryUse::Readback, "readback");
     CommandRecorder recorder(context);

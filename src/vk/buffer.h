@@ -50,6 +50,11 @@ private:
 // small zeroed buffer, so every address is valid).
 Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> bytes, const std::string& name);
 
+// Writes `bytes` into `buffer` in place when it has room for exactly as many (its
+// address stays valid), else replaces it with uploadBuffer()'s.
+void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<const std::byte> bytes,
+                     const std::string& name);
+
 template <typename T>
 Buffer uploadVector(const VulkanContext& context, std::span<const T> values, const std::string& name) {
     return uploadBuffer(context, std::as_bytes(values), name);
