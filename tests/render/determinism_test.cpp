@@ -1,6 +1,9 @@
 // The same scene, seed and device give the same image bit for bit, whatever order the
-// paths finish in; another seed gives another image.
+// paths finish in; another seed gives another image. New parameter values given to a
+// renderer render as a renderer made for them does.
 #include "render_test_support.h"
+#include "bvh/bvh.h"
+#include "scene/load_scene.h"
 #include "test_gltf.h"
 
 namespace vkdr::test {
@@ -25,6 +28,37 @@ TEST_F(DeterminismTest, SameSeedSameBitsOtherSeedOtherImage) {
     settings.seed = 8;
     Image c = renderFile(file, settings);
     EXPECT_NE(a.rgb, c.rgb);
+}
+
+// setParameters keeps the emitter distribution when no emission changed and rebuilds it
+// when one did, here from one emitter to two: a stale distribution would sample other
+// lights (or miss the new one) and give other bits.
+TEST_F(DeterminismTest, NewParameterValuesRenderAsAFreshRendererDoes) {
+    TestGltf g;
+    g.materials = {emissiveMaterial("walls", glm::vec3(1.0f, 0.8f, 0.6f), true), diffuseMaterial("block", glm::vec3(0.5f)),
+                   vkdrMediumMaterial("smoke", glm::vec3(0.1f), glm::vec3(2.0f), 0.4f)};
+    g.meshes = {box(glm::vec3(-1.0f), glm::vec3(1.0f), 0), box(glm::vec3(-0.3f), glm::vec3(0.3f), 1),
+                box(glm::vec3(-0.5f, 0.4f, -0.5f), glm::vec3(0.5f, 0.9f, 0.9f), 2)};
+    g.cameraPosition = glm::vec3(0.0f, 0.0f, -0.95f);
+    Scene scene = loadScene(g.write(tempDir(), "scene")).scene;
+    Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    RenderSettings settings{.width = 16, .height = 12, .spp = 4, .maxDepth = 6, .seed = 3};
+    Renderer reused(testContext(), scene, bvh, settings);
+    reused.render();
+
+    auto expectSameAsFresh = [&](const Scene& changed) {
+        reused.setParameters(changed);
+        Image image = reused.render();
+        ASSERT_TRUE(allFinite(image));
+        EXPECT_EQ(image.rgb, Renderer(testContext(), changed, bvh, settings).render().rgb);
+    };
+    scene.media[0].sigma_s = glm::vec3(0.5f, 1.0f, 1.5f);
+    scene.materials[1].baseColor = glm::vec3(0.2f, 0.4f, 0.6f);
+    expectSameAsFresh(scene);
+    scene.materials[1].emission = glm::vec3(4.0f);
+    expectSameAsFresh(scene);
+    scene.materials[0].emission = glm::vec3(0.1f);
+    expectSameAsFresh(scene);
 }
 
 }  // namespace
