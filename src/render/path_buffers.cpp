@@ -19,9 +19,11 @@ GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floats, co
                  gpu::kGradientCopyAlignment),
       buffer(context, uint64_t(gpu::kGradientCopies) * copyStride * 4, MemoryUse::Device, name) {}
 
-std::vector<float> GradientCopies::download(const VulkanContext& context) const {
-    std::vector<float> copies(size_t(gpu::kGradientCopies) * copyStride);
-    downloadBuffer(context, buffer, std::as_writable_bytes(std::span(copies)));
+std::vector<float> GradientCopies::copiesOnHost() const {
+    return std::vector<float>(size_t(gpu::kGradientCopies) * copyStride);
+}
+
+std::vector<float> GradientCopies::sumOfCopies(std::span<const float> copies) const {
     std::vector<float> sum(floats, 0.0f);
     for (uint32_t copy = 0; copy < gpu::kGradientCopies; ++copy) {
         for (uint32_t i = 0; i < floats; ++i) {

@@ -36,8 +36,10 @@ struct GradientCopies {
     uint32_t copyStride;
     Buffer buffer;
 
-    // The `floats` accumulators, summed over the copies.
-    std::vector<float> download(const VulkanContext& context) const;
+    // Room for all copies on the host (for downloadBuffers), and the `floats`
+    // accumulators that they sum to.
+    std::vector<float> copiesOnHost() const;
+    std::vector<float> sumOfCopies(std::span<const float> copies) const;
 };
 
 // What the adjoint pass adds: per path slot its replay state, per pixel the target,

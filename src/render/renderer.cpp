@@ -174,11 +174,9 @@ void Renderer::forEachPass(SampleRange samples, const std::function<void(const P
     }
 }
 
-void Renderer::clearFilm() {
-    CommandRecorder recorder(context_);
+void Renderer::recordClearFilm(CommandRecorder& recorder) {
     recorder.fill(paths_->film, 0);
     recorder.fill(paths_->queueCounters, 0);
-    recorder.submitAndWait();
 }
 
 Image Renderer::downloadFilm() {
@@ -201,7 +199,11 @@ Image Renderer::downloadFilm() {
 Image Renderer::render(const ProgressCallback& progress) {
     auto start = std::chrono::steady_clock::now();
     stats_ = {};
-    clearFilm();
+    {
+        CommandRecorder recorder(context_);
+        recordClearFilm(recorder);
+        recorder.submitAndWait();
+    }
     forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, progress);
     Image image = downloadFilm();
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;

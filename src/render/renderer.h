@@ -103,10 +103,10 @@ private:
     // Copies the radiance of a pass's paths to AdjointBuffers::keptRadiance (keep), or
     // back into their slots.
     void copyKeptRadiance(const PassRange& range, bool keep);
-    void clearFilm();
-    // Runs the loss stage on the film's `samples` samples (less the baseline copy if
-    // asked), leaving dLoss/dI in imageAdjoint; returns the loss.
-    double dispatchLoss(uint32_t samples, uint32_t image);
+    void recordClearFilm(CommandRecorder& recorder);
+    // Records the loss stage over the film's `samples` samples (less the baseline copy
+    // if asked): it leaves dLoss/dI in imageAdjoint and the loss's sum in lossSum.
+    void recordLoss(CommandRecorder& recorder, uint32_t samples, uint32_t image);
     Image downloadFilm();
     // Both leave the image in the film, dLoss/dparameters in the gradient buffers, and
     // set result's loss and times.

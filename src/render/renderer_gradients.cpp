@@ -48,23 +48,23 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
 }
 
 double Renderer::loss() {
-    return dispatchLoss(settings_.spp, gpu::kLossImageFilm);
+    CommandRecorder recorder(context_, timer_);
+    recordLoss(recorder, settings_.spp, gpu::kLossImageFilm);
+    recorder.submitAndWait();
+    float sum[4];
+    downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(sum)));
+    return sum[0];
 }
 
-double Renderer::dispatchLoss(uint32_t samples, uint32_t image) {
+void Renderer::recordLoss(CommandRecorder& recorder, uint32_t samples, uint32_t image) {
     gpu::PassConstants constants{0, camera_.width * camera_.height, 0, samples, 0, 0, 0, image};
     PushConstants push{params_.address(), constants};
     if (timer_) {
         timer_->setScope("loss");
     }
-    CommandRecorder recorder(context_, timer_);
     recorder.fill(adjoint_->lossSum, 0);
     recorder.barrier();
     recorder.dispatch(pipelines_.gradient->loss, camera_.width * camera_.height, push.bytes());
-    recorder.submitAndWait();
-    float sum[4];
-    downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(sum)));
-    return sum[0];
 }
 
 void Renderer::copyKeptRadiance(const PassRange& range, bool keep) {
@@ -89,9 +89,9 @@ GradientEvaluation Renderer::renderWithGradients() {
         recorder.fill(adjoint_->baseColorGradients.buffer, 0);
         recorder.fill(adjoint_->emissionGradients.buffer, 0);
         recorder.fill(adjoint_->texelGradients, 0);
+        recordClearFilm(recorder);
         recorder.submitAndWait();
     }
-    clearFilm();
     GradientEvaluation result;
     if (settings_.spp >= 2) {
         backpropagateSplitSamples(result);
@@ -102,11 +102,17 @@ GradientEvaluation Renderer::renderWithGradients() {
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
 
     SceneGradients& g = result.gradients;
-    g.media = adjoint_->mediumGradients.download(context_);
-    g.baseColors = adjoint_->baseColorGradients.download(context_);
-    g.emissions = adjoint_->emissionGradients.download(context_);
+    std::vector<float> media = adjoint_->mediumGradients.copiesOnHost();
+    std::vector<float> baseColors = adjoint_->baseColorGradients.copiesOnHost();
+    std::vector<float> emissions = adjoint_->emissionGradients.copiesOnHost();
     g.texels.resize(adjoint_->texelGradients.size() / 4);
-    downloadBuffer(context_, adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels)));
+    downloadBuffers(context_, {{&adjoint_->mediumGradients.buffer, std::as_writable_bytes(std::span(media))},
+                               {&adjoint_->baseColorGradients.buffer, std::as_writable_bytes(std::span(baseColors))},
+                               {&adjoint_->emissionGradients.buffer, std::as_writable_bytes(std::span(emissions))},
+                               {&adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels))}});
+    g.media = adjoint_->mediumGradients.sumOfCopies(media);
+    g.baseColors = adjoint_->baseColorGradients.sumOfCopies(baseColors);
+    g.emissions = adjoint_->emissionGradients.sumOfCopies(emissions);
     return result;
 }
 
@@ -128,17 +134,21 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
         }, {});
     });
     result.adjointMs += millisecondsOf([&] {
-        CommandRecorder recorder(context_);
+        CommandRecorder recorder(context_, timer_);
         recorder.copy(paths_->film, adjoint_->filmBaseline, paths_->film.size());
+        recordLoss(recorder, a.count, gpu::kLossImageFilm);
         recorder.submitAndWait();
-        dispatchLoss(a.count, gpu::kLossImageFilm);
     });
     forEachPass(b, [&](const PassRange& range) {
         result.forwardMs += millisecondsOf([&] { runPass(range, PassMode::Film); });
         result.adjointMs += millisecondsOf([&] { runPass(range, PassMode::Adjoint); });
     }, {});
     result.adjointMs += millisecondsOf([&] {
-        dispatchLoss(b.count, gpu::kLossImageFilmMinusBaseline);
+        {
+            CommandRecorder recorder(context_, timer_);
+            recordLoss(recorder, b.count, gpu::kLossImageFilmMinusBaseline);
+            recorder.submitAndWait();
+        }
         forEachPass(a, [&](const PassRange& range) {
             if (keptFits) {
                 copyKeptRadiance(range, false);
@@ -147,7 +157,7 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
             }
             runPass(range, PassMode::Adjoint);
         }, {});
-        result.loss = dispatchLoss(settings_.spp, gpu::kLossImageFilm);
+        result.loss = loss();
     });
 }
 
@@ -158,7 +168,7 @@ void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
         forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, {});
     });
     result.adjointMs += millisecondsOf([&] {
-        result.loss = dispatchLoss(settings_.spp, gpu::kLossImageFilm);
+        result.loss = loss();
         const uint32_t seed = settings_.seed;
         setSeed(seed ^ kIndependentSeedBit);
         forEachPass({0, settings_.spp}, [this](const PassRange& range) {

@@ -129,11 +129,29 @@ void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<con
 }
 
 void downloadBuffer(const VulkanContext& context, const Buffer& buffer, std::span<std::byte> bytes) {
-    Buffer readback(context, bytes.size(), MemoryUse::Readback, "readback");
+    downloadBuffers(context, {{&buffer, bytes}});
+}
+
+void downloadBuffers(const VulkanContext& context, std::initializer_list<Download> downloads) {
+    VkDeviceSize total = 0;
+    for (const Download& d : downloads) {
+        total += d.bytes.size();
+    }
+    Buffer readback(context, total, MemoryUse::Readback, "readback");
     CommandRecorder recorder(context);
-    recorder.copy(buffer, readback, bytes.size());
+    VkDeviceSize offset = 0;
+    for (const Download& d : downloads) {
+        if (!d.bytes.empty()) {
+            recorder.copyRange(*d.buffer, 0, readback, offset, d.bytes.size());
+        }
+        offset += d.bytes.size();
+    }
     recorder.submitAndWait();
-    std::memcpy(bytes.data(), readback.mapped(), bytes.size());
+    offset = 0;
+    for (const Download& d : downloads) {
+        std::memcpy(d.bytes.data(), static_cast<const std::byte*>(readback.mapped()) + offset, d.bytes.size());
+        offset += d.bytes.size();
+    }
 }
 
 }  // namespace vkdr

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <initializer_list>
 #include <span>
 #include <string>
 
@@ -62,5 +63,12 @@ Buffer uploadVector(const VulkanContext& context, std::span<const T> values, con
 
 // Copies a device buffer's first `bytes.size()` bytes to the host.
 void downloadBuffer(const VulkanContext& context, const Buffer& buffer, std::span<std::byte> bytes);
+
+// downloadBuffer() for several buffers, through one read-back buffer and one submission.
+struct Download {
+    const Buffer* buffer;
+    std::span<std::byte> bytes;
+};
+void downloadBuffers(const VulkanContext& context, std::initializer_list<Download> downloads);
 
 }  // namespace vkdr
