@@ -96,11 +96,8 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
     std::vector<glm::vec4> texels = allTexels(scene);
     overwriteBuffer(context, gpu.texels, std::as_bytes(std::span(texels)), "texels");
 
-    std::vector<glm::vec3> emission;
-    for (const Material& m : scene.materials) {
-        emission.push_back(m.emission);
-    }
-    if (gpu.triangleInfo.size() > 0 && emission == gpu.emitterEmission && texels == gpu.emitterTexels) {
+    std::vector<glm::vec3> emitted = meanEmittedRadiance(scene);
+    if (gpu.emitterRadiance && emitted == *gpu.emitterRadiance) {
         return;
     }
     LightDistribution lights = buildLightDistribution(scene);
@@ -119,8 +116,7 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
     overwriteBuffer(context, gpu.lightTriangles, std::as_bytes(std::span(lightTriangles)), "light triangles");
     overwriteBuffer(context, gpu.lightCdf, std::as_bytes(std::span(lights.cdf)), "light cdf");
     gpu.lightCount = static_cast<uint32_t>(lightTriangles.size());
-    gpu.emitterEmission = std::move(emission);
-    gpu.emitterTexels = std::move(texels);
+    gpu.emitterRadiance = std::move(emitted);
 }
 
 }  // namespace vkdr

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -26,18 +27,16 @@ struct GpuScene {
     Buffer lightCdf;
     uint32_t lightCount = 0;
     float rayEpsilon = 0.0f;  // scene units
-    // What the emitter distribution was last built from: each material's emission and
-    // every texel (a texture may be emissive).
-    std::vector<glm::vec3> emitterEmission;
-    std::vector<glm::vec4> emitterTexels;
+    // Each material's mean emitted radiance when the emitter distribution was built.
+    std::optional<std::vector<glm::vec3>> emitterRadiance;
 };
 
 GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh);
 
 // Uploads what the differentiable parameters change, for new parameter values of the
-// same geometry: materials, media and texels, written in place, and the emitter
-// distribution (per triangle, as large as the geometry) only when an emission or a
-// texel changed since it was built.
+// same scene (geometry, material assignment and sidedness as before): materials, media
+// and texels, written in place, and the emitter distribution (per triangle, as large
+// as the geometry) only when a material's mean emitted radiance changed.
 void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std::span<const uint32_t> triangleOrder,
                            GpuScene& gpu);
 

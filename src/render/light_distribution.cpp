@@ -13,15 +13,22 @@ glm::vec3 averageTexel(const Texture& texture) {
 
 }  // namespace
 
+std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene) {
+    std::vector<glm::vec3> radiance;
+    for (const Material& material : scene.materials) {
+        radiance.push_back(material.emissionTexture >= 0
+                               ? material.emission * averageTexel(scene.textures[material.emissionTexture])
+                               : material.emission);
+    }
+    return radiance;
+}
+
 LightDistribution buildLightDistribution(const Scene& scene) {
+    const std::vector<glm::vec3> radiance = meanEmittedRadiance(scene);
     std::vector<double> materialPower(scene.materials.size(), 0.0);
     for (size_t m = 0; m < scene.materials.size(); ++m) {
-        const Material& material = scene.materials[m];
-        glm::vec3 radiance = material.emission;
-        if (material.emissionTexture >= 0) {
-            radiance *= averageTexel(scene.textures[material.emissionTexture]);
-        }
-        materialPower[m] = (radiance.r + radiance.g + radiance.b) / 3.0 * (material.doubleSided ? 2.0 : 1.0);
+        const glm::vec3& r = radiance[m];
+        materialPower[m] = (r.r + r.g + r.b) / 3.0 * (scene.materials[m].doubleSided ? 2.0 : 1.0);
     }
 
     LightDistribution lights;

@@ -16,4 +16,8 @@ struct LightDistribution {
 
 LightDistribution buildLightDistribution(const Scene& scene);
 
+// Each material's mean emitted radiance: its emission times the mean of its emission
+// texture. The light distribution depends on the parameters only through these.
+std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene);
+
 }  // namespace vkdr

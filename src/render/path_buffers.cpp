@@ -13,13 +13,13 @@ Buffer perPath(const VulkanContext& context, uint32_t capacity, const char* name
 
 }  // namespace
 
-GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floats, const char* name)
-    : floats(floats),
-      copyStride((floats + gpu::kGradientCopyAlignment - 1) / gpu::kGradientCopyAlignment *
+GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, const char* name)
+    : floats(floatsPerCopy),
+      copyStride((floatsPerCopy + gpu::kGradientCopyAlignment - 1) / gpu::kGradientCopyAlignment *
                  gpu::kGradientCopyAlignment),
       buffer(context, uint64_t(gpu::kGradientCopies) * copyStride * 4, MemoryUse::Device, name) {}
 
-std::vector<float> GradientCopies::copiesOnHost() const {
+std::vector<float> GradientCopies::roomForCopies() const {
     return std::vector<float>(size_t(gpu::kGradientCopies) * copyStride);
 }
 
@@ -80,8 +80,7 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
 uint64_t AdjointBuffers::deviceBytes() const {
     return pendingFactor.size() * 6 + target.size() + imageAdjoint.size() + filmBaseline.size() +
            mediumGradients.buffer.size() + baseColorGradients.buffer.size() + emissionGradients.buffer.size() +
-           texelGradients.size() +
-           keptRadiance.size();
+           texelGradients.size() + keptRadiance.size();
 }
 
 }  // namespace vkdr

@@ -30,15 +30,15 @@ struct PathBuffers {
 // gpu::kGradientCopies copies of `floats` gradient accumulators, `copyStride` floats
 // apart (device_types.h): subgroups add to different copies, and the host sums them.
 struct GradientCopies {
-    GradientCopies(const VulkanContext& context, uint32_t floats, const char* name);
+    GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, const char* name);
 
     uint32_t floats;
     uint32_t copyStride;
     Buffer buffer;
 
-    // Room for all copies on the host (for downloadBuffers), and the `floats`
+    // Room on the host for all the copies (for downloadBuffers), and the `floats`
     // accumulators that they sum to.
-    std::vector<float> copiesOnHost() const;
+    std::vector<float> roomForCopies() const;
     std::vector<float> sumOfCopies(std::span<const float> copies) const;
 };
 

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cstring>
 
@@ -138,6 +139,8 @@ void Renderer::uploadParams() {
         p.baseColorGradients = a.baseColorGradients.buffer.address();
         p.emissionGradients = a.emissionGradients.buffer.address();
         p.mediumGradientCopyStride = a.mediumGradients.copyStride;
+        // One stride serves both: they hold the same number of floats.
+        assert(a.emissionGradients.copyStride == a.baseColorGradients.copyStride);
         p.materialGradientCopyStride = a.baseColorGradients.copyStride;
         p.texelGradients = a.texelGradients.address();
         p.pendingFactor = a.pendingFactor.address();

@@ -102,9 +102,9 @@ GradientEvaluation Renderer::renderWithGradients() {
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
 
     SceneGradients& g = result.gradients;
-    std::vector<float> media = adjoint_->mediumGradients.copiesOnHost();
-    std::vector<float> baseColors = adjoint_->baseColorGradients.copiesOnHost();
-    std::vector<float> emissions = adjoint_->emissionGradients.copiesOnHost();
+    std::vector<float> media = adjoint_->mediumGradients.roomForCopies();
+    std::vector<float> baseColors = adjoint_->baseColorGradients.roomForCopies();
+    std::vector<float> emissions = adjoint_->emissionGradients.roomForCopies();
     g.texels.resize(adjoint_->texelGradients.size() / 4);
     downloadBuffers(context_, {{&adjoint_->mediumGradients.buffer, std::as_writable_bytes(std::span(media))},
                                {&adjoint_->baseColorGradients.buffer, std::as_writable_bytes(std::span(baseColors))},

@@ -149,7 +149,9 @@ void downloadBuffers(const VulkanContext& context, std::initializer_list<Downloa
     recorder.submitAndWait();
     offset = 0;
     for (const Download& d : downloads) {
-        std::memcpy(d.bytes.data(), static_cast<const std::byte*>(readback.mapped()) + offset, d.bytes.size());
+        if (!d.bytes.empty()) {
+            std::memcpy(d.bytes.data(), static_cast<const std::byte*>(readback.mapped()) + offset, d.bytes.size());
+        }
         offset += d.bytes.size();
     }
 }

@@ -108,6 +108,15 @@ void CommandRecorder::barrier() {
 }
 
 void CommandRecorder::submitAndWait() {
+    // The fence wait below orders this submission before the host's next step and
+    // before later submissions, but does not make the device's writes visible to them:
+    // this barrier does, for read-backs and for whatever is submitted next.
+    VkMemoryBarrier handOver{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    handOver.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    handOver.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+    vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &handOver, 0, nullptr,
+                         0, nullptr);
     checkVk(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
