@@ -1,5 +1,6 @@
 #include "vk/buffer.h"
 
+#include <algorithm>
 #include <cstring>
 #include <utility>
 
@@ -98,26 +99,17 @@ void Buffer::release() {
 }
 
 Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> bytes, const std::string& name) {
-    VkDeviceSize size = std::max<VkDeviceSize>(bytes.size(), 1);
-    Buffer staging(context, size, MemoryUse::Upload, name + " (staging)");
-    std::memset(staging.mapped(), 0, size);
-    if (!bytes.empty()) {
-        std::memcpy(staging.mapped(), bytes.data(), bytes.size());
-    }
-    Buffer buffer(context, size, MemoryUse::Device, name);
-    CommandRecorder recorder(context);
-    recorder.copy(staging, buffer, size);
-    recorder.submitAndWait();
+    Buffer buffer;
+    overwriteBuffer(context, buffer, bytes, name);
     return buffer;
 }
 
 void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<const std::byte> bytes,
                      const std::string& name) {
     if (buffer.size() != paddedSize(bytes.size())) {
-        buffer = uploadBuffer(context, bytes, name);
-        return;
+        buffer = Buffer(context, bytes.size(), MemoryUse::Device, name);
     }
-    // As uploadBuffer() leaves it: the bytes, then zeros up to the padded size.
+    // The bytes, then zeros up to the padded size.
     Buffer staging(context, bytes.size(), MemoryUse::Upload, name + " (staging)");
     std::memset(staging.mapped(), 0, staging.size());
     if (!bytes.empty()) {

@@ -52,7 +52,7 @@ private:
 Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> bytes, const std::string& name);
 
 // Writes `bytes` into `buffer` in place when it has room for exactly as many (its
-// address stays valid), else replaces it with uploadBuffer()'s.
+// address stays valid), else into a new device buffer that replaces it.
 void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<const std::byte> bytes,
                      const std::string& name);
 
