@@ -5,10 +5,8 @@
 #include <cstddef>
 #include <cstring>
 #include <limits>
-#include <optional>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <utility>
 
 #include <tbb/blocked_range.h>
@@ -17,17 +15,17 @@
 #include <tbb/parallel_reduce.h>
 
 #include "bvh/bounds.h"
+#include "bvh/build_records.h"
 #include "bvh/bvh.h"
+#include "bvh/exact_subtree.h"
 
 namespace vkdr {
 namespace {
 
-// Small nodes, the great majority, get fewer bins: two per triangle are enough to
-// tell most of them apart, and setting up and sweeping bins is a per-node cost.
-constexpr int kMaxBinCount = 32;
-// Cost of visiting an interior node relative to one triangle test: a visit tests the
-// two children's boxes, about as much work as one triangle.
-constexpr float kTraversalCost = 1.0f;
+using namespace bvh_build;
+
+// Bins per axis in nodes too large for buildExactSubtree.
+constexpr int kBinCount = 32;
 // Below these sizes, task overhead outweighs the work: ranges bin serially, and a
 // right child is built by the task that built its parent.
 constexpr size_t kParallelBinningSize = 64 * 1024;
@@ -36,90 +34,42 @@ constexpr size_t kBinningGrainSize = 16 * 1024;
 // Keeps node indices (at most 2n - 1 nodes) within uint32_t.
 constexpr size_t kMaxTriangles = size_t(1) << 31;
 
-// The build's only per-triangle storage. Partitioning moves these records rather than
-// indices to them, so every pass over a range reads memory in order.
-struct TriangleBox {
-    Bounds3 bounds;
-    uint32_t triangle;
-    // Halved before adding so that huge coordinates cannot overflow to infinity.
-    glm::vec3 centroid() const { return 0.5f * bounds.min + 0.5f * bounds.max; }
-};
-// load4() of either corner stays inside the record.
-static_assert(sizeof(TriangleBox) == 28 && offsetof(TriangleBox, triangle) == 24);
-
-// boxes[begin, end): the triangles of one node, and what is known about them.
-struct BuildRange {
-    size_t begin = 0;
-    size_t end = 0;
-    uint32_t depth = 0;
-    Bounds3 bounds;
-    Bounds3 centroidBounds;
-    size_t size() const { return end - begin; }
-};
-
-// Four floats in one SIMD register (a GCC and Clang vector extension), for the
-// build's innermost loop, binning: it updates whole boxes at once. Lane 3 is unused.
-using Float4 = float __attribute__((vector_size(16)));
-using Int4 = int32_t __attribute__((vector_size(16)));
-using UInt4 = uint32_t __attribute__((vector_size(16)));
-
-Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
-Float4 max4(Float4 a, Float4 b) { return a < b ? b : a; }
-// Loads x, y, z, and 0 into lane 3. Lane 3 must not keep the bytes that follow v in
-// memory: after boundsMax they are the triangle index, which as a float is a denormal,
-// and arithmetic on denormals takes a microcode assist of ~100 cycles per operation.
-Float4 load4(const glm::vec3& v) {
-    Float4 result;
-    std::memcpy(&result, &v, sizeof(result));
-    result[3] = 0.0f;
-    return result;
-}
-
-// Maps a centroid to one of binCount() equal slices of the centroid bounds, per axis.
+// Maps a centroid to one of kBinCount equal slices of the centroid bounds, per axis.
 class BinMapping {
 public:
-    explicit BinMapping(const BuildRange& range)
-        : binCount_(int(std::min(size_t(kMaxBinCount), 2 * range.size()))), origin_(range.centroidBounds.min) {
+    explicit BinMapping(const BuildRange& range) : origin_(range.centroidBounds.min) {
         for (int axis = 0; axis < 3; ++axis) {
             float extent = range.centroidBounds.max[axis] - range.centroidBounds.min[axis];
-            float scale = float(binCount_) / extent;
+            float scale = float(kBinCount) / extent;
             scale_[axis] = extent > 0.0f && std::isfinite(scale) ? scale : 0.0f;
         }
     }
-    int binCount() const { return binCount_; }
     // False where all centroids coincide (or are too close to tell apart).
     bool canSplit(int axis) const { return scale_[axis] > 0.0f; }
     bool canSplitAnyAxis() const { return canSplit(0) || canSplit(1) || canSplit(2); }
-    int bin(const glm::vec3& centroid, int axis) const {
-        float f = (centroid[axis] - origin_[axis]) * scale_[axis];
-        return int(std::min(f, float(binCount_ - 1)));
-    }
-    // bin() for all three axes at once, with the same arithmetic.
+    // The bin of a centroid along each axis.
     Int4 bins(Float4 centroid) const {
         Float4 f = (centroid - Float4{origin_.x, origin_.y, origin_.z, 0.0f}) * Float4{scale_.x, scale_.y, scale_.z, 0.0f};
-        return __builtin_convertvector(min4(f, Float4{} + float(binCount_ - 1)), Int4);
+        return __builtin_convertvector(min4(f, Float4{} + float(kBinCount - 1)), Int4);
     }
 
 private:
-    int binCount_;
     glm::vec3 origin_;  // no centroid lies below it, so bins are never negative
     glm::vec3 scale_;   // bins per unit length; 0 on an axis that cannot be split
 };
 
-// Trivially constructible, so that a BinGrid costs only the bins it uses.
 struct Bin {
     Float4 min, max;
     uint32_t count;
 };
-static_assert(std::is_trivially_default_constructible_v<Bin>);
 
 class BinGrid {
 public:
-    explicit BinGrid(const BinMapping& mapping) : binCount_(mapping.binCount()) {
+    BinGrid() {
         const float huge = std::numeric_limits<float>::max();
-        for (auto& bins : axes_) std::fill_n(bins.begin(), binCount_, Bin{Float4{} + huge, Float4{} - huge, 0});
+        for (auto& bins : axes_) bins.fill(Bin{Float4{} + huge, Float4{} - huge, 0});
     }
-    std::span<const Bin> bins(int axis) const { return {axes_[axis].data(), size_t(binCount_)}; }
+    std::span<const Bin, kBinCount> bins(int axis) const { return axes_[axis]; }
 
     // Bins the box along all three axes; an axis that cannot be split gathers
     // everything in its bin 0, which findBestSplit ignores.
@@ -135,7 +85,7 @@ public:
     }
     void merge(const BinGrid& other) {
         for (int axis = 0; axis < 3; ++axis)
-            for (int i = 0; i < binCount_; ++i) {
+            for (int i = 0; i < kBinCount; ++i) {
                 Bin& bin = axes_[axis][i];
                 const Bin& more = other.axes_[axis][i];
                 bin.min = min4(bin.min, more.min);
@@ -145,56 +95,19 @@ public:
     }
 
 private:
-    int binCount_;
-    std::array<std::array<Bin, kMaxBinCount>, 3> axes_;
+    std::array<std::array<Bin, kBinCount>, 3> axes_;
 };
 
 Bounds3 boundsOf(const Bin& bin) { return {{bin.min[0], bin.min[1], bin.min[2]}, {bin.max[0], bin.max[1], bin.max[2]}}; }
 
-// Bounds3 in two SIMD registers, for the sweeps over bins and the partition: every
-// node sweeps all its bins six times, and converting each bin to a Bounds3 cost more
-// than the sweep itself.
-struct Box4 {
-    Float4 min = Float4{} + std::numeric_limits<float>::max();
-    Float4 max = Float4{} - std::numeric_limits<float>::max();
-    void extend(Float4 low, Float4 high) {
-        min = min4(min, low);
-        max = max4(max, high);
-    }
-    void extend(Float4 point) { extend(point, point); }
-    // Bounds3::halfArea() with the same arithmetic, so the same splits win.
-    float halfArea() const {
-        Float4 d = max - min;
-        if (d[0] < 0.0f || d[1] < 0.0f || d[2] < 0.0f) return 0.0f;
-        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
-    }
-    Bounds3 bounds() const { return {{min[0], min[1], min[2]}, {max[0], max[1], max[2]}}; }
-};
-
-// Where to divide a node's triangles, and what that costs in triangle tests.
+// Where to divide a node's triangles.
 struct Split {
     int axis = -1;  // -1: no plane separates the triangles
-    int bin = 0;    // binned splits: bins [0, bin) along axis go left
+    int bin = 0;    // bins [0, bin) along axis go left
     uint32_t leftCount = 0, rightCount = 0;
     Bounds3 leftBounds, rightBounds;
-    float cost = std::numeric_limits<float>::infinity();
+    float childCosts = std::numeric_limits<float>::infinity();  // summed count * half area
 };
-
-// Turns the summed count * area of both sides into the SAH cost of the split.
-float sahCost(float childCosts, const BuildRange& range) {
-    // A node whose box has no area (collinear degenerate triangles) costs nothing to visit.
-    float nodeArea = range.bounds.halfArea();
-    return kTraversalCost + (nodeArea > 0.0f ? childCosts / nodeArea : 0.0f);
-}
-
-// Half areas of three boxes, one per lane, with Bounds3::halfArea()'s arithmetic (so
-// the same splits win); 0 for an empty box. Inlined: a call passes the boxes through memory.
-[[gnu::always_inline]] inline Float4 halfAreas(const std::array<Box4, 3>& boxes) {
-    Float4 d0 = boxes[0].max - boxes[0].min, d1 = boxes[1].max - boxes[1].min, d2 = boxes[2].max - boxes[2].min;
-    Float4 x{d0[0], d1[0], d2[0], 0.0f}, y{d0[1], d1[1], d2[1], 0.0f}, z{d0[2], d1[2], d2[2], 0.0f};
-    Int4 empty = (x < 0.0f) | (y < 0.0f) | (z < 0.0f);
-    return empty ? Float4{} : x * y + y * z + z * x;
-}
 
 // The SAH sweeps run the three axes at once, one per SIMD lane, without branches: a
 // sweep is a chain of dependent min/max and area sums, too short per bin to keep a
@@ -202,17 +115,16 @@ float sahCost(float childCosts, const BuildRange& range) {
 // costs what the plane before it did and never wins the strict comparison: the split
 // chosen, ties included, is the one sweeping each axis alone would choose, axis 0 first.
 Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, const BuildRange& range) {
-    const int binCount = mapping.binCount();
-    std::array<std::span<const Bin>, 3> bins{grid.bins(0), grid.bins(1), grid.bins(2)};
+    std::array<std::span<const Bin, kBinCount>, 3> bins{grid.bins(0), grid.bins(1), grid.bins(2)};
     auto countsOf = [&](int i) { return UInt4{bins[0][i].count, bins[1][i].count, bins[2][i].count, 0}; };
     auto extend = [&](std::array<Box4, 3>& boxes, int i) {
         for (int axis = 0; axis < 3; ++axis) boxes[axis].extend(bins[axis][i].min, bins[axis][i].max);
     };
-    // aboveCost[i]: count * area of the bins [i, binCount), per axis.
-    std::array<Float4, kMaxBinCount> aboveCost;
+    // aboveCost[i]: count * area of the bins [i, kBinCount), per axis.
+    std::array<Float4, kBinCount> aboveCost;
     std::array<Box4, 3> above;
     UInt4 aboveCount{};
-    for (int i = binCount - 1; i >= 1; --i) {
+    for (int i = kBinCount - 1; i >= 1; --i) {
         extend(above, i);
         aboveCount += countsOf(i);
         aboveCost[i] = __builtin_convertvector(aboveCount, Float4) * halfAreas(above);
@@ -223,7 +135,7 @@ Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, const BuildR
     Int4 bestBin{};
     std::array<Box4, 3> below;
     UInt4 belowCount{};
-    for (int i = 1; i < binCount; ++i) {
+    for (int i = 1; i < kBinCount; ++i) {
         extend(below, i - 1);
         belowCount += countsOf(i - 1);
         Float4 cost = __builtin_convertvector(belowCount, Float4) * halfAreas(below) + aboveCost[i];
@@ -234,29 +146,21 @@ Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, const BuildR
     }
     Split best;
     for (int axis = 0; axis < 3; ++axis) {
-        if (bestCost[axis] < best.cost) {
+        if (bestCost[axis] < best.childCosts) {
             best.axis = axis;
             best.bin = bestBin[axis];
-            best.cost = bestCost[axis];
+            best.childCosts = bestCost[axis];
         }
     }
     if (best.axis < 0) return best;
 
-    for (int i = 0; i < binCount; ++i) {
+    for (int i = 0; i < kBinCount; ++i) {
         const Bin& bin = bins[best.axis][i];
         (i < best.bin ? best.leftBounds : best.rightBounds).extend(boundsOf(bin));
         (i < best.bin ? best.leftCount : best.rightCount) += bin.count;
     }
-    best.cost = sahCost(best.cost, range);
     return best;
 }
-
-// ceil(log2(n)): the depth of a subtree of n triangles split at the median down to one.
-uint32_t medianSplitDepth(size_t n) { return n <= 1 ? 0 : uint32_t(std::bit_width(n - 1)); }
-
-// Whether a node at this depth can still hold n triangles without the tree exceeding
-// kBvhMaxDepth: every node keeps this true, and median splits preserve it.
-bool fitsDepthLimit(uint32_t depth, size_t n) { return depth + medianSplitDepth(n) <= kBvhMaxDepth; }
 
 // Moves a subtree built with its root at subtree[0] into nodes: the root to
 // nodes[rootIndex], the rest appended, with child links shifted to match.
@@ -279,12 +183,8 @@ public:
     // Builds the subtree of range with its root at nodes[nodeIndex], appending the
     // rest of its nodes to nodes.
     void build(const BuildRange& range, uint32_t nodeIndex, std::vector<BvhNode>& nodes) const {
-        std::optional<std::pair<BuildRange, BuildRange>> children = chooseChildren(range);
-        if (!children) {
-            nodes[nodeIndex] = {range.bounds.min, uint32_t(range.begin), range.bounds.max, uint32_t(range.size())};
-            return;
-        }
-        const auto& [left, right] = *children;
+        if (range.size() <= kExactSubtreeSize) return buildExactSubtree(boxes_, range, nodeIndex, nodes);
+        const auto [left, right] = chooseChildren(range);
         uint32_t firstChild = uint32_t(nodes.size());
         nodes.resize(nodes.size() + 2);
         nodes[nodeIndex] = {range.bounds.min, firstChild, range.bounds.max, 0};
@@ -303,15 +203,12 @@ public:
     }
 
 private:
-    // The two children of range, or nothing when range should be a leaf.
-    std::optional<std::pair<BuildRange, BuildRange>> chooseChildren(const BuildRange& range) const {
-        if (range.size() <= 1) return std::nullopt;
+    // The two children of range, a node too large to be a leaf, by binned SAH.
+    std::pair<BuildRange, BuildRange> chooseChildren(const BuildRange& range) const {
+        static_assert(kExactSubtreeSize >= kBvhMaxLeafTriangles);
         BinMapping mapping(range);
         Split split;
         if (mapping.canSplitAnyAxis()) split = findBestSplit(binTriangles(range, mapping), mapping, range);
-
-        bool leafAllowed = range.size() <= kBvhMaxLeafTriangles;
-        if (leafAllowed && !(split.cost < float(range.size()))) return std::nullopt;
         bool splitFits = split.axis >= 0 && fitsDepthLimit(range.depth + 1, split.leftCount) &&
                          fitsDepthLimit(range.depth + 1, split.rightCount);
         return splitFits ? partition(range, split, mapping) : splitAtMedian(range);
@@ -322,7 +219,7 @@ private:
     }
 
     BinGrid binSerially(const BuildRange& range, const BinMapping& mapping) const {
-        BinGrid grid(mapping);
+        BinGrid grid;
         for (size_t i = range.begin; i < range.end; ++i) grid.add(boxes_[i], mapping);
         return grid;
     }
@@ -330,7 +227,7 @@ private:
     BinGrid binInParallel(const BuildRange& range, const BinMapping& mapping) const {
         // Counts add and bounds take min/max: exact, so any reduction order gives the same bins.
         return tbb::parallel_reduce(
-            tbb::blocked_range<size_t>(range.begin, range.end, kBinningGrainSize), BinGrid(mapping),
+            tbb::blocked_range<size_t>(range.begin, range.end, kBinningGrainSize), BinGrid(),
             [&](const tbb::blocked_range<size_t>& r, BinGrid grid) {
                 for (size_t i = r.begin(); i < r.end(); ++i) grid.add(boxes_[i], mapping);
                 return grid;
@@ -381,7 +278,7 @@ private:
     // tree too deep.
     std::pair<BuildRange, BuildRange> splitAtMedian(const BuildRange& range) const {
         glm::vec3 extent = range.centroidBounds.max - range.centroidBounds.min;
-        int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        int axis = widestAxis(extent);
         size_t middle = range.begin + range.size() / 2;
         if (extent[axis] > 0.0f)
             std::nth_element(boxes_.begin() + range.begin, boxes_.begin() + middle, boxes_.begin() + range.end,

@@ -224,6 +224,43 @@ TEST(BuildBvh, SameTreeWhateverTheThreadCount) {
     EXPECT_TRUE(identical(parallel, build(mesh)));
 }
 
+uint32_t trianglesUnder(const Bvh& bvh, uint32_t node) {
+    const BvhNode& n = bvh.nodes[node];
+    return n.count > 0 ? n.count : trianglesUnder(bvh, n.firstOrChild) + trianglesUnder(bvh, n.firstOrChild + 1);
+}
+
+// Small meshes are split exactly: the root's split must cost no more than every way of
+// dividing the triangles sorted by centroid along an axis, found here by brute force.
+TEST(BuildBvh, SmallMeshRootTakesTheCheapestSortedSplit) {
+    for (uint32_t seed = 20; seed < 30; ++seed) {
+        Mesh mesh = test::randomSoup(48, 0.05f + 0.01f * float(seed - 20), seed);
+        const uint32_t n = uint32_t(mesh.triangles.size());
+        double cheapest = std::numeric_limits<double>::infinity();
+        for (int axis = 0; axis < 3; ++axis) {
+            std::vector<uint32_t> order(n);
+            for (uint32_t i = 0; i < n; ++i) order[i] = i;
+            auto centroid = [&](uint32_t t) {
+                Bounds3 b = triangleBounds(mesh, t);
+                return 0.5f * b.min[axis] + 0.5f * b.max[axis];
+            };
+            std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return centroid(a) < centroid(b); });
+            for (uint32_t k = 1; k < n; ++k) {
+                Bounds3 left, right;
+                for (uint32_t i = 0; i < n; ++i) (i < k ? left : right).extend(triangleBounds(mesh, order[i]));
+                cheapest = std::min(cheapest, double(k) * left.halfArea() + double(n - k) * right.halfArea());
+            }
+        }
+        Bvh bvh = build(mesh);
+        ASSERT_EQ(bvh.nodes[0].count, 0u) << "seed " << seed;
+        uint32_t first = bvh.nodes[0].firstOrChild;
+        double rootSplit = double(trianglesUnder(bvh, first)) * nodeBounds(bvh.nodes[first]).halfArea() +
+                           double(trianglesUnder(bvh, first + 1)) * nodeBounds(bvh.nodes[first + 1]).halfArea();
+        // Single-precision sums of up to 48 areas: a relative 1e-5 is rounding, not a worse split.
+        EXPECT_LE(rootSplit, cheapest * (1.0 + 1e-5)) << "seed " << seed;
+        expectWellFormed(bvh, mesh);
+    }
+}
+
 TEST(BuildBvh, SahCostBeatsMedianSplit) {
     // Clustered geometry, where the choice of split matters.
     Mesh mesh = test::randomSoup(20000, 0.002f, 7);
