@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "bvh/build_records.h"
 #include "bvh/bvh.h"
 #include "bvh/exact_subtree.h"
+#include "bvh/node_chunks.h"
 
 namespace vkdr {
 namespace {
@@ -74,7 +76,7 @@ public:
     // Bins the box along all three axes; an axis that cannot be split gathers
     // everything in its bin 0, which findBestSplit ignores.
     void add(const TriangleBox& box, const BinMapping& mapping) {
-        Float4 min = load4(box.bounds.min), max = load4(box.bounds.max);
+        Float4 min = load4(box.min), max = load4(box.max);
         Int4 bins = mapping.bins(0.5f * min + 0.5f * max);  // as TriangleBox::centroid()
         for (int axis = 0; axis < 3; ++axis) {
             Bin& bin = axes_[axis][bins[axis]];
@@ -162,44 +164,32 @@ Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, const BuildR
     return best;
 }
 
-// Moves a subtree built with its root at subtree[0] into nodes: the root to
-// nodes[rootIndex], the rest appended, with child links shifted to match.
-void appendSubtree(const std::vector<BvhNode>& subtree, uint32_t rootIndex, std::vector<BvhNode>& nodes) {
-    uint32_t shift = uint32_t(nodes.size()) - 1;  // subtree[k], k >= 1, lands at nodes[shift + k]
-    auto moved = [shift](BvhNode node) {
-        if (node.count == 0) node.firstOrChild += shift;
-        return node;
-    };
-    nodes[rootIndex] = moved(subtree[0]);
-    for (size_t k = 1; k < subtree.size(); ++k) nodes.push_back(moved(subtree[k]));
-}
-
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 class Builder {
 public:
     explicit Builder(std::span<TriangleBox> boxes) : boxes_(boxes) {}
 
-    // Builds the subtree of range with its root at nodes[nodeIndex], appending the
-    // rest of its nodes to nodes.
-    void build(const BuildRange& range, uint32_t nodeIndex, std::vector<BvhNode>& nodes) const {
+    // Builds the subtree of range with its root at chunk.nodes[nodeIndex], appending
+    // the rest of its nodes to chunk.
+    void build(const BuildRange& range, uint32_t nodeIndex, NodeChunk& chunk) const {
+        std::vector<BvhNode>& nodes = chunk.nodes;
         if (range.size() <= kExactSubtreeSize) return buildExactSubtree(boxes_, range, nodeIndex, nodes);
         const auto [left, right] = chooseChildren(range);
         uint32_t firstChild = uint32_t(nodes.size());
         nodes.resize(nodes.size() + 2);
         nodes[nodeIndex] = {range.bounds.min, firstChild, range.bounds.max, 0};
         if (right.size() < kParallelSubtreeSize) {
-            build(left, firstChild, nodes);
-            build(right, firstChild + 1, nodes);
+            build(left, firstChild, chunk);
+            build(right, firstChild + 1, chunk);
             return;
         }
-        // The right subtree gets its own array, appended after both are done, so that
-        // the node order does not depend on which task finishes first.
-        std::vector<BvhNode> rightNodes;
-        rightNodes.reserve(2 * right.size() - 1);  // the most a subtree can have: it never moves
-        rightNodes.resize(1);
-        tbb::parallel_invoke([&] { build(left, firstChild, nodes); }, [&] { build(right, 0, rightNodes); });
-        appendSubtree(rightNodes, firstChild + 1, nodes);
+        // The right subtree gets a chunk of its own, grafted after both are done, so
+        // that the node order does not depend on which task finishes first.
+        auto rightChunk = std::make_unique<NodeChunk>();
+        rightChunk->nodes.resize(1);
+        tbb::parallel_invoke([&] { build(left, firstChild, chunk); }, [&] { build(right, 0, *rightChunk); });
+        chunk.graft(firstChild + 1, std::move(rightChunk));
     }
 
 private:
@@ -244,7 +234,7 @@ private:
                                                 const BinMapping& mapping) const {
         // As TriangleBox::centroid() and BinMapping::bin(), with the same arithmetic.
         auto centroidOf = [](const TriangleBox& box) {
-            return 0.5f * load4(box.bounds.min) + 0.5f * load4(box.bounds.max);
+            return 0.5f * load4(box.min) + 0.5f * load4(box.max);
         };
         auto goesLeft = [&](Float4 centroid) { return mapping.bins(centroid)[split.axis] < split.bin; };
         Box4 leftCentroids, rightCentroids;
@@ -291,7 +281,7 @@ private:
     BuildRange describe(size_t begin, size_t end, uint32_t depth) const {
         BuildRange range{.begin = begin, .end = end, .depth = depth};
         for (size_t i = begin; i < end; ++i) {
-            range.bounds.extend(boxes_[i].bounds);
+            range.bounds.extend(boxes_[i].bounds());
             range.centroidBounds.extend(boxes_[i].centroid());
         }
         return range;
@@ -301,9 +291,9 @@ private:
 };
 
 // One box per triangle, with the root range's bounds gathered on the way.
-std::vector<TriangleBox> boxTriangles(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
-                                      BuildRange& root) {
-    std::vector<TriangleBox> boxes(triangles.size());
+std::unique_ptr<TriangleBox[]> boxTriangles(std::span<const glm::vec3> positions,
+                                            std::span<const glm::uvec3> triangles, BuildRange& root) {
+    auto boxes = std::make_unique_for_overwrite<TriangleBox[]>(triangles.size());
     root = tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, triangles.size()), BuildRange{},
         [&](const tbb::blocked_range<size_t>& r, BuildRange partial) {
@@ -318,7 +308,7 @@ std::vector<TriangleBox> boxTriangles(std::span<const glm::vec3> positions, std:
                 // A non-finite vertex makes intersectTriangle reject the triangle, so it
                 // can never be hit: an empty box keeps it out of every node's bounds.
                 if (!isFinite(bounds.min) || !isFinite(bounds.max)) bounds = Bounds3{};
-                boxes[i] = {bounds, uint32_t(i)};
+                boxes[i] = {bounds.min, bounds.max, uint32_t(i)};
                 partial.bounds.extend(bounds);
                 partial.centroidBounds.extend(boxes[i].centroid());
             }
@@ -348,14 +338,14 @@ Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const glm::uvec3> t
         return bvh;
     }
     BuildRange root;
-    std::vector<TriangleBox> boxes = boxTriangles(positions, triangles, root);
-    bvh.nodes.reserve(2 * triangles.size() - 1);  // pages the tree does not use are never touched
-    bvh.nodes.resize(1);
-    Builder(boxes).build(root, 0, bvh.nodes);
-    bvh.nodes.shrink_to_fit();
+    std::unique_ptr<TriangleBox[]> boxes = boxTriangles(positions, triangles, root);
+    NodeChunk nodes;
+    nodes.nodes.resize(1);
+    Builder({boxes.get(), triangles.size()}).build(root, 0, nodes);
+    bvh.nodes = flattenNodeChunks(nodes);
 
-    bvh.triangleOrder.resize(boxes.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, boxes.size()), [&](const tbb::blocked_range<size_t>& r) {
+    bvh.triangleOrder.resize(triangles.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size()), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) bvh.triangleOrder[i] = boxes[i].triangle;
     });
     return bvh;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include <glm/glm.hpp>
 
@@ -21,13 +22,17 @@ inline constexpr float kTraversalCost = 1.0f;
 // The build's only per-triangle storage. Partitioning moves these records rather than
 // indices to them, so every pass over a range reads memory in order.
 struct TriangleBox {
-    Bounds3 bounds;
+    glm::vec3 min, max;  // the triangle's bounds
     uint32_t triangle;
+    Bounds3 bounds() const { return {min, max}; }
     // Halved before adding so that huge coordinates cannot overflow to infinity.
-    glm::vec3 centroid() const { return 0.5f * bounds.min + 0.5f * bounds.max; }
+    glm::vec3 centroid() const { return 0.5f * min + 0.5f * max; }
 };
 // load4() of either corner stays inside the record.
 static_assert(sizeof(TriangleBox) == 28 && offsetof(TriangleBox, triangle) == 24);
+// So that allocating a million of them writes nothing: the records are first written,
+// and their pages first touched, by the parallel loop that fills them.
+static_assert(std::is_trivially_default_constructible_v<TriangleBox>);
 
 // boxes[begin, end): the triangles of one node, and what is known about them.
 struct BuildRange {

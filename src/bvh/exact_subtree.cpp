@@ -35,8 +35,8 @@ public:
         std::copy(boxes.begin(), boxes.end(), records_.begin());
         std::array<std::array<float, kExactSubtreeSize>, 3> centroids;
         for (uint32_t i = 0; i < count_; ++i) {
-            low_[i] = load4(boxes[i].bounds.min);
-            high_[i] = load4(boxes[i].bounds.max);
+            low_[i] = load4(boxes[i].min);
+            high_[i] = load4(boxes[i].max);
             Float4 centroid = 0.5f * low_[i] + 0.5f * high_[i];  // as TriangleBox::centroid()
             for (int axis = 0; axis < 3; ++axis) centroids[axis][i] = centroid[axis];
         }
