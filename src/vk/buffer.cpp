@@ -110,8 +110,8 @@ void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<con
         buffer = Buffer(context, bytes.size(), MemoryUse::Device, name);
     }
     // The bytes, then zeros up to the padded size.
-    Buffer staging(context, bytes.size(), MemoryUse::Upload, name + " (staging)");
-    std::memset(staging.mapped(), 0, staging.size());
+    const Buffer& staging = context.stagingBuffer(MemoryUse::Upload, buffer.size());
+    std::memset(staging.mapped(), 0, buffer.size());
     if (!bytes.empty()) {
         std::memcpy(staging.mapped(), bytes.data(), bytes.size());
     }
@@ -129,7 +129,7 @@ void downloadBuffers(const VulkanContext& context, std::initializer_list<Downloa
     for (const Download& d : downloads) {
         total += d.bytes.size();
     }
-    Buffer readback(context, total, MemoryUse::Readback, "readback");
+    const Buffer& readback = context.stagingBuffer(MemoryUse::Readback, total);
     CommandRecorder recorder(context);
     VkDeviceSize offset = 0;
     for (const Download& d : downloads) {

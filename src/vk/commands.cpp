@@ -16,24 +16,21 @@ constexpr uint32_t kWorkgroupSize = 64;
 constexpr uint32_t kMaxWorkgroups = 65535;
 
 CommandRecorder::CommandRecorder(const VulkanContext& context, DispatchTimer* timer)
-    : context_(context), timer_(timer) {
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = context.queueFamily();
-    checkVk(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool_), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocation.commandPool = pool_;
-    allocation.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocation.commandBufferCount = 1;
-    checkVk(vkAllocateCommandBuffers(context.device(), &allocation, &commands_), "vkAllocateCommandBuffers");
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    checkVk(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence_), "vkCreateFence");
-    begin();
+    : context_(context), timer_(timer), slot_(context.commandSlots().acquire()), commands_(slot_.commands) {
+    try {
+        begin();
+    } catch (...) {
+        context_.commandSlots().destroy(slot_);
+        throw;
+    }
 }
 
 CommandRecorder::~CommandRecorder() {
-    vkDestroyFence(context_.device(), fence_, nullptr);
-    vkDestroyCommandPool(context_.device(), pool_, nullptr);
+    if (reusable_) {
+        context_.commandSlots().release(slot_);
+    } else {
+        context_.commandSlots().destroy(slot_);
+    }
 }
 
 void CommandRecorder::begin() {
@@ -121,11 +118,14 @@ void CommandRecorder::submitAndWait() {
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &commands_;
+    // Until the fence is reset, a failure leaves the slot in a state not worth reusing.
+    reusable_ = false;
     VkResult submitted =
-        deviceLossSimulated() ? VK_ERROR_DEVICE_LOST : vkQueueSubmit(context_.queue(), 1, &submit, fence_);
+        deviceLossSimulated() ? VK_ERROR_DEVICE_LOST : vkQueueSubmit(context_.queue(), 1, &submit, slot_.fence);
     checkVk(submitted, "vkQueueSubmit");
-    checkVk(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for the device");
-    checkVk(vkResetFences(context_.device(), 1, &fence_), "vkResetFences");
+    checkVk(vkWaitForFences(context_.device(), 1, &slot_.fence, VK_TRUE, UINT64_MAX), "waiting for the device");
+    checkVk(vkResetFences(context_.device(), 1, &slot_.fence), "vkResetFences");
+    reusable_ = true;
     if (timer_) {
         timer_->collect();
     }

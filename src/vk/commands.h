@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <span>
 
+#include "vk/command_slots.h"
 #include "vk/vulkan.h"
 
 namespace vkdr {
@@ -42,9 +43,9 @@ private:
 
     const VulkanContext& context_;
     DispatchTimer* timer_;
-    VkCommandPool pool_ = VK_NULL_HANDLE;
-    VkCommandBuffer commands_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
+    CommandSlot slot_;  // from the context's CommandSlots, returned on destruction
+    VkCommandBuffer commands_;
+    bool reusable_ = true;
 };
 
 }  // namespace vkdr

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "vk/buffer.h"
 #include "vk/device_features.h"
 
 namespace vkdr {
@@ -251,11 +252,15 @@ void VulkanContext::createDevice() {
     checkVk(vkCreateDevice(physicalDevice_, &info, nullptr, &device_), "vkCreateDevice");
     volkLoadDevice(device_);
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+    commandSlots_ = std::make_unique<CommandSlots>(device_, queueFamily_);
 }
 
 VulkanContext::~VulkanContext() {
     if (device_ != VK_NULL_HANDLE) {
         vkDeviceWaitIdle(device_);
+        uploadStaging_.reset();
+        readbackStaging_.reset();
+        commandSlots_.reset();
         vkDestroyDevice(device_, nullptr);
     }
     if (messenger_ != VK_NULL_HANDLE) {
@@ -264,6 +269,18 @@ VulkanContext::~VulkanContext() {
     if (instance_ != VK_NULL_HANDLE) {
         vkDestroyInstance(instance_, nullptr);
     }
+}
+
+const Buffer& VulkanContext::stagingBuffer(MemoryUse use, VkDeviceSize bytes) const {
+    // A larger one (a whole scene's upload) is given back at the next smaller request.
+    constexpr VkDeviceSize kKeptBytes = VkDeviceSize(64) << 20;
+    std::unique_ptr<Buffer>& staging = use == MemoryUse::Upload ? uploadStaging_ : readbackStaging_;
+    if (!staging || staging->size() < bytes || (staging->size() > kKeptBytes && bytes <= kKeptBytes)) {
+        staging.reset();  // before allocating its successor: peak memory holds one
+        staging = std::make_unique<Buffer>(*this, bytes, use,
+                                           use == MemoryUse::Upload ? "upload staging" : "readback staging");
+    }
+    return *staging;
 }
 
 uint32_t VulkanContext::memoryTypeIndex(uint32_t allowedTypes, VkMemoryPropertyFlags required) const {

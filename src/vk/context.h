@@ -1,13 +1,18 @@
 #pragma once
 #include <atomic>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "vk/allocation_counter.h"
+#include "vk/command_slots.h"
 #include "vk/vulkan.h"
 
 namespace vkdr {
+
+class Buffer;
+enum class MemoryUse;
 
 struct DeviceDescription {
     uint32_t index = 0;
@@ -58,6 +63,13 @@ public:
     std::optional<uint64_t> deviceLocalHeapUsage() const;
     void setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
+    // Command pools, buffers and fences for CommandRecorder to reuse.
+    CommandSlots& commandSlots() const { return *commandSlots_; }
+    // A host-visible buffer of at least `bytes` for uploads (MemoryUse::Upload) or
+    // read-backs (MemoryUse::Readback), kept between them: allocating one took about
+    // 1 ms on an NVIDIA driver. Valid until the next call with the same use.
+    const Buffer& stagingBuffer(MemoryUse use, VkDeviceSize bytes) const;
+
     // Features vkdiffrender needs, in the words `info` prints.
     static std::vector<std::string> requiredFeatures();
 
@@ -78,6 +90,8 @@ private:
     std::vector<DeviceDescription> allDevices_;
     std::atomic<uint32_t> validationMessages_{0};
     mutable AllocationCounter allocations_;
+    std::unique_ptr<CommandSlots> commandSlots_;
+    mutable std::unique_ptr<Buffer> uploadStaging_, readbackStaging_;
     bool memoryBudget_ = false;  // VK_EXT_memory_budget enabled
 };
 
