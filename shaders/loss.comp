@@ -7,16 +7,9 @@
 // pixel, so every path of the render carries its share whichever image it was taken at.
 #include "lib/stage_common.glsl"
 
-void main() {
-    uint p = gl_GlobalInvocationID.x;
-    if (p >= pass.pixelCount) {
-        return;
-    }
-    vec3 film = P.film.v[p].rgb;
-    if (pass.lossImage == kLossImageFilmMinusBaseline) {
-        film -= P.filmBaseline.v[p].rgb;
-    }
-    vec3 difference = film / float(pass.samplesInPass) - P.target.v[p].rgb;
+// The loss of one pixel's image value, and its dLoss/dI scaled for imageAdjoint.
+float pixelLoss(uint p, vec3 image, out vec3 imageAdjoint) {
+    vec3 difference = image - P.target.v[p].rgb;
     float loss;
     vec3 dLossDI;
     if (P.lossKind == kLossL1) {
@@ -26,7 +19,35 @@ void main() {
         loss = dot(difference, difference);
         dLossDI = 2.0f * difference;
     }
-    P.imageAdjoint.v[p] = vec4(dLossDI * (P.lossScale * P.filmScale), 0.0f);
+    imageAdjoint = dLossDI * (P.lossScale * P.filmScale);
+    return loss;
+}
+
+void main() {
+    uint p = gl_GlobalInvocationID.x;
+    if (p >= pass.pixelCount) {
+        return;
+    }
+    vec3 film = P.film.v[p].rgb;
+    vec3 imageAdjoint;
+    float loss;
+    if (pass.lossImage == kLossImageHalves) {
+        // Paths at or above splitSample read the adjoint taken at the image below it,
+        // and the paths below it the one taken at the image above (adjoint.glsl).
+        vec3 below = P.filmBaseline.v[p].rgb;
+        vec3 aboveAdjoint;
+        pixelLoss(p, below / float(P.splitSample), imageAdjoint);
+        pixelLoss(p, (film - below) / float(pass.samplesInPass - P.splitSample), aboveAdjoint);
+        P.imageAdjoint.v[P.imagePixels + p] = vec4(aboveAdjoint, 0.0f);
+        vec3 unused;
+        loss = pixelLoss(p, film / float(pass.samplesInPass), unused);
+    } else {
+        if (pass.lossImage == kLossImageFilmMinusBaseline) {
+            film -= P.filmBaseline.v[p].rgb;
+        }
+        loss = pixelLoss(p, film / float(pass.samplesInPass), imageAdjoint);
+    }
+    P.imageAdjoint.v[p] = vec4(imageAdjoint, 0.0f);
     // One atomic per subgroup: many pixels add into one address.
     float subgroupLoss = subgroupAdd(loss * P.lossScale);
     if (subgroupElect()) {

@@ -44,9 +44,11 @@ vec3 normalMask(AdjointState s) {
     return vec3(1.0f) - derivativeMask(s);
 }
 
-// dLoss/dI of the path's pixel, already divided by the samples per pixel.
+// dLoss/dI of the path's pixel, already divided by the samples per pixel; with a
+// splitSample, for a path below it the one taken at the image above it (loss.comp).
 vec3 pathAdjoint(uint slot) {
-    return P.imageAdjoint.v[P.pathInfo.v[slot].x].rgb;
+    uvec4 info = P.pathInfo.v[slot];
+    return P.imageAdjoint.v[info.x + (info.y < P.splitSample ? P.imagePixels : 0u)].rgb;
 }
 
 // Adds g to gradients[first], [first + 1], [first + 2] of this subgroup's copy (copies

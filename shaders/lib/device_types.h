@@ -34,9 +34,13 @@ const uint kVertexMedium = 1u;
 const uint kLossL2 = 0u;
 const uint kLossL1 = 1u;
 // The image the loss stage compares with the target (PassConstants.lossImage): the
-// film, or the film less the copy in filmBaseline (the samples added since the copy).
+// film, or the film less the copy in filmBaseline (the samples added since the copy),
+// or both halves of a render whose film stage also summed the samples below
+// RenderParams.splitSample into filmBaseline: each half's dLoss/dI is taken at the
+// other half's image (imageAdjoint), and the loss at the whole film.
 const uint kLossImageFilm = 0u;
 const uint kLossImageFilmMinusBaseline = 1u;
+const uint kLossImageHalves = 2u;
 
 // Derivative-mode targets of the adjoint pass (shaders/lib/adjoint.glsl): the kinds of
 // parameter whose zero-valued factors it follows. RenderParams.derivativeTargets has
@@ -163,9 +167,11 @@ struct RenderParams {
     VKDR_BUFFER(Vec4Buffer) film;                   // per pixel: rgb sum over samples
     // Differentiation (adjoint pipelines and the loss stage only)
     VKDR_BUFFER(Vec4Buffer) target;                 // per pixel: rgb target image
-    VKDR_BUFFER(Vec4Buffer) imageAdjoint;           // per pixel: rgb dLoss/dI, divided by spp
+    VKDR_BUFFER(Vec4Buffer) imageAdjoint;           // per pixel: rgb dLoss/dI, divided by spp; then, with
+                                                    // splitSample > 0, the same for samples below it
     VKDR_BUFFER(FloatBuffer) lossSum;               // [0]: sum of the per-pixel losses
-    VKDR_BUFFER(Vec4Buffer) filmBaseline;           // per pixel: a copy of the film, subtracted by the loss stage on request
+    VKDR_BUFFER(Vec4Buffer) filmBaseline;           // per pixel: a copy of the film, subtracted by the loss stage on
+                                                    // request; with splitSample > 0, the samples below it
     VKDR_BUFFER(FloatBuffer) mediumGradients;       // kGradientCopies copies of kMediumGradientStride per medium
     VKDR_BUFFER(FloatBuffer) baseColorGradients;    // kGradientCopies copies of 4 per material: rgb
     VKDR_BUFFER(FloatBuffer) emissionGradients;     // kGradientCopies copies of 4 per material: rgb
@@ -188,6 +194,9 @@ struct RenderParams {
     uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
     uint mediumGradientCopyStride;                  // floats from one copy of mediumGradients to the next
     uint materialGradientCopyStride;                // the same for baseColorGradients and emissionGradients
+    uint splitSample;                               // > 0: film and loss keep the samples below it apart
+    uint imagePixels;                               // width * height
+    uint pad0, pad1;
 };
 
 // Per dispatch values, in push constants next to the RenderParams address.
@@ -199,7 +208,7 @@ struct PassConstants {
     uint currentRays;       // kQueueRays0 or kQueueRays1: the queue traced this segment
     uint queueArg;          // queue_prepare: which queue's dispatch to size
     uint clearMask;         // queue_prepare: bit q set -> counts[q] = 0
-    uint lossImage;         // loss: kLossImageFilm or kLossImageFilmMinusBaseline
+    uint lossImage;         // loss: kLossImageFilm, kLossImageFilmMinusBaseline or kLossImageHalves
 };
 
 #ifdef __cplusplus

@@ -65,7 +65,7 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
       shadowEmissionGradient(perPath(context, capacity, "shadow emission gradient")),
       shadowVertex(perPath(context, capacity, "shadow vertex")),
       target(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "target"),
-      imageAdjoint(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "image adjoint"),
+      imageAdjoint(context, uint64_t(pixelCount) * 32, MemoryUse::Device, "image adjoint"),  // two halves
       lossSum(context, 16, MemoryUse::Device, "loss sum"),
       filmBaseline(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "film baseline"),
       mediumGradients(context, std::max(1u, mediumCount) * gpu::kMediumGradientStride, "medium gradients"),

@@ -152,6 +152,8 @@ void Renderer::uploadParams() {
         p.lossKind = lossKind_ == LossKind::L1 ? gpu::kLossL1 : gpu::kLossL2;
         p.derivativeTargets = derivativeTargets_;
         p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));
+        p.splitSample = splitSample_;
+        p.imagePixels = camera_.width * camera_.height;
     }
     overwriteBuffer(context_, params_, std::as_bytes(std::span(&p, 1)), "render params");
 }

@@ -108,10 +108,11 @@ private:
     // if asked): it leaves dLoss/dI in imageAdjoint and the loss's sum in lossSum.
     void recordLoss(CommandRecorder& recorder, uint32_t samples, uint32_t image);
     Image downloadFilm();
-    // Both leave the image in the film, dLoss/dparameters in the gradient buffers, and
-    // set result's loss and times.
+    // Each leaves the image in the film, dLoss/dparameters in the gradient buffers and
+    // the loss of the image in lossSum, and sets result's times.
     void backpropagateWithReplay(GradientEvaluation& result);
     void backpropagateSplitSamples(GradientEvaluation& result);
+    void backpropagateInOnePass(GradientEvaluation& result);
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
                        uint32_t currentRays);
     void uploadParams();
@@ -130,6 +131,7 @@ private:
     std::unique_ptr<AdjointBuffers> adjoint_;
     LossKind lossKind_;
     uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
+    uint32_t splitSample_ = 0;        // RenderParams.splitSample: > 0 when backpropagateInOnePass serves
     Buffer params_;
     RenderStats stats_;
     DispatchTimer* timer_ = nullptr;

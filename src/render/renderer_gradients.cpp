@@ -26,9 +26,12 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
     if (!pipelines_.gradient) {
         pipelines_.gradient = std::make_unique<GradientPipelines>(context_);
     }
-    // The first half of the samples keeps its paths' radiance while the second half
-    // renders (backpropagateSplitSamples), when that fits in its budget.
-    const uint64_t keptPaths = uint64_t(camera_.width) * camera_.height * (settings_.spp / 2);
+    const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
+    const bool onePass = settings_.spp >= 2 && pixels * settings_.spp <= paths_->capacity;
+    splitSample_ = onePass ? settings_.spp / 2 : 0;
+    // Otherwise the first half of the samples keeps its paths' radiance while the second
+    // half renders (backpropagateSplitSamples), when that fits in its budget.
+    const uint64_t keptPaths = onePass ? 0 : pixels * (settings_.spp / 2);
     const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
                                                 mediumCount_, materialCount_, texelCount_,
@@ -90,10 +93,15 @@ GradientEvaluation Renderer::renderWithGradients() {
         recorder.fill(adjoint_->emissionGradients.buffer, 0);
         recorder.fill(adjoint_->texelGradients, 0);
         recordClearFilm(recorder);
+        if (splitSample_ > 0) {
+            recorder.fill(adjoint_->filmBaseline, 0);
+        }
         recorder.submitAndWait();
     }
     GradientEvaluation result;
-    if (settings_.spp >= 2) {
+    if (splitSample_ > 0) {
+        backpropagateInOnePass(result);
+    } else if (settings_.spp >= 2) {
         backpropagateSplitSamples(result);
     } else {
         backpropagateWithReplay(result);
@@ -106,10 +114,13 @@ GradientEvaluation Renderer::renderWithGradients() {
     std::vector<float> baseColors = adjoint_->baseColorGradients.roomForCopies();
     std::vector<float> emissions = adjoint_->emissionGradients.roomForCopies();
     g.texels.resize(adjoint_->texelGradients.size() / 4);
-    downloadBuffers(context_, {{&adjoint_->mediumGradients.buffer, std::as_writable_bytes(std::span(media))},
+    float lossSum[4];
+    downloadBuffers(context_, {{&adjoint_->lossSum, std::as_writable_bytes(std::span(lossSum))},
+                               {&adjoint_->mediumGradients.buffer, std::as_writable_bytes(std::span(media))},
                                {&adjoint_->baseColorGradients.buffer, std::as_writable_bytes(std::span(baseColors))},
                                {&adjoint_->emissionGradients.buffer, std::as_writable_bytes(std::span(emissions))},
                                {&adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels))}});
+    result.loss = lossSum[0];
     g.media = adjoint_->mediumGradients.sumOfCopies(media);
     g.baseColors = adjoint_->baseColorGradients.sumOfCopies(baseColors);
     g.emissions = adjoint_->emissionGradients.sumOfCopies(emissions);
@@ -157,7 +168,27 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
             }
             runPass(range, PassMode::Adjoint);
         }, {});
-        result.loss = loss();
+        CommandRecorder recorder(context_, timer_);
+        recordLoss(recorder, settings_.spp, gpu::kLossImageFilm);
+        recorder.submitAndWait();
+    });
+}
+
+// When every path of the render fits in one pass, the halves render together: the film
+// stage also sums the samples below splitSample_ into filmBaseline, one loss dispatch
+// takes each half's dLoss/dI at the other half's image, and one adjoint pass follows
+// every path. Two passes instead of backpropagateSplitSamples' four: a pass that does
+// not fill a GPU costs about as much as one that does (docs/performance.md).
+void Renderer::backpropagateInOnePass(GradientEvaluation& result) {
+    const PassRange all{0, camera_.width * camera_.height, 0, settings_.spp};
+    result.forwardMs += millisecondsOf([&] { runPass(all, PassMode::Film); });
+    result.adjointMs += millisecondsOf([&] {
+        {
+            CommandRecorder recorder(context_, timer_);
+            recordLoss(recorder, settings_.spp, gpu::kLossImageHalves);
+            recorder.submitAndWait();
+        }
+        runPass(all, PassMode::Adjoint);
     });
 }
 
@@ -168,7 +199,11 @@ void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
         forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, {});
     });
     result.adjointMs += millisecondsOf([&] {
-        result.loss = loss();
+        {
+            CommandRecorder recorder(context_, timer_);
+            recordLoss(recorder, settings_.spp, gpu::kLossImageFilm);
+            recorder.submitAndWait();
+        }
         const uint32_t seed = settings_.seed;
         setSeed(seed ^ kIndependentSeedBit);
         forEachPass({0, settings_.spp}, [this](const PassRange& range) {

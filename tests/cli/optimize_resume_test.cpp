@@ -24,9 +24,9 @@ constexpr const char* kLoseDeviceMidRun = "VKDR_SIMULATE_DEVICE_LOST=130";
 
 // The adjoint adds its gradients with float atomics, in whatever order the device runs
 // them. On a GPU that order changes from run to run, so even two uninterrupted runs
-// differ in the last bits (seen on an H100: one ulp after eight iterations); 1e-6
-// relative is 8 to 17 ulps of a float. A lost or repeated iteration moves a value by a
-// whole step of the learning rate, 0.01, many orders of magnitude more.
+// differ: on an H100, five runs of this problem ended between 0.00047130777 and
+// 0.00047131037, 5.5e-6 apart relative to the value. A lost or repeated iteration moves
+// a value by a whole step of the learning rate, 0.01; 1e-4 is a hundredth of that.
 void expectSameValues(const nlohmann::json& resumed, const nlohmann::json& uninterrupted) {
     ASSERT_EQ(resumed.size(), uninterrupted.size());
     for (const auto& [name, values] : uninterrupted.items()) {
@@ -34,7 +34,7 @@ void expectSameValues(const nlohmann::json& resumed, const nlohmann::json& unint
         ASSERT_EQ(resumed[name].size(), values.size()) << name;
         for (size_t i = 0; i < values.size(); ++i) {
             double expected = values[i].get<double>();
-            EXPECT_NEAR(resumed[name][i].get<double>(), expected, 1e-6 * std::abs(expected)) << name << "[" << i << "]";
+            EXPECT_NEAR(resumed[name][i].get<double>(), expected, 1e-4 * std::abs(expected)) << name << "[" << i << "]";
         }
     }
 }
