@@ -21,6 +21,28 @@ VkDeviceSize paddedSize(VkDeviceSize size) {
     return (std::max<VkDeviceSize>(size, 1) + kSizeGranularity - 1) / kSizeGranularity * kSizeGranularity;
 }
 
+// Transfers of up to this size (parameters, losses, gradients, small films) come every
+// iteration and share the context's kept staging buffers; a larger one gets a buffer of
+// its own, freed after it, so that no scene-sized staging buffer outlives its upload.
+constexpr VkDeviceSize kKeptStagingBytes = VkDeviceSize(4) << 20;
+
+// The host-visible buffer one transfer goes through.
+class Staging {
+public:
+    Staging(const VulkanContext& context, MemoryUse use, VkDeviceSize bytes, const std::string& name) {
+        if (bytes <= kKeptStagingBytes) {
+            kept_ = &context.keptStagingBuffer(use, bytes);
+        } else {
+            owned_ = Buffer(context, bytes, use, name);
+        }
+    }
+    const Buffer& buffer() const { return kept_ ? *kept_ : owned_; }
+
+private:
+    const Buffer* kept_ = nullptr;
+    Buffer owned_;
+};
+
 }  // namespace
 
 Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, const std::string& name)
@@ -110,7 +132,8 @@ void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<con
         buffer = Buffer(context, bytes.size(), MemoryUse::Device, name);
     }
     // The bytes, then zeros up to the padded size.
-    const Buffer& staging = context.stagingBuffer(MemoryUse::Upload, buffer.size());
+    Staging transfer(context, MemoryUse::Upload, buffer.size(), name + " (staging)");
+    const Buffer& staging = transfer.buffer();
     std::memset(staging.mapped(), 0, buffer.size());
     if (!bytes.empty()) {
         std::memcpy(staging.mapped(), bytes.data(), bytes.size());
@@ -129,7 +152,8 @@ void downloadBuffers(const VulkanContext& context, std::initializer_list<Downloa
     for (const Download& d : downloads) {
         total += d.bytes.size();
     }
-    const Buffer& readback = context.stagingBuffer(MemoryUse::Readback, total);
+    Staging transfer(context, MemoryUse::Readback, total, "readback");
+    const Buffer& readback = transfer.buffer();
     CommandRecorder recorder(context);
     VkDeviceSize offset = 0;
     for (const Download& d : downloads) {

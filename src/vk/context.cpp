@@ -271,11 +271,9 @@ VulkanContext::~VulkanContext() {
     }
 }
 
-const Buffer& VulkanContext::stagingBuffer(MemoryUse use, VkDeviceSize bytes) const {
-    // A larger one (a whole scene's upload) is given back at the next smaller request.
-    constexpr VkDeviceSize kKeptBytes = VkDeviceSize(64) << 20;
+const Buffer& VulkanContext::keptStagingBuffer(MemoryUse use, VkDeviceSize bytes) const {
     std::unique_ptr<Buffer>& staging = use == MemoryUse::Upload ? uploadStaging_ : readbackStaging_;
-    if (!staging || staging->size() < bytes || (staging->size() > kKeptBytes && bytes <= kKeptBytes)) {
+    if (!staging || staging->size() < bytes) {
         staging.reset();  // before allocating its successor: peak memory holds one
         staging = std::make_unique<Buffer>(*this, bytes, use,
                                            use == MemoryUse::Upload ? "upload staging" : "readback staging");
