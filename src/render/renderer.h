@@ -107,6 +107,8 @@ private:
     // Records the loss stage over the film's `samples` samples (less the baseline copy
     // if asked): it leaves dLoss/dI in imageAdjoint and the loss's sum in lossSum.
     void recordLoss(CommandRecorder& recorder, uint32_t samples, uint32_t image);
+    // recordLoss() in a submission of its own.
+    void submitLoss(uint32_t samples, uint32_t image);
     Image downloadFilm();
     // Each leaves the image in the film, dLoss/dparameters in the gradient buffers and
     // the loss of the image in lossSum, and sets result's times.

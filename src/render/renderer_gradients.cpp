@@ -51,12 +51,16 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
 }
 
 double Renderer::loss() {
-    CommandRecorder recorder(context_, timer_);
-    recordLoss(recorder, settings_.spp, gpu::kLossImageFilm);
-    recorder.submitAndWait();
+    submitLoss(settings_.spp, gpu::kLossImageFilm);
     float sum[4];
     downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(sum)));
     return sum[0];
+}
+
+void Renderer::submitLoss(uint32_t samples, uint32_t image) {
+    CommandRecorder recorder(context_, timer_);
+    recordLoss(recorder, samples, image);
+    recorder.submitAndWait();
 }
 
 void Renderer::recordLoss(CommandRecorder& recorder, uint32_t samples, uint32_t image) {
@@ -155,11 +159,7 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
         result.adjointMs += millisecondsOf([&] { runPass(range, PassMode::Adjoint); });
     }, {});
     result.adjointMs += millisecondsOf([&] {
-        {
-            CommandRecorder recorder(context_, timer_);
-            recordLoss(recorder, b.count, gpu::kLossImageFilmMinusBaseline);
-            recorder.submitAndWait();
-        }
+        submitLoss(b.count, gpu::kLossImageFilmMinusBaseline);
         forEachPass(a, [&](const PassRange& range) {
             if (keptFits) {
                 copyKeptRadiance(range, false);
@@ -168,9 +168,7 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
             }
             runPass(range, PassMode::Adjoint);
         }, {});
-        CommandRecorder recorder(context_, timer_);
-        recordLoss(recorder, settings_.spp, gpu::kLossImageFilm);
-        recorder.submitAndWait();
+        submitLoss(settings_.spp, gpu::kLossImageFilm);
     });
 }
 
@@ -183,11 +181,7 @@ void Renderer::backpropagateInOnePass(GradientEvaluation& result) {
     const PassRange all{0, camera_.width * camera_.height, 0, settings_.spp};
     result.forwardMs += millisecondsOf([&] { runPass(all, PassMode::Film); });
     result.adjointMs += millisecondsOf([&] {
-        {
-            CommandRecorder recorder(context_, timer_);
-            recordLoss(recorder, settings_.spp, gpu::kLossImageHalves);
-            recorder.submitAndWait();
-        }
+        submitLoss(settings_.spp, gpu::kLossImageHalves);
         runPass(all, PassMode::Adjoint);
     });
 }
@@ -199,11 +193,7 @@ void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
         forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, {});
     });
     result.adjointMs += millisecondsOf([&] {
-        {
-            CommandRecorder recorder(context_, timer_);
-            recordLoss(recorder, settings_.spp, gpu::kLossImageFilm);
-            recorder.submitAndWait();
-        }
+        submitLoss(settings_.spp, gpu::kLossImageFilm);
         const uint32_t seed = settings_.seed;
         setSeed(seed ^ kIndependentSeedBit);
         forEachPass({0, settings_.spp}, [this](const PassRange& range) {
