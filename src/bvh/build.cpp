@@ -232,7 +232,7 @@ private:
     // bounds on the way; their bounds come from the bins.
     std::pair<BuildRange, BuildRange> partition(const BuildRange& range, const Split& split,
                                                 const BinMapping& mapping) const {
-        // As TriangleBox::centroid() and BinMapping::bin(), with the same arithmetic.
+        // As TriangleBox::centroid() and BinGrid::add(), with the same arithmetic.
         auto centroidOf = [](const TriangleBox& box) {
             return 0.5f * load4(box.min) + 0.5f * load4(box.max);
         };

@@ -1,6 +1,7 @@
 #pragma once
 // What the BVH builder's two split finders share: the per-triangle record, the node
 // ranges, the SAH cost model and the four-float SIMD boxes. Internal to src/bvh.
+#include <array>
 #include <bit>
 #include <cstddef>
 #include <cstdint>

@@ -33,22 +33,18 @@ public:
     explicit ExactSubtree(std::span<TriangleBox> boxes) : boxes_(boxes), count_(uint32_t(boxes.size())) {
         assert(boxes.size() <= kExactSubtreeSize);
         std::copy(boxes.begin(), boxes.end(), records_.begin());
-        std::array<std::array<float, kExactSubtreeSize>, 3> centroids;
         for (uint32_t i = 0; i < count_; ++i) {
             low_[i] = load4(boxes[i].min);
             high_[i] = load4(boxes[i].max);
             Float4 centroid = 0.5f * low_[i] + 0.5f * high_[i];  // as TriangleBox::centroid()
-            for (int axis = 0; axis < 3; ++axis) centroids[axis][i] = centroid[axis];
+            for (int axis = 0; axis < 3; ++axis) centroids_[axis][i] = centroid[axis];
         }
         // Equal centroids keep their order in the range, so the tree is deterministic.
         std::array<uint64_t, kExactSubtreeSize> keys;
         for (int axis = 0; axis < 3; ++axis) {
-            for (uint32_t i = 0; i < count_; ++i) keys[i] = uint64_t(orderedBits(centroids[axis][i])) << 32 | i;
+            for (uint32_t i = 0; i < count_; ++i) keys[i] = uint64_t(orderedBits(centroids_[axis][i])) << 32 | i;
             std::sort(keys.begin(), keys.begin() + count_);
-            for (uint32_t i = 0; i < count_; ++i) {
-                order_[axis][i] = Slot(keys[i]);
-                sortedCentroids_[axis][i] = centroids[axis][keys[i] & 0xff];
-            }
+            for (uint32_t i = 0; i < count_; ++i) order_[axis][i] = Slot(keys[i]);
         }
     }
 
@@ -119,11 +115,11 @@ private:
     }
 
     // Halves by count along the widest axis of the centroids; in the order of the
-    // range where they coincide.
+    // range where they coincide. Each order's ends hold its axis's extremes.
     ExactSplit medianSplit(uint32_t begin, uint32_t end) const {
         glm::vec3 extent;
         for (int axis = 0; axis < 3; ++axis)
-            extent[axis] = sortedCentroids_[axis][end - 1] - sortedCentroids_[axis][begin];
+            extent[axis] = centroids_[axis][order_[axis][end - 1]] - centroids_[axis][order_[axis][begin]];
         return {widestAxis(extent), (end - begin) / 2};
     }
 
@@ -135,22 +131,17 @@ private:
         for (int axis = 0; axis < 3; ++axis) {
             if (axis == split.axis) continue;
             std::array<Slot, kExactSubtreeSize> right;
-            std::array<float, kExactSubtreeSize> rightCentroids;
             uint32_t left = begin, rightCount = 0;
             // Written to both sides and kept on one, without branches: which side a
             // triangle goes to is as unpredictable as a coin toss.
             for (uint32_t i = begin; i < end; ++i) {
                 Slot slot = order_[axis][i];
-                float centroid = sortedCentroids_[axis][i];
                 order_[axis][left] = slot;
-                sortedCentroids_[axis][left] = centroid;
                 right[rightCount] = slot;
-                rightCentroids[rightCount] = centroid;
                 left += goesLeft[slot];
                 rightCount += !goesLeft[slot];
             }
             std::copy_n(right.begin(), rightCount, &order_[axis][middle]);
-            std::copy_n(rightCentroids.begin(), rightCount, &sortedCentroids_[axis][middle]);
         }
     }
 
@@ -165,7 +156,7 @@ private:
     std::array<TriangleBox, kExactSubtreeSize> records_;
     std::array<Float4, kExactSubtreeSize> low_, high_;  // records_' bounds, by slot
     std::array<std::array<Slot, kExactSubtreeSize>, 3> order_;  // per axis: slots by centroid
-    std::array<std::array<float, kExactSubtreeSize>, 3> sortedCentroids_;  // per axis: centroid of order_[axis][i]
+    std::array<std::array<float, kExactSubtreeSize>, 3> centroids_;  // per axis: records_' centroids, by slot
 };
 
 }  // namespace
