@@ -100,7 +100,7 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
     if (gpu.emitterRadiance && emitted == *gpu.emitterRadiance) {
         return;
     }
-    LightDistribution lights = buildLightDistribution(scene);
+    LightDistribution lights = buildLightDistribution(scene, emitted);
     std::vector<gpu::GpuTriangleInfo> info(triangleOrder.size());
     std::vector<uint32_t> bvhPosition(scene.triangles.size());
     for (size_t i = 0; i < triangleOrder.size(); ++i) {

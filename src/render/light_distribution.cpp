@@ -23,8 +23,7 @@ std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene) {
     return radiance;
 }
 
-LightDistribution buildLightDistribution(const Scene& scene) {
-    const std::vector<glm::vec3> radiance = meanEmittedRadiance(scene);
+LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm::vec3> radiance) {
     std::vector<double> materialPower(scene.materials.size(), 0.0);
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const glm::vec3& r = radiance[m];

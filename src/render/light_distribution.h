@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "scene/scene.h"
@@ -14,10 +15,11 @@ struct LightDistribution {
     std::vector<float> trianglePmf;     // per scene triangle; 0 for non-emitters
 };
 
-LightDistribution buildLightDistribution(const Scene& scene);
-
 // Each material's mean emitted radiance: its emission times the mean of its emission
 // texture. The light distribution depends on the parameters only through these.
 std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene);
+
+// `radiance`: meanEmittedRadiance(scene).
+LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm::vec3> radiance);
 
 }  // namespace vkdr
