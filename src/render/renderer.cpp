@@ -185,12 +185,16 @@ void Renderer::recordClearFilm(CommandRecorder& recorder) {
 }
 
 Image Renderer::downloadFilm() {
+    std::vector<glm::vec4> film(size_t(camera_.width) * camera_.height);
+    downloadBuffer(context_, paths_->film, std::as_writable_bytes(std::span(film)));
+    return imageOfFilm(film);
+}
+
+Image Renderer::imageOfFilm(std::span<const glm::vec4> film) const {
     const uint32_t pixels = camera_.width * camera_.height;
     Image image;
     image.width = int(camera_.width);
     image.height = int(camera_.height);
-    std::vector<glm::vec4> film(pixels);
-    downloadBuffer(context_, paths_->film, std::as_writable_bytes(std::span(film)));
     image.rgb.resize(size_t(pixels) * 3);
     const float scale = 1.0f / float(settings_.spp);
     for (uint32_t i = 0; i < pixels; ++i) {

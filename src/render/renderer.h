@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "bvh/bvh.h"
@@ -110,6 +111,8 @@ private:
     // recordLoss() in a submission of its own.
     void submitLoss(uint32_t samples, uint32_t image);
     Image downloadFilm();
+    // The image of film sums read back from the device.
+    Image imageOfFilm(std::span<const glm::vec4> film) const;
     // Each leaves the image in the film, dLoss/dparameters in the gradient buffers and
     // the loss of the image in lossSum, and sets result's times.
     void backpropagateWithReplay(GradientEvaluation& result);

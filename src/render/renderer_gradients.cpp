@@ -110,20 +110,22 @@ GradientEvaluation Renderer::renderWithGradients() {
     } else {
         backpropagateWithReplay(result);
     }
-    result.image = downloadFilm();
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
 
     SceneGradients& g = result.gradients;
+    std::vector<glm::vec4> film(size_t(camera_.width) * camera_.height);
     std::vector<float> media = adjoint_->mediumGradients.roomForCopies();
     std::vector<float> baseColors = adjoint_->baseColorGradients.roomForCopies();
     std::vector<float> emissions = adjoint_->emissionGradients.roomForCopies();
     g.texels.resize(adjoint_->texelGradients.size() / 4);
     float lossSum[4];
-    downloadBuffers(context_, {{&adjoint_->lossSum, std::as_writable_bytes(std::span(lossSum))},
+    downloadBuffers(context_, {{&paths_->film, std::as_writable_bytes(std::span(film))},
+                               {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossSum))},
                                {&adjoint_->mediumGradients.buffer, std::as_writable_bytes(std::span(media))},
                                {&adjoint_->baseColorGradients.buffer, std::as_writable_bytes(std::span(baseColors))},
                                {&adjoint_->emissionGradients.buffer, std::as_writable_bytes(std::span(emissions))},
                                {&adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels))}});
+    result.image = imageOfFilm(film);
     result.loss = lossSum[0];
     g.media = adjoint_->mediumGradients.sumOfCopies(media);
     g.baseColors = adjoint_->baseColorGradients.sumOfCopies(baseColors);
