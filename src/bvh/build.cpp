@@ -54,53 +54,66 @@ public:
         Float4 f = (centroid - Float4{origin_.x, origin_.y, origin_.z, 0.0f}) * Float4{scale_.x, scale_.y, scale_.z, 0.0f};
         return __builtin_convertvector(min4(f, Float4{} + float(kBinCount - 1)), Int4);
     }
+    // Whether bins() puts the box's centroid below bin along axis, computed along that
+    // axis alone with the same arithmetic. As x = (centroid - origin) * scale is never
+    // negative, truncating min(x, kBinCount - 1) gives less than bin exactly when x < bin.
+    bool belowBin(const TriangleBox& box, int axis, int bin) const {
+        float centroid = 0.5f * box.min[axis] + 0.5f * box.max[axis];  // as TriangleBox::centroid()
+        return (centroid - origin_[axis]) * scale_[axis] < float(bin);
+    }
 
 private:
     glm::vec3 origin_;  // no centroid lies below it, so bins are never negative
     glm::vec3 scale_;   // bins per unit length; 0 on an axis that cannot be split
 };
 
-struct Bin {
-    Float4 min, max;
-    uint32_t count;
-};
-
+// The bins' boxes and counts, each in an array of its own per axis: binning one box
+// then touches three separate cache lines per axis, and unrolled over the axes, the
+// three updates are independent of each other.
 class BinGrid {
 public:
     BinGrid() {
         const float huge = std::numeric_limits<float>::max();
-        for (auto& bins : axes_) bins.fill(Bin{Float4{} + huge, Float4{} - huge, 0});
+        for (int axis = 0; axis < 3; ++axis) {
+            min_[axis].fill(Float4{} + huge);
+            max_[axis].fill(Float4{} - huge);
+            count_[axis].fill(0);
+        }
     }
-    std::span<const Bin, kBinCount> bins(int axis) const { return axes_[axis]; }
+    Float4 min(int axis, int bin) const { return min_[axis][bin]; }
+    Float4 max(int axis, int bin) const { return max_[axis][bin]; }
+    uint32_t count(int axis, int bin) const { return count_[axis][bin]; }
+    Bounds3 bounds(int axis, int bin) const {
+        return {{min_[axis][bin][0], min_[axis][bin][1], min_[axis][bin][2]},
+                {max_[axis][bin][0], max_[axis][bin][1], max_[axis][bin][2]}};
+    }
 
     // Bins the box along all three axes; an axis that cannot be split gathers
     // everything in its bin 0, which findBestSplit ignores.
     void add(const TriangleBox& box, const BinMapping& mapping) {
         Float4 min = load4(box.min), max = load4(box.max);
         Int4 bins = mapping.bins(0.5f * min + 0.5f * max);  // as TriangleBox::centroid()
+#pragma GCC unroll 3
         for (int axis = 0; axis < 3; ++axis) {
-            Bin& bin = axes_[axis][bins[axis]];
-            bin.min = min4(bin.min, min);
-            bin.max = max4(bin.max, max);
-            ++bin.count;
+            int bin = bins[axis];
+            min_[axis][bin] = min4(min_[axis][bin], min);
+            max_[axis][bin] = max4(max_[axis][bin], max);
+            ++count_[axis][bin];
         }
     }
     void merge(const BinGrid& other) {
         for (int axis = 0; axis < 3; ++axis)
-            for (int i = 0; i < kBinCount; ++i) {
-                Bin& bin = axes_[axis][i];
-                const Bin& more = other.axes_[axis][i];
-                bin.min = min4(bin.min, more.min);
-                bin.max = max4(bin.max, more.max);
-                bin.count += more.count;
+            for (int bin = 0; bin < kBinCount; ++bin) {
+                min_[axis][bin] = min4(min_[axis][bin], other.min_[axis][bin]);
+                max_[axis][bin] = max4(max_[axis][bin], other.max_[axis][bin]);
+                count_[axis][bin] += other.count_[axis][bin];
             }
     }
 
 private:
-    std::array<std::array<Bin, kBinCount>, 3> axes_;
+    std::array<std::array<Float4, kBinCount>, 3> min_, max_;
+    std::array<std::array<uint32_t, kBinCount>, 3> count_;
 };
-
-Bounds3 boundsOf(const Bin& bin) { return {{bin.min[0], bin.min[1], bin.min[2]}, {bin.max[0], bin.max[1], bin.max[2]}}; }
 
 // Where to divide a node's triangles.
 struct Split {
@@ -117,10 +130,9 @@ struct Split {
 // costs what the plane before it did and never wins the strict comparison: the split
 // chosen, ties included, is the one sweeping each axis alone would choose, axis 0 first.
 Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, const BuildRange& range) {
-    std::array<std::span<const Bin, kBinCount>, 3> bins{grid.bins(0), grid.bins(1), grid.bins(2)};
-    auto countsOf = [&](int i) { return UInt4{bins[0][i].count, bins[1][i].count, bins[2][i].count, 0}; };
+    auto countsOf = [&](int i) { return UInt4{grid.count(0, i), grid.count(1, i), grid.count(2, i), 0}; };
     auto extend = [&](std::array<Box4, 3>& boxes, int i) {
-        for (int axis = 0; axis < 3; ++axis) boxes[axis].extend(bins[axis][i].min, bins[axis][i].max);
+        for (int axis = 0; axis < 3; ++axis) boxes[axis].extend(grid.min(axis, i), grid.max(axis, i));
     };
     // aboveCost[i]: count * area of the bins [i, kBinCount), per axis.
     std::array<Float4, kBinCount> aboveCost;
@@ -157,9 +169,8 @@ Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, const BuildR
     if (best.axis < 0) return best;
 
     for (int i = 0; i < kBinCount; ++i) {
-        const Bin& bin = bins[best.axis][i];
-        (i < best.bin ? best.leftBounds : best.rightBounds).extend(boundsOf(bin));
-        (i < best.bin ? best.leftCount : best.rightCount) += bin.count;
+        (i < best.bin ? best.leftBounds : best.rightBounds).extend(grid.bounds(best.axis, i));
+        (i < best.bin ? best.leftCount : best.rightCount) += grid.count(best.axis, i);
     }
     return best;
 }
@@ -236,23 +247,16 @@ private:
         auto centroidOf = [](const TriangleBox& box) {
             return 0.5f * load4(box.min) + 0.5f * load4(box.max);
         };
-        auto goesLeft = [&](Float4 centroid) { return mapping.bins(centroid)[split.axis] < split.bin; };
+        auto goesLeft = [&](const TriangleBox& box) { return mapping.belowBin(box, split.axis, split.bin); };
         Box4 leftCentroids, rightCentroids;
         size_t i = range.begin, j = range.end;
         for (;;) {
-            Float4 stray{}, strayFromRight{};
-            while (i < j && goesLeft(stray = centroidOf(boxes_[i]))) {
-                leftCentroids.extend(stray);
-                ++i;
-            }
-            while (i < j && !goesLeft(strayFromRight = centroidOf(boxes_[j - 1]))) {
-                rightCentroids.extend(strayFromRight);
-                --j;
-            }
+            while (i < j && goesLeft(boxes_[i])) leftCentroids.extend(centroidOf(boxes_[i++]));
+            while (i < j && !goesLeft(boxes_[j - 1])) rightCentroids.extend(centroidOf(boxes_[--j]));
             if (i == j) break;
-            std::swap(boxes_[i++], boxes_[--j]);
-            leftCentroids.extend(strayFromRight);
-            rightCentroids.extend(stray);
+            std::swap(boxes_[i], boxes_[j - 1]);
+            leftCentroids.extend(centroidOf(boxes_[i++]));
+            rightCentroids.extend(centroidOf(boxes_[--j]));
         }
         BuildRange left{.depth = range.depth + 1, .bounds = split.leftBounds, .centroidBounds = leftCentroids.bounds()};
         BuildRange right{.depth = range.depth + 1, .bounds = split.rightBounds,
