@@ -33,9 +33,10 @@ struct Bvh {
     std::vector<uint32_t> triangleOrder; // leaf order -> index into the scene's triangles
 };
 
-// SAH build over the triangles' bounds: binned in large nodes, exact in subtrees of at
-// most 64 triangles (exact_subtree.h), parallel over subtrees. Deterministic:
-// the same input gives the same tree whatever the thread count or scheduling.
+// SAH build over the triangles' bounds: binned in large nodes (from a sample in the
+// largest), exact in subtrees of at most 64 triangles (exact_subtree.h), parallel over
+// subtrees. Deterministic: the same input gives the same tree whatever the thread
+// count or scheduling.
 // Throws std::invalid_argument for a vertex index out of range.
 Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles);
 
