@@ -33,9 +33,9 @@ constexpr int kBinCount = 32;
 constexpr size_t kParallelSubtreeSize = 4 * 1024;
 // Nodes of n >= 2 * kBinningSampleSize triangles choose their split by binning every
 // (n / kBinningSampleSize)-th triangle, a sample of 16k to 32k; the partition then
-// gives the children's exact bounds. On 1M-triangle scenes, sampling changed the tree's SAH cost by under 0.01 %
-// and cut the time spent binning and partitioning by a fifth: binning a large node
-// reads every one of its triangles' records.
+// gives the children's exact bounds. On 1M-triangle scenes, sampling changed the
+// tree's SAH cost by under 0.01 % and cut the time spent binning and partitioning by
+// a fifth: binning a large node reads every one of its triangles' records.
 constexpr size_t kBinningSampleSize = 16 * 1024;
 // Keeps node indices (at most 2n - 1 nodes) within uint32_t.
 constexpr size_t kMaxTriangles = size_t(1) << 31;
