@@ -234,7 +234,8 @@ private:
             addTo(leftBounds, leftCentroids, boxes_[i++]);
             addTo(rightBounds, rightCentroids, boxes_[--j]);
         }
-        BuildRange left{.depth = range.depth + 1, .bounds = leftBounds.bounds(), .centroidBounds = leftCentroids.bounds()};
+        BuildRange left{.depth = range.depth + 1, .bounds = leftBounds.bounds(),
+                        .centroidBounds = leftCentroids.bounds()};
         BuildRange right{.depth = range.depth + 1, .bounds = rightBounds.bounds(),
                          .centroidBounds = rightCentroids.bounds()};
         left.begin = range.begin;
