@@ -92,7 +92,7 @@ public:
     // everything in its bin 0, which findBestSplit ignores.
     void add(const TriangleBox& box, const BinMapping& mapping) {
         Float4 min = load4(box.min), max = load4(box.max);
-        Int4 bins = mapping.bins(0.5f * min + 0.5f * max);  // as TriangleBox::centroid()
+        Int4 bins = mapping.bins(centroid4(min, max));
 #pragma GCC unroll 3
         for (int axis = 0; axis < 3; ++axis) {
             int bin = bins[axis];
@@ -119,7 +119,7 @@ struct Split {
 // core busy one axis at a time. An empty bin changes neither side, so a plane after it
 // costs what the plane before it did and never wins the strict comparison: the split
 // chosen, ties included, is the one sweeping each axis alone would choose, axis 0 first.
-Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, uint32_t binned) {
+Split findBestSplit(const BinGrid& grid, const BinMapping& mapping) {
     auto countsOf = [&](int i) { return UInt4{grid.count(0, i), grid.count(1, i), grid.count(2, i), 0}; };
     auto extend = [&](std::array<Box4, 3>& boxes, int i) {
         for (int axis = 0; axis < 3; ++axis) boxes[axis].extend(grid.min(axis, i), grid.max(axis, i));
@@ -134,7 +134,7 @@ Split findBestSplit(const BinGrid& grid, const BinMapping& mapping, uint32_t bin
         aboveCost[i] = __builtin_convertvector(aboveCount, Float4) * halfAreas(above);
     }
     const Int4 splittable{-int(mapping.canSplit(0)), -int(mapping.canSplit(1)), -int(mapping.canSplit(2)), 0};
-    const UInt4 total = UInt4{} + binned;
+    const UInt4 total = aboveCount + countsOf(0);  // every binned box, on each axis
     Float4 bestCost = Float4{} + std::numeric_limits<float>::infinity();
     Int4 bestBin{};
     std::array<Box4, 3> below;
@@ -194,8 +194,7 @@ private:
         BinMapping mapping(range);
         if (!mapping.canSplitAnyAxis()) return splitAtMedian(range);
         const size_t stride = std::max<size_t>(1, range.size() / kBinningSampleSize);
-        Split split = findBestSplit(binTriangles(range, mapping, stride), mapping,
-                                    uint32_t((range.size() + stride - 1) / stride));
+        Split split = findBestSplit(binTriangles(range, mapping, stride), mapping);
         if (split.axis < 0) return splitAtMedian(range);
         auto children = partition(range, split, mapping);
         bool splitFits = fitsDepthLimit(range.depth + 1, children.first.size()) &&
@@ -215,15 +214,12 @@ private:
     // and centroid bounds on the way (a sampled node's bins cannot give them).
     std::pair<BuildRange, BuildRange> partition(const BuildRange& range, const Split& split,
                                                 const BinMapping& mapping) const {
-        // As TriangleBox::centroid() and BinGrid::add(), with the same arithmetic.
-        auto centroidOf = [](const TriangleBox& box) {
-            return 0.5f * load4(box.min) + 0.5f * load4(box.max);
-        };
         auto goesLeft = [&](const TriangleBox& box) { return mapping.belowBin(box, split.axis, split.bin); };
         Box4 leftBounds, rightBounds, leftCentroids, rightCentroids;
-        auto addTo = [&](Box4& bounds, Box4& centroids, const TriangleBox& box) {
-            bounds.extend(load4(box.min), load4(box.max));
-            centroids.extend(centroidOf(box));
+        auto addTo = [](Box4& bounds, Box4& centroids, const TriangleBox& box) {
+            Float4 min = load4(box.min), max = load4(box.max);
+            bounds.extend(min, max);
+            centroids.extend(centroid4(min, max));
         };
         size_t i = range.begin, j = range.end;
         for (;;) {

@@ -81,6 +81,10 @@ inline Float4 load4(const glm::vec3& v) {
     return Float4(Int4(result) & Int4{-1, -1, -1, 0});
 }
 
+// The centroid of a box given by its corners, with TriangleBox::centroid()'s
+// arithmetic: binning, partitioning and sorting must all place a box alike.
+inline Float4 centroid4(Float4 min, Float4 max) { return 0.5f * min + 0.5f * max; }
+
 // Bounds3 in two SIMD registers, for the sweeps over candidate splits and the
 // partitions, where converting to and from Bounds3 would cost more than the work.
 struct Box4 {

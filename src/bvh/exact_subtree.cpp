@@ -36,7 +36,7 @@ public:
         for (uint32_t i = 0; i < count_; ++i) {
             low_[i] = load4(boxes[i].min);
             high_[i] = load4(boxes[i].max);
-            Float4 centroid = 0.5f * low_[i] + 0.5f * high_[i];  // as TriangleBox::centroid()
+            Float4 centroid = centroid4(low_[i], high_[i]);
             for (int axis = 0; axis < 3; ++axis) centroids_[axis][i] = centroid[axis];
         }
         // Equal centroids keep their order in the range, so the tree is deterministic.
