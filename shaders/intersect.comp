@@ -6,7 +6,6 @@
 #include "lib/stage_common.glsl"
 #include "lib/queues.glsl"
 #include "lib/bvh_traverse.glsl"
-#include "lib/scene_access.glsl"
 #include "lib/medium.glsl"
 #include "lib/adjoint.glsl"
 
@@ -16,7 +15,7 @@ layout(constant_id = 0) const bool kShadowRays = false;
 const uint kMaxBoundaryCrossings = 64u;
 
 void traceClosestHit(uint slot) {
-    TraceHit hit = traceClosest(P.rayOrigin.v[slot].xyz, P.rayDirection.v[slot].xyz, kFar);
+    TraceHit hit = traceClosest(P.rayOrigin.v[slot].xyz, P.rayDirection.v[slot].xyz, kFar, false);
     P.hit.v[slot] = vec4(hit.t, hit.b1, hit.b2, uintBitsToFloat(hit.triangle));
 }
 
@@ -63,7 +62,10 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                          inout MediumLengths lengths) {
     vec3 tr = vec3(1.0f);
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
-        TraceHit hit = traceClosest(origin, direction, distance);
+        TraceHit hit = traceClosest(origin, direction, distance, true);
+        if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
+            return vec3(0.0f);
+        }
         float segment = min(hit.t, distance);
         if (medium != kNoMediumIndex) {
             tr *= transmittance(sigmaT(P.media.v[medium]), segment);
@@ -79,9 +81,6 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
         }
         SurfacePoint sp = surfacePoint(hit.triangle, hit.b1, hit.b2);
         GpuMaterial material = P.materials.v[sp.material];
-        if (material.interiorMedium < 0) {
-            return vec3(0.0f);
-        }
         bool entering = dot(direction, sp.normal) < 0.0f;
         medium = entering ? uint(material.interiorMedium) : sp.outsideMedium;
         // Step past the boundary along the ray's side of it.

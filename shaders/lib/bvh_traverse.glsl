@@ -4,6 +4,7 @@
 #define VKDR_BVH_TRAVERSE_GLSL
 #include "constants.glsl"
 #include "intersect_triangle.glsl"
+#include "scene_access.glsl"
 
 const uint kBvhStackSize = 64u;
 // Bounds the loop so a corrupt tree cannot hang the device; far above any real
@@ -35,7 +36,10 @@ vec3 safeInverse(vec3 d) {
                              abs(d.z) > tiny ? d.z : (d.z >= 0.0f ? tiny : -tiny));
 }
 
-TraceHit traceClosest(vec3 origin, vec3 direction, float tMax) {
+// The closest hit within tMax. With stopAtOpaque, the first hit found on an opaque
+// triangle ends the search instead: a shadow ray is blocked by any opaque surface on
+// its way, whichever is nearest, and only medium boundaries need the closest hit.
+TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque) {
     TraceHit best = TraceHit(tMax, 0.0f, 0.0f, kNoHit);
     vec3 invDirection = safeInverse(direction);
     uint stack[kBvhStackSize];
@@ -56,6 +60,9 @@ TraceHit traceClosest(vec3 origin, vec3 direction, float tMax) {
                                              P.triangleVertices.v[3u * i + 2u].xyz, best.t);
                 if (hit.x > 0.0f) {
                     best = TraceHit(hit.x, hit.y, hit.z, i);
+                    if (stopAtOpaque && isOpaque(i)) {
+                        return best;
+                    }
                 }
             }
             done = stackSize == 0u;

@@ -31,6 +31,11 @@ SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
     return sp;
 }
 
+// Whether the triangle blocks light: anything but a pass-through medium boundary.
+bool isOpaque(uint triangle) {
+    return P.materials.v[P.triangleInfo.v[triangle].material].interiorMedium < 0;
+}
+
 // i mod n for negative i too (GLSL leaves % of negative operands undefined).
 ivec2 wrapRepeat(ivec2 i, ivec2 n) {
     return i - n * ivec2(floor(vec2(i) / vec2(n)));
