@@ -11,8 +11,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root/build"
 # lavapipe runs compute on the CPU: two worker threads suit a two-core machine.
 export LP_NUM_THREADS=2
-# One test per core at a time: many suites spend part of their time on one thread (loading,
-# building BVHs, compiling pipelines), and no test depends on its timing.
+# One test per core at a time: many suites spend part of their time on one thread
+# (loading, building BVHs, compiling pipelines), and no test depends on its timing.
 ctest --output-on-failure --timeout 600 -j "$(nproc)"
 # The benchmark harness runs once on a tiny setting: it must work; its times gate nothing.
 "$root/build/src/cli/vkdiffrender" bench cornell_fog room_10k --width 32 --spp 2 --iters 1 \
