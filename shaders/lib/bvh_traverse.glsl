@@ -36,6 +36,12 @@ vec3 safeInverse(vec3 d) {
                              abs(d.z) > tiny ? d.z : (d.z >= 0.0f ? tiny : -tiny));
 }
 
+// The node's children (y == 0) or triangles: x is its first child or triangle, y its
+// triangle count, in the fourth lanes of its two vec4s.
+uvec2 nodeLink(uint node) {
+    return uvec2(floatBitsToUint(P.bvhNodes.v[2u * node].w), floatBitsToUint(P.bvhNodes.v[2u * node + 1u].w));
+}
+
 // The closest hit within tMax. With stopAtOpaque, the first hit found on an opaque
 // triangle ends the search instead: a shadow ray is blocked by any opaque surface on
 // its way, whichever is nearest, and only medium boundaries need the closest hit.
@@ -47,54 +53,60 @@ TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque
     uint node = 0u;
     uint steps = 0u;
     bool done = false;
+    // Each round descends to a leaf, then tests its triangles. The lanes of a subgroup
+    // that reach their leaves at different steps wait for each other and test them
+    // together, instead of splitting into interior and leaf work at every step (Aila
+    // and Laine's "while-while" order).
     while (!done && steps < kMaxTraversalSteps) {
-        ++steps;
-        vec4 lo = P.bvhNodes.v[2u * node];
-        vec4 hi = P.bvhNodes.v[2u * node + 1u];
-        uint firstOrChild = floatBitsToUint(lo.w);
-        uint count = floatBitsToUint(hi.w);
-        if (count > 0u) {
-            for (uint i = firstOrChild; i < firstOrChild + count; ++i) {
-                vec3 hit = intersectTriangle(origin, direction, P.triangleVertices.v[3u * i].xyz,
-                                             P.triangleVertices.v[3u * i + 1u].xyz,
-                                             P.triangleVertices.v[3u * i + 2u].xyz, best.t);
-                if (hit.x > 0.0f) {
-                    best = TraceHit(hit.x, hit.y, hit.z, i);
-                    if (stopAtOpaque && isOpaque(i)) {
-                        return best;
-                    }
+        uvec2 link = nodeLink(node);
+        while (link.y == 0u && !done && steps < kMaxTraversalSteps) {
+            ++steps;
+            uint left = link.x;
+            uint right = link.x + 1u;
+            float tLeft = boxEntry(P.bvhNodes.v[2u * left].xyz, P.bvhNodes.v[2u * left + 1u].xyz,
+                                   origin, invDirection, best.t);
+            float tRight = boxEntry(P.bvhNodes.v[2u * right].xyz, P.bvhNodes.v[2u * right + 1u].xyz,
+                                    origin, invDirection, best.t);
+            bool hitLeft = tLeft < kFar;
+            bool hitRight = tRight < kFar;
+            if (hitLeft && hitRight) {
+                bool leftFirst = tLeft <= tRight;
+                if (stackSize < kBvhStackSize) {
+                    stack[stackSize++] = leftFirst ? right : left;
+                } else {
+                    flagTruncatedLoop();
+                }
+                node = leftFirst ? left : right;
+            } else if (hitLeft || hitRight) {
+                node = hitLeft ? left : right;
+            } else {
+                done = stackSize == 0u;
+                if (!done) {
+                    node = stack[--stackSize];
                 }
             }
-            done = stackSize == 0u;
             if (!done) {
-                node = stack[--stackSize];
+                link = nodeLink(node);
             }
+        }
+        if (done || link.y == 0u) {
             continue;
         }
-        uint left = firstOrChild;
-        uint right = firstOrChild + 1u;
-        float tLeft = boxEntry(P.bvhNodes.v[2u * left].xyz, P.bvhNodes.v[2u * left + 1u].xyz,
-                               origin, invDirection, best.t);
-        float tRight = boxEntry(P.bvhNodes.v[2u * right].xyz, P.bvhNodes.v[2u * right + 1u].xyz,
-                                origin, invDirection, best.t);
-        bool hitLeft = tLeft < kFar;
-        bool hitRight = tRight < kFar;
-        if (hitLeft && hitRight) {
-            uint nearChild = tLeft <= tRight ? left : right;
-            uint farChild = tLeft <= tRight ? right : left;
-            if (stackSize < kBvhStackSize) {
-                stack[stackSize++] = farChild;
-            } else {
-                flagTruncatedLoop();
+        ++steps;
+        for (uint i = link.x; i < link.x + link.y; ++i) {
+            vec3 hit = intersectTriangle(origin, direction, P.triangleVertices.v[3u * i].xyz,
+                                         P.triangleVertices.v[3u * i + 1u].xyz,
+                                         P.triangleVertices.v[3u * i + 2u].xyz, best.t);
+            if (hit.x > 0.0f) {
+                best = TraceHit(hit.x, hit.y, hit.z, i);
+                if (stopAtOpaque && isOpaque(i)) {
+                    return best;
+                }
             }
-            node = nearChild;
-        } else if (hitLeft || hitRight) {
-            node = hitLeft ? left : right;
-        } else {
-            done = stackSize == 0u;
-            if (!done) {
-                node = stack[--stackSize];
-            }
+        }
+        done = stackSize == 0u;
+        if (!done) {
+            node = stack[--stackSize];
         }
     }
     if (!done) {
