@@ -81,5 +81,5 @@ void main() {
     }
     P.beta.v[slot].rgb = beta;
     P.vertexInfo.v[slot].y = vertexKind;
-    queuePush(kQueueShade, slot);
+    queueShade(slot, vertexKind == kVertexSurface);
 }

@@ -3,12 +3,13 @@
 // Sizes the indirect dispatch that walks queue `queueArg`, and empties the queues in
 // `clearMask` so the next stage can fill them. Counts the rays it sizes dispatches for.
 #include "lib/stage_common.glsl"
+#include "lib/queues.glsl"
 
 void main() {
     if (gl_GlobalInvocationID.x != 0u) {
         return;
     }
-    uint count = P.queueCounters.c.counts[pass.queueArg];
+    uint count = queueSize(pass.queueArg);
     P.queueCounters.c.dispatch[pass.queueArg] = DispatchArgs((count + kWorkgroupSize - 1u) / kWorkgroupSize, 1u, 1u, 0u);
     if (pass.queueArg != kQueueShade) {
         P.queueCounters.c.raysTraced += count;
@@ -17,5 +18,8 @@ void main() {
         if ((pass.clearMask & (1u << q)) != 0u) {
             P.queueCounters.c.counts[q] = 0u;
         }
+    }
+    if ((pass.clearMask & (1u << kQueueShade)) != 0u) {
+        P.queueCounters.c.shadeSurfaces = 0u;
     }
 }

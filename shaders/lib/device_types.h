@@ -63,7 +63,7 @@ const uint kGradientCopyAlignment = 32u;  // floats: copies start 128 bytes apar
 // Queues: indices into QueueCounters.counts and .dispatch.
 const uint kQueueRays0 = 0u;   // rays to trace this segment (double-buffered with kQueueRays1)
 const uint kQueueRays1 = 1u;
-const uint kQueueShade = 2u;   // surface and medium vertices to shade
+const uint kQueueShade = 2u;   // medium vertices from the front, surface vertices from the back
 const uint kQueueShadow = 3u;  // next-event shadow rays
 const uint kQueueCount = 4u;
 
@@ -119,7 +119,7 @@ struct QueueCountersData {
     uint truncatedLoops;   // > 0: a loop hit its iteration bound (or lavapipe's silent cap)
     uint truncatedPaths;   // paths ended by the segment limit rather than by the estimator
     uint raysTraced;       // closest-hit and shadow rays since the host last cleared it
-    uint pad;
+    uint shadeSurfaces;    // kQueueShade's surface vertices; counts[kQueueShade] its medium ones
 };
 
 #ifndef __cplusplus

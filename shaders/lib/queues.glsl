@@ -2,26 +2,51 @@
 #ifndef VKDR_QUEUES_GLSL
 #define VKDR_QUEUES_GLSL
 
+// The shade queue keeps its medium vertices at the front of its array and its surface
+// vertices at the back, so that a dispatch over it meets both kinds of vertex in one
+// subgroup only where the two ends meet. A subgroup of mixed vertices runs both kinds
+// of shading, each with the other kind's lanes idle.
 uint queueSize(uint queue) {
-    return P.queueCounters.c.counts[queue];
+    uint size = P.queueCounters.c.counts[queue];
+    return queue == kQueueShade ? size + P.queueCounters.c.shadeSurfaces : size;
 }
 
 uint queueItem(uint queue, uint index) {
-    return P.queueItems.v[queue * P.pathCapacity + index];
+    uint front = P.queueCounters.c.counts[queue];
+    uint position = index < front ? index : P.pathCapacity - 1u - (index - front);
+    return P.queueItems.v[queue * P.pathCapacity + position];
 }
 
-// Appends a path slot. One atomic per subgroup: the lanes that push elect a leader,
-// which reserves room for all of them (3-4x faster than one atomic per lane on lavapipe).
-void queuePush(uint queue, uint slot) {
+// Appends a path slot, at the back of the array for the shade queue's surface vertices.
+// One atomic per subgroup: the lanes that push elect a leader, which reserves room for
+// all of them (3-4x faster than one atomic per lane on lavapipe). All the lanes that
+// push together must agree on atBack.
+void queuePushAt(uint queue, uint slot, bool atBack) {
     uvec4 pushing = subgroupBallot(true);
     uint count = subgroupBallotBitCount(pushing);
     uint rank = subgroupBallotExclusiveBitCount(pushing);
     uint base = 0u;
     if (subgroupElect()) {
-        base = atomicAdd(P.queueCounters.c.counts[queue], count);
+        base = atBack ? atomicAdd(P.queueCounters.c.shadeSurfaces, count)
+                      : atomicAdd(P.queueCounters.c.counts[queue], count);
     }
     base = subgroupBroadcastFirst(base);
-    P.queueItems.v[queue * P.pathCapacity + base + rank] = slot;
+    uint position = atBack ? P.pathCapacity - 1u - (base + rank) : base + rank;
+    P.queueItems.v[queue * P.pathCapacity + position] = slot;
+}
+
+void queuePush(uint queue, uint slot) {
+    queuePushAt(queue, slot, false);
+}
+
+// Queues a vertex for shading. The branch keeps the lanes of each kind apart, so each
+// pushes with one atomic of its own.
+void queueShade(uint slot, bool surface) {
+    if (surface) {
+        queuePushAt(kQueueShade, slot, true);
+    } else {
+        queuePushAt(kQueueShade, slot, false);
+    }
 }
 
 void flagTruncatedLoop() {
