@@ -1,5 +1,6 @@
-// Closest-hit traversal of the binned-SAH BVH built on the host (src/bvh/bvh.h):
-// one ray per invocation, a short stack, nearer child first.
+// Traversal of the binned-SAH BVH built on the host (src/bvh/bvh.h) for the closest
+// hit, or for shadow rays any opaque hit: one ray per invocation, a short stack, nearer
+// child first.
 #ifndef VKDR_BVH_TRAVERSE_GLSL
 #define VKDR_BVH_TRAVERSE_GLSL
 #include "constants.glsl"

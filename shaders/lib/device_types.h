@@ -207,7 +207,7 @@ struct PassConstants {
     uint samplesInPass;
     uint currentRays;       // kQueueRays0 or kQueueRays1: the queue traced this segment
     uint queueArg;          // queue_prepare: which queue's dispatch to size
-    uint clearMask;         // queue_prepare: bit q set -> counts[q] = 0
+    uint clearMask;         // queue_prepare: bit q set -> counts[q] = 0 (and shadeSurfaces for the shade queue)
     uint lossImage;         // loss: kLossImageFilm, kLossImageFilmMinusBaseline or kLossImageHalves
 };
 

@@ -1,4 +1,5 @@
-// Work queues: an atomic counter plus a slot array per queue (device_types.h).
+// Work queues: a slot array per queue and an atomic counter, two for the shade queue's
+// two ends (device_types.h).
 #ifndef VKDR_QUEUES_GLSL
 #define VKDR_QUEUES_GLSL
 
