@@ -1,6 +1,9 @@
 #include "bench/bench_report.h"
 
 #include <cstdio>
+#include <map>
+#include <span>
+#include <string>
 
 namespace vkdr {
 namespace {
@@ -28,6 +31,26 @@ uint64_t peakDeviceBytes(const SceneBenchmark& s) {
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
+// A table of GPU ms per stage, a row per scene, from the breakdown `stagesMs` names.
+std::string stageTable(const BenchReport& report, const std::string& title, std::span<const char* const> stages,
+                       std::map<std::string, double> SceneBenchmark::*stagesMs) {
+    std::string out = "\n" + title + "\n\n| scene |";
+    std::string rule = "|---|";
+    for (const char* stage : stages) {
+        out += std::string(" ") + stage + " |";
+        rule += "--:|";
+    }
+    out += "\n" + rule + "\n";
+    for (const SceneBenchmark& s : report.scenes) {
+        out += "| " + s.name + " |";
+        for (const char* stage : stages) {
+            out += " " + format("%.2f", valueOr0(s.*stagesMs, stage)) + " |";
+        }
+        out += "\n";
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string markdownTable(const BenchReport& report) {
@@ -45,21 +68,12 @@ std::string markdownTable(const BenchReport& report) {
                format("%.3f", s.raysPerSecond() * 1e-6) + " | " + format("%.1f", double(peakDeviceBytes(s)) / kMiB) +
                " | " + format("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
     }
-    out += "\nGPU ms per stage (timestamp queries); adjoint is every adjoint-mode pass, replay the primal passes "
-           "it re-renders\n\n| scene |";
-    std::string rule = "|---|";
-    for (const char* stage : kStages) {
-        out += std::string(" ") + stage + " |";
-        rule += "--:|";
-    }
-    out += "\n" + rule + "\n";
-    for (const SceneBenchmark& s : report.scenes) {
-        out += "| " + s.name + " |";
-        for (const char* stage : kStages) {
-            out += " " + format("%.2f", valueOr0(s.stagesMs, stage)) + " |";
-        }
-        out += "\n";
-    }
+    out += stageTable(report,
+                      "GPU ms per stage (timestamp queries); adjoint is every adjoint-mode pass, replay the primal "
+                      "passes it re-renders",
+                      kStages, &SceneBenchmark::stagesMs);
+    out += stageTable(report, "GPU ms per stage of the adjoint-mode passes (the adjoint column above, broken down)",
+                      kAdjointStages, &SceneBenchmark::adjointStagesMs);
     for (const SkippedScene& skipped : report.skipped) {
         out += "\nskipped " + skipped.name + ": " + skipped.reason + "\n";
     }

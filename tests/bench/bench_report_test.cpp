@@ -68,5 +68,15 @@ TEST(BenchReport, TableHasARowPerSceneAndNamesSkippedOnes) {
     EXPECT_NE(table.find("skipped room_10m: needs about 5 GiB"), std::string::npos) << table;
 }
 
+TEST(BenchReport, TableBreaksTheAdjointDownByStage) {
+    std::string table = markdownTable(exampleReport());
+    // The primal stage row, then the adjoint stage row with its shade time.
+    EXPECT_NE(table.find("| room_10k | 1.00 | 2.00 | 0.00 | 0.00 | 0.00 | 0.00 | 3.00 |"), std::string::npos) << table;
+    EXPECT_NE(table.find("| scene | generate | intersect | medium_sample | shade | shadow | queue_prepare |\n"),
+              std::string::npos)
+        << table;
+    EXPECT_NE(table.find("| room_10k | 0.00 | 0.00 | 0.00 | 1.50 | 0.00 | 0.00 |\n"), std::string::npos) << table;
+}
+
 }  // namespace
 }  // namespace vkdr::test
