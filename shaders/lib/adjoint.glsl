@@ -81,12 +81,12 @@ void addMediumGradient(uint medium, uint firstComponent, vec3 g) {
 }
 
 void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
-    addMediumGradient(medium, 0u, dSigmaA);
-    addMediumGradient(medium, 3u, dSigmaS);
+    addMediumGradient(medium, kMediumGradientSigmaA, dSigmaA);
+    addMediumGradient(medium, kMediumGradientSigmaS, dSigmaS);
 }
 
 void addPhaseGGradient(uint medium, float g) {
-    addMediumGradient(medium, 6u, vec3(g, 0.0f, 0.0f));
+    addMediumGradient(medium, kMediumGradientG, vec3(g, 0.0f, 0.0f));
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
@@ -117,7 +117,7 @@ void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
 
 void addTargetGradient(AdjointState s, vec3 g) {
     if (s.targetKind == kTargetMediumScattering) {
-        addMediumGradient(s.targetIndex, 3u, g);
+        addMediumGradient(s.targetIndex, kMediumGradientSigmaS, g);
     } else if (s.targetKind == kTargetBaseColor) {
         addBaseColorGradient(s.targetIndex, g);
     }

@@ -49,7 +49,10 @@ const uint kTargetNone = 0u;
 const uint kTargetMediumScattering = 1u;  // sigma_s of a medium
 const uint kTargetBaseColor = 2u;         // base colour of a material (factor or texels)
 
-// Medium gradients: sigma_a rgb, sigma_s rgb, g, unused.
+// Where each parameter's gradient sits among its medium's kMediumGradientStride floats.
+const uint kMediumGradientSigmaA = 0u;  // rgb
+const uint kMediumGradientSigmaS = 3u;  // rgb
+const uint kMediumGradientG = 6u;       // one float
 const uint kMediumGradientStride = 8u;
 
 // The medium, base colour and emission gradients have kGradientCopies copies, a

@@ -71,9 +71,9 @@ std::vector<double> gatherGradient(const ParameterSlot& slot, const SceneGradien
     };
     const size_t medium = size_t(slot.index) * gpu::kMediumGradientStride;
     switch (slot.kind) {
-    case ParameterSlot::Kind::SigmaA: return rgb(gradients.media, medium);
-    case ParameterSlot::Kind::SigmaS: return rgb(gradients.media, medium + 3);
-    case ParameterSlot::Kind::PhaseG: return {gradients.media[medium + 6]};
+    case ParameterSlot::Kind::SigmaA: return rgb(gradients.media, medium + gpu::kMediumGradientSigmaA);
+    case ParameterSlot::Kind::SigmaS: return rgb(gradients.media, medium + gpu::kMediumGradientSigmaS);
+    case ParameterSlot::Kind::PhaseG: return {gradients.media[medium + gpu::kMediumGradientG]};
     case ParameterSlot::Kind::BaseColor: return rgb(gradients.baseColors, size_t(slot.index) * 4);
     case ParameterSlot::Kind::BaseColorTexture: {
         std::vector<double> texels;
