@@ -77,7 +77,7 @@ void addGradient(FloatBuffer gradients, uint copyStride, uint first, vec3 g) {
 }
 
 void addMediumGradient(uint medium, uint firstComponent, vec3 g) {
-    addGradient(P.mediumGradients, P.mediumGradientCopyStride, medium * kMediumGradientStride + firstComponent, g);
+    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent, g);
 }
 
 void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
@@ -90,18 +90,18 @@ void addPhaseGGradient(uint medium, float g) {
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
-    addGradient(P.baseColorGradients, P.materialGradientCopyStride, material * 4u, g);
+    addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * 4u, g);
 }
 
 void addEmissionGradient(uint material, vec3 g) {
-    addGradient(P.emissionGradients, P.materialGradientCopyStride, material * 4u, g);
+    addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * 4u, g);
 }
 
 // g = dLoss/d(texture value at uv), spread over the texels the lookup blends.
 void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
     BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
     for (int corner = 0; corner < 4; ++corner) {
-        addGradient(P.texelGradients, 0u, footprint.texel[corner] * 4u, g * footprint.weight[corner]);
+        addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * 4u, g * footprint.weight[corner]);
     }
 }
 

@@ -94,7 +94,6 @@ void Renderer::setSeed(uint32_t seed) {
 }
 
 void Renderer::uploadParams() {
-    const PathBuffers& b = *paths_;
     gpu::RenderParams p{};
     p.camera = camera_;
     p.background = glm::vec4(background_, 0.0f);
@@ -108,21 +107,7 @@ void Renderer::uploadParams() {
     p.texels = scene_.texels.address();
     p.lightTriangles = scene_.lightTriangles.address();
     p.lightCdf = scene_.lightCdf.address();
-    p.rayOrigin = b.rayOrigin.address();
-    p.rayDirection = b.rayDirection.address();
-    p.beta = b.beta.address();
-    p.radiance = b.radiance.address();
-    p.misVertex = b.misVertex.address();
-    p.hit = b.hit.address();
-    p.pathInfo = b.pathInfo.address();
-    p.vertexInfo = b.vertexInfo.address();
-    p.shadowOrigin = b.shadowOrigin.address();
-    p.shadowDirection = b.shadowDirection.address();
-    p.shadowContribution = b.shadowContribution.address();
-    p.queueCounters = b.queueCounters.address();
-    p.queueItems = b.queueItems.address();
-    p.film = b.film.address();
-    p.pathCapacity = b.capacity;
+    paths_->setAddresses(p);
     p.lightCount = scene_.lightCount;
     p.maxDepth = settings_.maxDepth;
     p.seed = settings_.seed;
@@ -130,25 +115,7 @@ void Renderer::uploadParams() {
     p.rayEpsilon = scene_.rayEpsilon;
     p.filmScale = 1.0f / float(settings_.spp);
     if (adjoint_) {
-        const AdjointBuffers& a = *adjoint_;
-        p.target = a.target.address();
-        p.imageAdjoint = a.imageAdjoint.address();
-        p.lossSum = a.lossSum.address();
-        p.filmBaseline = a.filmBaseline.address();
-        p.mediumGradients = a.mediumGradients.buffer.address();
-        p.baseColorGradients = a.baseColorGradients.buffer.address();
-        p.emissionGradients = a.emissionGradients.buffer.address();
-        p.mediumGradientCopyStride = a.mediumGradients.copyStride;
-        // One stride serves both: they hold the same number of floats.
-        assert(a.emissionGradients.copyStride == a.baseColorGradients.copyStride);
-        p.materialGradientCopyStride = a.baseColorGradients.copyStride;
-        p.texelGradients = a.texelGradients.address();
-        p.pendingFactor = a.pendingFactor.address();
-        p.adjointState = a.adjointState.address();
-        p.vertexUv = a.vertexUv.address();
-        p.shadowScatterGradient = a.shadowScatterGradient.address();
-        p.shadowEmissionGradient = a.shadowEmissionGradient.address();
-        p.shadowVertex = a.shadowVertex.address();
+        adjoint_->setAddresses(p);
         p.lossKind = lossKind_ == LossKind::L1 ? gpu::kLossL1 : gpu::kLossL2;
         p.derivativeTargets = derivativeTargets_;
         p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));

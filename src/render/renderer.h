@@ -30,12 +30,14 @@ struct RenderStats {
 // Progress in [0, 1], called after every pass.
 using ProgressCallback = std::function<void(double)>;
 
-// Parameter gradients as the adjoint pass accumulates them.
+// Parameter gradients as the adjoint pass accumulates them, one vector per accumulator
+// of VKDR_GRADIENT_ACCUMULATORS (device_types.h): `media` has gpu::kMediumGradientStride
+// floats per medium, `baseColors` and `emissions` 4 per material, `texels` 4 per texel
+// (textures one after another as in Scene::textures).
 struct SceneGradients {
-    std::vector<float> media;       // gpu::kMediumGradientStride per medium: sigma_a rgb, sigma_s rgb, g
-    std::vector<float> baseColors;  // 4 per material
-    std::vector<float> emissions;   // 4 per material
-    std::vector<float> texels;      // 4 per texel, textures one after another as in Scene::textures
+#define VKDR_SCENE_GRADIENTS_FIELD(name, field, ...) std::vector<float> field;
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_SCENE_GRADIENTS_FIELD)
+#undef VKDR_SCENE_GRADIENTS_FIELD
 };
 
 // The kinds of parameter whose gradient is wanted, as far as the adjoint's cost depends

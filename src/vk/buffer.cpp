@@ -147,7 +147,7 @@ void downloadBuffer(const VulkanContext& context, const Buffer& buffer, std::spa
     downloadBuffers(context, {{&buffer, bytes}});
 }
 
-void downloadBuffers(const VulkanContext& context, std::initializer_list<Download> downloads) {
+void downloadBuffers(const VulkanContext& context, std::span<const Download> downloads) {
     VkDeviceSize total = 0;
     for (const Download& d : downloads) {
         total += d.bytes.size();

@@ -69,6 +69,9 @@ struct Download {
     const Buffer* buffer;
     std::span<std::byte> bytes;
 };
-void downloadBuffers(const VulkanContext& context, std::initializer_list<Download> downloads);
+void downloadBuffers(const VulkanContext& context, std::span<const Download> downloads);
+inline void downloadBuffers(const VulkanContext& context, std::initializer_list<Download> downloads) {
+    downloadBuffers(context, std::span<const Download>(downloads.begin(), downloads.size()));
+}
 
 }  // namespace vkdr
