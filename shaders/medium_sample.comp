@@ -23,12 +23,9 @@ void main() {
     uint medium = P.vertexInfo.v[slot].x;
     vec3 beta = P.beta.v[slot].rgb;
     uint vertexKind = kVertexSurface;
-    AdjointState adjoint;
-    vec3 delta;
     if (kAdjoint) {
-        adjoint = loadAdjointState(slot);
-        delta = pathAdjoint(slot);
-        applyPendingFactor(slot, adjoint, delta);
+        beginReplay(slot);
+        applyPendingFactor(slot);
     }
     if (medium != kNoMediumIndex) {
         GpuMedium m = P.media.v[medium];
@@ -39,17 +36,11 @@ void main() {
             // Medium vertex: weight sigma_s T(t) / p(t), with the pdf p held fixed.
             float pdf = freeFlightPdf(sigma_t, t);
             vec3 perUnitScattering = pdf > 0.0f ? transmittance(sigma_t, t) / pdf : vec3(0.0f);
-            vec3 betaBefore = beta;
-            beta *= m.sigma_s * perUnitScattering;
             if (kAdjoint) {
-                vec3 dLogScattering = vec3(m.sigma_s.x > 0.0f ? 1.0f / m.sigma_s.x : 0.0f,
-                                           m.sigma_s.y > 0.0f ? 1.0f / m.sigma_s.y : 0.0f,
-                                           m.sigma_s.z > 0.0f ? 1.0f / m.sigma_s.z : 0.0f) - t;
-                addSigmaGradient(medium, factorGradient(slot, adjoint, delta, vec3(-t)),
-                                 factorGradient(slot, adjoint, delta, dLogScattering));
-                beta = enterDerivativeMode(adjoint, beta, m.sigma_s, betaBefore * perUnitScattering,
-                                           kTargetMediumScattering, medium);
+                addSigmaGradient(medium, factorGradient(slot, vec3(-t)),
+                                 factorGradient(slot, logDerivativeOfLinear(m.sigma_s) - t));
             }
+            beta = multiplyByParameter(beta, m.sigma_s, perUnitScattering, kTargetMediumScattering, medium);
             vertexKind = kVertexMedium;
             P.hit.v[slot].x = t;
         } else {
@@ -59,25 +50,19 @@ void main() {
             // An escaped ray's L_rem is zero wherever T(infinity) is; where sigma_t = 0
             // the derivative is undefined and left out.
             if (kAdjoint && !escaped) {
-                vec3 g = factorGradient(slot, adjoint, delta, vec3(-tHit));
-                addSigmaGradient(medium, g, g);
+                addSigmaTGradient(medium, factorGradient(slot, vec3(-tHit)));
             }
         }
     }
     if (vertexKind == kVertexSurface && escaped) {
-        vec3 contribution = beta * P.background.rgb;
-        if (kAdjoint) {
-            passContribution(slot, adjoint, delta, contribution);
-        } else {
-            addRadiance(slot, contribution);
-        }
+        gather(slot, beta * P.background.rgb);
         return;
     }
     if (maxComponent(beta) <= 0.0f) {
         return;
     }
     if (kAdjoint) {
-        storeAdjointState(slot, adjoint);
+        endReplay(slot);
     }
     P.beta.v[slot].rgb = beta;
     P.vertexInfo.v[slot].y = vertexKind;

@@ -196,6 +196,7 @@ void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages
     };
     PushConstants push{params_.address(), constants};
     push.pass.currentRays = currentRays;
+    // Sizes a queue's indirect dispatch from its count (and clears the counts in clearMask).
     auto prepare = [&](uint32_t queue, uint32_t clearMask) {
         PushConstants p = push;
         p.pass.queueArg = queue;
@@ -213,20 +214,11 @@ void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages
     prepare(gpu::kQueueShade, 0);
     stage(stages.shade, gpu::kQueueShade);
     prepare(gpu::kQueueShadow, 0);
-    stage(stages.intersectShadow, gpu::kQueueShadow);
+    stage(stages.shadow, gpu::kQueueShadow);
 }
 
-void Renderer::runPass(const PassRange& range, PassMode mode) {
-    const PathStages& stages = mode == PassMode::Adjoint ? pipelines_.gradient->adjoint : pipelines_.primal;
-    gpu::PassConstants constants{range.firstPixel, range.pixelCount, range.firstSample, range.samplesInPass,
-                                 gpu::kQueueRays0, 0, 0, 0};
-    PushConstants push{params_.address(), constants};
-    if (timer_) {
-        timer_->setScope(mode == PassMode::Film ? "forward" : mode == PassMode::Replay ? "replay" : "adjoint");
-    }
-    CommandRecorder recorder(context_, timer_);
-    recorder.dispatch(stages.generate, range.pixelCount * range.samplesInPass, push.bytes());
-    recorder.barrier();
+gpu::QueueCountersData Renderer::recordSegmentsUntilNoRayIsLeft(CommandRecorder& recorder, const PathStages& stages,
+                                                                 const gpu::PassConstants& constants) {
     uint32_t currentRays = gpu::kQueueRays0;
     const uint32_t segments = segmentLimit(settings_.maxDepth);
     gpu::QueueCountersData counters{};
@@ -242,6 +234,21 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
             break;
         }
     }
+    return counters;
+}
+
+void Renderer::runPass(const PassRange& range, PassMode mode) {
+    const PathStages& stages = mode == PassMode::Adjoint ? pipelines_.gradient->adjoint : pipelines_.primal;
+    gpu::PassConstants constants{range.firstPixel, range.pixelCount, range.firstSample, range.samplesInPass,
+                                 gpu::kQueueRays0, 0, 0, 0};
+    PushConstants push{params_.address(), constants};
+    if (timer_) {
+        timer_->setScope(mode == PassMode::Film ? "forward" : mode == PassMode::Replay ? "replay" : "adjoint");
+    }
+    CommandRecorder recorder(context_, timer_);
+    recorder.dispatch(stages.generate, range.pixelCount * range.samplesInPass, push.bytes());
+    recorder.barrier();
+    const gpu::QueueCountersData counters = recordSegmentsUntilNoRayIsLeft(recorder, stages, constants);
     if (mode == PassMode::Film) {
         recorder.dispatch(pipelines_.film, range.pixelCount, push.bytes());
         recorder.barrier();

@@ -120,8 +120,12 @@ private:
     void backpropagateWithReplay(GradientEvaluation& result);
     void backpropagateSplitSamples(GradientEvaluation& result);
     void backpropagateInOnePass(GradientEvaluation& result);
+    // One segment of every path alive: closest hits, free flights, vertices, shadow rays.
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
                        uint32_t currentRays);
+    // Segments, submitted in batches, until no path has a ray left; returns the counters.
+    gpu::QueueCountersData recordSegmentsUntilNoRayIsLeft(CommandRecorder& recorder, const PathStages& stages,
+                                                          const gpu::PassConstants& constants);
     void uploadParams();
 
     const VulkanContext& context_;
