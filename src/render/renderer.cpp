@@ -157,6 +157,12 @@ Image Renderer::downloadFilm() {
     return imageOfFilm(film);
 }
 
+std::vector<glm::vec4> Renderer::pathRadiance() const {
+    std::vector<glm::vec4> radiance(paths_->capacity);
+    downloadBuffer(context_, paths_->radiance, std::as_writable_bytes(std::span(radiance)));
+    return radiance;
+}
+
 Image Renderer::imageOfFilm(std::span<const glm::vec4> film) const {
     const uint32_t pixels = camera_.width * camera_.height;
     Image image;

@@ -88,6 +88,11 @@ public:
     double loss();
     GradientEvaluation renderWithGradients();
 
+    // The radiance of the path slots of the last pass, one per path in flight: after a
+    // primal pass each path's L; after an adjoint pass what the replay left of it (L_rem),
+    // zero but for rounding wherever the replay took the primal pass's decisions.
+    std::vector<glm::vec4> pathRadiance() const;
+
 private:
     enum class PassMode {
         Film,    // render and add to the film; each path's radiance stays in its slot
