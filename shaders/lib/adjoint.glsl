@@ -1,4 +1,4 @@
-// Path replay backpropagation (DESIGN.md, "Adjoint"). During the adjoint pass the
+// Path replay backpropagation (docs/design.md, "The adjoint"). During the adjoint pass the
 // radiance buffer holds L_rem, the part of the path's radiance (from the primal replay)
 // not yet passed: every factor of the throughput adds delta * L_rem * d log f to the
 // gradient, and every contribution C is subtracted from L_rem as the replay passes it.

@@ -18,9 +18,8 @@ namespace {
 // One thread per path in a 1D dispatch of at most 65535 workgroups of 64.
 constexpr uint64_t kMaxPathsPerPass = 1u << 21;
 // Paths in flight per pass unless the user says otherwise. A GPU pays a fixed cost per
-// pass (host round trips, barriers between short dispatches): on an H100, 2^21 paths
-// per pass took 15-20 % less time than 2^20 (docs/performance.md). A CPU device gains
-// nothing from wider passes, only memory.
+// pass (host round trips, barriers between short dispatches), which wider passes share
+// (docs/performance.md). A CPU device gains nothing from wider passes, only memory.
 uint64_t defaultPathsPerPass(const VulkanContext& context) {
     return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1u << 20 : kMaxPathsPerPass;
 }
