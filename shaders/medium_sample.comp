@@ -23,10 +23,8 @@ void main() {
     uint medium = P.vertexInfo.v[slot].x;
     vec3 beta = P.beta.v[slot].rgb;
     uint vertexKind = kVertexSurface;
-    if (kAdjoint) {
-        beginReplay(slot);
-        applyPendingFactor(slot);
-    }
+    beginReplay(slot);
+    applyPendingFactor(slot);
     if (medium != kNoMediumIndex) {
         GpuMedium m = P.media.v[medium];
         vec3 sigma_t = sigmaT(m);
@@ -61,9 +59,7 @@ void main() {
     if (maxComponent(beta) <= 0.0f) {
         return;
     }
-    if (kAdjoint) {
-        endReplay(slot);
-    }
+    endReplay(slot);
     P.beta.v[slot].rgb = beta;
     P.vertexInfo.v[slot].y = vertexKind;
     queueShade(slot, vertexKind == kVertexSurface);

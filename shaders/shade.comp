@@ -183,15 +183,11 @@ void main() {
     vec3 direction = P.rayDirection.v[slot].xyz;
     vec4 hit = P.hit.v[slot];
     uvec4 vertex = P.vertexInfo.v[slot];
-    if (kAdjoint) {
-        beginReplay(slot);
-    }
+    beginReplay(slot);
     if (vertex.y == kVertexMedium) {
         shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
     } else {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);
     }
-    if (kAdjoint) {
-        endReplay(slot);
-    }
+    endReplay(slot);
 }

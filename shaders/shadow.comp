@@ -131,9 +131,9 @@ void main() {
     vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), vec3(0.0f),
                                   lengths);
     vec3 contribution = tr * P.shadowContribution.v[slot].rgb;
+    beginReplay(slot);
     if (kAdjoint) {
-        // The replay state as it was at the vertex, before its continuation.
-        beginReplay(slot);
+        // The derivative channels as they were at the vertex, before its continuation.
         adjoint.derivativeChannels = P.shadowVertex.v[slot].z;
     }
     gather(slot, contribution);

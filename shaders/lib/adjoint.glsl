@@ -55,14 +55,19 @@ vec3 pathAdjoint(uint slot) {
 AdjointState adjoint;
 vec3 delta;  // dLoss/dI of the path's pixel (pathAdjoint)
 
-// Adjoint pass: loads the replay state of the path in `slot`; endReplay stores it.
+// The adjoint pass loads the replay state of the path in `slot`, and endReplay stores
+// it; the primal pass has none.
 void beginReplay(uint slot) {
-    adjoint = loadAdjointState(slot);
-    delta = pathAdjoint(slot);
+    if (kAdjoint) {
+        adjoint = loadAdjointState(slot);
+        delta = pathAdjoint(slot);
+    }
 }
 
 void endReplay(uint slot) {
-    storeAdjointState(slot, adjoint);
+    if (kAdjoint) {
+        storeAdjointState(slot, adjoint);
+    }
 }
 
 // Adds g to gradients[first], [first + 1], [first + 2] of this subgroup's copy (copies
@@ -203,7 +208,7 @@ vec3 multiplyByParameter(vec3 beta, vec3 parameter, vec3 rest, uint targetKind, 
 // vertex's next-event contribution, which the shadow stage has subtracted by now.
 void applyPendingFactor(uint slot) {
     uint kind = adjoint.pending & 0xffu;
-    if (kind == kPendingNone) {
+    if (!kAdjoint || kind == kPendingNone) {
         return;
     }
     uint index = adjoint.pending >> 8u;
