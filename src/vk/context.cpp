@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "vk/buffer.h"
 #include "vk/device_features.h"
+#include "vk/device_selection.h"
 
 namespace vkdr {
 namespace {
@@ -146,16 +147,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : validation_(valida
             throw Error(message);
         }
     } else {
-        for (uint32_t i = 0; i < count && chosen < 0; ++i) {
-            bool indexMatches = options.device == std::to_string(i);
-            bool nameMatches = allDevices_[i].name.find(options.device) != std::string::npos;
-            if (indexMatches || nameMatches) {
-                chosen = static_cast<int>(i);
-            }
-        }
-        if (chosen < 0) {
-            throw Error("--device " + options.device + ": no such device (see `vkdiffrender info`)");
-        }
+        chosen = static_cast<int>(deviceNamedBy(options.device, allDevices_));
         const DeviceDescription& d = allDevices_[chosen];
         if (!d.missingFeatures.empty()) {
             std::string message = "--device " + options.device + ": " + d.name + " lacks:";

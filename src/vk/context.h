@@ -7,6 +7,7 @@
 
 #include "vk/allocation_counter.h"
 #include "vk/command_slots.h"
+#include "vk/device_description.h"
 #include "vk/vulkan.h"
 
 namespace vkdr {
@@ -14,18 +15,10 @@ namespace vkdr {
 class Buffer;
 enum class MemoryUse;
 
-struct DeviceDescription {
-    uint32_t index = 0;
-    std::string name;
-    std::string driver;       // driver name and version info
-    std::string type;         // "discrete GPU", "integrated GPU", "CPU", ...
-    std::string apiVersion;
-    std::vector<std::string> missingFeatures;  // empty: usable by vkdiffrender
-};
-
 struct ContextOptions {
     // Empty: prefer a discrete GPU, then integrated, then anything else usable (lavapipe).
-    // Otherwise a device index as listed by `vkdiffrender info`, or part of its name.
+    // Otherwise a device index as listed by `vkdiffrender info`, or part of its name
+    // (deviceNamedBy, vk/device_selection.h).
     std::string device;
 };
 
