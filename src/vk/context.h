@@ -9,6 +9,7 @@
 #include "vk/command_slots.h"
 #include "vk/device_description.h"
 #include "vk/vulkan.h"
+#include "vk/vulkan_handle.h"
 
 namespace vkdr {
 
@@ -36,9 +37,9 @@ public:
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;
 
-    VkInstance instance() const { return instance_; }
+    VkInstance instance() const { return instance_.get(); }
     VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
-    VkDevice device() const { return device_; }
+    VkDevice device() const { return device_.get(); }
     VkQueue queue() const { return queue_; }
     uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
@@ -70,19 +71,21 @@ private:
     void createInstance();
     void createDevice();
 
+    // Members are destroyed in reverse order: what the device made, the device, the
+    // messenger, the instance; a constructor that throws part-way releases the same way.
     ValidationMode validation_;
-    VkInstance instance_ = VK_NULL_HANDLE;
-    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    std::atomic<uint32_t> validationMessages_{0};
+    mutable AllocationCounter allocations_;
+    InstanceHandle instance_;
+    MessengerHandle messenger_;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
-    VkDevice device_ = VK_NULL_HANDLE;
+    DeviceHandle device_;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
     DeviceDescription description_;
     std::vector<DeviceDescription> allDevices_;
-    std::atomic<uint32_t> validationMessages_{0};
-    mutable AllocationCounter allocations_;
     std::unique_ptr<CommandSlots> commandSlots_;
     mutable std::unique_ptr<Buffer> uploadStaging_, readbackStaging_;
     bool memoryBudget_ = false;  // VK_EXT_memory_budget enabled
