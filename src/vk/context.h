@@ -60,8 +60,9 @@ public:
     // Command pools, buffers and fences for CommandRecorder to reuse.
     CommandSlots& commandSlots() const { return *commandSlots_; }
     // A host-visible buffer of at least `bytes` for uploads (MemoryUse::Upload) or
-    // read-backs (MemoryUse::Readback), kept for the next transfer: allocating one took
-    // about 1 ms on an NVIDIA driver. Valid until the next call with the same use.
+    // read-backs (MemoryUse::Readback), kept for the next transfer: on a GPU, allocating
+    // one costs more than a small transfer itself. Valid until the next call with the
+    // same use.
     const Buffer& keptStagingBuffer(MemoryUse use, VkDeviceSize bytes) const;
 
     // Features vkdiffrender needs, in the words `info` prints.
