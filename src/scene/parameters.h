@@ -8,10 +8,10 @@
 
 namespace vkdr {
 
-// The scene's named, overridable (and differentiable) parameters, spelled as in
-// DESIGN.md "Names":
+// The scene's named, overridable (and differentiable) parameters. Their kinds, with
+// each kind's name pattern, channels and valid range, are in scene/parameter_kinds.h:
 //   media/<medium>/sigma_a, media/<medium>/sigma_s   3 floats, >= 0, per scene unit
-//   media/<medium>/g                                 1 float, |g| < 1
+//   media/<medium>/g                                 1 float in [-0.99, 0.99]
 //   materials/<material>/base_color                  3 floats in [0, 1]
 //   materials/<material>/base_color_texture          3 floats in [0, 1] per texel of the
 //                                                    material's base colour texture (linear

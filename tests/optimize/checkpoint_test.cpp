@@ -32,7 +32,7 @@ OptimizationJob fogJob(const std::filesystem::path& directory, uint32_t iteratio
     job.options.iterations = iterations;
     job.options.seed = 7;
     job.options.checkpointEvery = 10;
-    job.identity = {{"spp", "4"}};
+    job.inputs.spp = 4;
     job.firstTarget = Image{4, 3, std::vector<float>(4 * 3 * 3, 0.05f)};
     return job;
 }
@@ -125,7 +125,7 @@ TEST(Checkpoint, ResumeRefusesADifferentRun) {
     job.options.parameters = {"media/fog/sigma_a"};
     expectRefused(job, "parameters");
     job = fogJob(scratch.path(), 40);
-    job.identity["spp"] = "8";
+    job.inputs.spp = 8;
     expectRefused(job, "spp");
 
     std::filesystem::path edited = scratch / "edited.gltf";
