@@ -124,6 +124,17 @@ TEST(LoadSceneErrors, AnisotropyOfOneOrMore) {
                     {"materials[0].extensions.VKDR_participating_media.g", "must be in [-0.99, 0.99], got 1.2"});
 }
 
+// The loader holds g to the range --set and the optimiser use: its ends load, beyond does not.
+TEST(LoadSceneErrors, AnisotropyBeyondTheParameterRange) {
+    TemporaryDirectory directory;
+    for (double g : {-0.99, 0.99}) {
+        Scene scene = loadScene(boxWithMaterial(mediumMaterial({{"g", g}})).writeGltf(directory / "end.gltf")).scene;
+        EXPECT_EQ(scene.media.at(0).g, float(g));
+    }
+    expectLoadError(boxWithMaterial(mediumMaterial({{"g", 0.995}})).writeGltf(directory / "g.gltf"),
+                    {"materials[0].extensions.VKDR_participating_media.g", "must be in [-0.99, 0.99], got 0.995"});
+}
+
 TEST(LoadSceneErrors, NumbersBeyondFloatRange) {
     TemporaryDirectory directory;
     GltfBuilder builder = boxWithMaterial(mediumMaterial({{"sigma_s", 12345.0}}));
