@@ -44,8 +44,9 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
     const ParsedParameterName parsed = *parseParameterName(name);
     const ParameterDescription& description = *parsed.description;
     GradientSlot slot{name, description.kind, nullptr};
-    const size_t owner = description.owner == ParameterOwner::Medium ? indexByName(scene.media, parsed.owner, name)
-                                                                      : indexByName(scene.materials, parsed.owner, name);
+    const size_t owner = description.owner == ParameterOwner::Medium
+                             ? indexByName(scene.media, parsed.owner, name)
+                             : indexByName(scene.materials, parsed.owner, name);
     switch (description.accumulator) {
     case GradientAccumulator::Medium:
         slot.accumulator = &SceneGradients::media;

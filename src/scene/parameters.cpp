@@ -68,7 +68,9 @@ auto findStorage(SceneType& scene, std::string_view name) {
             storage = packedStorage<Float>(glm::value_ptr(material.baseColor), kind);
         } else if (kind == ParameterKind::BaseColorTexture && material.baseColorTexture >= 0) {
             auto& texels = scene.textures[size_t(material.baseColorTexture)].texels;
-            storage = ParameterStorage<Float>{glm::value_ptr(texels.front()), 3 * texels.size(), parsed->description, 4};
+            const size_t size = parsed->description->channels * texels.size();
+            storage = ParameterStorage<Float>{glm::value_ptr(texels.front()), size, parsed->description,
+                                              size_t(glm::vec4::length())};
         } else if (kind == ParameterKind::Emission) {
             storage = packedStorage<Float>(glm::value_ptr(material.emission), kind);
         }
