@@ -10,7 +10,14 @@ namespace vkdr {
 // Every kind of named scene parameter (scene/parameters.h), described once: setting
 // values, the optimiser's bounds, grad --check's steps and the gradient read-back all
 // follow from this table.
-enum class ParameterKind { SigmaA, SigmaS, G, BaseColor, BaseColorTexture, Emission };
+enum class ParameterKind {
+    SigmaA,            // media/<medium>/sigma_a: absorption, RGB, per scene unit, >= 0
+    SigmaS,            // media/<medium>/sigma_s: scattering, RGB, per scene unit, >= 0
+    G,                 // media/<medium>/g: Henyey-Greenstein anisotropy in [-0.99, 0.99]
+    BaseColor,         // materials/<material>/base_color: RGB albedo in [0, 1]
+    BaseColorTexture,  // materials/<material>/base_color_texture: the same, per texel
+    Emission,          // lights/<material>/emission: RGB radiance, >= 0
+};
 
 // What the middle of a parameter's name names.
 enum class ParameterOwner { Medium, Material };
