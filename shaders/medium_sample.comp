@@ -11,6 +11,36 @@
 #include "lib/medium.glsl"
 #include "lib/adjoint.glsl"
 
+// Samples a free-flight distance in `medium` along the segment and multiplies beta by
+// its weight; returns the kind of the segment's vertex. The adjoint pass adds
+// delta * L_rem * d log(weight) to the medium's sigma gradients.
+uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, inout vec3 beta) {
+    GpuMedium m = P.media.v[medium];
+    vec3 sigma_t = sigmaT(m);
+    float t = sampleFreeFlight(sigma_t, segmentRandom(loadPathInfo(slot), kDimFreeFlight).xy);
+    if (t < tHit) {
+        // Medium vertex: weight sigma_s T(t) / p(t), with the pdf p held fixed.
+        float pdf = freeFlightPdf(sigma_t, t);
+        vec3 perUnitScattering = pdf > 0.0f ? transmittance(sigma_t, t) / pdf : vec3(0.0f);
+        if (kAdjoint) {
+            addSigmaGradient(medium, factorGradient(slot, vec3(-t)),
+                             factorGradient(slot, logDerivativeOfLinear(m.sigma_s) - t));
+        }
+        beta = multiplyByParameter(beta, m.sigma_s, perUnitScattering, kTargetMediumScattering, medium);
+        P.hit.v[slot].x = t;
+        return kVertexMedium;
+    }
+    // Surface vertex (or escape): weight T(t_hit) / P(t > t_hit).
+    float survival = freeFlightSurvival(sigma_t, tHit);
+    beta *= survival > 0.0f ? transmittance(sigma_t, tHit) / survival : vec3(0.0f);
+    // An escaped ray's L_rem is zero wherever T(infinity) is; where sigma_t = 0 the
+    // derivative is undefined and left out.
+    if (kAdjoint && !escaped) {
+        addSigmaTGradient(medium, factorGradient(slot, vec3(-tHit)));
+    }
+    return kVertexSurface;
+}
+
 void main() {
     uint index = gl_GlobalInvocationID.x;
     if (index >= queueSize(pass.currentRays)) {
@@ -22,63 +52,20 @@ void main() {
     float tHit = escaped ? kFar : hit.x;
     uint medium = P.vertexInfo.v[slot].x;
     vec3 beta = P.beta.v[slot].rgb;
+    beginReplay(slot);
+    applyPendingFactor(slot);
     uint vertexKind = kVertexSurface;
-    AdjointState adjoint;
-    vec3 delta;
-    if (kAdjoint) {
-        adjoint = loadAdjointState(slot);
-        delta = pathAdjoint(slot);
-        applyPendingFactor(slot, adjoint, delta);
-    }
     if (medium != kNoMediumIndex) {
-        GpuMedium m = P.media.v[medium];
-        vec3 sigma_t = sigmaT(m);
-        PathInfo info = loadPathInfo(slot);
-        float t = sampleFreeFlight(sigma_t, segmentRandom(info, kDimFreeFlight).xy);
-        if (t < tHit) {
-            // Medium vertex: weight sigma_s T(t) / p(t), with the pdf p held fixed.
-            float pdf = freeFlightPdf(sigma_t, t);
-            vec3 perUnitScattering = pdf > 0.0f ? transmittance(sigma_t, t) / pdf : vec3(0.0f);
-            vec3 betaBefore = beta;
-            beta *= m.sigma_s * perUnitScattering;
-            if (kAdjoint) {
-                vec3 dLogScattering = vec3(m.sigma_s.x > 0.0f ? 1.0f / m.sigma_s.x : 0.0f,
-                                           m.sigma_s.y > 0.0f ? 1.0f / m.sigma_s.y : 0.0f,
-                                           m.sigma_s.z > 0.0f ? 1.0f / m.sigma_s.z : 0.0f) - t;
-                addSigmaGradient(medium, factorGradient(slot, adjoint, delta, vec3(-t)),
-                                 factorGradient(slot, adjoint, delta, dLogScattering));
-                beta = enterDerivativeMode(adjoint, beta, m.sigma_s, betaBefore * perUnitScattering,
-                                           kTargetMediumScattering, medium);
-            }
-            vertexKind = kVertexMedium;
-            P.hit.v[slot].x = t;
-        } else {
-            // Surface vertex (or escape): weight T(t_hit) / P(t > t_hit).
-            float survival = freeFlightSurvival(sigma_t, tHit);
-            beta *= survival > 0.0f ? transmittance(sigma_t, tHit) / survival : vec3(0.0f);
-            // An escaped ray's L_rem is zero wherever T(infinity) is; where sigma_t = 0
-            // the derivative is undefined and left out.
-            if (kAdjoint && !escaped) {
-                vec3 g = factorGradient(slot, adjoint, delta, vec3(-tHit));
-                addSigmaGradient(medium, g, g);
-            }
-        }
+        vertexKind = sampleFreeFlightVertex(slot, medium, tHit, escaped, beta);
     }
     if (vertexKind == kVertexSurface && escaped) {
-        vec3 contribution = beta * P.background.rgb;
-        if (kAdjoint) {
-            passContribution(slot, adjoint, delta, contribution);
-        } else {
-            addRadiance(slot, contribution);
-        }
+        gather(slot, beta * P.background.rgb);
         return;
     }
     if (maxComponent(beta) <= 0.0f) {
         return;
     }
-    if (kAdjoint) {
-        storeAdjointState(slot, adjoint);
-    }
+    endReplay(slot);
     P.beta.v[slot].rgb = beta;
     P.vertexInfo.v[slot].y = vertexKind;
     queueShade(slot, vertexKind == kVertexSurface);

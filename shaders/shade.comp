@@ -14,10 +14,6 @@
 #include "lib/phase_hg.glsl"
 #include "lib/adjoint.glsl"
 
-// Adjoint pass only: the path's replay state and its pixel's dLoss/dI.
-AdjointState adjoint;
-vec3 delta;
-
 uint nextRayQueue() {
     return pass.currentRays == kQueueRays0 ? kQueueRays1 : kQueueRays0;
 }
@@ -38,7 +34,7 @@ void continuePath(uint slot, PathInfo info, vec3 origin, vec3 direction, uint me
 // Russian roulette after the first scattering vertex, as in pbrt: survive with
 // probability max(beta), reweighting the survivors. Returns false to end the path.
 bool survivesRoulette(inout vec3 beta, uint depth, float u) {
-    vec3 decisive = kAdjoint ? rouletteThroughput(adjoint, beta) : beta;
+    vec3 decisive = rouletteThroughput(beta);
     float q = max(0.0f, 1.0f - maxComponent(decisive));
     if (depth > 1u && q > 0.0f) {
         if (u < q) {
@@ -114,11 +110,9 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
             float pdfArea = P.triangleInfo.v[triangle].lightPmf / sp.area;
             weight = powerHeuristic(mis.w, lightPdfSolidAngle(pdfArea, mis.xyz, sp.position, sp.normal));
         }
+        gather(slot, beta * le * weight);
         if (kAdjoint) {
-            passContribution(slot, adjoint, delta, beta * le * weight);
             addEmissionGradient(sp.material, delta * beta * lePerUnit * weight * normalMask(adjoint));
-        } else {
-            addRadiance(slot, beta * le * weight);
         }
     }
     if (info.depth == P.maxDepth) {
@@ -142,14 +136,8 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     }
     vec4 u = segmentRandom(info, kDimScatter);
     vec3 wi = frameFromNormal(n) * sampleCosineHemisphere(u.xy);
-    vec3 betaBefore = beta;
-    beta *= albedo;
-    if (kAdjoint) {
-        setPendingFactor(slot, adjoint, kPendingBaseColor, sp.material,
-                         vec3(albedo.x > 0.0f ? 1.0f / albedo.x : 0.0f, albedo.y > 0.0f ? 1.0f / albedo.y : 0.0f,
-                              albedo.z > 0.0f ? 1.0f / albedo.z : 0.0f));
-        beta = enterDerivativeMode(adjoint, beta, albedo, betaBefore * texture, kTargetBaseColor, sp.material);
-    }
+    setPendingFactor(slot, kPendingBaseColor, sp.material, logDerivativeOfLinear(albedo));
+    beta = multiplyByParameter(beta, material.baseColor.rgb, texture, kTargetBaseColor, sp.material);
     if (!survivesRoulette(beta, info.depth, u.z)) {
         return;
     }
@@ -175,9 +163,7 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
     vec4 u = segmentRandom(info, kDimScatter);
     vec3 wi = sampleHg(direction, g, u.xy);
     float mu = dot(direction, wi);
-    if (kAdjoint) {
-        setPendingFactor(slot, adjoint, kPendingPhaseG, medium, vec3(hgPhaseDLogG(mu, g)));
-    }
+    setPendingFactor(slot, kPendingPhaseG, medium, vec3(hgPhaseDLogG(mu, g)));
     if (!survivesRoulette(beta, info.depth, u.z)) {
         return;
     }
@@ -197,16 +183,11 @@ void main() {
     vec3 direction = P.rayDirection.v[slot].xyz;
     vec4 hit = P.hit.v[slot];
     uvec4 vertex = P.vertexInfo.v[slot];
-    if (kAdjoint) {
-        adjoint = loadAdjointState(slot);
-        delta = pathAdjoint(slot);
-    }
+    beginReplay(slot);
     if (vertex.y == kVertexMedium) {
         shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
     } else {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);
     }
-    if (kAdjoint) {
-        storeAdjointState(slot, adjoint);
-    }
+    endReplay(slot);
 }

@@ -1,4 +1,4 @@
-// Path replay backpropagation (DESIGN.md, "Adjoint"). During the adjoint pass the
+// Path replay backpropagation (docs/design.md, "The adjoint"). During the adjoint pass the
 // radiance buffer holds L_rem, the part of the path's radiance (from the primal replay)
 // not yet passed: every factor of the throughput adds delta * L_rem * d log f to the
 // gradient, and every contribution C is subtracted from L_rem as the replay passes it.
@@ -51,6 +51,25 @@ vec3 pathAdjoint(uint slot) {
     return P.imageAdjoint.v[info.x + (info.y < P.splitSample ? P.imagePixels : 0u)].rgb;
 }
 
+// The adjoint pass's view of the path an invocation follows; unused in the primal pass.
+AdjointState adjoint;
+vec3 delta;  // dLoss/dI of the path's pixel (pathAdjoint)
+
+// The adjoint pass loads the replay state of the path in `slot`, and endReplay stores
+// it; the primal pass has none.
+void beginReplay(uint slot) {
+    if (kAdjoint) {
+        adjoint = loadAdjointState(slot);
+        delta = pathAdjoint(slot);
+    }
+}
+
+void endReplay(uint slot) {
+    if (kAdjoint) {
+        storeAdjointState(slot, adjoint);
+    }
+}
+
 // Adds g to gradients[first], [first + 1], [first + 2] of this subgroup's copy (copies
 // `copyStride` floats apart; kGradientCopies in device_types.h). Most lanes of a
 // subgroup add to the same few parameters, and float atomics on one address serialise,
@@ -77,7 +96,7 @@ void addGradient(FloatBuffer gradients, uint copyStride, uint first, vec3 g) {
 }
 
 void addMediumGradient(uint medium, uint firstComponent, vec3 g) {
-    addGradient(P.mediumGradients, P.mediumGradientCopyStride, medium * kMediumGradientStride + firstComponent, g);
+    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent, g);
 }
 
 void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
@@ -85,23 +104,28 @@ void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
     addMediumGradient(medium, kMediumGradientSigmaS, dSigmaS);
 }
 
+// A gradient with respect to sigma_t = sigma_a + sigma_s, which both share.
+void addSigmaTGradient(uint medium, vec3 dSigmaT) {
+    addSigmaGradient(medium, dSigmaT, dSigmaT);
+}
+
 void addPhaseGGradient(uint medium, float g) {
     addMediumGradient(medium, kMediumGradientG, vec3(g, 0.0f, 0.0f));
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
-    addGradient(P.baseColorGradients, P.materialGradientCopyStride, material * 4u, g);
+    addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * 4u, g);
 }
 
 void addEmissionGradient(uint material, vec3 g) {
-    addGradient(P.emissionGradients, P.materialGradientCopyStride, material * 4u, g);
+    addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * 4u, g);
 }
 
 // g = dLoss/d(texture value at uv), spread over the texels the lookup blends.
 void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
     BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
     for (int corner = 0; corner < 4; ++corner) {
-        addGradient(P.texelGradients, 0u, footprint.texel[corner] * 4u, g * footprint.weight[corner]);
+        addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * 4u, g * footprint.weight[corner]);
     }
 }
 
@@ -115,73 +139,104 @@ void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
     }
 }
 
-void addTargetGradient(AdjointState s, vec3 g) {
-    if (s.targetKind == kTargetMediumScattering) {
-        addMediumGradient(s.targetIndex, kMediumGradientSigmaS, g);
-    } else if (s.targetKind == kTargetBaseColor) {
-        addBaseColorGradient(s.targetIndex, g);
+// g = the gradient gathered by a path's derivative channels, for the parameter they follow.
+void addTargetGradient(vec3 g) {
+    if (adjoint.targetKind == kTargetMediumScattering) {
+        addMediumGradient(adjoint.targetIndex, kMediumGradientSigmaS, g);
+    } else if (adjoint.targetKind == kTargetBaseColor) {
+        addBaseColorGradient(adjoint.targetIndex, g);
     }
 }
 
-// The replay passes a contribution C: normal channels leave it behind in L_rem,
-// derivative channels add it to their parameter's gradient.
-void passContribution(uint slot, AdjointState s, vec3 delta, vec3 c) {
-    P.radiance.v[slot].rgb -= c * normalMask(s);
-    addTargetGradient(s, delta * c * derivativeMask(s));
+// The path gathers a contribution C. The primal pass adds it to the path's radiance.
+// The replay passes it: normal channels leave it behind in L_rem, derivative channels
+// add it to their parameter's gradient.
+void gather(uint slot, vec3 c) {
+    if (kAdjoint) {
+        P.radiance.v[slot].rgb -= c * normalMask(adjoint);
+        addTargetGradient(delta * c * derivativeMask(adjoint));
+    } else {
+        P.radiance.v[slot].rgb += c;
+    }
 }
 
 // delta * L_rem * d log f / d theta on the normal channels, for a factor f that
 // multiplies everything the path gathers from here on.
-vec3 factorGradient(uint slot, AdjointState s, vec3 delta, vec3 dLogF) {
-    return delta * P.radiance.v[slot].rgb * dLogF * normalMask(s);
+vec3 factorGradient(uint slot, vec3 dLogF) {
+    return delta * P.radiance.v[slot].rgb * dLogF * normalMask(adjoint);
+}
+
+// d log f / d f, per channel, for the log-derivative of a factor linear in f; 0 where f
+// is 0, whose gradient derivative mode finds instead.
+vec3 logDerivativeOfLinear(vec3 f) {
+    return vec3(f.x > 0.0f ? 1.0f / f.x : 0.0f, f.y > 0.0f ? 1.0f / f.y : 0.0f, f.z > 0.0f ? 1.0f / f.z : 0.0f);
 }
 
 // Channels where `factor` is zero and the path is still in normal mode switch to
 // derivative mode for (kind, index), carrying `derivative` (the factor's derivative,
 // times the throughput before it) instead of zero. Returns the new throughput.
-vec3 enterDerivativeMode(inout AdjointState s, vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index) {
+vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index) {
     if ((P.derivativeTargets & (1u << kind)) == 0u) {
         return betaAfter;  // no gradient of this kind is wanted: the path ends as in the primal pass
     }
-    bool sameTarget = s.targetKind == kTargetNone || (s.targetKind == kind && s.targetIndex == index);
+    bool sameTarget = adjoint.targetKind == kTargetNone ||
+                      (adjoint.targetKind == kind && adjoint.targetIndex == index);
     for (uint c = 0u; c < 3u; ++c) {
-        bool normal = (s.derivativeChannels & (1u << c)) == 0u;
+        bool normal = (adjoint.derivativeChannels & (1u << c)) == 0u;
         if (factor[c] == 0.0f && normal && sameTarget && derivative[c] != 0.0f) {
-            s.derivativeChannels |= 1u << c;
-            s.targetKind = kind;
-            s.targetIndex = index;
+            adjoint.derivativeChannels |= 1u << c;
+            adjoint.targetKind = kind;
+            adjoint.targetIndex = index;
             betaAfter[c] = derivative[c];
         }
     }
     return betaAfter;
 }
 
+// The throughput after a factor parameter * rest that is linear in a differentiable
+// parameter (a base colour, sigma_s) of kind `targetKind`. Where the parameter is zero
+// the adjoint pass goes on in derivative mode.
+vec3 multiplyByParameter(vec3 beta, vec3 parameter, vec3 rest, uint targetKind, uint index) {
+    vec3 after = beta * (parameter * rest);
+    if (kAdjoint) {
+        after = enterDerivativeMode(after, parameter, beta * rest, targetKind, index);
+    }
+    return after;
+}
+
 // The previous vertex's continuation factor: its gradient needs L_rem after that
 // vertex's next-event contribution, which the shadow stage has subtracted by now.
-void applyPendingFactor(uint slot, inout AdjointState s, vec3 delta) {
-    uint kind = s.pending & 0xffu;
-    if (kind == kPendingNone) {
+void applyPendingFactor(uint slot) {
+    uint kind = adjoint.pending & 0xffu;
+    if (!kAdjoint || kind == kPendingNone) {
         return;
     }
-    uint index = s.pending >> 8u;
-    vec3 g = factorGradient(slot, s, delta, P.pendingFactor.v[slot].rgb);
+    uint index = adjoint.pending >> 8u;
+    vec3 g = factorGradient(slot, P.pendingFactor.v[slot].rgb);
     if (kind == kPendingBaseColor) {
         addAlbedoGradient(index, P.vertexUv.v[slot].xy, g);
     } else {
         addPhaseGGradient(index, g.x + g.y + g.z);
     }
-    s.pending = kPendingNone;
+    adjoint.pending = kPendingNone;
 }
 
-void setPendingFactor(uint slot, inout AdjointState s, uint kind, uint index, vec3 dLogF) {
-    s.pending = kind | (index << 8u);
-    P.pendingFactor.v[slot] = vec4(dLogF, 0.0f);
+// Adjoint pass: the continuation factor of this vertex, whose gradient waits for the
+// next segment (applyPendingFactor).
+void setPendingFactor(uint slot, uint kind, uint index, vec3 dLogF) {
+    if (kAdjoint) {
+        adjoint.pending = kind | (index << 8u);
+        P.pendingFactor.v[slot] = vec4(dLogF, 0.0f);
+    }
 }
 
-// Russian roulette looks at the channels the primal pass still carries, so the replay
-// takes the same decisions; derivative channels only ride along.
-vec3 rouletteThroughput(AdjointState s, vec3 beta) {
-    vec3 primal = beta * normalMask(s);
+// What Russian roulette looks at: in the replay, the channels the primal pass still
+// carries, so that it takes the same decisions; derivative channels only ride along.
+vec3 rouletteThroughput(vec3 beta) {
+    if (!kAdjoint) {
+        return beta;
+    }
+    vec3 primal = beta * normalMask(adjoint);
     return maxComponent(primal) > 0.0f ? primal : beta;
 }
 

@@ -14,6 +14,12 @@ using vec3 = glm::vec3;
 using uvec4 = glm::uvec4;
 using uint = uint32_t;
 #define VKDR_BUFFER(Type) uint64_t
+// The host's stand-ins for the GLSL buffer reference types below: the bytes of one
+// element, which size the per-path arrays.
+struct Vec4Buffer { static constexpr uint32_t kElementBytes = 16; };
+struct UVec4Buffer { static constexpr uint32_t kElementBytes = 16; };
+struct UintBuffer { static constexpr uint32_t kElementBytes = 4; };
+struct FloatBuffer { static constexpr uint32_t kElementBytes = 4; };
 #else
 #define VKDR_BUFFER(Type) Type
 #endif
@@ -56,12 +62,49 @@ const uint kMediumGradientG = 6u;       // one float
 const uint kMediumGradientStride = 8u;
 
 // The medium, base colour and emission gradients have kGradientCopies copies, a
-// RenderParams...CopyStride apart: a subgroup adds to the copy of its index modulo
-// kGradientCopies, so that fewer subgroups contend for one address (float atomics on
-// one address serialise on a GPU), and the host sums the copies. Texel gradients
-// spread over the texels already and have one copy.
+// RenderParams.<accumulator>CopyStride apart: a subgroup adds to the copy of its index
+// modulo kGradientCopies, so that fewer subgroups contend for one address (float atomics
+// on one address serialise on a GPU), and the host sums the copies. Texel gradients
+// spread over the texels already and have one copy (a copy stride of 0).
 const uint kGradientCopies = 32u;
 const uint kGradientCopyAlignment = 32u;  // floats: copies start 128 bytes apart
+
+// Per-path state, one element per path slot, each quantity in an array of its own
+// (structure of arrays): X(name, buffer type), then what it holds. This line is the
+// whole declaration: the RenderParams address, the host's Buffer in PathBuffers, its
+// allocation, its share of the bytes per path and its upload follow from it
+// (src/render/path_buffers.h). Arrays of every render:
+#define VKDR_PATH_ARRAYS(X) \
+    X(rayOrigin, Vec4Buffer)          /* xyz; w: unused */ \
+    X(rayDirection, Vec4Buffer)       /* xyz, unit length */ \
+    X(beta, Vec4Buffer)               /* rgb path throughput / pdf */ \
+    X(radiance, Vec4Buffer)           /* rgb radiance gathered so far; L_rem in the adjoint pass */ \
+    X(misVertex, Vec4Buffer)          /* xyz: last scattering vertex; w: its sampling pdf (0: no MIS) */ \
+    X(hit, Vec4Buffer)                /* x: t, y: b1, z: b2, w: triangle (uint bits) or kNoHit */ \
+    X(pathInfo, UVec4Buffer)          /* x: pixel, y: sample, z: depth, w: segment */ \
+    X(vertexInfo, UVec4Buffer)        /* x: current medium, y: vertex kind */ \
+    X(shadowOrigin, Vec4Buffer)       /* xyz; w: distance to the light point */ \
+    X(shadowDirection, Vec4Buffer)    /* xyz; w: medium at the origin (uint bits) */ \
+    X(shadowContribution, Vec4Buffer) /* rgb: unoccluded next-event contribution */
+
+// Arrays of the adjoint pass only (AdjointBuffers), allocated when gradients are enabled.
+#define VKDR_ADJOINT_PATH_ARRAYS(X) \
+    X(pendingFactor, Vec4Buffer)          /* rgb d log f / d theta of the last scattering factor */ \
+    X(adjointState, UVec4Buffer)          /* see AdjointState in adjoint.glsl */ \
+    X(vertexUv, Vec4Buffer)               /* xy: texture coordinates of the last surface vertex */ \
+    X(shadowScatterGradient, Vec4Buffer)  /* rgb dC/dalbedo (surface); w: d log phase / dg (medium) */ \
+    X(shadowEmissionGradient, Vec4Buffer) /* rgb dC/demission; w: light material (uint bits) */ \
+    X(shadowVertex, UVec4Buffer)          /* x: vertex kind, y: material or medium index, z: derivative channels */
+
+// The adjoint pass's gradient accumulators: X(name, SceneGradients field (host), floats
+// per item, copies, items (AdjointBuffers' count of them)). Each line declares the
+// RenderParams address and copy stride, the host's GradientCopies, its clearing, its
+// read-back and the sum of its copies into SceneGradients.
+#define VKDR_GRADIENT_ACCUMULATORS(X) \
+    X(mediumGradients, media, kMediumGradientStride, kGradientCopies, mediumCount) \
+    X(baseColorGradients, baseColors, 4u, kGradientCopies, materialCount) /* rgb */ \
+    X(emissionGradients, emissions, 4u, kGradientCopies, materialCount)   /* rgb */ \
+    X(texelGradients, texels, 4u, 1u, texelCount) /* rgb, in the layout of RenderParams.texels */
 
 // Queues: indices into QueueCounters.counts and .dispatch.
 const uint kQueueRays0 = 0u;   // rays to trace this segment (double-buffered with kQueueRays1)
@@ -152,18 +195,11 @@ struct RenderParams {
     VKDR_BUFFER(Vec4Buffer) texels;                 // linear RGBA
     VKDR_BUFFER(UintBuffer) lightTriangles;         // emissive triangles (BVH-order index)
     VKDR_BUFFER(FloatBuffer) lightCdf;              // lightCount + 1 entries, 0 .. 1
-    // Path state, one entry per path slot
-    VKDR_BUFFER(Vec4Buffer) rayOrigin;              // xyz; w: unused
-    VKDR_BUFFER(Vec4Buffer) rayDirection;           // xyz, unit length
-    VKDR_BUFFER(Vec4Buffer) beta;                   // rgb path throughput / pdf
-    VKDR_BUFFER(Vec4Buffer) radiance;               // rgb radiance gathered so far
-    VKDR_BUFFER(Vec4Buffer) misVertex;              // xyz: last scattering vertex; w: its sampling pdf (0: no MIS)
-    VKDR_BUFFER(Vec4Buffer) hit;                    // x: t, y: b1, z: b2, w: triangle (uint bits) or kNoHit
-    VKDR_BUFFER(UVec4Buffer) pathInfo;              // x: pixel, y: sample, z: depth, w: segment
-    VKDR_BUFFER(UVec4Buffer) vertexInfo;            // x: current medium, y: vertex kind
-    VKDR_BUFFER(Vec4Buffer) shadowOrigin;           // xyz; w: distance to the light point
-    VKDR_BUFFER(Vec4Buffer) shadowDirection;        // xyz; w: medium at the origin (uint bits)
-    VKDR_BUFFER(Vec4Buffer) shadowContribution;     // rgb: unoccluded next-event contribution
+    // Path state
+#define VKDR_DECLARE_PATH_ARRAY(name, Type) VKDR_BUFFER(Type) name;
+    VKDR_PATH_ARRAYS(VKDR_DECLARE_PATH_ARRAY)
+    VKDR_ADJOINT_PATH_ARRAYS(VKDR_DECLARE_PATH_ARRAY)
+#undef VKDR_DECLARE_PATH_ARRAY
     // Queues
     VKDR_BUFFER(QueueCounters) queueCounters;
     VKDR_BUFFER(UintBuffer) queueItems;             // kQueueCount arrays of pathCapacity slots
@@ -175,16 +211,9 @@ struct RenderParams {
     VKDR_BUFFER(FloatBuffer) lossSum;               // [0]: sum of the per-pixel losses
     VKDR_BUFFER(Vec4Buffer) filmBaseline;           // per pixel: a copy of the film, subtracted by the loss stage on
                                                     // request; with splitSample > 0, the samples below it
-    VKDR_BUFFER(FloatBuffer) mediumGradients;       // kGradientCopies copies of kMediumGradientStride per medium
-    VKDR_BUFFER(FloatBuffer) baseColorGradients;    // kGradientCopies copies of 4 per material: rgb
-    VKDR_BUFFER(FloatBuffer) emissionGradients;     // kGradientCopies copies of 4 per material: rgb
-    VKDR_BUFFER(FloatBuffer) texelGradients;        // 4 per texel (the layout of texels): rgb
-    VKDR_BUFFER(Vec4Buffer) pendingFactor;          // per slot: rgb d log f / d theta of the last scattering factor
-    VKDR_BUFFER(UVec4Buffer) adjointState;          // per slot, see AdjointState in adjoint.glsl
-    VKDR_BUFFER(Vec4Buffer) vertexUv;               // per slot: xy: texture coordinates of the last surface vertex
-    VKDR_BUFFER(Vec4Buffer) shadowScatterGradient;  // per slot: rgb dC/dalbedo (surface); w: d log phase / dg (medium)
-    VKDR_BUFFER(Vec4Buffer) shadowEmissionGradient; // per slot: rgb dC/demission; w: light material (uint bits)
-    VKDR_BUFFER(UVec4Buffer) shadowVertex;          // per slot: x: vertex kind, y: material or medium index
+#define VKDR_DECLARE_ACCUMULATOR(name, field, floats, copies, items) VKDR_BUFFER(FloatBuffer) name;
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_ACCUMULATOR)
+#undef VKDR_DECLARE_ACCUMULATOR
     uint pathCapacity;
     uint lightCount;
     uint maxDepth;
@@ -195,11 +224,12 @@ struct RenderParams {
     float filmScale;                                // 1 / spp: film sum to pixel value
     float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels
     uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
-    uint mediumGradientCopyStride;                  // floats from one copy of mediumGradients to the next
-    uint materialGradientCopyStride;                // the same for baseColorGradients and emissionGradients
     uint splitSample;                               // > 0: film and loss keep the samples below it apart
     uint imagePixels;                               // width * height
-    uint pad0, pad1;
+    // Floats from one copy of each gradient accumulator to the next (0: one copy).
+#define VKDR_DECLARE_COPY_STRIDE(name, field, floats, copies, items) uint name##CopyStride;
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_COPY_STRIDE)
+#undef VKDR_DECLARE_COPY_STRIDE
 };
 
 // Per dispatch values, in push constants next to the RenderParams address.

@@ -1,5 +1,5 @@
 // Homogeneous media: transmittance and free-flight sampling with spectral MIS over
-// the RGB channels (DESIGN.md, "Forward estimator").
+// the RGB channels (docs/design.md, "Free flight with spectral MIS").
 #ifndef VKDR_MEDIUM_GLSL
 #define VKDR_MEDIUM_GLSL
 #include "constants.glsl"

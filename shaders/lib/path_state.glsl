@@ -29,8 +29,4 @@ void storeRay(uint slot, vec3 origin, vec3 direction) {
     P.rayDirection.v[slot] = vec4(direction, 0.0f);
 }
 
-void addRadiance(uint slot, vec3 contribution) {
-    P.radiance.v[slot].rgb += contribution;
-}
-
 #endif

@@ -23,7 +23,7 @@ layout(local_size_x = kWorkgroupSize) in;
 
 // One source, two pipelines per stage: the primal pass renders, the adjoint pass
 // replays the same paths and accumulates parameter gradients.
-layout(constant_id = 1) const bool kAdjoint = false;
+layout(constant_id = 0) const bool kAdjoint = false;
 
 #define P params.p
 

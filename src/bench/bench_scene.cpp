@@ -18,9 +18,8 @@ constexpr const char* kRoomPrefix = "room_";
 // Thin enough that most paths reach a surface, thick enough that every medium stage works.
 constexpr Fog kRoomFog{0.01f, 0.05f};
 constexpr uint64_t kMaxRoomTriangles = uint64_t(1) << 30;
-// Peaks per triangle while a room is generated, loaded, built and rendered, with a
-// third as margin: bench on room_1m with lavapipe measured 146 bytes of device memory
-// and 522 of host memory, device memory included (docs/performance.md).
+// Peaks per triangle while a room is generated, loaded, built and rendered, with about
+// a third as margin over what bench measures on room_1m (docs/performance.md).
 constexpr uint64_t kHostBytesPerTriangle = 500;
 constexpr uint64_t kDeviceBytesPerTriangle = 200;
 

@@ -18,16 +18,6 @@ namespace {
 constexpr uint32_t kTargetSeed = 1;
 constexpr uint32_t kImageSeed = 2;
 
-// Pipeline names (render/stage_pipelines.cpp) to stage names: the adjoint variants
-// count as their stage, and "intersect (shadow)" is the shadow stage.
-std::string stageOf(std::string pipeline) {
-    const std::string adjoint = " (adjoint)";
-    if (pipeline.ends_with(adjoint)) {
-        pipeline.resize(pipeline.size() - adjoint.size());
-    }
-    return pipeline == "intersect (shadow)" ? "shadow" : pipeline;
-}
-
 double sum(const std::map<std::string, double>& times) {
     double total = 0.0;
     for (const auto& [name, ms] : times) {
@@ -49,10 +39,10 @@ StageTimes stageTimes(const DispatchTimer::Milliseconds& timed) {
         return it == timed.end() ? none : it->second;
     };
     for (const auto& [pipeline, ms] : scope("forward")) {
-        out.stages[stageOf(pipeline)] += ms;
+        out.stages[pipeline] += ms;
     }
     for (const auto& [pipeline, ms] : scope("adjoint")) {
-        out.adjointStages[stageOf(pipeline)] += ms;
+        out.adjointStages[pipeline] += ms;
     }
     out.stages["loss"] = sum(scope("loss"));
     out.stages["replay"] = sum(scope("replay"));

@@ -9,7 +9,9 @@ CommandAction addInfoCommand(CLI::App& app) {
     CLI::App* command = app.add_subcommand("info", "List the Vulkan devices, the one vkdiffrender would use, "
                                                    "and the device features it needs");
     auto options = std::make_shared<ContextOptions>();
-    command->add_option("--device", options->device, "Device index or part of its name (default: best available)");
+    command->add_option("--device", options->device,
+                        "Device index as listed here, or part of its name; digits are always an index "
+                        "(default: best available)");
     return [command, options]() {
         if (!command->parsed()) {
             return -1;

@@ -18,8 +18,11 @@ static_assert(offsetof(QueueCountersData, dispatch) == 16);
 static_assert(sizeof(QueueCountersData) == 96);
 static_assert(offsetof(RenderParams, background) == 80);
 static_assert(offsetof(RenderParams, triangleVertices) == 96);
-static_assert(offsetof(RenderParams, pathCapacity) == 96 + 38 * 8);
-static_assert(sizeof(RenderParams) % 16 == 0);
+// Device addresses, 8 bytes each, then the scalars: no padding between them on either side.
+#define VKDR_COUNT(...) +1
+constexpr size_t kAddresses = 10 + 3 + 4 + 0 VKDR_PATH_ARRAYS(VKDR_COUNT) VKDR_ADJOINT_PATH_ARRAYS(VKDR_COUNT)
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_COUNT);
+static_assert(offsetof(RenderParams, pathCapacity) == offsetof(RenderParams, triangleVertices) + kAddresses * 8);
 static_assert(sizeof(PassConstants) == 32);
 
 }  // namespace vkdr::gpu

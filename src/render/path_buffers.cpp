@@ -7,45 +7,45 @@
 namespace vkdr {
 namespace {
 
+template <typename Element>
 Buffer perPath(const VulkanContext& context, uint32_t capacity, const char* name) {
-    return Buffer(context, uint64_t(capacity) * 16, MemoryUse::Device, name);
+    return Buffer(context, uint64_t(capacity) * Element::kElementBytes, MemoryUse::Device, name);
+}
+
+uint32_t copyStrideOf(uint32_t floats, uint32_t copies) {
+    if (copies == 1) {
+        return 0;
+    }
+    return (floats + gpu::kGradientCopyAlignment - 1) / gpu::kGradientCopyAlignment * gpu::kGradientCopyAlignment;
 }
 
 }  // namespace
 
-GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, const char* name)
+GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, uint32_t copies, const char* name)
     : floats(floatsPerCopy),
-      copyStride((floatsPerCopy + gpu::kGradientCopyAlignment - 1) / gpu::kGradientCopyAlignment *
-                 gpu::kGradientCopyAlignment),
-      buffer(context, uint64_t(gpu::kGradientCopies) * copyStride * 4, MemoryUse::Device, name) {}
+      copies(copies),
+      copyStride(copyStrideOf(floatsPerCopy, copies)),
+      buffer(context, (uint64_t(copies - 1) * copyStride + floatsPerCopy) * 4, MemoryUse::Device, name) {}
 
 std::vector<float> GradientCopies::roomForCopies() const {
-    return std::vector<float>(size_t(gpu::kGradientCopies) * copyStride);
+    return std::vector<float>(size_t(copies - 1) * copyStride + floats);
 }
 
-std::vector<float> GradientCopies::sumOfCopies(std::span<const float> copies) const {
+std::vector<float> GradientCopies::sumOfCopies(std::span<const float> values) const {
     std::vector<float> sum(floats, 0.0f);
-    for (uint32_t copy = 0; copy < gpu::kGradientCopies; ++copy) {
+    for (uint32_t copy = 0; copy < copies; ++copy) {
         for (uint32_t i = 0; i < floats; ++i) {
-            sum[i] += copies[size_t(copy) * copyStride + i];
+            sum[i] += values[size_t(copy) * copyStride + i];
         }
     }
     return sum;
 }
 
+#define VKDR_ALLOCATE_PATH_ARRAY(name, Type) name(perPath<gpu::Type>(context, capacity, #name)),
+
 PathBuffers::PathBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount)
     : capacity(capacity),
-      rayOrigin(perPath(context, capacity, "ray origin")),
-      rayDirection(perPath(context, capacity, "ray direction")),
-      beta(perPath(context, capacity, "beta")),
-      radiance(perPath(context, capacity, "radiance")),
-      misVertex(perPath(context, capacity, "mis vertex")),
-      hit(perPath(context, capacity, "hit")),
-      pathInfo(perPath(context, capacity, "path info")),
-      vertexInfo(perPath(context, capacity, "vertex info")),
-      shadowOrigin(perPath(context, capacity, "shadow origin")),
-      shadowDirection(perPath(context, capacity, "shadow direction")),
-      shadowContribution(perPath(context, capacity, "shadow contribution")),
+      VKDR_PATH_ARRAYS(VKDR_ALLOCATE_PATH_ARRAY)
       queueCounters(context, sizeof(gpu::QueueCountersData), MemoryUse::Device, "queue counters"),
       queueItems(context, uint64_t(capacity) * gpu::kQueueCount * 4, MemoryUse::Device, "queue items"),
       film(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "film"),
@@ -55,32 +55,56 @@ uint64_t PathBuffers::deviceBytes() const {
     return uint64_t(capacity) * kBytesPerPath + film.size() + queueCounters.size();
 }
 
+#define VKDR_SET_ADDRESS(name, ...) params.name = name.address();
+
+void PathBuffers::setAddresses(gpu::RenderParams& params) const {
+    VKDR_PATH_ARRAYS(VKDR_SET_ADDRESS)
+    params.queueCounters = queueCounters.address();
+    params.queueItems = queueItems.address();
+    params.film = film.address();
+    params.pathCapacity = capacity;
+}
+
+// VKDR_GRADIENT_ACCUMULATORS names the gpu:: constants without their namespace.
+using gpu::kGradientCopies;
+using gpu::kMediumGradientStride;
+#define VKDR_ALLOCATE_ACCUMULATOR(name, field, floats, copies, items) \
+    name(context, std::max(1u, items) * floats, copies, #name),
+
 AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount,
                                uint32_t mediumCount, uint32_t materialCount, uint32_t texelCount,
                                uint64_t keptPaths)
-    : pendingFactor(perPath(context, capacity, "pending factor")),
-      adjointState(perPath(context, capacity, "adjoint state")),
-      vertexUv(perPath(context, capacity, "vertex uv")),
-      shadowScatterGradient(perPath(context, capacity, "shadow scatter gradient")),
-      shadowEmissionGradient(perPath(context, capacity, "shadow emission gradient")),
-      shadowVertex(perPath(context, capacity, "shadow vertex")),
+    : capacity(capacity),
+      VKDR_ADJOINT_PATH_ARRAYS(VKDR_ALLOCATE_PATH_ARRAY)
       target(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "target"),
       imageAdjoint(context, uint64_t(pixelCount) * 32, MemoryUse::Device, "image adjoint"),  // two halves
       lossSum(context, 16, MemoryUse::Device, "loss sum"),
       filmBaseline(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "film baseline"),
-      mediumGradients(context, std::max(1u, mediumCount) * gpu::kMediumGradientStride, "medium gradients"),
-      baseColorGradients(context, std::max(1u, materialCount) * 4, "base colour gradients"),
-      emissionGradients(context, std::max(1u, materialCount) * 4, "emission gradients"),
-      texelGradients(context, std::max(1u, texelCount) * 16, MemoryUse::Device, "texel gradients") {
+      VKDR_GRADIENT_ACCUMULATORS(VKDR_ALLOCATE_ACCUMULATOR)
+      keptRadiance() {
     if (keptPaths > 0) {
         keptRadiance = Buffer(context, keptPaths * 16, MemoryUse::Device, "kept radiance");
     }
 }
 
+#define VKDR_ACCUMULATOR_BYTES(name, ...) +name.buffer.size()
+
 uint64_t AdjointBuffers::deviceBytes() const {
-    return pendingFactor.size() * 6 + target.size() + imageAdjoint.size() + filmBaseline.size() +
-           mediumGradients.buffer.size() + baseColorGradients.buffer.size() + emissionGradients.buffer.size() +
-           texelGradients.size() + keptRadiance.size();
+    return uint64_t(capacity) * kBytesPerPath + target.size() + imageAdjoint.size() +
+           filmBaseline.size() VKDR_GRADIENT_ACCUMULATORS(VKDR_ACCUMULATOR_BYTES) + keptRadiance.size();
+}
+
+#define VKDR_SET_ACCUMULATOR(name, ...) \
+    params.name = name.buffer.address(); \
+    params.name##CopyStride = name.copyStride;
+
+void AdjointBuffers::setAddresses(gpu::RenderParams& params) const {
+    VKDR_ADJOINT_PATH_ARRAYS(VKDR_SET_ADDRESS)
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_SET_ACCUMULATOR)
+    params.target = target.address();
+    params.imageAdjoint = imageAdjoint.address();
+    params.lossSum = lossSum.address();
+    params.filmBaseline = filmBaseline.address();
 }
 
 }  // namespace vkdr

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "device_types.h"
@@ -9,31 +10,38 @@ namespace vkdr {
 
 class VulkanContext;
 
-// Structure-of-arrays path state for `capacity` paths in flight, the work queues, and
-// the film. Memory depends on the capacity and the image, never on the path depth.
+// Bytes per path slot of a list of per-path arrays (device_types.h).
+#define VKDR_PATH_ARRAY_BYTES(name, Type) +gpu::Type::kElementBytes
+
+// Structure-of-arrays path state for `capacity` paths in flight (VKDR_PATH_ARRAYS), the
+// work queues, and the film. Memory depends on the capacity and the image, never on
+// the path depth.
 struct PathBuffers {
     PathBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount);
 
     uint32_t capacity;
-    Buffer rayOrigin, rayDirection, beta, radiance, misVertex, hit, pathInfo, vertexInfo;
-    Buffer shadowOrigin, shadowDirection, shadowContribution;
+#define VKDR_PATH_ARRAY_MEMBER(name, Type) Buffer name;
+    VKDR_PATH_ARRAYS(VKDR_PATH_ARRAY_MEMBER)
     Buffer queueCounters;
     Buffer queueItems;
     Buffer film;
     Buffer countersReadback;
 
     // Device bytes per path slot, for sizing passes.
-    static constexpr uint64_t kBytesPerPath = 11 * 16 + gpu::kQueueCount * 4;
+    static constexpr uint64_t kBytesPerPath = 0 VKDR_PATH_ARRAYS(VKDR_PATH_ARRAY_BYTES) + gpu::kQueueCount * 4;
     uint64_t deviceBytes() const;
+    // Writes the buffers' addresses into `params`.
+    void setAddresses(gpu::RenderParams& params) const;
 };
 
-// gpu::kGradientCopies copies of `floats` gradient accumulators, `copyStride` floats
-// apart (device_types.h): subgroups add to different copies, and the host sums them.
+// gpu::kGradientCopies copies (or one) of `floats` gradient accumulators, `copyStride`
+// floats apart (device_types.h): subgroups add to different copies, and the host sums them.
 struct GradientCopies {
-    GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, const char* name);
+    GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, uint32_t copies, const char* name);
 
     uint32_t floats;
-    uint32_t copyStride;
+    uint32_t copies;
+    uint32_t copyStride;  // 0 for a single copy
     Buffer buffer;
 
     // Room on the host for all the copies (for downloadBuffers), and the `floats`
@@ -42,21 +50,29 @@ struct GradientCopies {
     std::vector<float> sumOfCopies(std::span<const float> copies) const;
 };
 
-// What the adjoint pass adds: per path slot its replay state, per pixel the target,
-// dLoss/dI and a copy of the film, per parameter the gradient accumulators, and
-// optionally the radiance of `keptPaths` rendered paths, kept for their adjoint pass.
+// What the adjoint pass adds: per path slot its replay state (VKDR_ADJOINT_PATH_ARRAYS),
+// per pixel the target, dLoss/dI and a copy of the film, per parameter the gradient
+// accumulators (VKDR_GRADIENT_ACCUMULATORS), and optionally the radiance of `keptPaths`
+// rendered paths, kept for their adjoint pass.
 struct AdjointBuffers {
     AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount, uint32_t mediumCount,
                    uint32_t materialCount, uint32_t texelCount, uint64_t keptPaths);
 
-    Buffer pendingFactor, adjointState, vertexUv, shadowScatterGradient, shadowEmissionGradient, shadowVertex;
+    uint32_t capacity;
+    VKDR_ADJOINT_PATH_ARRAYS(VKDR_PATH_ARRAY_MEMBER)
     Buffer target, imageAdjoint, lossSum, filmBaseline;
-    GradientCopies mediumGradients, baseColorGradients, emissionGradients;
-    Buffer texelGradients;
+#define VKDR_GRADIENT_ACCUMULATOR_MEMBER(name, field, floats, copies, items) GradientCopies name;
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_GRADIENT_ACCUMULATOR_MEMBER)
+#undef VKDR_GRADIENT_ACCUMULATOR_MEMBER
     Buffer keptRadiance;  // 16 bytes per kept path; empty (size 0) when none are kept
 
-    static constexpr uint64_t kBytesPerPath = 6 * 16;
+    static constexpr uint64_t kBytesPerPath = 0 VKDR_ADJOINT_PATH_ARRAYS(VKDR_PATH_ARRAY_BYTES);
     uint64_t deviceBytes() const;
+    // Writes the buffers' addresses and the accumulators' copy strides into `params`.
+    void setAddresses(gpu::RenderParams& params) const;
 };
+
+#undef VKDR_PATH_ARRAY_MEMBER
+#undef VKDR_PATH_ARRAY_BYTES
 
 }  // namespace vkdr

@@ -18,9 +18,8 @@ namespace {
 // One thread per path in a 1D dispatch of at most 65535 workgroups of 64.
 constexpr uint64_t kMaxPathsPerPass = 1u << 21;
 // Paths in flight per pass unless the user says otherwise. A GPU pays a fixed cost per
-// pass (host round trips, barriers between short dispatches): on an H100, 2^21 paths
-// per pass took 15-20 % less time than 2^20 (docs/performance.md). A CPU device gains
-// nothing from wider passes, only memory.
+// pass (host round trips, barriers between short dispatches), which wider passes share
+// (docs/performance.md). A CPU device gains nothing from wider passes, only memory.
 uint64_t defaultPathsPerPass(const VulkanContext& context) {
     return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1u << 20 : kMaxPathsPerPass;
 }
@@ -94,7 +93,6 @@ void Renderer::setSeed(uint32_t seed) {
 }
 
 void Renderer::uploadParams() {
-    const PathBuffers& b = *paths_;
     gpu::RenderParams p{};
     p.camera = camera_;
     p.background = glm::vec4(background_, 0.0f);
@@ -108,21 +106,7 @@ void Renderer::uploadParams() {
     p.texels = scene_.texels.address();
     p.lightTriangles = scene_.lightTriangles.address();
     p.lightCdf = scene_.lightCdf.address();
-    p.rayOrigin = b.rayOrigin.address();
-    p.rayDirection = b.rayDirection.address();
-    p.beta = b.beta.address();
-    p.radiance = b.radiance.address();
-    p.misVertex = b.misVertex.address();
-    p.hit = b.hit.address();
-    p.pathInfo = b.pathInfo.address();
-    p.vertexInfo = b.vertexInfo.address();
-    p.shadowOrigin = b.shadowOrigin.address();
-    p.shadowDirection = b.shadowDirection.address();
-    p.shadowContribution = b.shadowContribution.address();
-    p.queueCounters = b.queueCounters.address();
-    p.queueItems = b.queueItems.address();
-    p.film = b.film.address();
-    p.pathCapacity = b.capacity;
+    paths_->setAddresses(p);
     p.lightCount = scene_.lightCount;
     p.maxDepth = settings_.maxDepth;
     p.seed = settings_.seed;
@@ -130,25 +114,7 @@ void Renderer::uploadParams() {
     p.rayEpsilon = scene_.rayEpsilon;
     p.filmScale = 1.0f / float(settings_.spp);
     if (adjoint_) {
-        const AdjointBuffers& a = *adjoint_;
-        p.target = a.target.address();
-        p.imageAdjoint = a.imageAdjoint.address();
-        p.lossSum = a.lossSum.address();
-        p.filmBaseline = a.filmBaseline.address();
-        p.mediumGradients = a.mediumGradients.buffer.address();
-        p.baseColorGradients = a.baseColorGradients.buffer.address();
-        p.emissionGradients = a.emissionGradients.buffer.address();
-        p.mediumGradientCopyStride = a.mediumGradients.copyStride;
-        // One stride serves both: they hold the same number of floats.
-        assert(a.emissionGradients.copyStride == a.baseColorGradients.copyStride);
-        p.materialGradientCopyStride = a.baseColorGradients.copyStride;
-        p.texelGradients = a.texelGradients.address();
-        p.pendingFactor = a.pendingFactor.address();
-        p.adjointState = a.adjointState.address();
-        p.vertexUv = a.vertexUv.address();
-        p.shadowScatterGradient = a.shadowScatterGradient.address();
-        p.shadowEmissionGradient = a.shadowEmissionGradient.address();
-        p.shadowVertex = a.shadowVertex.address();
+        adjoint_->setAddresses(p);
         p.lossKind = lossKind_ == LossKind::L1 ? gpu::kLossL1 : gpu::kLossL2;
         p.derivativeTargets = derivativeTargets_;
         p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));
@@ -190,6 +156,12 @@ Image Renderer::downloadFilm() {
     return imageOfFilm(film);
 }
 
+std::vector<glm::vec4> Renderer::pathRadiance() const {
+    std::vector<glm::vec4> radiance(paths_->capacity);
+    downloadBuffer(context_, paths_->radiance, std::as_writable_bytes(std::span(radiance)));
+    return radiance;
+}
+
 Image Renderer::imageOfFilm(std::span<const glm::vec4> film) const {
     const uint32_t pixels = camera_.width * camera_.height;
     Image image;
@@ -229,6 +201,7 @@ void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages
     };
     PushConstants push{params_.address(), constants};
     push.pass.currentRays = currentRays;
+    // Sizes a queue's indirect dispatch from its count (and clears the counts in clearMask).
     auto prepare = [&](uint32_t queue, uint32_t clearMask) {
         PushConstants p = push;
         p.pass.queueArg = queue;
@@ -246,20 +219,11 @@ void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages
     prepare(gpu::kQueueShade, 0);
     stage(stages.shade, gpu::kQueueShade);
     prepare(gpu::kQueueShadow, 0);
-    stage(stages.intersectShadow, gpu::kQueueShadow);
+    stage(stages.shadow, gpu::kQueueShadow);
 }
 
-void Renderer::runPass(const PassRange& range, PassMode mode) {
-    const PathStages& stages = mode == PassMode::Adjoint ? pipelines_.gradient->adjoint : pipelines_.primal;
-    gpu::PassConstants constants{range.firstPixel, range.pixelCount, range.firstSample, range.samplesInPass,
-                                 gpu::kQueueRays0, 0, 0, 0};
-    PushConstants push{params_.address(), constants};
-    if (timer_) {
-        timer_->setScope(mode == PassMode::Film ? "forward" : mode == PassMode::Replay ? "replay" : "adjoint");
-    }
-    CommandRecorder recorder(context_, timer_);
-    recorder.dispatch(stages.generate, range.pixelCount * range.samplesInPass, push.bytes());
-    recorder.barrier();
+gpu::QueueCountersData Renderer::recordSegmentsUntilNoRayIsLeft(CommandRecorder& recorder, const PathStages& stages,
+                                                                 const gpu::PassConstants& constants) {
     uint32_t currentRays = gpu::kQueueRays0;
     const uint32_t segments = segmentLimit(settings_.maxDepth);
     gpu::QueueCountersData counters{};
@@ -275,6 +239,21 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
             break;
         }
     }
+    return counters;
+}
+
+void Renderer::runPass(const PassRange& range, PassMode mode) {
+    const PathStages& stages = mode == PassMode::Adjoint ? pipelines_.gradient->adjoint : pipelines_.primal;
+    gpu::PassConstants constants{range.firstPixel, range.pixelCount, range.firstSample, range.samplesInPass,
+                                 gpu::kQueueRays0, 0, 0, 0};
+    PushConstants push{params_.address(), constants};
+    if (timer_) {
+        timer_->setScope(mode == PassMode::Film ? "forward" : mode == PassMode::Replay ? "replay" : "adjoint");
+    }
+    CommandRecorder recorder(context_, timer_);
+    recorder.dispatch(stages.generate, range.pixelCount * range.samplesInPass, push.bytes());
+    recorder.barrier();
+    const gpu::QueueCountersData counters = recordSegmentsUntilNoRayIsLeft(recorder, stages, constants);
     if (mode == PassMode::Film) {
         recorder.dispatch(pipelines_.film, range.pixelCount, push.bytes());
         recorder.barrier();

@@ -30,12 +30,14 @@ struct RenderStats {
 // Progress in [0, 1], called after every pass.
 using ProgressCallback = std::function<void(double)>;
 
-// Parameter gradients as the adjoint pass accumulates them.
+// Parameter gradients as the adjoint pass accumulates them, one vector per accumulator
+// of VKDR_GRADIENT_ACCUMULATORS (device_types.h): `media` has gpu::kMediumGradientStride
+// floats per medium, `baseColors` and `emissions` 4 per material, `texels` 4 per texel
+// (textures one after another as in Scene::textures).
 struct SceneGradients {
-    std::vector<float> media;       // gpu::kMediumGradientStride per medium: sigma_a rgb, sigma_s rgb, g
-    std::vector<float> baseColors;  // 4 per material
-    std::vector<float> emissions;   // 4 per material
-    std::vector<float> texels;      // 4 per texel, textures one after another as in Scene::textures
+#define VKDR_SCENE_GRADIENTS_FIELD(name, field, ...) std::vector<float> field;
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_SCENE_GRADIENTS_FIELD)
+#undef VKDR_SCENE_GRADIENTS_FIELD
 };
 
 // The kinds of parameter whose gradient is wanted, as far as the adjoint's cost depends
@@ -86,6 +88,11 @@ public:
     double loss();
     GradientEvaluation renderWithGradients();
 
+    // The radiance of the path slots of the last pass, one per path in flight: after a
+    // primal pass each path's L; after an adjoint pass what the replay left of it (L_rem),
+    // zero but for rounding wherever the replay took the primal pass's decisions.
+    std::vector<glm::vec4> pathRadiance() const;
+
 private:
     enum class PassMode {
         Film,    // render and add to the film; each path's radiance stays in its slot
@@ -118,8 +125,12 @@ private:
     void backpropagateWithReplay(GradientEvaluation& result);
     void backpropagateSplitSamples(GradientEvaluation& result);
     void backpropagateInOnePass(GradientEvaluation& result);
+    // One segment of every path alive: closest hits, free flights, vertices, shadow rays.
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
                        uint32_t currentRays);
+    // Segments, submitted in batches, until no path has a ray left; returns the counters.
+    gpu::QueueCountersData recordSegmentsUntilNoRayIsLeft(CommandRecorder& recorder, const PathStages& stages,
+                                                          const gpu::PassConstants& constants);
     void uploadParams();
 
     const VulkanContext& context_;

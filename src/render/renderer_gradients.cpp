@@ -2,6 +2,8 @@
 // of renderWithGradients() (docs/gradients.md, "The estimator").
 #include "render/renderer.h"
 
+#include <deque>
+
 #include "core/error.h"
 #include "core/milliseconds_of.h"
 #include "render/push_constants.h"
@@ -92,10 +94,9 @@ GradientEvaluation Renderer::renderWithGradients() {
     stats_ = {};
     {
         CommandRecorder recorder(context_);
-        recorder.fill(adjoint_->mediumGradients.buffer, 0);
-        recorder.fill(adjoint_->baseColorGradients.buffer, 0);
-        recorder.fill(adjoint_->emissionGradients.buffer, 0);
-        recorder.fill(adjoint_->texelGradients, 0);
+#define VKDR_CLEAR_ACCUMULATOR(name, ...) recorder.fill(adjoint_->name.buffer, 0);
+        VKDR_GRADIENT_ACCUMULATORS(VKDR_CLEAR_ACCUMULATOR)
+#undef VKDR_CLEAR_ACCUMULATOR
         recordClearFilm(recorder);
         if (splitSample_ > 0) {
             recorder.fill(adjoint_->filmBaseline, 0);
@@ -112,24 +113,25 @@ GradientEvaluation Renderer::renderWithGradients() {
     }
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
 
-    SceneGradients& g = result.gradients;
     std::vector<glm::vec4> film(size_t(camera_.width) * camera_.height);
-    std::vector<float> media = adjoint_->mediumGradients.roomForCopies();
-    std::vector<float> baseColors = adjoint_->baseColorGradients.roomForCopies();
-    std::vector<float> emissions = adjoint_->emissionGradients.roomForCopies();
-    g.texels.resize(adjoint_->texelGradients.size() / 4);
     float lossSum[4];
-    downloadBuffers(context_, {{&paths_->film, std::as_writable_bytes(std::span(film))},
-                               {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossSum))},
-                               {&adjoint_->mediumGradients.buffer, std::as_writable_bytes(std::span(media))},
-                               {&adjoint_->baseColorGradients.buffer, std::as_writable_bytes(std::span(baseColors))},
-                               {&adjoint_->emissionGradients.buffer, std::as_writable_bytes(std::span(emissions))},
-                               {&adjoint_->texelGradients, std::as_writable_bytes(std::span(g.texels))}});
+    std::vector<Download> downloads{{&paths_->film, std::as_writable_bytes(std::span(film))},
+                                    {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossSum))}};
+    // Every copy of every accumulator, in the order of VKDR_GRADIENT_ACCUMULATORS (a deque:
+    // growing it leaves the vectors that `downloads` points into where they are).
+    std::deque<std::vector<float>> copies;
+#define VKDR_DOWNLOAD_ACCUMULATOR(name, ...)                                               \
+    copies.push_back(adjoint_->name.roomForCopies());                                      \
+    downloads.push_back({&adjoint_->name.buffer, std::as_writable_bytes(std::span(copies.back()))});
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_DOWNLOAD_ACCUMULATOR)
+#undef VKDR_DOWNLOAD_ACCUMULATOR
+    downloadBuffers(context_, downloads);
     result.image = imageOfFilm(film);
     result.loss = lossSum[0];
-    g.media = adjoint_->mediumGradients.sumOfCopies(media);
-    g.baseColors = adjoint_->baseColorGradients.sumOfCopies(baseColors);
-    g.emissions = adjoint_->emissionGradients.sumOfCopies(emissions);
+    auto copiesOf = copies.begin();
+#define VKDR_SUM_ACCUMULATOR(name, field, ...) result.gradients.field = adjoint_->name.sumOfCopies(*copiesOf++);
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_SUM_ACCUMULATOR)
+#undef VKDR_SUM_ACCUMULATOR
     return result;
 }
 

@@ -1,6 +1,6 @@
 #include "render/stage_pipelines.h"
 
-#include <string>
+#include <cassert>
 #include <vector>
 
 #include "render/push_constants.h"
@@ -8,36 +8,50 @@
 
 namespace vkdr {
 
-namespace {
-
-// Specialization constants: 0 selects shadow rays in intersect.comp, 1 the adjoint pass.
-std::vector<uint32_t> variant(bool shadowRays, bool adjoint) {
-    return {shadowRays ? 1u : 0u, adjoint ? 1u : 0u};
+std::span<const uint32_t> stageSpirv(Stage stage) {
+    switch (stage) {
+    case Stage::Generate: return spirv::generateSpirv();
+    case Stage::Intersect: return spirv::intersectSpirv();
+    case Stage::MediumSample: return spirv::mediumSampleSpirv();
+    case Stage::Shade: return spirv::shadeSpirv();
+    case Stage::Shadow: return spirv::shadowSpirv();
+    case Stage::QueuePrepare: return spirv::queuePrepareSpirv();
+    case Stage::Film: return spirv::filmSpirv();
+    case Stage::Loss: return spirv::lossSpirv();
+    }
+    return {};
 }
 
-std::string stageName(const char* stage, bool adjoint) {
-    return std::string(stage) + (adjoint ? " (adjoint)" : "");
+namespace {
+
+// The pipeline of a stage; a stage that follows paths as its primal or adjoint variant
+// (specialization constant 0 of shaders/lib/stage_common.glsl). The dispatch timer's
+// scope, not the name, tells the variants apart.
+ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false) {
+    const StageInfo& info = stageInfo(stage);
+    assert(info.followsPaths || !adjoint);
+    std::vector<uint32_t> specialization;
+    if (info.followsPaths) {
+        specialization.push_back(adjoint ? 1u : 0u);
+    }
+    return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);
 }
 
 }  // namespace
 
 PathStages::PathStages(const VulkanContext& context, bool adjoint)
-    : generate(context, stageName("generate", adjoint), spirv::generateSpirv(), sizeof(PushConstants),
-               variant(false, adjoint)),
-      intersectShadow(context, stageName("intersect (shadow)", adjoint), spirv::intersectSpirv(),
-                      sizeof(PushConstants), variant(true, adjoint)),
-      mediumSample(context, stageName("medium_sample", adjoint), spirv::mediumSampleSpirv(), sizeof(PushConstants),
-                   variant(false, adjoint)),
-      shade(context, stageName("shade", adjoint), spirv::shadeSpirv(), sizeof(PushConstants),
-            variant(false, adjoint)) {}
+    : generate(stagePipeline(context, Stage::Generate, adjoint)),
+      mediumSample(stagePipeline(context, Stage::MediumSample, adjoint)),
+      shade(stagePipeline(context, Stage::Shade, adjoint)),
+      shadow(stagePipeline(context, Stage::Shadow, adjoint)) {}
 
 GradientPipelines::GradientPipelines(const VulkanContext& context)
-    : adjoint(context, true), loss(context, "loss", spirv::lossSpirv(), sizeof(PushConstants)) {}
+    : adjoint(context, true), loss(stagePipeline(context, Stage::Loss)) {}
 
 StagePipelines::StagePipelines(const VulkanContext& context)
     : primal(context, false),
-      intersect(context, "intersect", spirv::intersectSpirv(), sizeof(PushConstants), variant(false, false)),
-      film(context, "film", spirv::filmSpirv(), sizeof(PushConstants)),
-      queuePrepare(context, "queue_prepare", spirv::queuePrepareSpirv(), sizeof(PushConstants)) {}
+      intersect(stagePipeline(context, Stage::Intersect)),
+      queuePrepare(stagePipeline(context, Stage::QueuePrepare)),
+      film(stagePipeline(context, Stage::Film)) {}
 
 }  // namespace vkdr

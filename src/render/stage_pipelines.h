@@ -1,21 +1,22 @@
 #pragma once
 #include <memory>
 
+#include "render/stages.h"
 #include "vk/pipeline.h"
 
 namespace vkdr {
 
 class VulkanContext;
 
-// The stages that follow a path, compiled once as primal and once as adjoint
-// (specialization constant 1 of shaders/lib/stage_common.glsl).
+// The stages that follow a path (render/stages.h), compiled once as primal and once as
+// adjoint pipelines.
 struct PathStages {
     PathStages(const VulkanContext& context, bool adjoint);
 
     ComputePipeline generate;
-    ComputePipeline intersectShadow;
     ComputePipeline mediumSample;
     ComputePipeline shade;
+    ComputePipeline shadow;
 };
 
 // What only differentiation needs; compiled on first use, since a plain render
@@ -27,14 +28,14 @@ struct GradientPipelines {
     ComputePipeline loss;
 };
 
-// One pipeline per wavefront stage, named after its shader file.
+// One pipeline per wavefront stage, named after it.
 struct StagePipelines {
     explicit StagePipelines(const VulkanContext& context);
 
     PathStages primal;
     ComputePipeline intersect;  // closest hits: the same in both passes
-    ComputePipeline film;
     ComputePipeline queuePrepare;
+    ComputePipeline film;
     std::unique_ptr<GradientPipelines> gradient;  // null until gradients are enabled
 };
 

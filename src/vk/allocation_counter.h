@@ -1,6 +1,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <utility>
 
 namespace vkdr {
 
@@ -22,6 +23,38 @@ public:
 private:
     std::atomic<uint64_t> current_{0};
     std::atomic<uint64_t> peak_{0};
+};
+
+// Counts `bytes` in a counter for as long as it lives. Move-only owner of the count.
+class CountedBytes {
+public:
+    CountedBytes() = default;
+    CountedBytes(AllocationCounter& counter, uint64_t bytes) : counter_(&counter), bytes_(bytes) { counter.add(bytes); }
+    ~CountedBytes() { reset(); }
+    CountedBytes(CountedBytes&& other) noexcept
+        : counter_(std::exchange(other.counter_, nullptr)), bytes_(std::exchange(other.bytes_, 0)) {}
+    CountedBytes& operator=(CountedBytes&& other) noexcept {
+        if (this != &other) {
+            reset();
+            counter_ = std::exchange(other.counter_, nullptr);
+            bytes_ = std::exchange(other.bytes_, 0);
+        }
+        return *this;
+    }
+    CountedBytes(const CountedBytes&) = delete;
+    CountedBytes& operator=(const CountedBytes&) = delete;
+
+    void reset() {
+        if (counter_ != nullptr) {
+            counter_->remove(bytes_);
+        }
+        counter_ = nullptr;
+        bytes_ = 0;
+    }
+
+private:
+    AllocationCounter* counter_ = nullptr;
+    uint64_t bytes_ = 0;
 };
 
 }  // namespace vkdr

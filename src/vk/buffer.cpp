@@ -4,7 +4,6 @@
 #include <cstring>
 #include <utility>
 
-#include "vk/allocation_counter.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 
@@ -46,18 +45,21 @@ private:
 }  // namespace
 
 Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, const std::string& name)
-    : device_(context.device()), allocations_(&context.allocations()), size_(paddedSize(size)) {
+    : size_(paddedSize(size)) {
+    const VkDevice device = context.device();
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size_;
     info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    checkVk(vkCreateBuffer(device_, &info, nullptr, &buffer_), ("creating buffer " + name).c_str());
-    context.setDebugName(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(buffer_), name);
+    VkBuffer buffer;
+    checkVk(vkCreateBuffer(device, &info, nullptr, &buffer), ("creating buffer " + name).c_str());
+    buffer_ = BufferHandle(device, buffer);
+    context.setDebugName(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(buffer), name);
 
     VkMemoryRequirements requirements;
-    vkGetBufferMemoryRequirements(device_, buffer_, &requirements);
+    vkGetBufferMemoryRequirements(device, buffer, &requirements);
     VkMemoryPropertyFlags properties = use == MemoryUse::Device
                                            ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT
                                            : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
@@ -67,20 +69,18 @@ Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, c
     allocation.pNext = &flags;
     allocation.allocationSize = requirements.size;
     allocation.memoryTypeIndex = context.memoryTypeIndex(requirements.memoryTypeBits, properties);
-    VkResult result = vkAllocateMemory(device_, &allocation, nullptr, &memory_);
-    if (result != VK_SUCCESS) {
-        release();
-        checkVk(result, ("allocating " + std::to_string(size_ >> 20) + " MiB for " + name).c_str());
-    }
-    allocatedBytes_ = requirements.size;
-    allocations_->add(allocatedBytes_);
-    checkVk(vkBindBufferMemory(device_, buffer_, memory_, 0), "vkBindBufferMemory");
+    VkDeviceMemory memory;
+    checkVk(vkAllocateMemory(device, &allocation, nullptr, &memory),
+            ("allocating " + std::to_string(size_ >> 20) + " MiB for " + name).c_str());
+    memory_ = MemoryHandle(device, memory);
+    counted_ = CountedBytes(context.allocations(), requirements.size);
+    checkVk(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
     if (use != MemoryUse::Device) {
-        checkVk(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+        checkVk(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
     }
     VkBufferDeviceAddressInfo addressInfo{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
-    addressInfo.buffer = buffer_;
-    address_ = vkGetBufferDeviceAddress(device_, &addressInfo);
+    addressInfo.buffer = buffer;
+    address_ = vkGetBufferDeviceAddress(device, &addressInfo);
 }
 
 Buffer::~Buffer() {
@@ -94,11 +94,9 @@ Buffer::Buffer(Buffer&& other) noexcept {
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
     if (this != &other) {
         release();
-        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-        allocations_ = std::exchange(other.allocations_, nullptr);
-        allocatedBytes_ = std::exchange(other.allocatedBytes_, 0);
-        buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
-        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+        counted_ = std::move(other.counted_);
+        memory_ = std::move(other.memory_);
+        buffer_ = std::move(other.buffer_);
         size_ = std::exchange(other.size_, 0);
         address_ = std::exchange(other.address_, 0);
         mapped_ = std::exchange(other.mapped_, nullptr);
@@ -107,16 +105,9 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 }
 
 void Buffer::release() {
-    if (buffer_ != VK_NULL_HANDLE) {
-        vkDestroyBuffer(device_, buffer_, nullptr);
-        buffer_ = VK_NULL_HANDLE;
-    }
-    if (memory_ != VK_NULL_HANDLE) {
-        vkFreeMemory(device_, memory_, nullptr);
-        memory_ = VK_NULL_HANDLE;
-        allocations_->remove(allocatedBytes_);
-        allocatedBytes_ = 0;
-    }
+    buffer_.reset();
+    memory_.reset();
+    counted_.reset();
     mapped_ = nullptr;
 }
 
@@ -147,7 +138,7 @@ void downloadBuffer(const VulkanContext& context, const Buffer& buffer, std::spa
     downloadBuffers(context, {{&buffer, bytes}});
 }
 
-void downloadBuffers(const VulkanContext& context, std::initializer_list<Download> downloads) {
+void downloadBuffers(const VulkanContext& context, std::span<const Download> downloads) {
     VkDeviceSize total = 0;
     for (const Download& d : downloads) {
         total += d.bytes.size();

@@ -4,12 +4,13 @@
 #include <span>
 #include <string>
 
+#include "vk/allocation_counter.h"
 #include "vk/vulkan.h"
+#include "vk/vulkan_handle.h"
 
 namespace vkdr {
 
 class VulkanContext;
-class AllocationCounter;
 
 enum class MemoryUse {
     Device,    // device-local; filled by transfers or shaders
@@ -28,7 +29,7 @@ public:
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
 
-    VkBuffer handle() const { return buffer_; }
+    VkBuffer handle() const { return buffer_.get(); }
     VkDeviceSize size() const { return size_; }  // at least the size asked for
     VkDeviceAddress address() const { return address_; }
     // Host pointer for Readback and Upload buffers, nullptr otherwise.
@@ -37,11 +38,10 @@ public:
 private:
     void release();
 
-    VkDevice device_ = VK_NULL_HANDLE;
-    AllocationCounter* allocations_ = nullptr;  // the context's, told of memory_
-    VkDeviceSize allocatedBytes_ = 0;
-    VkBuffer buffer_ = VK_NULL_HANDLE;
-    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    // Released in reverse order: the buffer, then its memory and the context's count of it.
+    CountedBytes counted_;  // memory_'s size, in the context's AllocationCounter
+    MemoryHandle memory_;
+    BufferHandle buffer_;
     VkDeviceSize size_ = 0;
     VkDeviceAddress address_ = 0;
     void* mapped_ = nullptr;
@@ -69,6 +69,9 @@ struct Download {
     const Buffer* buffer;
     std::span<std::byte> bytes;
 };
-void downloadBuffers(const VulkanContext& context, std::initializer_list<Download> downloads);
+void downloadBuffers(const VulkanContext& context, std::span<const Download> downloads);
+inline void downloadBuffers(const VulkanContext& context, std::initializer_list<Download> downloads) {
+    downloadBuffers(context, std::span<const Download>(downloads.begin(), downloads.size()));
+}
 
 }  // namespace vkdr

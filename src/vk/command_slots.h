@@ -14,9 +14,9 @@ struct CommandSlot {
     VkFence fence = VK_NULL_HANDLE;
 };
 
-// Command slots kept for reuse. On an NVIDIA driver, creating and destroying a pool and
-// a fence took about 0.5 ms per recorder, more than the small submissions of a
-// gradient iteration at low resolution spend on the device (docs/performance.md).
+// Command slots kept for reuse: on a GPU, creating and destroying a pool and a fence for
+// every recorder costs more than the small submissions of a gradient iteration at low
+// resolution spend on the device (docs/performance.md).
 class CommandSlots {
 public:
     CommandSlots(VkDevice device, uint32_t queueFamily);

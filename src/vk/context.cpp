@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "vk/buffer.h"
 #include "vk/device_features.h"
+#include "vk/device_selection.h"
 
 namespace vkdr {
 namespace {
@@ -112,9 +113,9 @@ VulkanContext::VulkanContext(const ContextOptions& options) : validation_(valida
     createInstance();
 
     uint32_t count = 0;
-    checkVk(vkEnumeratePhysicalDevices(instance_, &count, nullptr), "vkEnumeratePhysicalDevices");
+    checkVk(vkEnumeratePhysicalDevices(instance(), &count, nullptr), "vkEnumeratePhysicalDevices");
     std::vector<VkPhysicalDevice> devices(count);
-    checkVk(vkEnumeratePhysicalDevices(instance_, &count, devices.data()), "vkEnumeratePhysicalDevices");
+    checkVk(vkEnumeratePhysicalDevices(instance(), &count, devices.data()), "vkEnumeratePhysicalDevices");
     if (count == 0) {
         throw Error("no Vulkan device found (install mesa-vulkan-drivers for the CPU device lavapipe)");
     }
@@ -146,16 +147,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : validation_(valida
             throw Error(message);
         }
     } else {
-        for (uint32_t i = 0; i < count && chosen < 0; ++i) {
-            bool indexMatches = options.device == std::to_string(i);
-            bool nameMatches = allDevices_[i].name.find(options.device) != std::string::npos;
-            if (indexMatches || nameMatches) {
-                chosen = static_cast<int>(i);
-            }
-        }
-        if (chosen < 0) {
-            throw Error("--device " + options.device + ": no such device (see `vkdiffrender info`)");
-        }
+        chosen = static_cast<int>(deviceNamedBy(options.device, allDevices_));
         const DeviceDescription& d = allDevices_[chosen];
         if (!d.missingFeatures.empty()) {
             std::string message = "--device " + options.device + ": " + d.name + " lacks:";
@@ -221,11 +213,15 @@ void VulkanContext::createInstance() {
     info.ppEnabledLayerNames = layers.data();
     info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
-    checkVk(vkCreateInstance(&info, nullptr, &instance_), "vkCreateInstance");
-    volkLoadInstanceOnly(instance_);
+    VkInstance instance;
+    checkVk(vkCreateInstance(&info, nullptr, &instance), "vkCreateInstance");
+    instance_ = InstanceHandle(instance);
+    volkLoadInstanceOnly(instance);
     if (validation_ != ValidationMode::Off) {
-        checkVk(vkCreateDebugUtilsMessengerEXT(instance_, &messengerInfo, nullptr, &messenger_),
+        VkDebugUtilsMessengerEXT messenger;
+        checkVk(vkCreateDebugUtilsMessengerEXT(instance, &messengerInfo, nullptr, &messenger),
                 "vkCreateDebugUtilsMessengerEXT");
+        messenger_ = MessengerHandle(instance, messenger);
     }
 }
 
@@ -249,25 +245,17 @@ void VulkanContext::createDevice() {
     info.pQueueCreateInfos = &queueInfo;
     info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
-    checkVk(vkCreateDevice(physicalDevice_, &info, nullptr, &device_), "vkCreateDevice");
-    volkLoadDevice(device_);
-    vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
-    commandSlots_ = std::make_unique<CommandSlots>(device_, queueFamily_);
+    VkDevice device;
+    checkVk(vkCreateDevice(physicalDevice_, &info, nullptr, &device), "vkCreateDevice");
+    device_ = DeviceHandle(device);
+    volkLoadDevice(device);
+    vkGetDeviceQueue(device, queueFamily_, 0, &queue_);
+    commandSlots_ = std::make_unique<CommandSlots>(device, queueFamily_);
 }
 
 VulkanContext::~VulkanContext() {
-    if (device_ != VK_NULL_HANDLE) {
-        vkDeviceWaitIdle(device_);
-        uploadStaging_.reset();
-        readbackStaging_.reset();
-        commandSlots_.reset();
-        vkDestroyDevice(device_, nullptr);
-    }
-    if (messenger_ != VK_NULL_HANDLE) {
-        vkDestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
-    }
-    if (instance_ != VK_NULL_HANDLE) {
-        vkDestroyInstance(instance_, nullptr);
+    if (device_) {
+        vkDeviceWaitIdle(device_.get());
     }
 }
 
@@ -318,14 +306,14 @@ std::optional<uint64_t> VulkanContext::deviceLocalHeapUsage() const {
 }
 
 void VulkanContext::setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const {
-    if (messenger_ == VK_NULL_HANDLE) {
+    if (!messenger_) {
         return;
     }
     VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
     info.objectType = type;
     info.objectHandle = handle;
     info.pObjectName = name.c_str();
-    vkSetDebugUtilsObjectNameEXT(device_, &info);
+    vkSetDebugUtilsObjectNameEXT(device(), &info);
 }
 
 void requireNoValidationMessages(const VulkanContext& context) {

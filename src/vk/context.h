@@ -7,25 +7,19 @@
 
 #include "vk/allocation_counter.h"
 #include "vk/command_slots.h"
+#include "vk/device_description.h"
 #include "vk/vulkan.h"
+#include "vk/vulkan_handle.h"
 
 namespace vkdr {
 
 class Buffer;
 enum class MemoryUse;
 
-struct DeviceDescription {
-    uint32_t index = 0;
-    std::string name;
-    std::string driver;       // driver name and version info
-    std::string type;         // "discrete GPU", "integrated GPU", "CPU", ...
-    std::string apiVersion;
-    std::vector<std::string> missingFeatures;  // empty: usable by vkdiffrender
-};
-
 struct ContextOptions {
     // Empty: prefer a discrete GPU, then integrated, then anything else usable (lavapipe).
-    // Otherwise a device index as listed by `vkdiffrender info`, or part of its name.
+    // Otherwise a device index as listed by `vkdiffrender info`, or part of its name
+    // (deviceNamedBy, vk/device_selection.h).
     std::string device;
 };
 
@@ -43,9 +37,9 @@ public:
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;
 
-    VkInstance instance() const { return instance_; }
+    VkInstance instance() const { return instance_.get(); }
     VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
-    VkDevice device() const { return device_; }
+    VkDevice device() const { return device_.get(); }
     VkQueue queue() const { return queue_; }
     uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
@@ -66,8 +60,9 @@ public:
     // Command pools, buffers and fences for CommandRecorder to reuse.
     CommandSlots& commandSlots() const { return *commandSlots_; }
     // A host-visible buffer of at least `bytes` for uploads (MemoryUse::Upload) or
-    // read-backs (MemoryUse::Readback), kept for the next transfer: allocating one took
-    // about 1 ms on an NVIDIA driver. Valid until the next call with the same use.
+    // read-backs (MemoryUse::Readback), kept for the next transfer: on a GPU, allocating
+    // one costs more than a small transfer itself. Valid until the next call with the
+    // same use.
     const Buffer& keptStagingBuffer(MemoryUse use, VkDeviceSize bytes) const;
 
     // Features vkdiffrender needs, in the words `info` prints.
@@ -77,19 +72,21 @@ private:
     void createInstance();
     void createDevice();
 
+    // Members are destroyed in reverse order: what the device made, the device, the
+    // messenger, the instance; a constructor that throws part-way releases the same way.
     ValidationMode validation_;
-    VkInstance instance_ = VK_NULL_HANDLE;
-    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    std::atomic<uint32_t> validationMessages_{0};
+    mutable AllocationCounter allocations_;
+    InstanceHandle instance_;
+    MessengerHandle messenger_;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
-    VkDevice device_ = VK_NULL_HANDLE;
+    DeviceHandle device_;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
     DeviceDescription description_;
     std::vector<DeviceDescription> allDevices_;
-    std::atomic<uint32_t> validationMessages_{0};
-    mutable AllocationCounter allocations_;
     std::unique_ptr<CommandSlots> commandSlots_;
     mutable std::unique_ptr<Buffer> uploadStaging_, readbackStaging_;
     bool memoryBudget_ = false;  // VK_EXT_memory_budget enabled

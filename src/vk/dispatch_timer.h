@@ -13,7 +13,8 @@ class VulkanContext;
 // timer, from timestamp queries, summed per scope and pipeline name. A timestamp
 // follows each dispatch, so a dispatch's time also covers the barrier and any copy or
 // fill recorded since the dispatch before it. Each timestamp waits for the work before
-// it (about 20 us on lavapipe): attach a timer only when profiling. Owns its query pools.
+// it, which serialises the stages: attach a timer only when profiling. Owns its query
+// pools.
 class DispatchTimer {
 public:
     explicit DispatchTimer(const VulkanContext& context);

@@ -1,7 +1,5 @@
 #include "vk/pipeline.h"
 
-#include <utility>
-
 #include "vk/context.h"
 
 namespace vkdr {
@@ -9,18 +7,23 @@ namespace vkdr {
 ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string& name,
                                  std::span<const uint32_t> spirv, uint32_t pushConstantBytes,
                                  const std::vector<uint32_t>& specialization)
-    : device_(context.device()), pushConstantBytes_(pushConstantBytes), name_(name) {
+    : pushConstantBytes_(pushConstantBytes), name_(name) {
+    const VkDevice device = context.device();
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     moduleInfo.codeSize = spirv.size_bytes();
     moduleInfo.pCode = spirv.data();
-    VkShaderModule module;
-    checkVk(vkCreateShaderModule(device_, &moduleInfo, nullptr, &module), ("creating shader " + name).c_str());
+    VkShaderModule rawModule;
+    checkVk(vkCreateShaderModule(device, &moduleInfo, nullptr, &rawModule), ("creating shader " + name).c_str());
+    // Needed only until the pipeline is made.
+    const ShaderModuleHandle module(device, rawModule);
 
     VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
     VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layoutInfo.pushConstantRangeCount = 1;
     layoutInfo.pPushConstantRanges = &range;
-    checkVk(vkCreatePipelineLayout(device_, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
+    VkPipelineLayout layout;
+    checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout), "vkCreatePipelineLayout");
+    layout_ = PipelineLayoutHandle(device, layout);
 
     std::vector<VkSpecializationMapEntry> entries;
     for (uint32_t i = 0; i < specialization.size(); ++i) {
@@ -31,45 +34,15 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module;
+    info.stage.module = module.get();
     info.stage.pName = "main";
     info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specializationInfo;
-    info.layout = layout_;
-    VkResult result = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
-    vkDestroyShaderModule(device_, module, nullptr);
-    checkVk(result, ("creating pipeline " + name).c_str());
-    context.setDebugName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline_), name);
-}
-
-ComputePipeline::~ComputePipeline() {
-    release();
-}
-
-ComputePipeline::ComputePipeline(ComputePipeline&& other) noexcept {
-    *this = std::move(other);
-}
-
-ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
-    if (this != &other) {
-        release();
-        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-        pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
-        layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
-        pushConstantBytes_ = other.pushConstantBytes_;
-        name_ = std::move(other.name_);
-    }
-    return *this;
-}
-
-void ComputePipeline::release() {
-    if (pipeline_ != VK_NULL_HANDLE) {
-        vkDestroyPipeline(device_, pipeline_, nullptr);
-        pipeline_ = VK_NULL_HANDLE;
-    }
-    if (layout_ != VK_NULL_HANDLE) {
-        vkDestroyPipelineLayout(device_, layout_, nullptr);
-        layout_ = VK_NULL_HANDLE;
-    }
+    info.layout = layout;
+    VkPipeline pipeline;
+    checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+            ("creating pipeline " + name).c_str());
+    pipeline_ = PipelineHandle(device, pipeline);
+    context.setDebugName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), name);
 }
 
 }  // namespace vkdr

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "vk/vulkan.h"
+#include "vk/vulkan_handle.h"
 
 namespace vkdr {
 
@@ -18,23 +19,15 @@ public:
     // `specialization[i]` is the value of constant_id i.
     ComputePipeline(const VulkanContext& context, const std::string& name, std::span<const uint32_t> spirv,
                     uint32_t pushConstantBytes, const std::vector<uint32_t>& specialization = {});
-    ~ComputePipeline();
-    ComputePipeline(ComputePipeline&& other) noexcept;
-    ComputePipeline& operator=(ComputePipeline&& other) noexcept;
-    ComputePipeline(const ComputePipeline&) = delete;
-    ComputePipeline& operator=(const ComputePipeline&) = delete;
 
-    VkPipeline handle() const { return pipeline_; }
-    VkPipelineLayout layout() const { return layout_; }
+    VkPipeline handle() const { return pipeline_.get(); }
+    VkPipelineLayout layout() const { return layout_.get(); }
     uint32_t pushConstantBytes() const { return pushConstantBytes_; }
     const std::string& name() const { return name_; }
 
 private:
-    void release();
-
-    VkDevice device_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    PipelineLayoutHandle layout_;
+    PipelineHandle pipeline_;  // destroyed before the layout it was made with
     uint32_t pushConstantBytes_ = 0;
     std::string name_;
 };

@@ -1,5 +1,4 @@
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -273,21 +272,6 @@ TEST(BuildBvh, SahCostBeatsMedianSplit) {
     float sah = sahCost(build(mesh)), median = sahCost(buildMedianSplit(mesh));
     std::printf("SAH cost: binned SAH %.1f, median split %.1f\n", sah, median);
     EXPECT_LT(sah, 0.9f * median);
-}
-
-// Measured, not asserted: the speed depends on the machine.
-TEST(BuildBvh, PrintsBuildSpeed) {
-    for (const auto& [name, mesh] : {std::pair{"1M-triangle soup", test::randomSoup(1 << 20, 0.002f, 9)},
-                                     std::pair{"1M-triangle grid", test::gridMesh(724)}}) {
-        for (int threads : {int(tbb::info::default_concurrency()), 1}) {
-            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-            auto start = std::chrono::steady_clock::now();
-            Bvh bvh = build(mesh);
-            double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            std::printf("%s, %d thread(s): %.0f ms, %.2fM triangles/s, %zu nodes\n", name, threads, seconds * 1e3,
-                        mesh.triangles.size() / seconds * 1e-6, bvh.nodes.size());
-        }
-    }
 }
 
 }  // namespace

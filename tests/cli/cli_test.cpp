@@ -1,5 +1,6 @@
 // The command line as a user meets it: help, bad input (one clear message, exit code 2,
 // nothing written over a previous result), and a real render.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -203,6 +204,13 @@ TEST_F(CliTest, InfoNamesTheChosenDevice) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("Chosen:"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("shaderBufferFloat32AtomicAdd"), std::string::npos) << r.out;
+}
+
+TEST_F(CliTest, DeviceIndexOutOfRangeNamesTheDevices) {
+    RunResult r = run("info --device 99");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err.rfind("error: --device 99: no device has that index; the devices are: [0] ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 }  // namespace

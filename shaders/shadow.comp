@@ -1,0 +1,143 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Stage 5: next-event shadow rays. A shadow ray passes through medium boundaries,
+// multiplies the transmittance of every medium segment on its way to the light, and
+// is blocked by the first opaque surface found; what gets through is gathered. The
+// adjoint pass passes the same contribution and back-propagates its own factors:
+// transmittance, scattering (albedo or phase) and emission.
+#include "lib/stage_common.glsl"
+#include "lib/queues.glsl"
+#include "lib/bvh_traverse.glsl"
+#include "lib/medium.glsl"
+#include "lib/adjoint.glsl"
+
+// A shadow ray crossing more boundaries than this is treated as blocked.
+const uint kMaxBoundaryCrossings = 64u;
+
+// The media a shadow ray passes through and its length in each. The adjoint needs
+// them once the transmittance is known: d C / d sigma_m = -length_m C for every medium
+// m on the way. A ray through more distinct media than are kept is traced a second
+// time to add its gradients.
+const uint kRecordedMedia = 2u;
+struct MediumLengths {
+    uint medium[kRecordedMedia];
+    float inMedium[kRecordedMedia];  // length of the ray in medium[i]
+    uint count;
+    bool complete;  // false: the ray passed through more media than were kept
+};
+
+MediumLengths noMediumLengths() {
+    MediumLengths lengths;
+    lengths.count = 0u;
+    lengths.complete = true;
+    return lengths;
+}
+
+void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
+    for (uint i = 0u; i < lengths.count; ++i) {
+        if (lengths.medium[i] == medium) {
+            lengths.inMedium[i] += length;
+            return;
+        }
+    }
+    if (lengths.count == kRecordedMedia) {
+        lengths.complete = false;
+        return;
+    }
+    lengths.medium[lengths.count] = medium;
+    lengths.inMedium[lengths.count] = length;
+    ++lengths.count;
+}
+
+// Transmittance from the shadow ray's origin to its end, zero when something opaque
+// is in the way. In the adjoint pass it also records the length in each medium, and
+// with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
+// segment's length) to its medium's sigma_t gradient.
+vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight,
+                         inout MediumLengths lengths) {
+    vec3 tr = vec3(1.0f);
+    for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
+        TraceHit hit = traceClosest(origin, direction, distance, true);
+        if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
+            return vec3(0.0f);
+        }
+        float segment = min(hit.t, distance);
+        if (medium != kNoMediumIndex) {
+            tr *= transmittance(sigmaT(P.media.v[medium]), segment);
+            if (kAdjoint) {
+                addMediumLength(lengths, medium, segment);
+                if (maxComponent(abs(gradientWeight)) > 0.0f) {
+                    addSigmaTGradient(medium, -segment * gradientWeight);
+                }
+            }
+        }
+        if (hit.triangle == kNoHit) {
+            return tr;
+        }
+        SurfacePoint sp = surfacePoint(hit.triangle, hit.b1, hit.b2);
+        GpuMaterial material = P.materials.v[sp.material];
+        bool entering = dot(direction, sp.normal) < 0.0f;
+        medium = entering ? uint(material.interiorMedium) : sp.outsideMedium;
+        // Step past the boundary along the ray's side of it.
+        vec3 next = sp.position + (entering ? -sp.normal : sp.normal) * P.rayEpsilon;
+        distance -= dot(next - origin, direction);
+        origin = next;
+        if (distance <= 0.0f) {
+            return tr;
+        }
+    }
+    flagTruncatedLoop();
+    return vec3(0.0f);
+}
+
+// The adjoint of a next-event contribution C = T * scatter * Le * w / pdf that reached
+// the light with transmittance `tr`: dC/dsigma_t of every medium on the way, and the
+// scattering and emission factors recorded by the shade stage.
+void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr, MediumLengths lengths) {
+    uvec4 vertex = P.shadowVertex.v[slot];
+    vec3 normal = normalMask(adjoint);
+    vec3 weight = delta * contribution * normal;
+    if (maxComponent(abs(weight)) > 0.0f) {
+        if (lengths.complete) {
+            for (uint i = 0u; i < lengths.count; ++i) {
+                addSigmaTGradient(lengths.medium[i], -lengths.inMedium[i] * weight);
+            }
+        } else {
+            vec4 origin = P.shadowOrigin.v[slot];
+            vec4 direction = P.shadowDirection.v[slot];
+            MediumLengths retraced = noMediumLengths();
+            shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), weight, retraced);
+        }
+    }
+    vec4 scatterGradient = P.shadowScatterGradient.v[slot];
+    vec4 emissionGradient = P.shadowEmissionGradient.v[slot];
+    if (vertex.x == kVertexSurface) {
+        addAlbedoGradient(vertex.y, P.vertexUv.v[slot].xy, delta * scatterGradient.rgb * tr * normal);
+    } else {
+        addPhaseGGradient(vertex.y, (weight.x + weight.y + weight.z) * scatterGradient.w);
+    }
+    addEmissionGradient(floatBitsToUint(emissionGradient.w), delta * emissionGradient.rgb * tr * normal);
+}
+
+void main() {
+    uint index = gl_GlobalInvocationID.x;
+    if (index >= queueSize(kQueueShadow)) {
+        return;
+    }
+    uint slot = queueItem(kQueueShadow, index);
+    vec4 origin = P.shadowOrigin.v[slot];
+    vec4 direction = P.shadowDirection.v[slot];
+    MediumLengths lengths = noMediumLengths();
+    vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), vec3(0.0f),
+                                  lengths);
+    vec3 contribution = tr * P.shadowContribution.v[slot].rgb;
+    beginReplay(slot);
+    if (kAdjoint) {
+        // The derivative channels as they were at the vertex, before its continuation.
+        adjoint.derivativeChannels = P.shadowVertex.v[slot].z;
+    }
+    gather(slot, contribution);
+    if (kAdjoint) {
+        backpropagateNextEvent(slot, contribution, tr, lengths);
+    }
+}
