@@ -17,7 +17,6 @@
 #include "optimize/loss_kind_text.h"
 #include "optimize/optimization_run.h"
 #include "optimize/parameter_vector.h"
-#include "optimize/run_identity.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "vk/context.h"
@@ -64,28 +63,6 @@ void applyResume(OptimizeCommandOptions& options, const CLI::Option* outGiven) {
     options.out = options.resume;
 }
 
-// Target files and --set values decide the result as much as the scene does; the
-// checkpoint's run identity (optimize/run_identity.h) holds them.
-RunIdentity commandIdentity(const OptimizeCommandOptions& options) {
-    RunIdentity identity;
-    std::string targets;
-    for (const std::string& target : options.targets) {
-        size_t equals = target.find('=');
-        std::string file = equals == std::string::npos ? target : target.substr(equals + 1);
-        std::string camera = equals == std::string::npos ? "" : target.substr(0, equals) + "=";
-        targets += (targets.empty() ? "" : "; ") + camera + fileDigest(file);
-    }
-    identity["targets"] = targets;
-    std::string assignments;
-    for (const std::string& assignment : options.scene.assignments) {
-        assignments += (assignments.empty() ? "" : " ") + assignment;
-    }
-    identity["set"] = assignments;
-    identity["spp"] = std::to_string(options.settings.spp);
-    identity["max_depth"] = std::to_string(options.settings.maxDepth);
-    return identity;
-}
-
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
     const OptimizeResult& result = report.result;
     double iterations = double(result.losses.size());
@@ -129,7 +106,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     std::vector<TargetView> views;
     for (const std::string& target : options.targets) views.push_back(readTarget(target, scene));
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views[0].target};
-    job.identity = commandIdentity(options);
+    job.inputs = {{}, options.targets, options.scene.assignments, options.settings.spp, options.settings.maxDepth};
     job.resume = !options.resume.empty();
 
     VulkanContext context(ContextOptions{options.device});

@@ -5,7 +5,7 @@
 
 #include "core/sample_statistics.h"
 #include "diff/gradient_over_seeds.h"
-#include "optimize/constraints.h"
+#include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
 
 namespace vkdr {
@@ -15,10 +15,6 @@ namespace {
 // differences use seeds from here on, so the two estimates are independent and their
 // standard errors combine as those of independent means.
 constexpr uint32_t kFirstFiniteDifferenceSeed = 1u << 20;
-
-bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 double lossWith(RenderedLossGradient& lg, const Scene& scene, const std::string& name, int component, float value,
                 uint32_t seed) {
@@ -31,11 +27,11 @@ double lossWith(RenderedLossGradient& lg, const Scene& scene, const std::string&
 
 // dL/dx by a central difference, or near a bound by the second-order one-sided
 // difference that stays inside it.
-double finiteDifference(const std::function<double(double)>& loss, double x, double h, const ValueBounds& bounds) {
-    if (x - h < bounds.lower) {
+double finiteDifference(const std::function<double(double)>& loss, double x, double h, const ValueRange& range) {
+    if (x - h < range.lower) {
         return (-3.0 * loss(x) + 4.0 * loss(x + h) - loss(x + 2.0 * h)) / (2.0 * h);
     }
-    if (x + h > bounds.upper) {
+    if (x + h > range.upper) {
         return (3.0 * loss(x) - 4.0 * loss(x - h) + loss(x - 2.0 * h)) / (2.0 * h);
     }
     return (loss(x + h) - loss(x - h)) / (2.0 * h);
@@ -43,38 +39,21 @@ double finiteDifference(const std::function<double(double)>& loss, double x, dou
 
 }  // namespace
 
-double finiteDifferenceStep(const std::string& parameter, float value) {
-    if (endsWith(parameter, "/g")) {
-        return 1e-2;
-    }
-    if (endsWith(parameter, "/sigma_a") || endsWith(parameter, "/sigma_s")) {
-        // Relative, so that a fog of sigma = 1e-3 (a scene hundreds of units across)
-        // gets a step of its own scale; at 0 the one-sided difference steps to 0.015.
-        return value > 0.0f ? 0.15 * double(value) : 0.015;
-    }
-    // Russian roulette follows the throughput, so an albedo step flips a few roulette
-    // decisions even with common random numbers: a larger step keeps that noise down.
-    if (endsWith(parameter, "/base_color") || endsWith(parameter, "/base_color_texture")) {
-        return 5e-2 * std::max(std::abs(double(value)), 0.1);
-    }
-    return 1e-2 * std::max(std::abs(double(value)), 0.1);
-}
-
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds) {
     const std::vector<std::vector<MeanAndError>> adjoint = gradientOverSeeds(lg, scene, uint32_t(seeds));
     std::vector<GradientCheckRow> rows;
     for (size_t p = 0; p < parameters.size(); ++p) {
         const std::vector<float> value = getParameter(scene, parameters[p]);
-        const ValueBounds bounds = boundsForParameter(parameters[p]);
+        const ParameterDescription& description = *parseParameterName(parameters[p])->description;
         for (size_t c = 0; c < value.size(); ++c) {
             const float x = value[c];
-            const double h = finiteDifferenceStep(parameters[p], x);
+            const double h = description.finiteDifferenceStep(x);
             std::vector<double> differences;
             for (int s = 0; s < seeds; ++s) {
                 const uint32_t seed = kFirstFiniteDifferenceSeed + uint32_t(s);
                 auto loss = [&](double at) { return lossWith(lg, scene, parameters[p], int(c), float(at), seed); };
-                differences.push_back(finiteDifference(loss, x, h, bounds));
+                differences.push_back(finiteDifference(loss, x, h, description.range));
             }
             const MeanAndError& a = adjoint[p][c];
             const MeanAndError f = meanAndError(differences);

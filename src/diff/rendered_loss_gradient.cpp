@@ -3,7 +3,7 @@
 #include "bvh/bvh.h"
 #include "core/error.h"
 #include "device_types.h"
-#include "diff/parameter_slots.h"
+#include "diff/gradient_slots.h"
 #include "render/renderer.h"
 #include "scene/parameters.h"
 
@@ -11,7 +11,7 @@ namespace vkdr {
 
 struct RenderedLossGradient::Impl {
     std::vector<std::unique_ptr<Renderer>> views;  // one per target view
-    std::vector<ParameterSlot> slots;
+    std::vector<GradientSlot> slots;
 };
 
 namespace {
@@ -30,12 +30,12 @@ RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const S
     if (views.empty()) {
         throw Error("no target image given");
     }
-    impl_->slots = resolveParameterSlots(scene, parameters);
+    impl_->slots = resolveGradientSlots(scene, parameters);
     DerivativeTargets derivativeTargets{false, false};
-    for (const ParameterSlot& slot : impl_->slots) {
-        derivativeTargets.mediumScattering |= slot.kind == ParameterSlot::Kind::SigmaS;
+    for (const GradientSlot& slot : impl_->slots) {
+        derivativeTargets.mediumScattering |= slot.kind == ParameterKind::SigmaS;
         derivativeTargets.baseColor |=
-            slot.kind == ParameterSlot::Kind::BaseColor || slot.kind == ParameterSlot::Kind::BaseColorTexture;
+            slot.kind == ParameterKind::BaseColor || slot.kind == ParameterKind::BaseColorTexture;
     }
     Bvh bvh = buildBvh(scene.positions, scene.triangles);
     for (const TargetView& view : views) {

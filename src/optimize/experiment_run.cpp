@@ -74,9 +74,7 @@ ExperimentResult runExperiment(const Experiment& experiment, Scene& scene, const
     std::vector<std::vector<float>> start = currentValues(scene, names);
 
     OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, targets[0].target};
-    job.identity = {{"experiment", experiment.file.filename().string() + ", " + fileDigest(experiment.file)},
-                    {"spp", std::to_string(experiment.render.spp)},
-                    {"max_depth", std::to_string(experiment.render.maxDepth)}};
+    job.inputs = {experiment.file, {}, {}, experiment.render.spp, experiment.render.maxDepth};
     job.resume = resume;
     std::unique_ptr<LossGradient> lossGradient =
         backend.makeLossGradient(scene, targets, names, experiment.render, experiment.loss);

@@ -1,6 +1,5 @@
 #include "optimize/optimization_run.h"
 
-#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -43,39 +42,6 @@ void createDirectory(const std::filesystem::path& directory) {
     }
 }
 
-std::string numberText(double value) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.17g", value);
-    return text;
-}
-
-// The job's own share of the run identity: the scene file and the loop's options.
-RunIdentity identityOf(const OptimizationJob& job) {
-    const OptimizeOptions& options = job.options;
-    RunIdentity identity = job.identity;
-    identity["scene"] = job.sceneFile.filename().string() + ", " + fileDigest(job.sceneFile);
-    std::string names;
-    for (const std::string& name : options.parameters) names += (names.empty() ? "" : " ") + name;
-    identity["parameters"] = names;
-    identity["optimizer"] = optimizerKindName(options.optimizer);
-    identity["learning_rate"] = numberText(options.learningRate);
-    std::string rates;
-    for (const auto& [name, rate] : options.learningRates) {
-        rates += (rates.empty() ? "" : " ") + name + "=" + numberText(rate);
-    }
-    identity["learning_rates"] = rates;
-    identity["learning_rate_decay"] = numberText(options.learningRateDecay);
-    identity["learning_rate_decay_start"] = numberText(options.learningRateDecayStart);
-    std::string logNames;
-    for (const std::string& name : options.logParameters) logNames += (logNames.empty() ? "" : " ") + name;
-    identity["log_parameters"] = logNames;
-    identity["adam_epsilon"] = numberText(options.adamEpsilon);
-    identity["iterations"] = std::to_string(options.iterations);
-    identity["seed"] = std::to_string(options.seed);
-    identity["loss"] = lossKindName(job.loss);
-    return identity;
-}
-
 // A checkpoint from a run with the same identity fits unless the file was edited.
 void requireFits(const std::filesystem::path& file, const LoopState& state, const OptimizeOptions& options,
                  size_t valueCount) {
@@ -110,7 +76,7 @@ std::optional<LoopState> resumeState(const OptimizationJob& job, const Scene& sc
 OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(uint32_t iteration, double loss)>& progress) {
     const std::filesystem::path& directory = job.outputDirectory;
-    RunIdentity identity = identityOf(job);
+    RunIdentity identity = runIdentity(job.sceneFile, job.options, job.loss, job.inputs);
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
     removeStaleTemporaries(directory);  // a killed run's partial writes

@@ -16,9 +16,7 @@ struct OptimizationJob {
     OptimizeOptions options;
     LossKind loss = LossKind::L2;           // what the LossGradient computes; labels loss.svg
     Image firstTarget;                      // the first view's target, for diff.png
-    // What else decides the result (render settings, targets, --set values), for the
-    // checkpoint's run identity; runOptimization adds the scene file and the options.
-    RunIdentity identity;
+    RunInputs inputs;                       // what else decides the result, for the checkpoint's run identity
     bool resume = false;                    // continue from outputDirectory's checkpoint
 };
 

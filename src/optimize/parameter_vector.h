@@ -36,7 +36,7 @@ public:
 private:
     std::vector<std::string> names_;
     std::vector<size_t> offsets_;  // parameter i is values_[offsets_[i], offsets_[i + 1])
-    std::vector<ValueBounds> bounds_;
+    std::vector<ValueRange> bounds_;
     std::vector<double> values_;
 };
 

@@ -5,8 +5,66 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "optimize/loss_kind_text.h"
 
 namespace vkdr {
+namespace {
+
+std::string numberText(double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.17g", value);
+    return text;
+}
+
+std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+    std::string text;
+    for (const std::string& item : items) text += (text.empty() ? "" : separator) + item;
+    return text;
+}
+
+std::string fileIdentity(const std::filesystem::path& file) {
+    return file.filename().string() + ", " + fileDigest(file);
+}
+
+// A target's file by digest, after its camera: "side=1234 bytes, fnv1a64 ...".
+std::string targetIdentity(const std::string& target) {
+    size_t equals = target.find('=');
+    std::string file = equals == std::string::npos ? target : target.substr(equals + 1);
+    std::string camera = equals == std::string::npos ? "" : target.substr(0, equals) + "=";
+    return camera + fileDigest(file);
+}
+
+}  // namespace
+
+RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOptions& options, LossKind loss,
+                        const RunInputs& inputs) {
+    RunIdentity identity;
+    if (inputs.experiment.empty()) {
+        std::vector<std::string> targets;
+        for (const std::string& target : inputs.targets) targets.push_back(targetIdentity(target));
+        identity["targets"] = joined(targets, "; ");
+        identity["set"] = joined(inputs.assignments, " ");
+    } else {
+        identity["experiment"] = fileIdentity(inputs.experiment);
+    }
+    identity["spp"] = std::to_string(inputs.spp);
+    identity["max_depth"] = std::to_string(inputs.maxDepth);
+    identity["scene"] = fileIdentity(sceneFile);
+    identity["parameters"] = joined(options.parameters, " ");
+    identity["optimizer"] = optimizerKindName(options.optimizer);
+    identity["learning_rate"] = numberText(options.learningRate);
+    std::vector<std::string> rates;
+    for (const auto& [name, rate] : options.learningRates) rates.push_back(name + "=" + numberText(rate));
+    identity["learning_rates"] = joined(rates, " ");
+    identity["learning_rate_decay"] = numberText(options.learningRateDecay);
+    identity["learning_rate_decay_start"] = numberText(options.learningRateDecayStart);
+    identity["log_parameters"] = joined(options.logParameters, " ");
+    identity["adam_epsilon"] = numberText(options.adamEpsilon);
+    identity["iterations"] = std::to_string(options.iterations);
+    identity["seed"] = std::to_string(options.seed);
+    identity["loss"] = lossKindName(loss);
+    return identity;
+}
 
 std::string fileDigest(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);

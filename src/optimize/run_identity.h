@@ -2,6 +2,9 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
+
+#include "optimize/optimize_loop.h"
 
 namespace vkdr {
 
@@ -9,6 +12,20 @@ namespace vkdr {
 // "parameters", "optimizer", ...), each as text. A checkpoint records the identity of
 // the run that wrote it, and a run resumes from it only with the same identity.
 using RunIdentity = std::map<std::string, std::string>;
+
+// What decides an optimisation's result besides its scene file, the loop's options and the loss.
+struct RunInputs {
+    std::filesystem::path experiment;      // the experiment file that set the run up; empty for a command line's
+    std::vector<std::string> targets;      // a command line's targets, FILE or CAMERA=FILE
+    std::vector<std::string> assignments;  // a command line's --set values, NAME=VALUE
+    uint32_t spp = 0;
+    uint32_t maxDepth = 0;
+};
+
+// The identity of a run: files by name and digest (an experiment's file stands for its
+// targets and values), options as text. Throws vkdr::Error naming a file it cannot read.
+RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOptions& options, LossKind loss,
+                        const RunInputs& inputs);
 
 // The file's size and a 64-bit FNV-1a hash of its bytes, as text: equal files give
 // equal digests, and an edited file almost surely a different one. Throws vkdr::Error

@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "scene/gltf_values.h"
+#include "scene/parameter_kinds.h"
 
 namespace vkdr {
 namespace {
@@ -14,11 +16,12 @@ const tinygltf::Value* findExtension(const tinygltf::ExtensionMap& extensions,
     return found == extensions.end() ? nullptr : &found->second;
 }
 
-void requireNonNegative(const GltfDiagnostics& diagnostics, glm::vec3 sigma,
-                        const std::string& field) {
-    for (int c = 0; c < 3; ++c) {
-        if (sigma[c] < 0.0f) {
-            diagnostics.fail(field, "must be >= 0, got " + formatNumber(sigma[c]));
+// The loader accepts what --set accepts: each value within its parameter kind's range.
+void requireInRange(const GltfDiagnostics& diagnostics, ParameterKind kind, std::span<const float> values,
+                    const std::string& field) {
+    for (float value : values) {
+        if (std::string problem = valueProblem(describe(kind), value); !problem.empty()) {
+            diagnostics.fail(field, problem);
         }
     }
 }
@@ -33,11 +36,9 @@ Medium readParticipatingMedia(const tinygltf::Value& extension, const std::strin
     medium.sigma_a = readRgbOrScalar(diagnostics, extension, field, "sigma_a", glm::vec3(0.0f));
     medium.sigma_s = readRgbOrScalar(diagnostics, extension, field, "sigma_s", glm::vec3(0.0f));
     medium.g = float(readNumber(diagnostics, extension, field, "g", 0.0));
-    requireNonNegative(diagnostics, medium.sigma_a, field + ".sigma_a");
-    requireNonNegative(diagnostics, medium.sigma_s, field + ".sigma_s");
-    if (!(std::abs(medium.g) < 1.0f)) {
-        diagnostics.fail(field + ".g", "|g| must be < 1, got " + formatNumber(medium.g));
-    }
+    requireInRange(diagnostics, ParameterKind::SigmaA, {&medium.sigma_a.x, 3}, field + ".sigma_a");
+    requireInRange(diagnostics, ParameterKind::SigmaS, {&medium.sigma_s.x, 3}, field + ".sigma_s");
+    requireInRange(diagnostics, ParameterKind::G, {&medium.g, 1}, field + ".g");
     return medium;
 }
 
@@ -149,7 +150,8 @@ glm::vec3 readBackground(const tinygltf::Model& model, GltfDiagnostics& diagnost
         diagnostics.fail(field, "expected an object");
     }
     glm::vec3 radiance = readRgbOrScalar(diagnostics, *extension, field, "radiance", glm::vec3(0.0f));
-    requireNonNegative(diagnostics, radiance, field + ".radiance");
+    // A radiance, held to the range of an emitter's.
+    requireInRange(diagnostics, ParameterKind::Emission, {&radiance.x, 3}, field + ".radiance");
     return radiance;
 }
 

@@ -1,92 +1,81 @@
 #include "scene/parameters.h"
 
 #include <charconv>
-#include <cmath>
 #include <optional>
 #include <type_traits>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
+#include "scene/parameter_kinds.h"
 
 namespace vkdr {
 namespace {
 
-enum class Quantity { Sigma, Anisotropy, Albedo, Emission };
-
-// Where a parameter's floats live in the Scene, and what values they accept: `size`
-// values, `channels` at a time, consecutive groups `stride` floats apart (a texture's
-// texels are RGBA, of which the parameter is the RGB).
+// Where a parameter's floats are stored in the Scene: `size` values, `channels` at a
+// time, consecutive groups `stride` floats apart (a texture's texels are RGBA, of which
+// the parameter is the RGB).
 template <typename Float>
-struct ParameterSlot {
+struct ParameterStorage {
     Float* values = nullptr;
     size_t size = 0;
-    Quantity quantity = Quantity::Sigma;
-    size_t channels = 1;
+    const ParameterDescription* description = nullptr;
     size_t stride = 1;
 
-    Float& operator[](size_t i) const { return values[(i / channels) * stride + i % channels]; }
+    Float& operator[](size_t i) const {
+        const size_t channels = description->channels;
+        return values[(i / channels) * stride + i % channels];
+    }
 };
 
 template <typename Float>
-ParameterSlot<Float> packedSlot(Float* values, size_t size, Quantity quantity) {
-    return {values, size, quantity, size, size};
+ParameterStorage<Float> packedStorage(Float* values, ParameterKind kind) {
+    const ParameterDescription& description = describe(kind);
+    return {values, description.channels, &description, description.channels};
 }
 
-struct ParsedName {
-    std::string_view kind;    // "media", "materials" or "lights"
-    std::string_view object;  // medium or material name; may itself contain '/'
-    std::string_view field;   // "sigma_a", "base_color", ...
-};
-
-std::optional<ParsedName> parseName(std::string_view name) {
-    size_t first = name.find('/');
-    size_t last = name.rfind('/');
-    if (first == std::string_view::npos || first == last) {
-        return std::nullopt;
+template <typename Float, typename MediumType>
+ParameterStorage<Float> mediumStorage(MediumType& medium, ParameterKind kind) {
+    switch (kind) {
+    case ParameterKind::SigmaA: return packedStorage<Float>(glm::value_ptr(medium.sigma_a), kind);
+    case ParameterKind::SigmaS: return packedStorage<Float>(glm::value_ptr(medium.sigma_s), kind);
+    default: return packedStorage<Float>(&medium.g, kind);  // G, a medium's only other kind
     }
-    return ParsedName{name.substr(0, first), name.substr(first + 1, last - first - 1),
-                      name.substr(last + 1)};
 }
 
 template <typename SceneType>
-auto findSlot(SceneType& scene, std::string_view name) {
+auto findStorage(SceneType& scene, std::string_view name) {
     using Float = std::conditional_t<std::is_const_v<SceneType>, const float, float>;
-    std::optional<ParameterSlot<Float>> slot;
-    std::optional<ParsedName> parsed = parseName(name);
+    std::optional<ParameterStorage<Float>> storage;
+    std::optional<ParsedParameterName> parsed = parseParameterName(name);
     if (!parsed) {
-        return slot;
+        return storage;
     }
-    if (parsed->kind == "media") {
+    const ParameterKind kind = parsed->description->kind;
+    if (parsed->description->owner == ParameterOwner::Medium) {
         for (auto& medium : scene.media) {
-            if (medium.name != parsed->object) {
-                continue;
-            }
-            if (parsed->field == "sigma_a") {
-                slot = packedSlot<Float>(glm::value_ptr(medium.sigma_a), 3, Quantity::Sigma);
-            } else if (parsed->field == "sigma_s") {
-                slot = packedSlot<Float>(glm::value_ptr(medium.sigma_s), 3, Quantity::Sigma);
-            } else if (parsed->field == "g") {
-                slot = packedSlot<Float>(&medium.g, 1, Quantity::Anisotropy);
+            if (medium.name == parsed->owner) {
+                storage = mediumStorage<Float>(medium, kind);
             }
         }
-        return slot;
+        return storage;
     }
     for (auto& material : scene.materials) {
-        if (material.name != parsed->object || material.isMediumBoundary()) {
+        if (material.name != parsed->owner || material.isMediumBoundary()) {
             continue;
         }
-        if (parsed->kind == "materials" && parsed->field == "base_color") {
-            slot = packedSlot<Float>(glm::value_ptr(material.baseColor), 3, Quantity::Albedo);
-        } else if (parsed->kind == "materials" && parsed->field == "base_color_texture" &&
-                   material.baseColorTexture >= 0) {
+        if (kind == ParameterKind::BaseColor) {
+            storage = packedStorage<Float>(glm::value_ptr(material.baseColor), kind);
+        } else if (kind == ParameterKind::BaseColorTexture && material.baseColorTexture >= 0) {
             auto& texels = scene.textures[size_t(material.baseColorTexture)].texels;
-            slot = ParameterSlot<Float>{glm::value_ptr(texels.front()), 3 * texels.size(), Quantity::Albedo, 3, 4};
-        } else if (parsed->kind == "lights" && parsed->field == "emission") {
-            slot = packedSlot<Float>(glm::value_ptr(material.emission), 3, Quantity::Emission);
+            const size_t size = parsed->description->channels * texels.size();
+            storage = ParameterStorage<Float>{glm::value_ptr(texels.front()), size, parsed->description,
+                                              size_t(glm::vec4::length())};
+        } else if (kind == ParameterKind::Emission) {
+            storage = packedStorage<Float>(glm::value_ptr(material.emission), kind);
         }
     }
-    return slot;
+    return storage;
 }
 
 [[noreturn]] void failUnknown(const Scene& scene, std::string_view name) {
@@ -97,83 +86,60 @@ auto findSlot(SceneType& scene, std::string_view name) {
     throw Error(message);
 }
 
-std::string numberText(float value) {
-    char text[32];
-    auto [end, ec] = std::to_chars(text, text + sizeof(text), value);
-    return std::string(text, ec == std::errc() ? end : text);
-}
-
-// Empty when `value` is acceptable, else why not.
-std::string rangeProblem(Quantity quantity, float value) {
-    if (!std::isfinite(value)) {
-        return "must be finite, got " + numberText(value);
-    }
-    switch (quantity) {
-    case Quantity::Sigma:
-    case Quantity::Emission:
-        return value >= 0.0f ? "" : "must be >= 0, got " + numberText(value);
-    case Quantity::Anisotropy:
-        return std::abs(value) < 1.0f ? "" : "|g| must be < 1, got " + numberText(value);
-    case Quantity::Albedo:
-        return value >= 0.0f && value <= 1.0f ? "" : "must be in [0, 1], got " + numberText(value);
-    }
-    return "";
-}
-
 }  // namespace
 
 std::vector<std::string> parameterNames(const Scene& scene) {
     std::vector<std::string> names;
     for (const Medium& medium : scene.media) {
-        for (const char* field : {"sigma_a", "sigma_s", "g"}) {
-            names.push_back("media/" + medium.name + "/" + field);
+        for (ParameterKind kind : {ParameterKind::SigmaA, ParameterKind::SigmaS, ParameterKind::G}) {
+            names.push_back(parameterName(kind, medium.name));
         }
     }
     for (const Material& material : scene.materials) {
         if (!material.isMediumBoundary()) {
-            names.push_back("materials/" + material.name + "/base_color");
+            names.push_back(parameterName(ParameterKind::BaseColor, material.name));
             if (material.baseColorTexture >= 0) {
-                names.push_back("materials/" + material.name + "/base_color_texture");
+                names.push_back(parameterName(ParameterKind::BaseColorTexture, material.name));
             }
         }
     }
     for (const Material& material : scene.materials) {
         if (!material.isMediumBoundary() && material.isEmissive()) {
-            names.push_back("lights/" + material.name + "/emission");
+            names.push_back(parameterName(ParameterKind::Emission, material.name));
         }
     }
     return names;
 }
 
 std::vector<float> getParameter(const Scene& scene, std::string_view name) {
-    auto slot = findSlot(scene, name);
-    if (!slot) {
+    auto storage = findStorage(scene, name);
+    if (!storage) {
         failUnknown(scene, name);
     }
-    std::vector<float> values(slot->size);
-    for (size_t i = 0; i < slot->size; ++i) {
-        values[i] = (*slot)[i];
+    std::vector<float> values(storage->size);
+    for (size_t i = 0; i < storage->size; ++i) {
+        values[i] = (*storage)[i];
     }
     return values;
 }
 
 void setParameter(Scene& scene, std::string_view name, std::span<const float> values) {
-    auto slot = findSlot(scene, name);
-    if (!slot) {
+    auto storage = findStorage(scene, name);
+    if (!storage) {
         failUnknown(scene, name);
     }
-    if (values.size() != slot->size && values.size() != 1) {
+    if (values.size() != storage->size && values.size() != 1) {
         throw Error("parameter " + std::string(name) + ": expected " +
-                    (slot->size == 1 ? std::string("1 value") : "1 or " + std::to_string(slot->size) + " values") +
+                    (storage->size == 1 ? std::string("1 value") : "1 or " + std::to_string(storage->size) + " values") +
                     ", got " + std::to_string(values.size()));
     }
     for (float value : values) {
-        if (std::string problem = rangeProblem(slot->quantity, value); !problem.empty()) {
+        if (std::string problem = valueProblem(*storage->description, value); !problem.empty()) {
             throw Error("parameter " + std::string(name) + ": " + problem);
         }
     }
-    for (size_t i = 0; i < slot->size; ++i) {
-        (*slot)[i] = values.size() == 1 ? values[0] : values[i];
+    for (size_t i = 0; i < storage->size; ++i) {
+        (*storage)[i] = values.size() == 1 ? values[0] : values[i];
     }
 }
 

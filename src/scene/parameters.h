@@ -8,16 +8,11 @@
 
 namespace vkdr {
 
-// The scene's named, overridable (and differentiable) parameters, spelled as in
-// DESIGN.md "Names":
-//   media/<medium>/sigma_a, media/<medium>/sigma_s   3 floats, >= 0, per scene unit
-//   media/<medium>/g                                 1 float, |g| < 1
-//   materials/<material>/base_color                  3 floats in [0, 1]
-//   materials/<material>/base_color_texture          3 floats in [0, 1] per texel of the
-//                                                    material's base colour texture (linear
-//                                                    RGB, rows from the top), if it has one
-//   lights/<material>/emission                       3 floats, >= 0
-// Medium boundary materials have no base colour or emission.
+// The scene's named, overridable (and differentiable) parameters. Each kind's name
+// pattern, channels and valid range are described once, in scene/parameter_kinds.h.
+// materials/<material>/base_color_texture holds 3 floats per texel of the material's
+// base colour texture (linear RGB, rows from the top), if it has one. Medium boundary
+// materials have no base colour or emission.
 
 // Every parameter of the scene: media in order (sigma_a, sigma_s, g each), then base
 // colours, then the emissions of emissive materials.

@@ -43,7 +43,7 @@ struct Medium {
     std::string name;  // parameter prefix is "media/<name>/"
     glm::vec3 sigma_a{0.0f};
     glm::vec3 sigma_s{0.0f};
-    float g = 0.0f;    // Henyey-Greenstein anisotropy, |g| < 1
+    float g = 0.0f;    // Henyey-Greenstein anisotropy, in [-0.99, 0.99] (scene/parameter_kinds.h)
 };
 
 // A flattened scene: every mesh instance baked into world space.

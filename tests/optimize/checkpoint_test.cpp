@@ -32,7 +32,7 @@ OptimizationJob fogJob(const std::filesystem::path& directory, uint32_t iteratio
     job.options.iterations = iterations;
     job.options.seed = 7;
     job.options.checkpointEvery = 10;
-    job.identity = {{"spp", "4"}};
+    job.inputs.spp = 4;
     job.firstTarget = Image{4, 3, std::vector<float>(4 * 3 * 3, 0.05f)};
     return job;
 }
@@ -125,7 +125,7 @@ TEST(Checkpoint, ResumeRefusesADifferentRun) {
     job.options.parameters = {"media/fog/sigma_a"};
     expectRefused(job, "parameters");
     job = fogJob(scratch.path(), 40);
-    job.identity["spp"] = "8";
+    job.inputs.spp = 8;
     expectRefused(job, "spp");
 
     std::filesystem::path edited = scratch / "edited.gltf";
@@ -135,6 +135,36 @@ TEST(Checkpoint, ResumeRefusesADifferentRun) {
     job.sceneFile = edited;
     expectRefused(job, "scene");
     EXPECT_EQ(readCheckpoint(scratch / kCheckpointFileName).state.iteration, 10u);  // untouched
+}
+
+// A command line's run is identified by its targets and --set values, an experiment's by
+// its file; both by the scene, the render settings and every option of the loop. The
+// names are those checkpoints already on disk were written with.
+TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
+    ScratchDirectory scratch;
+    const std::filesystem::path target = scratch.path() / "target.exr";
+    std::ofstream(target) << "pixels";
+    OptimizationJob job = fogJob(scratch.path(), 40);
+    RunIdentity command = runIdentity(job.sceneFile, job.options, job.loss,
+                                      {{}, {"side=" + target.string()}, {"media/fog/g=0.2", "media/fog/sigma_s=1"}, 4, 6});
+    EXPECT_EQ(command.at("targets"), "side=" + fileDigest(target));
+    EXPECT_EQ(command.at("set"), "media/fog/g=0.2 media/fog/sigma_s=1");
+    EXPECT_EQ(command.at("spp"), "4");
+    EXPECT_EQ(command.at("max_depth"), "6");
+    EXPECT_EQ(command.at("scene"), "cornell_fog.gltf, " + fileDigest(kFogScene));
+    EXPECT_EQ(command.at("parameters"), "media/fog/sigma_a media/fog/g");
+    EXPECT_EQ(command.at("learning_rate_decay"), "0.5");
+    EXPECT_EQ(command.count("experiment"), 0u);
+
+    RunIdentity experiment = runIdentity(job.sceneFile, job.options, job.loss, {target, {}, {}, 4, 6});
+    EXPECT_EQ(experiment.at("experiment"), "target.exr, " + fileDigest(target));
+    EXPECT_EQ(experiment.count("targets") + experiment.count("set"), 0u);
+    for (const char* option : {"optimizer", "learning_rate", "learning_rates", "learning_rate_decay_start",
+                               "log_parameters", "adam_epsilon", "iterations", "seed", "loss"}) {
+        EXPECT_EQ(command.at(option), experiment.at(option)) << option;
+    }
+    EXPECT_EQ(command.size(), 16u);
+    EXPECT_EQ(experiment.size(), 15u);
 }
 
 TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {

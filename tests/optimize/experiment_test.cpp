@@ -116,7 +116,7 @@ TEST(Experiment, RejectsUnknownParametersValuesAndViewsAgainstTheScene) {
 
     experiment = fogExperiment(scratch.path());
     experiment["true"]["media/fog/g"] = 1.5;
-    expectPrepareError(scratch, experiment, {"true.media/fog/g", "|g| must be < 1"});
+    expectPrepareError(scratch, experiment, {"true.media/fog/g", "must be in [-0.99, 0.99], got 1.5"});
 
     experiment = fogExperiment(scratch.path());
     experiment["views"] = {"side"};

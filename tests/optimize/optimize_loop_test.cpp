@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "expect_error.h"
 #include "optimize/constraints.h"
 #include "optimize/optimize_loop.h"
 #include "quadratic_loss_gradient.h"
@@ -65,7 +66,7 @@ TEST(OptimizeLoop, KeepsEveryParameterInsideItsConstraints) {
     callbacks.iterationDone = [&](const IterationRecord&) {
         ++evaluations;
         EXPECT_GE(getParameter(scene, "media/fog/sigma_a")[0], 0.0f);
-        EXPECT_LE(std::abs(getParameter(scene, "media/fog/g")[0]), float(kMaxAbsAnisotropy));
+        EXPECT_LE(std::abs(getParameter(scene, "media/fog/g")[0]), float(describe(ParameterKind::G).range.upper));
     };
     optimize(loss, scene, options, callbacks);
     EXPECT_EQ(evaluations, 300u);
@@ -251,6 +252,30 @@ TEST(Constraints, FollowTheLastComponentOfTheName) {
     EXPECT_EQ(boundsForParameter("materials/x/base_color").upper, 1.0);
     EXPECT_EQ(boundsForParameter("media/fog/g").lower, -0.99);
     EXPECT_THROW(boundsForParameter("media/fog/density"), Error);
+}
+
+// The optimiser keeps each value in the range that setting it enforces: a value
+// projected onto either end is one the scene accepts.
+TEST(Constraints, AreTheRangesThatSettingAValueEnforces) {
+    for (const ParameterDescription& description : parameterDescriptions()) {
+        const std::string name = parameterName(description.kind, "fog");
+        const ValueRange bounds = boundsForParameter(name);
+        EXPECT_EQ(bounds.lower, description.range.lower) << name;
+        EXPECT_EQ(bounds.upper, description.range.upper) << name;
+        std::vector<double> values = {-1e6, 1e6};
+        projectOntoBounds(values, bounds);
+        for (double value : values) {
+            EXPECT_TRUE(bounds.contains(float(value))) << name << " " << value;
+            EXPECT_EQ(valueProblem(description, float(value)), "") << name;
+        }
+    }
+    Scene scene = sceneWithParameters();
+    std::vector<double> g = {1.5};
+    projectOntoBounds(g, boundsForParameter("media/fog/g"));
+    setParameter(scene, "media/fog/g", std::vector<float>{float(g[0])});
+    EXPECT_EQ(getParameter(scene, "media/fog/g")[0], 0.99f);
+    expectErrorMentioning([] { boundsForParameter("fog/g/density"); },
+                          {"'fog/g/density' cannot be optimised", "media/<medium>/g", "lights/<material>/emission"});
 }
 
 }  // namespace

@@ -121,7 +121,18 @@ TEST(LoadSceneErrors, NegativeSigma) {
 TEST(LoadSceneErrors, AnisotropyOfOneOrMore) {
     TemporaryDirectory directory;
     expectLoadError(boxWithMaterial(mediumMaterial({{"g", 1.2}})).writeGltf(directory / "g.gltf"),
-                    {"materials[0].extensions.VKDR_participating_media.g", "|g| must be < 1, got 1.2"});
+                    {"materials[0].extensions.VKDR_participating_media.g", "must be in [-0.99, 0.99], got 1.2"});
+}
+
+// The loader holds g to the range --set and the optimiser use: its ends load, beyond does not.
+TEST(LoadSceneErrors, AnisotropyBeyondTheParameterRange) {
+    TemporaryDirectory directory;
+    for (double g : {-0.99, 0.99}) {
+        Scene scene = loadScene(boxWithMaterial(mediumMaterial({{"g", g}})).writeGltf(directory / "end.gltf")).scene;
+        EXPECT_EQ(scene.media.at(0).g, float(g));
+    }
+    expectLoadError(boxWithMaterial(mediumMaterial({{"g", 0.995}})).writeGltf(directory / "g.gltf"),
+                    {"materials[0].extensions.VKDR_participating_media.g", "must be in [-0.99, 0.99], got 0.995"});
 }
 
 TEST(LoadSceneErrors, NumbersBeyondFloatRange) {
@@ -143,7 +154,7 @@ TEST(LoadSceneErrors, RootMediumWithInvalidAnisotropy) {
     builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
     builder.document()["extensions"]["VKDR_participating_media"] = {{"name", "fog"}, {"g", -1.0}};
     expectLoadError(builder.writeGltf(directory / "fog.gltf"),
-                    {"extensions.VKDR_participating_media.g", "|g| must be < 1, got -1"});
+                    {"extensions.VKDR_participating_media.g", "must be in [-0.99, 0.99], got -1"});
 }
 
 TEST(LoadSceneErrors, RefractionIsNotSupported) {

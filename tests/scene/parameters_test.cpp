@@ -2,11 +2,15 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "expect_error.h"
+#include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
 
 namespace vkdr::test {
@@ -61,6 +65,100 @@ TEST(Parameters, SetsRgbValuesAndBroadcastsOneValue) {
     EXPECT_EQ(scene.media[1].g, -0.9f);
 }
 
+// sceneWithEverything with a texture on "white": an owner for every kind of parameter.
+Scene sceneWithEveryKind() {
+    Scene scene = sceneWithEverything();
+    scene.textures.push_back({"checker", 2, 1, {glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), glm::vec4(0.4f, 0.5f, 0.6f, 1.0f)}});
+    scene.materials[0].baseColorTexture = 0;
+    return scene;
+}
+
+std::string ownerOf(ParameterKind kind) {
+    switch (kind) {
+    case ParameterKind::SigmaA:
+    case ParameterKind::SigmaS:
+    case ParameterKind::G: return "fog";
+    case ParameterKind::Emission: return "light";
+    default: return "white";
+    }
+}
+
+TEST(ParameterKinds, SettingAcceptsEveryKindsRangeEndsAndRefusesBeyond) {
+    for (const ParameterDescription& description : parameterDescriptions()) {
+        Scene scene = sceneWithEveryKind();
+        const std::string name = parameterName(description.kind, ownerOf(description.kind));
+        const float lower = float(description.range.lower), upper = float(description.range.upper);
+        setParameter(scene, name, std::vector<float>{lower});
+        EXPECT_EQ(getParameter(scene, name).front(), lower) << name;
+        expectErrorMentioning([&] { setParameter(scene, name, std::vector<float>{std::nextafter(lower, -1e30f)}); },
+                              {name, "must be"});
+        if (std::isfinite(upper)) {
+            setParameter(scene, name, std::vector<float>{upper});
+            EXPECT_EQ(getParameter(scene, name).front(), upper) << name;
+            expectErrorMentioning([&] { setParameter(scene, name, std::vector<float>{std::nextafter(upper, 1e30f)}); },
+                                  {name, "must be in ["});
+        } else {
+            setParameter(scene, name, std::vector<float>{std::numeric_limits<float>::max()});
+        }
+    }
+}
+
+TEST(ParameterKinds, GIsKeptWithinPlusMinus0Point99) {
+    const ValueRange& range = describe(ParameterKind::G).range;
+    EXPECT_EQ(range.lower, -0.99);
+    EXPECT_EQ(range.upper, 0.99);
+    Scene scene = sceneWithEverything();
+    setParameter(scene, "media/fog/g", std::vector<float>{-0.99f});
+    setParameter(scene, "media/fog/g", std::vector<float>{0.99f});
+    EXPECT_EQ(scene.media[0].g, 0.99f);
+    expectErrorMentioning([&] { setParameter(scene, "media/fog/g", std::vector<float>{0.995f}); },
+                          {"media/fog/g", "must be in [-0.99, 0.99], got 0.995"});
+    expectErrorMentioning([&] { setParameter(scene, "media/fog/g", std::vector<float>{-0.991f}); },
+                          {"must be in [-0.99, 0.99], got -0.991"});
+}
+
+TEST(ParameterKinds, NamesParseBackToTheirKindAndOwner) {
+    for (const ParameterDescription& description : parameterDescriptions()) {
+        const std::string name = parameterName(description.kind, "Props/Red");
+        std::optional<ParsedParameterName> parsed = parseParameterName(name);
+        ASSERT_TRUE(parsed) << name;
+        EXPECT_EQ(parsed->description->kind, description.kind) << name;
+        EXPECT_EQ(parsed->owner, "Props/Red") << name;
+    }
+    EXPECT_EQ(parameterPattern(describe(ParameterKind::BaseColorTexture)), "materials/<material>/base_color_texture");
+    EXPECT_EQ(parameterPattern(describe(ParameterKind::G)), "media/<medium>/g");
+    for (const char* unknown : {"media/sigma_a", "media/fog/sigma_t", "lights/white/base_color", "nonsense", ""}) {
+        EXPECT_FALSE(parseParameterName(unknown)) << unknown;
+    }
+}
+
+TEST(ParameterKinds, ChannelsAreThoseSettingAndGettingUse) {
+    Scene scene = sceneWithEveryKind();
+    for (const ParameterDescription& description : parameterDescriptions()) {
+        const std::string name = parameterName(description.kind, ownerOf(description.kind));
+        const size_t groups = description.kind == ParameterKind::BaseColorTexture ? scene.textures[0].texels.size() : 1;
+        EXPECT_EQ(getParameter(scene, name).size(), description.channels * groups) << name;
+    }
+}
+
+// The steps grad --check takes: relative for sigma (0.015 at 0), fixed for g, 5 % of an
+// albedo and 1 % of an emission (at least 0.1 of either).
+TEST(ParameterKinds, FiniteDifferenceStepsPerKind) {
+    auto step = [](ParameterKind kind, float value) { return describe(kind).finiteDifferenceStep(value); };
+    for (ParameterKind sigma : {ParameterKind::SigmaA, ParameterKind::SigmaS}) {
+        EXPECT_DOUBLE_EQ(step(sigma, 2.0f), 0.3);
+        EXPECT_DOUBLE_EQ(step(sigma, 0.0f), 0.015);
+    }
+    EXPECT_DOUBLE_EQ(step(ParameterKind::G, 0.0f), 0.01);
+    EXPECT_DOUBLE_EQ(step(ParameterKind::G, -0.9f), 0.01);
+    for (ParameterKind albedo : {ParameterKind::BaseColor, ParameterKind::BaseColorTexture}) {
+        EXPECT_DOUBLE_EQ(step(albedo, 0.5f), 0.025);
+        EXPECT_DOUBLE_EQ(step(albedo, 0.0f), 0.005);
+    }
+    EXPECT_DOUBLE_EQ(step(ParameterKind::Emission, 8.0f), 0.08);
+    EXPECT_DOUBLE_EQ(step(ParameterKind::Emission, 0.0f), 0.001);
+}
+
 TEST(Parameters, BaseColorTextureIsTheRgbOfEveryTexel) {
     Scene scene = sceneWithEverything();
     scene.textures.push_back({"checker", 2, 1, {glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), glm::vec4(0.4f, 0.5f, 0.6f, 1.0f)}});
@@ -97,7 +195,7 @@ TEST(Parameters, RejectsOutOfRangeAndNonFiniteValues) {
     expectErrorMentioning(set("media/fog/sigma_a", {-0.1f}), {"media/fog/sigma_a", "must be >= 0, got -0.1"});
     expectErrorMentioning(set("media/fog/sigma_s", {0.1f, nan, 0.1f}), {"media/fog/sigma_s", "must be finite, got nan"});
     expectErrorMentioning(set("media/fog/sigma_s", {inf}), {"must be finite, got inf"});
-    expectErrorMentioning(set("media/fog/g", {1.0f}), {"media/fog/g", "|g| must be < 1, got 1"});
+    expectErrorMentioning(set("media/fog/g", {1.0f}), {"media/fog/g", "must be in [-0.99, 0.99], got 1"});
     expectErrorMentioning(set("media/fog/g", {0.1f, 0.2f, 0.3f}), {"media/fog/g", "expected 1 value, got 3"});
     expectErrorMentioning(set("media/fog/sigma_a", {0.1f, 0.2f}), {"expected 1 or 3 values, got 2"});
     expectErrorMentioning(set("materials/white/base_color", {1.5f}), {"materials/white/base_color", "must be in [0, 1]"});

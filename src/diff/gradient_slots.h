@@ -1,0 +1,30 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+#include "scene/parameter_kinds.h"
+#include "scene/scene.h"
+
+namespace vkdr {
+
+// Where a named parameter's gradient sits among the adjoint pass's accumulators: `groups`
+// groups of the kind's channels in `accumulator`, the first at `first`, each `stride`
+// floats after the one before (a texture's texels, 4 floats each).
+struct GradientSlot {
+    std::string name;
+    ParameterKind kind;
+    std::vector<float> SceneGradients::*accumulator;
+    size_t first = 0;
+    size_t groups = 1;
+    size_t stride = 0;
+};
+
+// Resolves names like media/fog/sigma_a; an unknown name is a vkdr::Error listing the
+// valid ones (scene/parameters.h).
+std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::vector<std::string>& names);
+
+// The parameter's gradient, one value per float of the parameter (scene/parameters.h).
+std::vector<double> gatherGradient(const GradientSlot& slot, const SceneGradients& gradients);
+
+}  // namespace vkdr

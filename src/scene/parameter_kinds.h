@@ -1,0 +1,79 @@
+#pragma once
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace vkdr {
+
+// Every kind of named scene parameter (scene/parameters.h), described once: setting
+// values, the optimiser's bounds, grad --check's steps and the gradient read-back all
+// follow from this table.
+enum class ParameterKind {
+    SigmaA,            // media/<medium>/sigma_a: absorption, RGB, per scene unit, >= 0
+    SigmaS,            // media/<medium>/sigma_s: scattering, RGB, per scene unit, >= 0
+    G,                 // media/<medium>/g: Henyey-Greenstein anisotropy in [-0.99, 0.99]
+    BaseColor,         // materials/<material>/base_color: RGB albedo in [0, 1]
+    BaseColorTexture,  // materials/<material>/base_color_texture: the same, per texel
+    Emission,          // lights/<material>/emission: RGB radiance, >= 0
+};
+
+// What the middle of a parameter's name names.
+enum class ParameterOwner { Medium, Material };
+
+// The closed interval a parameter's values must lie in, both when set and while optimised.
+struct ValueRange {
+    double lower;
+    double upper;
+
+    // Compared in float, the precision the scene stores: the float nearest 0.99 lies
+    // above the double 0.99, and a value the optimiser projects onto an end of the
+    // range must be accepted when it is written back.
+    bool contains(float value) const;
+};
+
+// Which of the adjoint pass's accumulators (SceneGradients, render/renderer.h) holds a
+// parameter's gradient, and for a medium which of its gradients; diff/ maps these onto
+// the device layout.
+enum class GradientAccumulator { Medium, BaseColor, Texel, Emission };
+enum class MediumGradient { None, SigmaA, SigmaS, G };
+
+struct ParameterDescription {
+    ParameterKind kind;
+    std::string_view prefix;  // the name up to the owner: "media/"
+    std::string_view field;   // the name after the owner: "/sigma_a"
+    ParameterOwner owner;
+    size_t channels;          // floats per value: 3 (RGB, per texel for a texture), 1 for g
+    ValueRange range;
+    // grad --check's central-difference step at `value` (parameter_kinds.cpp says why
+    // each kind steps as it does).
+    double (*finiteDifferenceStep)(float value);
+    GradientAccumulator accumulator;
+    MediumGradient mediumGradient;  // None unless accumulator is Medium
+};
+
+// The kinds, in the order parameterNames lists a medium's or a material's parameters.
+std::span<const ParameterDescription> parameterDescriptions();
+
+const ParameterDescription& describe(ParameterKind kind);
+
+// "media/<medium>/sigma_a" for ParameterKind::SigmaA, as the user spells the pattern.
+std::string parameterPattern(const ParameterDescription& description);
+
+// The name of `owner`'s parameter of this kind: parameterName(SigmaA, "fog") is "media/fog/sigma_a".
+std::string parameterName(ParameterKind kind, std::string_view owner);
+
+struct ParsedParameterName {
+    const ParameterDescription* description;
+    std::string_view owner;  // the medium's or material's name; may itself contain '/'
+};
+
+// nullopt when the name fits no kind's pattern; whether its owner exists is the scene's concern.
+std::optional<ParsedParameterName> parseParameterName(std::string_view name);
+
+// Empty when `value` is finite and within the kind's range, else why not
+// ("must be in [-0.99, 0.99], got 1").
+std::string valueProblem(const ParameterDescription& description, float value);
+
+}  // namespace vkdr

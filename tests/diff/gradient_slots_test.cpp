@@ -1,0 +1,66 @@
+// Reading a named parameter's gradient out of the adjoint pass's accumulators, for every
+// kind of parameter, without a GPU: each accumulator float holds its own index.
+#include <numeric>
+
+#include <gtest/gtest.h>
+
+#include "device_types.h"
+#include "diff/gradient_slots.h"
+#include "expect_error.h"
+
+namespace vkdr::test {
+namespace {
+
+Scene sceneWithTwoOfEverything() {
+    Scene scene;
+    scene.media = {{"fog", glm::vec3(0.1f), glm::vec3(0.2f), 0.3f}, {"smoke", glm::vec3(0.5f), glm::vec3(1.5f), 0.6f}};
+    scene.textures = {{"first", 1, 1, {glm::vec4(0.5f)}}, {"checker", 2, 1, {glm::vec4(0.1f), glm::vec4(0.4f)}}};
+    Material white, light;
+    white.name = "white";
+    light.name = "light";
+    light.emission = glm::vec3(1.0f);
+    light.baseColorTexture = 1;
+    scene.materials = {white, light};
+    return scene;
+}
+
+std::vector<float> indices(size_t count) {
+    std::vector<float> values(count);
+    std::iota(values.begin(), values.end(), 0.0f);
+    return values;
+}
+
+std::vector<double> gradientOf(const std::string& name) {
+    const Scene scene = sceneWithTwoOfEverything();
+    const SceneGradients gradients{indices(2 * gpu::kMediumGradientStride), indices(8), indices(8), indices(12)};
+    return gatherGradient(resolveGradientSlots(scene, {name}).at(0), gradients);
+}
+
+std::vector<double> sequence(double first, size_t count) {
+    std::vector<double> values(count);
+    std::iota(values.begin(), values.end(), first);
+    return values;
+}
+
+TEST(GradientSlot, ReadsEveryKindFromItsAccumulator) {
+    const double smoke = gpu::kMediumGradientStride;
+    EXPECT_EQ(gradientOf("media/smoke/sigma_a"), sequence(smoke + gpu::kMediumGradientSigmaA, 3));
+    EXPECT_EQ(gradientOf("media/smoke/sigma_s"), sequence(smoke + gpu::kMediumGradientSigmaS, 3));
+    EXPECT_EQ(gradientOf("media/fog/g"), sequence(gpu::kMediumGradientG, 1));
+    EXPECT_EQ(gradientOf("materials/light/base_color"), sequence(4, 3));
+    EXPECT_EQ(gradientOf("lights/light/emission"), sequence(4, 3));
+    // The checker's two texels follow the first texture's one; each is RGBA, of which the gradient is the RGB.
+    EXPECT_EQ(gradientOf("materials/light/base_color_texture"), (std::vector<double>{4, 5, 6, 8, 9, 10}));
+}
+
+TEST(GradientSlot, KeepsTheKindForTheAdjointsDerivativeTargets) {
+    const Scene scene = sceneWithTwoOfEverything();
+    std::vector<GradientSlot> slots = resolveGradientSlots(scene, {"media/fog/sigma_s", "lights/light/emission"});
+    EXPECT_EQ(slots[0].kind, ParameterKind::SigmaS);
+    EXPECT_EQ(slots[1].kind, ParameterKind::Emission);
+    expectErrorMentioning([&] { resolveGradientSlots(scene, {"media/haze/g"}); },
+                          {"unknown parameter 'media/haze/g'", "media/fog/g"});
+}
+
+}  // namespace
+}  // namespace vkdr::test
