@@ -134,6 +134,7 @@ void main() {
     beginReplay(slot);
     if (kAdjoint) {
         // The derivative channels as they were at the vertex, before its continuation.
+        // For this contribution only: the stage never stores the replay state back.
         adjoint.derivativeChannels = P.shadowVertex.v[slot].z;
     }
     gather(slot, contribution);

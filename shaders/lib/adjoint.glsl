@@ -207,8 +207,11 @@ vec3 multiplyByParameter(vec3 beta, vec3 parameter, vec3 rest, uint targetKind, 
 // The previous vertex's continuation factor: its gradient needs L_rem after that
 // vertex's next-event contribution, which the shadow stage has subtracted by now.
 void applyPendingFactor(uint slot) {
+    if (!kAdjoint) {
+        return;
+    }
     uint kind = adjoint.pending & 0xffu;
-    if (!kAdjoint || kind == kPendingNone) {
+    if (kind == kPendingNone) {
         return;
     }
     uint index = adjoint.pending >> 8u;

@@ -106,6 +106,24 @@ const uint kGradientCopyAlignment = 32u;  // floats: copies start 128 bytes apar
     X(emissionGradients, emissions, 4u, kGradientCopies, materialCount)   /* rgb */ \
     X(texelGradients, texels, 4u, 1u, texelCount) /* rgb, in the layout of RenderParams.texels */
 
+#ifdef __cplusplus
+// The host's names for the accumulators, in the order of the list, and their layouts.
+#define VKDR_ACCUMULATOR_ENUMERATOR(name, ...) name,
+enum class GradientAccumulator { VKDR_GRADIENT_ACCUMULATORS(VKDR_ACCUMULATOR_ENUMERATOR) };
+#undef VKDR_ACCUMULATOR_ENUMERATOR
+struct GradientAccumulatorLayout {
+    uint floatsPerItem;
+    uint copies;
+};
+#define VKDR_ACCUMULATOR_LAYOUT(name, field, floats, copies, items) GradientAccumulatorLayout{floats, copies},
+inline constexpr GradientAccumulatorLayout kGradientAccumulatorLayouts[] = {
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_ACCUMULATOR_LAYOUT)};
+#undef VKDR_ACCUMULATOR_LAYOUT
+constexpr GradientAccumulatorLayout layoutOf(GradientAccumulator accumulator) {
+    return kGradientAccumulatorLayouts[static_cast<uint>(accumulator)];
+}
+#endif
+
 // Queues: indices into QueueCounters.counts and .dispatch.
 const uint kQueueRays0 = 0u;   // rays to trace this segment (double-buffered with kQueueRays1)
 const uint kQueueRays1 = 1u;

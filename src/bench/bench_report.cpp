@@ -8,7 +8,9 @@
 namespace vkdr {
 namespace {
 
-// Stages in pipeline order; the JSON shape names the first seven.
+// The table's columns (stage names as in render/stages.h): the stages that trace paths,
+// the loss and the adjoint-mode passes as a whole first, as the JSON has always listed
+// them, then the rest.
 constexpr const char* kStages[] = {"generate", "intersect", "medium_sample", "shade",  "shadow",
                                    "loss",     "adjoint",   "queue_prepare", "film",   "replay"};
 constexpr const char* kAdjointStages[] = {"generate", "intersect", "medium_sample", "shade", "shadow",

@@ -26,48 +26,28 @@ size_t firstTexel(const Scene& scene, size_t texture) {
     return first;
 }
 
-// Where a medium's gradient of this kind sits among its kMediumGradientStride floats.
-size_t mediumOffset(MediumGradient gradient) {
-    switch (gradient) {
-    case MediumGradient::SigmaA: return gpu::kMediumGradientSigmaA;
-    case MediumGradient::SigmaS: return gpu::kMediumGradientSigmaS;
-    case MediumGradient::G: return gpu::kMediumGradientG;
-    case MediumGradient::None: break;
-    }
-    throw Error("a parameter that is not a medium's has no medium gradient");
-}
-
-// Base colours, emissions and texels accumulate 4 floats each, of which the parameter is the RGB.
-constexpr size_t kColorStride = 4;
+// The SceneGradients vector of each accumulator, in the order of gpu::GradientAccumulator.
+#define VKDR_SCENE_GRADIENTS_MEMBER(name, field, ...) &SceneGradients::field,
+constexpr std::vector<float> SceneGradients::*kSceneGradients[] = {
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_SCENE_GRADIENTS_MEMBER)};
+#undef VKDR_SCENE_GRADIENTS_MEMBER
 
 GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
     const ParsedParameterName parsed = *parseParameterName(name);
     const ParameterDescription& description = *parsed.description;
-    GradientSlot slot{name, description.kind, nullptr};
     const size_t owner = description.owner == ParameterOwner::Medium
                              ? indexByName(scene.media, parsed.owner, name)
                              : indexByName(scene.materials, parsed.owner, name);
-    switch (description.accumulator) {
-    case GradientAccumulator::Medium:
-        slot.accumulator = &SceneGradients::media;
-        slot.first = owner * gpu::kMediumGradientStride + mediumOffset(description.mediumGradient);
-        break;
-    case GradientAccumulator::BaseColor:
-        slot.accumulator = &SceneGradients::baseColors;
-        slot.first = owner * kColorStride;
-        break;
-    case GradientAccumulator::Emission:
-        slot.accumulator = &SceneGradients::emissions;
-        slot.first = owner * kColorStride;
-        break;
-    case GradientAccumulator::Texel: {
+    const size_t floatsPerItem = gpu::layoutOf(description.accumulator).floatsPerItem;
+    GradientSlot slot{name, description.kind, kSceneGradients[size_t(description.accumulator)]};
+    if (description.accumulator == gpu::GradientAccumulator::texelGradients) {
+        // A texture's parameter is every texel of it, each an item of its own.
         const size_t texture = size_t(scene.materials[owner].baseColorTexture);
-        slot.accumulator = &SceneGradients::texels;
-        slot.first = firstTexel(scene, texture) * kColorStride;
+        slot.first = firstTexel(scene, texture) * floatsPerItem + description.firstFloat;
         slot.groups = scene.textures[texture].texels.size();
-        slot.stride = kColorStride;
-        break;
-    }
+        slot.stride = floatsPerItem;
+    } else {
+        slot.first = owner * floatsPerItem + description.firstFloat;
     }
     return slot;
 }

@@ -12,7 +12,7 @@ class VulkanContext;
 
 // LossGradient by path replay on the GPU: each view is rendered, and its paths are
 // replayed in adjoint mode, accumulating parameter gradients with atomic adds
-// (DESIGN.md, "Adjoint"; Renderer::renderWithGradients).
+// (docs/design.md, "The adjoint"; Renderer::renderWithGradients).
 // The scene's geometry is fixed at construction; evaluate() takes new parameter values.
 class RenderedLossGradient : public LossGradient {
 public:

@@ -12,20 +12,28 @@ Buffer perPath(const VulkanContext& context, uint32_t capacity, const char* name
     return Buffer(context, uint64_t(capacity) * Element::kElementBytes, MemoryUse::Device, name);
 }
 
-uint32_t copyStrideOf(uint32_t floats, uint32_t copies) {
-    if (copies == 1) {
+uint32_t copyStrideOf(uint32_t floats, uint32_t copyCount) {
+    if (copyCount == 1) {
         return 0;
     }
     return (floats + gpu::kGradientCopyAlignment - 1) / gpu::kGradientCopyAlignment * gpu::kGradientCopyAlignment;
 }
 
+// An accumulator's copies, with room for `items` of what it accumulates (at least one).
+GradientCopies gradientCopies(const VulkanContext& context, gpu::GradientAccumulator accumulator, uint32_t items,
+                              const char* name) {
+    const gpu::GradientAccumulatorLayout layout = gpu::layoutOf(accumulator);
+    return GradientCopies(context, std::max(1u, items) * layout.floatsPerItem, layout.copies, name);
+}
+
 }  // namespace
 
-GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, uint32_t copies, const char* name)
+GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, uint32_t copyCount,
+                               const char* name)
     : floats(floatsPerCopy),
-      copies(copies),
-      copyStride(copyStrideOf(floatsPerCopy, copies)),
-      buffer(context, (uint64_t(copies - 1) * copyStride + floatsPerCopy) * 4, MemoryUse::Device, name) {}
+      copies(copyCount),
+      copyStride(copyStrideOf(floatsPerCopy, copyCount)),
+      buffer(context, (uint64_t(copyCount - 1) * copyStride + floatsPerCopy) * 4, MemoryUse::Device, name) {}
 
 std::vector<float> GradientCopies::roomForCopies() const {
     return std::vector<float>(size_t(copies - 1) * copyStride + floats);
@@ -65,11 +73,8 @@ void PathBuffers::setAddresses(gpu::RenderParams& params) const {
     params.pathCapacity = capacity;
 }
 
-// VKDR_GRADIENT_ACCUMULATORS names the gpu:: constants without their namespace.
-using gpu::kGradientCopies;
-using gpu::kMediumGradientStride;
 #define VKDR_ALLOCATE_ACCUMULATOR(name, field, floats, copies, items) \
-    name(context, std::max(1u, items) * floats, copies, #name),
+    name(gradientCopies(context, gpu::GradientAccumulator::name, items, #name)),
 
 AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount,
                                uint32_t mediumCount, uint32_t materialCount, uint32_t texelCount,
@@ -106,5 +111,11 @@ void AdjointBuffers::setAddresses(gpu::RenderParams& params) const {
     params.lossSum = lossSum.address();
     params.filmBaseline = filmBaseline.address();
 }
+
+#undef VKDR_ALLOCATE_PATH_ARRAY
+#undef VKDR_SET_ADDRESS
+#undef VKDR_ALLOCATE_ACCUMULATOR
+#undef VKDR_ACCUMULATOR_BYTES
+#undef VKDR_SET_ACCUMULATOR
 
 }  // namespace vkdr

@@ -37,7 +37,7 @@ struct PathBuffers {
 // gpu::kGradientCopies copies (or one) of `floats` gradient accumulators, `copyStride`
 // floats apart (device_types.h): subgroups add to different copies, and the host sums them.
 struct GradientCopies {
-    GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, uint32_t copies, const char* name);
+    GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, uint32_t copyCount, const char* name);
 
     uint32_t floats;
     uint32_t copies;
@@ -47,7 +47,7 @@ struct GradientCopies {
     // Room on the host for all the copies (for downloadBuffers), and the `floats`
     // accumulators that they sum to.
     std::vector<float> roomForCopies() const;
-    std::vector<float> sumOfCopies(std::span<const float> copies) const;
+    std::vector<float> sumOfCopies(std::span<const float> values) const;
 };
 
 // What the adjoint pass adds: per path slot its replay state (VKDR_ADJOINT_PATH_ARRAYS),

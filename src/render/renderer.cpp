@@ -1,7 +1,6 @@
 #include "render/renderer.h"
 
 #include <algorithm>
-#include <cassert>
 #include <chrono>
 #include <cstring>
 

@@ -2,8 +2,6 @@
 // of renderWithGradients() (docs/gradients.md, "The estimator").
 #include "render/renderer.h"
 
-#include <deque>
-
 #include "core/error.h"
 #include "core/milliseconds_of.h"
 #include "render/push_constants.h"
@@ -117,9 +115,10 @@ GradientEvaluation Renderer::renderWithGradients() {
     float lossSum[4];
     std::vector<Download> downloads{{&paths_->film, std::as_writable_bytes(std::span(film))},
                                     {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossSum))}};
-    // Every copy of every accumulator, in the order of VKDR_GRADIENT_ACCUMULATORS (a deque:
-    // growing it leaves the vectors that `downloads` points into where they are).
-    std::deque<std::vector<float>> copies;
+    // Every copy of every accumulator, in the order of VKDR_GRADIENT_ACCUMULATORS; the
+    // spans in `downloads` point into each vector's own storage, which stays put as
+    // `copies` grows.
+    std::vector<std::vector<float>> copies;
 #define VKDR_DOWNLOAD_ACCUMULATOR(name, ...)                                               \
     copies.push_back(adjoint_->name.roomForCopies());                                      \
     downloads.push_back({&adjoint_->name.buffer, std::as_writable_bytes(std::span(copies.back()))});

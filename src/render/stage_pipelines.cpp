@@ -24,14 +24,14 @@ std::span<const uint32_t> stageSpirv(Stage stage) {
 
 namespace {
 
-// The pipeline of a stage; a stage that follows paths as its primal or adjoint variant
+// The pipeline of a stage; of a stage with an adjoint variant, the primal or the adjoint one
 // (specialization constant 0 of shaders/lib/stage_common.glsl). The dispatch timer's
 // scope, not the name, tells the variants apart.
 ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false) {
     const StageInfo& info = stageInfo(stage);
-    assert(info.followsPaths || !adjoint);
+    assert(info.hasAdjointVariant || !adjoint);
     std::vector<uint32_t> specialization;
-    if (info.followsPaths) {
+    if (info.hasAdjointVariant) {
         specialization.push_back(adjoint ? 1u : 0u);
     }
     return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);

@@ -10,13 +10,13 @@ enum class Stage { Generate, Intersect, MediumSample, Shade, Shadow, QueuePrepar
 
 // Each stage once. Its name is its shader file's stem (shaders/<name>.comp) and is used
 // for it everywhere: the pipeline's debug name, the dispatch timer's and the bench's
-// key, and the docs. A stage that follows paths is compiled twice from its one source,
-// as primal and as adjoint pipeline (specialization constant kAdjoint); the others are
-// the same in every pass.
+// key, and the docs. A stage with an adjoint variant is compiled twice from its one
+// source, as primal and as adjoint pipeline (specialization constant kAdjoint); the
+// others are the same in every pass.
 struct StageInfo {
     Stage stage;
     const char* name;
-    bool followsPaths;
+    bool hasAdjointVariant;
 };
 
 inline constexpr std::array<StageInfo, 8> kStages{{
@@ -29,6 +29,14 @@ inline constexpr std::array<StageInfo, 8> kStages{{
     {Stage::Film, "film", false},
     {Stage::Loss, "loss", false},
 }};
+
+// stageInfo() indexes the table by stage.
+static_assert([] {
+    for (size_t i = 0; i < kStages.size(); ++i) {
+        if (static_cast<size_t>(kStages[i].stage) != i) return false;
+    }
+    return true;
+}());
 
 constexpr const StageInfo& stageInfo(Stage stage) {
     return kStages[static_cast<size_t>(stage)];

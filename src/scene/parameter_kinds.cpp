@@ -40,17 +40,17 @@ double emissionStep(float value) {
 
 constexpr std::array<ParameterDescription, 6> kDescriptions = {{
     {ParameterKind::SigmaA, "media/", "/sigma_a", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
-     GradientAccumulator::Medium, MediumGradient::SigmaA},
+     gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientSigmaA},
     {ParameterKind::SigmaS, "media/", "/sigma_s", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
-     GradientAccumulator::Medium, MediumGradient::SigmaS},
+     gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientSigmaS},
     {ParameterKind::G, "media/", "/g", ParameterOwner::Medium, 1, {-kMaxAbsAnisotropy, kMaxAbsAnisotropy},
-     anisotropyStep, GradientAccumulator::Medium, MediumGradient::G},
+     anisotropyStep, gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientG},
     {ParameterKind::BaseColor, "materials/", "/base_color", ParameterOwner::Material, 3, {0.0, 1.0}, albedoStep,
-     GradientAccumulator::BaseColor, MediumGradient::None},
+     gpu::GradientAccumulator::baseColorGradients, 0},
     {ParameterKind::BaseColorTexture, "materials/", "/base_color_texture", ParameterOwner::Material, 3, {0.0, 1.0},
-     albedoStep, GradientAccumulator::Texel, MediumGradient::None},
+     albedoStep, gpu::GradientAccumulator::texelGradients, 0},
     {ParameterKind::Emission, "lights/", "/emission", ParameterOwner::Material, 3, {0.0, kInfinity}, emissionStep,
-     GradientAccumulator::Emission, MediumGradient::None},
+     gpu::GradientAccumulator::emissionGradients, 0},
 }};
 
 // describe() indexes the table by kind.

@@ -5,18 +5,20 @@
 #include <string>
 #include <string_view>
 
+#include "device_types.h"
+
 namespace vkdr {
 
 // Every kind of named scene parameter (scene/parameters.h), described once: setting
 // values, the optimiser's bounds, grad --check's steps and the gradient read-back all
 // follow from this table.
 enum class ParameterKind {
-    SigmaA,            // media/<medium>/sigma_a: absorption, RGB, per scene unit, >= 0
-    SigmaS,            // media/<medium>/sigma_s: scattering, RGB, per scene unit, >= 0
-    G,                 // media/<medium>/g: Henyey-Greenstein anisotropy in [-0.99, 0.99]
-    BaseColor,         // materials/<material>/base_color: RGB albedo in [0, 1]
+    SigmaA,            // media/<medium>/sigma_a: absorption, RGB, per scene unit
+    SigmaS,            // media/<medium>/sigma_s: scattering, RGB, per scene unit
+    G,                 // media/<medium>/g: Henyey-Greenstein anisotropy
+    BaseColor,         // materials/<material>/base_color: RGB albedo
     BaseColorTexture,  // materials/<material>/base_color_texture: the same, per texel
-    Emission,          // lights/<material>/emission: RGB radiance, >= 0
+    Emission,          // lights/<material>/emission: RGB radiance
 };
 
 // What the middle of a parameter's name names.
@@ -33,12 +35,6 @@ struct ValueRange {
     bool contains(float value) const;
 };
 
-// Which of the adjoint pass's accumulators (SceneGradients, render/renderer.h) holds a
-// parameter's gradient, and for a medium which of its gradients; diff/ maps these onto
-// the device layout.
-enum class GradientAccumulator { Medium, BaseColor, Texel, Emission };
-enum class MediumGradient { None, SigmaA, SigmaS, G };
-
 struct ParameterDescription {
     ParameterKind kind;
     std::string_view prefix;  // the name up to the owner: "media/"
@@ -49,8 +45,11 @@ struct ParameterDescription {
     // grad --check's central-difference step at `value` (parameter_kinds.cpp says why
     // each kind steps as it does).
     double (*finiteDifferenceStep)(float value);
-    GradientAccumulator accumulator;
-    MediumGradient mediumGradient;  // None unless accumulator is Medium
+    // Where the gradient sits: which of the adjoint pass's accumulators
+    // (VKDR_GRADIENT_ACCUMULATORS), and its first float within the owner's (or for a
+    // texture, each texel's) floats there.
+    gpu::GradientAccumulator accumulator;
+    uint32_t firstFloat;
 };
 
 // The kinds, in the order parameterNames lists a medium's or a material's parameters.

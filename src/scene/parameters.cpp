@@ -39,7 +39,8 @@ ParameterStorage<Float> mediumStorage(MediumType& medium, ParameterKind kind) {
     switch (kind) {
     case ParameterKind::SigmaA: return packedStorage<Float>(glm::value_ptr(medium.sigma_a), kind);
     case ParameterKind::SigmaS: return packedStorage<Float>(glm::value_ptr(medium.sigma_s), kind);
-    default: return packedStorage<Float>(&medium.g, kind);  // G, a medium's only other kind
+    case ParameterKind::G: return packedStorage<Float>(&medium.g, kind);
+    default: throw Error("a medium has no parameter of this kind");
     }
 }
 
