@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs every primal and adjoint stage under GPU-assisted validation, which instruments
 # each shader to catch out-of-bounds buffer accesses that lavapipe would otherwise
-# hide: the render tests with enclosed media and the BVH traversal, and one small
-# gradient of the smoke box (2 spp, so that its samples split: docs/gradients.md). Run it after changing a shader or a buffer layout.
+# hide: the render tests with enclosed media, shadow rays among occluders and the BVH
+# traversal, and one small gradient of the smoke box (2 spp, so that its samples split:
+# docs/gradients.md). Run it after changing a shader or a buffer layout.
 #
 # It is not part of .ci/run: lavapipe takes about ten minutes to compile the
 # instrumented stages on two cores, which CI's 30 minutes cannot spare. Every test in
@@ -12,7 +13,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/tools/build.sh"
 export LP_NUM_THREADS=2
 VKDR_VALIDATION=gpu "$root/build/tests/render/vkdr_render_tests" --gtest_brief=1 \
-  --gtest_filter='GpuTraversal*:CameraInMedium*'
+  --gtest_filter='GpuTraversal*:CameraInMedium*:ShadowRay*'
 work="$root/build/gpu-assisted-validation"
 mkdir -p "$work"
 "$root/build/src/cli/vkdiffrender" render "$root/scenes/cornell_smoke.gltf" --width 8 --height 8 --spp 1 \
