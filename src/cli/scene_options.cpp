@@ -12,10 +12,12 @@ void addSceneOptions(CLI::App& command, SceneOptions& options) {
     command.add_option("--set", options.assignments,
                        "Override a parameter, e.g. --set media/fog/sigma_a=0.05,0.05,0.05 (repeatable; "
                        "one value sets all three channels)");
+    command.add_flag("--allow-outside-files", options.access.allowOutsideFiles,
+                     "Let the scene read buffers and images outside its own directory (absolute paths, ../)");
 }
 
 Scene loadSceneWithOverrides(const SceneOptions& options) {
-    LoadedScene loaded = loadScene(options.file);
+    LoadedScene loaded = loadScene(options.file, options.access);
     for (const std::string& warning : loaded.warnings) {
         std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "scene/scene.h"
+#include "scene/scene_file_access.h"
 
 namespace vkdr {
 
@@ -12,6 +13,7 @@ namespace vkdr {
 struct SceneOptions {
     std::string file;
     std::vector<std::string> assignments;  // NAME=VALUE
+    SceneFileAccess access;                // --allow-outside-files
 };
 
 void addSceneOptions(CLI::App& command, SceneOptions& options);

@@ -5,14 +5,13 @@
 #include "core/error.h"
 #include "image/image.h"
 #include "image/image_formats.h"
+#include "image/regular_file.h"
 
 namespace vkdr {
 
 Image readImage(const std::filesystem::path& file) {
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(file, error))
-        throw Error("cannot read image '" + file.string() + "': " +
-                    (std::filesystem::exists(file, error) ? "not a regular file" : "no such file"));
+    std::string reason = notRegularFileReason(file);
+    if (!reason.empty()) throw Error("cannot read image '" + file.string() + "': " + reason);
 
     std::string extension = file.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),

@@ -1,6 +1,8 @@
 #include "optimize/checkpoint.h"
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <fstream>
 #include <string>
 
@@ -8,11 +10,20 @@
 
 #include "core/error.h"
 #include "image/atomic_write.h"
+#include "image/regular_file.h"
 
 namespace vkdr {
 namespace {
 
 using Json = nlohmann::ordered_json;
+
+constexpr double kFloatMax = double(std::numeric_limits<float>::max());
+
+std::string text(double value) {
+    char number[32];
+    std::snprintf(number, sizeof(number), "%g", value);
+    return number;
+}
 
 // Names the file format, so that another JSON file is not taken for a checkpoint and a
 // later format can be told apart.
@@ -27,9 +38,7 @@ public:
     }
 
     Json parse() const {
-        std::ifstream in(file_);
-        if (!in) fail("", "cannot open the checkpoint");
-        Json document = Json::parse(in, nullptr, false);
+        Json document = Json::parse(readRegularFile(file_), nullptr, false);
         if (document.is_discarded() || !document.is_object()) fail("", "not a JSON object");
         if (!document.contains("format") || document["format"] != kFormat) {
             fail("format", std::string("not a checkpoint (expected \"") + kFormat + "\")");
@@ -54,12 +63,18 @@ public:
         return value.get<double>();
     }
 
-    std::vector<double> numbers(const Json& object, const std::string& key) const {
+    // Numbers within [minimum, maximum]: parameter values become floats, and Adam takes
+    // the square root of its second moments.
+    std::vector<double> numbers(const Json& object, const std::string& key, double minimum = -kFloatMax,
+                                double maximum = kFloatMax) const {
         const Json& array = member(object, key);
         if (!array.is_array()) fail(key, "expected an array of numbers");
         std::vector<double> values;
         for (const Json& value : array) {
-            if (!value.is_number() || !std::isfinite(value.get<double>())) fail(key, "expected finite numbers");
+            if (!value.is_number() || !(value.get<double>() >= minimum && value.get<double>() <= maximum)) {
+                fail(key, "expected numbers in [" + text(minimum) + ", " + text(maximum) + "]" +
+                              (value.is_number() ? ", got " + value.dump() : ""));
+            }
             values.push_back(value.get<double>());
         }
         return values;
@@ -107,13 +122,13 @@ Checkpoint readCheckpoint(const std::filesystem::path& file) {
     checkpoint.run = reader.run(document);
     LoopState& state = checkpoint.state;
     uint64_t iteration = reader.count(document, "iteration");
-    if (iteration > UINT32_MAX) reader.fail("iteration", "out of range");
+    if (iteration > UINT32_MAX) reader.fail("iteration", "expected an integer in [0, 4294967295]");
     state.iteration = uint32_t(iteration);
     state.values = reader.numbers(document, "values");
     const Json& optimizer = reader.member(document, "optimizer");
     state.optimizer.steps = reader.count(optimizer, "steps");
     state.optimizer.mean = reader.numbers(optimizer, "mean");
-    state.optimizer.meanSquare = reader.numbers(optimizer, "mean_square");
+    state.optimizer.meanSquare = reader.numbers(optimizer, "mean_square", 0.0);
     state.losses = reader.numbers(document, "losses");
     state.forwardMs = reader.number(document, "forward_ms");
     state.adjointMs = reader.number(document, "adjoint_ms");

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <limits>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "image/regular_file.h"
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
@@ -35,10 +36,9 @@ public:
     }
 
     Json parse() const {
-        std::ifstream in(file_);
-        if (!in) fail("", "cannot open the experiment file");
+        std::string text = readRegularFile(file_);
         try {
-            Json document = Json::parse(in);
+            Json document = Json::parse(text);
             if (!document.is_object()) fail("", "expected a JSON object");
             return document;
         } catch (const Json::exception& e) {
@@ -62,33 +62,43 @@ public:
     }
 
     // The command line's bounds apply here too: they keep sizes and loops within range.
+    // The JSON parser keeps an integer beyond 64 bits as a double, and one beyond int64's
+    // range as unsigned: each is compared as what it is.
     uint32_t count(const Json& value, const std::string& key, uint32_t minimum,
                    uint32_t maximum = UINT32_MAX) const {
-        if (!value.is_number_integer() || value.get<int64_t>() < int64_t(minimum) ||
-            value.get<int64_t>() > int64_t(maximum)) {
-            fail(key, "expected an integer >= " + std::to_string(minimum) +
-                          (maximum == UINT32_MAX ? "" : " and <= " + std::to_string(maximum)));
+        bool inRange = value.is_number_unsigned()  ? value.get<uint64_t>() >= minimum && value.get<uint64_t>() <= maximum
+                       : value.is_number_integer() ? value.get<int64_t>() >= int64_t(minimum) &&
+                                                         value.get<int64_t>() <= int64_t(maximum)
+                                                   : false;
+        if (!inRange) {
+            fail(key, "expected an integer in [" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]" +
+                          (value.is_number() ? ", got " + value.dump() : ""));
         }
-        return value.get<uint32_t>();
+        return uint32_t(value.get<uint64_t>());
     }
 
     double positive(const Json& value, const std::string& key) const {
         if (!value.is_number() || !(value.get<double>() > 0.0) || !std::isfinite(value.get<double>())) {
-            fail(key, "expected a number > 0");
+            fail(key, "expected a finite number > 0" + (value.is_number() ? ", got " + value.dump() : ""));
         }
         return value.get<double>();
     }
 
+    // Parameter values and camera coordinates are floats.
+    float finiteFloat(const Json& value, const std::string& key) const {
+        if (!value.is_number() || !(std::abs(value.get<double>()) <= double(std::numeric_limits<float>::max()))) {
+            fail(key, "expected finite numbers within float range" + (value.is_number() ? ", got " + value.dump() : ""));
+        }
+        return float(value.get<double>());
+    }
+
     std::vector<float> numbers(const Json& value, const std::string& key) const {
-        if (value.is_number()) return {value.get<float>()};
+        if (value.is_number()) return {finiteFloat(value, key)};
         if (!value.is_array() || (value.size() != 1 && value.size() != 3)) {
             fail(key, "expected a number or an array of 1 or 3 numbers");
         }
         std::vector<float> values;
-        for (const Json& element : value) {
-            if (!element.is_number()) fail(key, "expected numbers");
-            values.push_back(element.get<float>());
-        }
+        for (const Json& element : value) values.push_back(finiteFloat(element, key));
         return values;
     }
 
@@ -127,8 +137,9 @@ public:
         camera.lookAt = vector3(value["look_at"], where + ".look_at");
         if (value.contains("up")) camera.up = vector3(value["up"], where + ".up");
         if (value.contains("yfov_degrees")) {
-            camera.yfovDegrees = float(positive(value["yfov_degrees"], where + ".yfov_degrees"));
-            if (camera.yfovDegrees >= 180.0f) fail(where + ".yfov_degrees", "must be < 180");
+            double yfov = positive(value["yfov_degrees"], where + ".yfov_degrees");
+            if (yfov >= 180.0) fail(where + ".yfov_degrees", "must be < 180");
+            camera.yfovDegrees = float(yfov);
         }
         glm::vec3 forward = camera.lookAt - camera.position;
         if (glm::length(forward) == 0.0f || glm::length(glm::cross(forward, camera.up)) == 0.0f) {
@@ -250,9 +261,8 @@ Experiment readExperiment(const std::filesystem::path& file) {
     experiment.file = file;
     if (!document.contains("scene")) reader.fail("", "missing \"scene\" (a glTF path relative to this file)");
     experiment.scene = (file.parent_path() / reader.string(document["scene"], "scene")).lexically_normal();
-    if (!std::filesystem::is_regular_file(experiment.scene)) {
-        reader.fail("scene", "no such file: " + experiment.scene.string());
-    }
+    std::string reason = notRegularFileReason(experiment.scene);
+    if (!reason.empty()) reader.fail("scene", experiment.scene.string() + ": " + reason);
     if (document.contains("views")) experiment.views = reader.strings(document["views"], "views");
     if (experiment.views.empty()) experiment.views = {""};
     if (document.contains("cameras")) {

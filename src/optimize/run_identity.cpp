@@ -2,9 +2,9 @@
 
 #include <cinttypes>
 #include <cstdio>
-#include <fstream>
 
 #include "core/error.h"
+#include "image/regular_file.h"
 #include "optimize/loss_kind_text.h"
 
 namespace vkdr {
@@ -67,18 +67,16 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
 }
 
 std::string fileDigest(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error("cannot read '" + file.string() + "'");
+    RegularFile in(file);
     uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a offset basis and prime
     uint64_t size = 0;
     char buffer[1 << 16];
-    while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) {
-        for (std::streamsize i = 0; i < in.gcount(); ++i) {
+    while (size_t got = in.read(buffer, sizeof(buffer))) {
+        for (size_t i = 0; i < got; ++i) {
             hash = (hash ^ uint64_t(static_cast<unsigned char>(buffer[i]))) * 0x100000001b3ull;
         }
-        size += uint64_t(in.gcount());
+        size += got;
     }
-    if (in.bad()) throw Error("cannot read '" + file.string() + "': read error");
     char text[64];
     std::snprintf(text, sizeof(text), "%" PRIu64 " bytes, fnv1a64 %016" PRIx64, size, hash);
     return text;

@@ -51,9 +51,9 @@ void addSceneMedium(const tinygltf::Model& model, GltfDiagnostics& diagnostics, 
 
 }  // namespace
 
-LoadedScene loadScene(const std::filesystem::path& file) {
+LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& access) {
     GltfDiagnostics diagnostics(file.string());
-    tinygltf::Model model = readGltfModel(file, diagnostics);
+    tinygltf::Model model = readGltfModel(file, access, diagnostics);
     requireUnderstoodExtensions(model, diagnostics);
     if (!model.lights.empty()) {
         diagnostics.warn("extensions.KHR_lights_punctual",

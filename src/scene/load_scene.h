@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene/scene_file_access.h"
 
 namespace vkdr {
 
@@ -14,7 +15,8 @@ struct LoadedScene {
 
 // Reads a .gltf or .glb file into a flattened, world-space Scene (docs/scene-format.md
 // says what is read). Throws vkdr::Error, naming the file and the field at fault, for
-// anything that cannot be rendered faithfully.
-LoadedScene loadScene(const std::filesystem::path& file);
+// anything that cannot be rendered faithfully, and for an external file that `access`
+// does not allow.
+LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& access = {});
 
 }  // namespace vkdr

@@ -3,11 +3,18 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
+#include <nlohmann/json.hpp>
 #include <stb_image.h>
 
+#include "core/error.h"
 #include "image/encoded_image_checks.h"
+#include "image/regular_file.h"
+#include "scene/glb_layout.h"
 
 namespace vkdr {
 namespace {
@@ -57,29 +64,110 @@ bool loadBoundedImage(tinygltf::Image* image, const int imageIndex, std::string*
     return tinygltf::LoadImageData(image, imageIndex, error, warning, width, height, bytes, size, nullptr);
 }
 
+// tinygltf asks for an external file as the base directory we give it joined with the
+// decoded URI, then as "./" joined with it (the working directory). The callbacks give
+// back only what SceneFiles allows, relative to the scene's directory.
+struct FileAccessState {
+    const SceneFiles& files;
+    std::string prefix;  // the base directory as tinygltf joins it: ending in '/'
+};
+
+// The decoded URI in a path tinygltf asks for; nullopt for its working-directory guess.
+std::optional<std::string> requestedPath(const std::string& path, const FileAccessState& state) {
+    if (path.rfind(state.prefix, 0) != 0) return std::nullopt;
+    return path.substr(state.prefix.size());
+}
+
+bool fileExists(const std::string& path, void* user) {
+    const auto& state = *static_cast<const FileAccessState*>(user);
+    std::optional<std::string> requested = requestedPath(path, state);
+    return requested && state.files.resolvePath(*requested).problem.empty();
+}
+
+std::string expandFilePath(const std::string& path, void*) { return path; }
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+    const auto& state = *static_cast<const FileAccessState*>(user);
+    std::optional<std::string> requested = requestedPath(path, state);
+    ResolvedFile resolved = requested ? state.files.resolvePath(*requested) : ResolvedFile{{}, "is not read"};
+    if (!resolved.problem.empty()) {
+        *error = "'" + requested.value_or(path) + "' " + resolved.problem;
+        return false;
+    }
+    try {
+        std::string bytes = readRegularFile(resolved.file);
+        out->assign(bytes.begin(), bytes.end());
+        return true;
+    } catch (const Error& e) {
+        *error = e.what();
+        return false;
+    }
+}
+
+bool writeWholeFile(std::string* error, const std::string&, const std::vector<unsigned char>&, void*) {
+    *error = "the scene loader writes no files";
+    return false;
+}
+
+// Every external buffer and image is checked before tinygltf reads any, so that a
+// refusal names the field, and tinygltf's own messages (which give a file's size) are
+// only ever about files the scene may read.
+void requireReadableUris(const std::string& jsonText, const SceneFiles& files, const GltfDiagnostics& diagnostics) {
+    nlohmann::json document = nlohmann::json::parse(jsonText, nullptr, false);
+    if (!document.is_object()) return;  // tinygltf says what is wrong with it
+    for (const char* array : {"buffers", "images"}) {
+        if (!document.contains(array) || !document[array].is_array()) continue;
+        for (size_t i = 0; i < document[array].size(); ++i) {
+            const nlohmann::json& entry = document[array][i];
+            if (!entry.is_object() || !entry.contains("uri") || !entry["uri"].is_string()) continue;
+            std::string uri = entry["uri"].get<std::string>();
+            if (isDataUri(uri)) continue;
+            ResolvedFile resolved = files.resolveUri(uri);
+            if (!resolved.problem.empty()) diagnostics.fail(indexed(array, i) + ".uri", resolved.problem);
+        }
+    }
+}
+
+// The JSON of a GLB file, after warning about the chunks tinygltf skips.
+std::string_view glbJson(std::string_view bytes, GltfDiagnostics& diagnostics) {
+    GlbLayout layout = glbLayout(bytes);
+    if (!layout.problem.empty()) diagnostics.fail("", "cannot parse glTF: " + layout.problem);
+    for (const std::string& ignored : layout.ignored) diagnostics.warn("", ignored);
+    return layout.json;
+}
+
 }  // namespace
 
-tinygltf::Model readGltfModel(const std::filesystem::path& file, GltfDiagnostics& diagnostics) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec)) {
-        diagnostics.fail("", "no such file");
-    }
+tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFileAccess& access,
+                              GltfDiagnostics& diagnostics) {
     std::string extension = lowercaseExtension(file);
     if (extension != ".gltf" && extension != ".glb") {
         diagnostics.fail("", "expected a .gltf or .glb file");
     }
+    std::string reason = notRegularFileReason(file);
+    if (!reason.empty()) diagnostics.fail("", reason);
+    std::string bytes = readRegularFile(file);
+    if (bytes.size() > UINT32_MAX) diagnostics.fail("", "larger than 4 GiB, the most a glTF file may be");
 
+    bool binary = extension == ".glb";
+    SceneFiles files(file, access);
+    requireReadableUris(binary ? std::string(glbJson(bytes, diagnostics)) : bytes, files, diagnostics);
+
+    std::string baseDirectory = files.directory().string();
+    FileAccessState state{files, baseDirectory.back() == '/' ? baseDirectory : baseDirectory + "/"};
     tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks({fileExists, expandFilePath, readWholeFile, writeWholeFile, &state});
     loader.SetImageLoader(loadBoundedImage, nullptr);
     tinygltf::Model model;
     std::string error;
     std::string warning;
-    bool loaded = extension == ".glb"
-                      ? loader.LoadBinaryFromFile(&model, &error, &warning, file.string())
-                      : loader.LoadASCIIFromFile(&model, &error, &warning, file.string());
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    bool loaded = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, data, unsigned(bytes.size()),
+                                                       baseDirectory)
+                         : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(),
+                                                      unsigned(bytes.size()), baseDirectory);
     if (!loaded) {
-        diagnostics.fail("", "cannot parse glTF: " +
-                                 trimmed(error.empty() ? warning : error));
+        diagnostics.fail("", "cannot parse glTF: " + trimmed(error.empty() ? warning : error));
     }
     if (!trimmed(warning).empty()) {
         diagnostics.warn("", trimmed(warning));

@@ -4,11 +4,15 @@
 #include <tiny_gltf.h>
 
 #include "scene/gltf_diagnostics.h"
+#include "scene/scene_file_access.h"
 
 namespace vkdr {
 
 // Parses a .gltf or .glb file with tinygltf, buffers and images included (external
-// files, data URIs and GLB chunks alike). Fails with tinygltf's own error text.
-tinygltf::Model readGltfModel(const std::filesystem::path& file, GltfDiagnostics& diagnostics);
+// files, data URIs and GLB chunks alike). External files are read only as `access`
+// allows; a refused one fails naming its field ("buffers[1].uri"). Otherwise fails with
+// tinygltf's own error text.
+tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFileAccess& access,
+                              GltfDiagnostics& diagnostics);
 
 }  // namespace vkdr

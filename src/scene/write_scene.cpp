@@ -4,7 +4,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -14,6 +13,9 @@
 #include "core/error.h"
 #include "image/atomic_write.h"
 #include "image/image.h"
+#include "image/regular_file.h"
+#include "scene/glb_layout.h"
+#include "scene/scene_file_access.h"
 
 namespace vkdr {
 namespace {
@@ -34,40 +36,17 @@ struct GltfSource {
     throw Error(file.string() + ": " + reason);
 }
 
-std::string readBytes(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) failReading(file, std::string("cannot open: ") + std::strerror(errno));
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-uint32_t readUint32(const std::string& bytes, size_t offset) {
-    uint32_t value = 0;
-    std::memcpy(&value, bytes.data() + offset, sizeof(value));  // GLB is little-endian, as is every target
-    return value;
-}
-
 GltfSource parseGlb(const std::filesystem::path& file, const std::string& bytes) {
-    constexpr uint32_t kMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinaryChunk = 0x004E4942;
-    if (bytes.size() < 20 || readUint32(bytes, 0) != kMagic) failReading(file, "not a GLB file");
-    GltfSource source;
-    for (size_t offset = 12; offset + 8 <= bytes.size();) {
-        size_t length = readUint32(bytes, offset);
-        uint32_t type = readUint32(bytes, offset + 4);
-        if (offset + 8 + length > bytes.size()) failReading(file, "GLB chunk runs past the end of the file");
-        std::string chunk = bytes.substr(offset + 8, length);
-        if (type == kJsonChunk && source.document.is_null()) {
-            source.document = json::parse(chunk);
-        } else if (type == kBinaryChunk && !source.binaryChunk) {
-            source.binaryChunk = std::move(chunk);
-        }
-        offset += 8 + length;
-    }
-    if (!source.document.is_object()) failReading(file, "GLB without a JSON chunk");
+    GlbLayout layout = glbLayout(bytes);
+    if (!layout.problem.empty()) failReading(file, layout.problem);
+    GltfSource source{json::parse(layout.json), std::nullopt};
+    if (layout.binary) source.binaryChunk = std::string(*layout.binary);
+    if (!source.document.is_object()) failReading(file, "the GLB's JSON chunk is not an object");
     return source;
 }
 
 GltfSource readGltfSource(const std::filesystem::path& file) {
-    std::string bytes = readBytes(file);
+    std::string bytes = readRegularFile(file);
     try {
         if (file.extension() == ".glb" || file.extension() == ".GLB") {
             return parseGlb(file, bytes);
@@ -217,21 +196,34 @@ void writeSceneMedium(json& document, const Scene& scene) {
     writeParticipatingMedia(document["extensions"][kMediumExtension], scene.media[size_t(scene.sceneMedium)]);
 }
 
-bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
-
-// External files stay where they are; the written scene refers to them from its own
-// directory. (tinygltf 2.7, which the loader uses, reads URIs as plain relative paths.)
-void rebaseUris(json& document, const char* array, const std::filesystem::path& fromDirectory,
-                const std::filesystem::path& toDirectory) {
-    if (!document.contains(array)) {
+// The written scene must load by the same rule as any other (scene_file_access.h): files
+// the original refers to stay where they are when they lie in the output's directory
+// tree, and are copied beside the output, as <stem>.<array><i><extension>, when not.
+void referToExternalFiles(json& document, const char* array, const std::filesystem::path& original,
+                          const std::filesystem::path& out) {
+    if (!document.contains(array) || !document[array].is_array()) {
         return;
     }
-    for (json& entry : document[array]) {
+    // The original has been loaded by its own rule already; here its files only need finding.
+    SceneFiles from(original, SceneFileAccess{true});
+    std::error_code ec;
+    std::filesystem::path toDirectory = std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
+    for (size_t i = 0; i < document[array].size(); ++i) {
+        json& entry = document[array][i];
         if (!entry.contains("uri") || !entry["uri"].is_string() || isDataUri(entry["uri"].get<std::string>())) {
             continue;
         }
-        std::filesystem::path resource = fromDirectory / entry["uri"].get<std::string>();
-        entry["uri"] = std::filesystem::relative(resource, toDirectory).generic_string();
+        ResolvedFile resolved = from.resolveUri(entry["uri"].get<std::string>());
+        if (!resolved.problem.empty()) failReading(original, std::string(array) + "[" + std::to_string(i) + "].uri: " + resolved.problem);
+        std::filesystem::path relative = resolved.file.lexically_relative(toDirectory);
+        if (relative.empty() || *relative.begin() == "..") {
+            relative = out.stem().string() + "." + array + std::to_string(i) + resolved.file.extension().string();
+            std::string bytes = readRegularFile(resolved.file);
+            writeAtomically(toDirectory / relative, [&](std::ofstream& stream) {
+                stream.write(bytes.data(), std::streamsize(bytes.size()));
+            });
+        }
+        entry["uri"] = encodeUriPath(relative.generic_string());
     }
 }
 
@@ -250,7 +242,7 @@ void writeBinaryChunkBeside(json& document, const GltfSource& source, const std:
     writeAtomically(binary, [&](std::ofstream& stream) {
         stream.write(source.binaryChunk->data(), std::streamsize(byteLength));
     });
-    buffer["uri"] = binary.filename().string();
+    buffer["uri"] = encodeUriPath(binary.filename().string());
 }
 
 Image textureImage(const Texture& texture) {
@@ -283,7 +275,7 @@ void writeBaseColorTextures(json& document, const Scene& scene, const std::files
         json& entry = document["images"][image];
         entry.erase("bufferView");
         entry.erase("mimeType");
-        entry["uri"] = file;
+        entry["uri"] = encodeUriPath(file);
         written[image] = true;
     }
 }
@@ -297,10 +289,8 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     writeMaterials(document, scene, original);
     writeSceneMedium(document, scene);
 
-    std::filesystem::path fromDirectory = std::filesystem::absolute(original).parent_path();
-    std::filesystem::path toDirectory = std::filesystem::absolute(out).parent_path();
-    rebaseUris(document, "buffers", fromDirectory, toDirectory);
-    rebaseUris(document, "images", fromDirectory, toDirectory);
+    referToExternalFiles(document, "buffers", original, out);
+    referToExternalFiles(document, "images", original, out);
     writeBinaryChunkBeside(document, source, original, out);
     writeBaseColorTextures(document, scene, out);
 

@@ -22,7 +22,8 @@ const fs::path kCorpus = fs::path(VKDR_TEST_DATA_DIR) / "malformed";
 
 struct MalformedCase {
     std::string file;
-    std::string command;              // "render" (a scene) or "grad" (a target of the fog Cornell box)
+    std::string command;              // "render" (a scene), "grad" (a target of the fog Cornell box) or
+                                      // "experiment" (optimize --experiment)
     std::vector<std::string> expect;  // besides the file name, what the message must name
     std::string extra;                // further arguments
 };
@@ -45,13 +46,16 @@ protected:
     }
     void TearDown() override { fs::remove_all(scratch_); }
 
-    // The command for `file`; render writes into scratch/out, which must stay empty.
+    // The command for `file`; render and optimize write into scratch/out, which must stay empty.
     std::string commandFor(const MalformedCase& c) const {
         std::string file = (kCorpus / c.file).string();
         std::string fog = std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf";
         std::string common = " --spp 1 --max-depth 1 " + c.extra;
         if (c.command == "render") {
             return "render " + file + " --width 8 --height 8 -o " + (scratch_ / "out" / "x.exr").string() + common;
+        }
+        if (c.command == "experiment") {
+            return "optimize --experiment " + file + " --out " + (scratch_ / "out").string() + common;
         }
         return "grad " + fog + " --target " + file + " --param media/fog/g" + common;
     }

@@ -1,9 +1,13 @@
 // Checkpoints and --resume: a run stopped at any point and resumed ends exactly where
 // the uninterrupted run ends; a resume that does not match its checkpoint is refused.
+#include <sys/stat.h>
+
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "../image/scratch_directory.h"
 #include "core/error.h"
@@ -181,6 +185,41 @@ TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {
     expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); }, {"checkpoint.json", "iteration"});
     writeBytes(scratch / kCheckpointFileName, "[1, 2]");
     expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); }, {"checkpoint.json"});
+}
+
+// Only a regular file is read: a directory is refused, and a FIFO without waiting for a writer.
+TEST(Checkpoint, RefusesWhatIsNotARegularFileNamingIt) {
+    ScratchDirectory scratch;
+    std::filesystem::create_directory(scratch / "folder.json");
+    expectErrorMentioning([&] { readCheckpoint(scratch / "folder.json"); }, {"folder.json", "is a directory"});
+    ASSERT_EQ(::mkfifo((scratch / "pipe.json").c_str(), 0600), 0);
+    expectErrorMentioning([&] { readCheckpoint(scratch / "pipe.json"); }, {"pipe.json", "FIFO"});
+}
+
+// A hand-edited checkpoint: values beyond float range and negative second moments would
+// become infinities and NaNs in the run; they are refused naming the file and the key.
+TEST(Checkpoint, RefusesNumbersOutOfRangeNamingTheFileAndKey) {
+    ScratchDirectory scratch;
+    OptimizationJob job = fogJob(scratch.path(), 6);
+    Scene scene = loadScene(kFogScene).scene;
+    QuadraticLossGradient loss(fogMinima());
+    job.options.checkpointEvery = 2;
+    runOptimization(loss, scene, job);
+    std::filesystem::path file = scratch / kCheckpointFileName;
+    nlohmann::ordered_json good = nlohmann::ordered_json::parse(std::ifstream(file));
+    auto expectRefused = [&](const std::function<void(nlohmann::ordered_json&)>& edit,
+                             const std::vector<std::string>& parts) {
+        nlohmann::ordered_json document = good;
+        edit(document);
+        writeBytes(file, document.dump());
+        std::vector<std::string> all = {file.string()};
+        all.insert(all.end(), parts.begin(), parts.end());
+        expectErrorMentioning([&] { readCheckpoint(file); }, all);
+    };
+    expectRefused([](auto& d) { d["values"][0] = 1e300; }, {"values", "1e+300"});
+    expectRefused([](auto& d) { d["optimizer"]["mean_square"][0] = -1.0; }, {"mean_square", "[0, "});
+    expectRefused([](auto& d) { d["iteration"] = 4294967296u; }, {"iteration", "[0, 4294967295]"});
+    expectRefused([](auto& d) { d["optimizer"]["steps"] = -3; }, {"steps", "integer"});
 }
 
 TEST(Checkpoint, AdamContinuesFromItsStateExactly) {

@@ -1,5 +1,7 @@
 // Experiment files: reading, validation against the scene, and a whole run with an
 // analytic stand-in for the renderer.
+#include <sys/stat.h>
+
 #include <functional>
 
 #include <gtest/gtest.h>
@@ -84,10 +86,10 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
     // Sizes and sample counts beyond the command line's bounds would overflow the renderer's counts.
     experiment = fogExperiment(scratch.path());
     experiment["target_spp"] = 4294967295u;
-    expectReadError(scratch, experiment, {"target_spp", "<= 1048576"});
+    expectReadError(scratch, experiment, {"target_spp", "[1, 1048576]"});
     experiment = fogExperiment(scratch.path());
     experiment["width"] = 3000000000u;
-    expectReadError(scratch, experiment, {"width", "<= 16384"});
+    expectReadError(scratch, experiment, {"width", "[1, 16384]"});
 
     experiment = fogExperiment(scratch.path());
     experiment["scene"] = "nowhere.gltf";
@@ -106,6 +108,42 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
 
     writeBytes(scratch / "broken.json", "{\"scene\": ");
     expectErrorMentioning([&] { readExperiment(scratch / "broken.json"); }, {"broken.json", "not valid JSON"});
+}
+
+// Every integer is checked against its range as the number it is (beyond 32 bits, beyond
+// int64, beyond 64 bits), and the message gives the range; rates must be finite and > 0.
+TEST(Experiment, RejectsNumbersOutOfRangeNamingTheKeyAndTheRange) {
+    ScratchDirectory scratch;
+    auto expectRefused = [&](const std::string& key, json value, const std::vector<std::string>& parts) {
+        json experiment = fogExperiment(scratch.path());
+        experiment[key] = std::move(value);
+        std::vector<std::string> all = {"experiment.json", key};
+        all.insert(all.end(), parts.begin(), parts.end());
+        expectReadError(scratch, experiment, all);
+    };
+    expectRefused("seed", 4294967296u, {"[0, 4294967295]", "4294967296"});
+    expectRefused("seed", -3, {"[0, 4294967295]"});
+    expectRefused("iterations", 18446744073709551615u, {"[1, 1000000]"});
+    expectRefused("spp", json::parse("100000000000000000000000000000"), {"[1, 1048576]"});
+    expectRefused("learning_rate", 0.0, {"finite number > 0"});
+    expectRefused("adam_epsilon", -1e-8, {"finite number > 0"});
+    expectRefused("learning_rates", {{"media/fog/sigma_a", -2.0}}, {"learning_rates.media/fog/sigma_a", "> 0"});
+    expectRefused("start", {{"media/fog/sigma_a", 1e39}}, {"start.media/fog/sigma_a", "float range"});
+    expectRefused("cameras", {{{"name", "c"}, {"position", {0, 0, 0}}, {"look_at", {0, 0, -1}}, {"yfov_degrees", 1e300}}},
+                  {"cameras[0].yfov_degrees", "< 180"});
+}
+
+// Only a regular file is read: a directory is refused, and a FIFO without waiting for a writer.
+TEST(Experiment, RefusesAFileOrSceneThatIsNotARegularFile) {
+    ScratchDirectory scratch;
+    std::filesystem::create_directory(scratch / "folder.json");
+    expectErrorMentioning([&] { readExperiment(scratch / "folder.json"); }, {"folder.json", "is a directory"});
+    ASSERT_EQ(::mkfifo((scratch / "pipe.json").c_str(), 0600), 0);
+    expectErrorMentioning([&] { readExperiment(scratch / "pipe.json"); }, {"pipe.json", "FIFO"});
+    json experiment = fogExperiment(scratch.path());
+    std::filesystem::create_directory(scratch / "folder.gltf");
+    experiment["scene"] = "folder.gltf";
+    expectReadError(scratch, experiment, {"experiment.json", "scene", "folder.gltf", "is a directory"});
 }
 
 TEST(Experiment, RejectsUnknownParametersValuesAndViewsAgainstTheScene) {

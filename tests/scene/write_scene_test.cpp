@@ -150,7 +150,8 @@ TEST(WriteScene, WritesTheBinaryChunkOfAGlbBesideTheGltf) {
     EXPECT_EQ(readJson(directory / "out" / "scene.gltf")["buffers"][0]["uri"], "scene.bin");
 }
 
-TEST(WriteScene, RewritesExternalBufferUrisRelativeToTheOutputDirectory) {
+// The written scene loads by the default rule: files outside its directory are copied beside it.
+TEST(WriteScene, CopiesExternalBuffersOutsideTheOutputDirectoryBesideIt) {
     TemporaryDirectory directory;
     GltfBuilder builder;
     addKhrVolumeBox(builder);
@@ -167,7 +168,21 @@ TEST(WriteScene, RewritesExternalBufferUrisRelativeToTheOutputDirectory) {
 
     Scene reloaded = writeAndReload(directory / "source" / "ink.gltf", scene, directory / "fits" / "run1" / "scene.gltf");
     expectSameParameters(scene, reloaded);
-    EXPECT_EQ(readJson(directory / "fits" / "run1" / "scene.gltf")["buffers"][0]["uri"], "../../source/data/ink.bin");
+    EXPECT_EQ(readJson(directory / "fits" / "run1" / "scene.gltf")["buffers"][0]["uri"], "scene.buffers0.bin");
+}
+
+TEST(WriteScene, RefersToExternalBuffersInsideTheOutputDirectoryWhereTheyAre) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    addKhrVolumeBox(builder);
+    std::filesystem::create_directories(directory / "data");
+    std::filesystem::path glb = builder.writeGlb(directory / "ink.glb");
+    Scene scene = loadScene(glb).scene;
+    writeSceneWithParameters(glb, scene, directory / "data" / "ink.gltf");
+
+    Scene reloaded = writeAndReload(directory / "data" / "ink.gltf", scene, directory / "fitted.gltf");
+    expectSameParameters(scene, reloaded);
+    EXPECT_EQ(readJson(directory / "fitted.gltf")["buffers"][0]["uri"], "data/ink.bin");
 }
 
 TEST(WriteScene, WritesFittedTexelsAsAnSrgbPng) {

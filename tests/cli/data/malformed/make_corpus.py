@@ -206,6 +206,43 @@ def main():
     doubling = [{"children": [i + 1, i + 1]} for i in range(40)] + [{"mesh": 0}]
     case("nodes_instanced_exponentially.gltf", hierarchy(doubling, [0]), "render", "instances more than")
 
+    # External files: a scene reads only regular files in its own directory tree.
+    for name, uri, fields in [
+        ("buffer_outside_directory.gltf", "../outside.bin", ["'../outside.bin'", "outside the scene's directory"]),
+        ("buffer_etc_passwd.gltf", "../" * 12 + "etc/passwd", ["outside the scene's directory"]),
+        ("buffer_percent_encoded_parent.gltf", "..%2F..%2F..%2F..%2Fetc%2Fpasswd",
+         ["decoded '../../../../etc/passwd'", "outside the scene's directory"]),
+        ("buffer_absolute_path.gltf", "/etc/passwd", ["'/etc/passwd' is an absolute path", "--allow-outside-files"]),
+        ("buffer_file_uri.gltf", "file:///etc/passwd", ["'file:///etc/passwd'", "scheme (file:)"]),
+        ("buffer_missing_file.gltf", "absent.bin", ["'absent.bin' names no file"]),
+        ("buffer_is_a_directory.gltf", ".", ["'.' is a directory"]),
+    ]:
+        case(name, changed(lambda d: d["buffers"][0].update(uri=uri)), "render", "buffers[0].uri", *fields)
+    case("image_outside_directory.gltf", textured("../../../../etc/hostname.png"), "render", "images[0].uri",
+         "outside the scene's directory")
+
+    # Experiment files (optimize --experiment): integers beyond their range, rates that are
+    # not finite and positive, values beyond float range.
+    def experiment(**changes):
+        document = {"scene": "../../../../scenes/cornell_fog.gltf", "width": 8, "height": 8, "iterations": 2,
+                    "start": {"media/fog/g": 0.2}, "true": {"media/fog/g": 0.1}}
+        document.update(changes)
+        return json.dumps(document, indent=1)
+    for name, changes, fields in [
+        ("experiment_iterations_beyond_32_bits.json", {"iterations": 4294967296}, ["iterations", "[1, 1000000]"]),
+        ("experiment_seed_beyond_32_bits.json", {"seed": 4294967296}, ["seed", "[0, 4294967295]"]),
+        ("experiment_spp_negative.json", {"spp": -3}, ["spp", "[1, 1048576]"]),
+        ("experiment_width_beyond_64_bits.json", {"width": 10 ** 30}, ["width", "[1, 16384]"]),
+        ("experiment_learning_rate_zero.json", {"learning_rate": 0}, ["learning_rate", "finite number > 0"]),
+        ("experiment_learning_rate_negative.json", {"learning_rate": -0.5}, ["learning_rate", "finite number > 0"]),
+        ("experiment_adam_epsilon_zero.json", {"adam_epsilon": 0.0}, ["adam_epsilon", "finite number > 0"]),
+        ("experiment_learning_rates_negative.json", {"learning_rates": {"media/fog/g": -1}},
+         ["learning_rates.media/fog/g", "finite number > 0"]),
+        ("experiment_true_beyond_float.json", {"true": {"media/fog/g": 1e39}}, ["true.media/fog/g", "float range"]),
+        ("experiment_scene_is_a_directory.json", {"scene": "."}, ["scene", "is a directory"]),
+    ]:
+        case(name, experiment(**changes), "experiment", *fields)
+
     # Targets for grad (the scene is scenes/cornell_fog.gltf).
     case("target_wrong_size.exr", exr(4, 4), "grad", "4x4", extra="--width 8 --height 8")
     case("target_depth_only.exr", exr(4, 4, channels="Z"), "grad", "needs channels R, G and B")
