@@ -66,10 +66,12 @@ public:
     // range as unsigned: each is compared as what it is.
     uint32_t count(const Json& value, const std::string& key, uint32_t minimum,
                    uint32_t maximum = UINT32_MAX) const {
-        bool inRange = value.is_number_unsigned()  ? value.get<uint64_t>() >= minimum && value.get<uint64_t>() <= maximum
-                       : value.is_number_integer() ? value.get<int64_t>() >= int64_t(minimum) &&
-                                                         value.get<int64_t>() <= int64_t(maximum)
-                                                   : false;
+        bool inRange = false;
+        if (value.is_number_unsigned()) {
+            inRange = value.get<uint64_t>() >= minimum && value.get<uint64_t>() <= maximum;
+        } else if (value.is_number_integer()) {
+            inRange = value.get<int64_t>() >= int64_t(minimum) && value.get<int64_t>() <= int64_t(maximum);
+        }
         if (!inRange) {
             fail(key, "expected an integer in [" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]" +
                           (value.is_number() ? ", got " + value.dump() : ""));
@@ -87,7 +89,8 @@ public:
     // Parameter values and camera coordinates are floats.
     float finiteFloat(const Json& value, const std::string& key) const {
         if (!value.is_number() || !(std::abs(value.get<double>()) <= double(std::numeric_limits<float>::max()))) {
-            fail(key, "expected finite numbers within float range" + (value.is_number() ? ", got " + value.dump() : ""));
+            fail(key,
+                 "expected finite numbers within float range" + (value.is_number() ? ", got " + value.dump() : ""));
         }
         return float(value.get<double>());
     }

@@ -67,8 +67,8 @@ ResolvedFile SceneFiles::resolvePath(const std::string& path) const {
     // Checked before the file itself, so nothing is said about a file outside.
     if (!access_.allowOutsideFiles && !isInside(file, directory_)) {
         bool throughLink = isInside((directory_ / named).lexically_normal(), directory_);
-        return {{}, std::string("is outside the scene's directory") + (throughLink ? " (through a symbolic link)" : "") +
-                        kOptOut};
+        return {{}, std::string("is outside the scene's directory") +
+                        (throughLink ? " (through a symbolic link)" : "") + kOptOut};
     }
     std::string reason = notRegularFileReason(file);
     if (!reason.empty()) return {{}, reason == "no such file" ? "names no file" : reason};

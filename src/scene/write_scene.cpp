@@ -207,14 +207,17 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
     // The original has been loaded by its own rule already; here its files only need finding.
     SceneFiles from(original, SceneFileAccess{true});
     std::error_code ec;
-    std::filesystem::path toDirectory = std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
+    std::filesystem::path toDirectory =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
     for (size_t i = 0; i < document[array].size(); ++i) {
         json& entry = document[array][i];
         if (!entry.contains("uri") || !entry["uri"].is_string() || isDataUri(entry["uri"].get<std::string>())) {
             continue;
         }
         ResolvedFile resolved = from.resolveUri(entry["uri"].get<std::string>());
-        if (!resolved.problem.empty()) failReading(original, std::string(array) + "[" + std::to_string(i) + "].uri: " + resolved.problem);
+        if (!resolved.problem.empty()) {
+            failReading(original, std::string(array) + "[" + std::to_string(i) + "].uri: " + resolved.problem);
+        }
         std::filesystem::path relative = resolved.file.lexically_relative(toDirectory);
         if (relative.empty() || *relative.begin() == "..") {
             relative = out.stem().string() + "." + array + std::to_string(i) + resolved.file.extension().string();
