@@ -148,15 +148,15 @@ CommandAction addGradCommand(CLI::App& app) {
     command->add_option("--loss", options->loss, "l2 (mean squared difference) or l1 (mean absolute difference)")
         ->default_val(options->loss)->check(CLI::IsMember({"l2", "l1"}));
     command->add_option("--width", options->settings.width, "Must match the target's width when given")
-        ->check(integerIn(1, kMaxImageSide));
+        ->transform(integerIn(1, kMaxImageSide));
     command->add_option("--height", options->settings.height, "Must match the target's height when given")
-        ->check(integerIn(1, kMaxImageSide));
+        ->transform(integerIn(1, kMaxImageSide));
     command->add_flag("--json", options->json, "Print exactly one JSON object: {\"loss\": x, \"gradients\": {...}}");
     command->add_flag("--check", options->check,
                       "Also compute central finite differences with common random numbers (step in "
                       "docs/gradients.md) and print both with their standard errors over --check-seeds seeds");
     command->add_option("--check-seeds", options->checkSeeds, "Seeds the check averages over")
-        ->default_val(options->checkSeeds)->check(integerIn(2, 1000));
+        ->default_val(options->checkSeeds)->transform(integerIn(2, 1000));
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
     return [command, options]() { return command->parsed() ? runGrad(*options) : -1; };
 }

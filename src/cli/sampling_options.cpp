@@ -29,20 +29,20 @@ SamplingOptions addSamplingOptions(CLI::App& command, RenderSettings& settings) 
     SamplingOptions options;
     options.spp = command.add_option("--spp", settings.spp, "Samples per pixel")
                       ->default_val(settings.spp)
-                      ->check(integerIn(1, kMaxSamplesPerPixel));
+                      ->transform(integerIn(1, kMaxSamplesPerPixel));
     options.maxDepth =
         command
             .add_option("--max-depth", settings.maxDepth,
                         "Scattering vertices per path (surface bounces + medium scattering); 1 = direct light only")
             ->default_val(settings.maxDepth)
-            ->check(integerIn(0, kMaxScatteringVertices));
+            ->transform(integerIn(0, kMaxScatteringVertices));
     constexpr uint64_t kMaxSeed = std::numeric_limits<uint32_t>::max();
     options.seed = command.add_option("--seed", settings.seed, "Random seed; the same seed gives the same image")
                        ->default_val(settings.seed)
-                       ->check(integerIn(0, kMaxSeed, "a 32-bit unsigned integer (0.." + std::to_string(kMaxSeed) + ")"));
+                       ->transform(integerIn(0, kMaxSeed, "a 32-bit unsigned integer (0.." + std::to_string(kMaxSeed) + ")"));
     command.add_option("--paths-per-pass", settings.pathsPerPass,
                        "Paths in flight per pass (default: up to 2^21 on a GPU, 2^20 on a CPU, as device memory allows)")
-        ->check(integerIn(1, 1u << 21));
+        ->transform(integerIn(1, 1u << 21));
     return options;
 }
 
