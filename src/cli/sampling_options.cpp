@@ -22,7 +22,7 @@ CLI::Validator integerIn(uint64_t low, uint64_t high, const std::string& kind) {
             input = std::to_string(value);
             return "";
         },
-        "INT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
+        "UINT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
 }
 
 SamplingOptions addSamplingOptions(CLI::App& command, RenderSettings& settings) {
