@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -28,10 +29,10 @@ struct GradOptions {
 };
 
 std::vector<TargetView> readViews(const GradOptions& options, const Scene& scene) {
-    std::vector<TargetView> views;
-    for (const std::string& target : options.targets) {
-        views.push_back(readTarget(target, scene));
-        const Image& image = views.back().target;
+    std::vector<TargetView> views = readTargets(options.targets, scene);
+    for (size_t i = 0; i < views.size(); ++i) {
+        const std::string& target = options.targets[i];
+        const Image& image = views[i].target;
         bool wrongWidth = options.settings.width > 0 && options.settings.width != image.width;
         bool wrongHeight = options.settings.height > 0 && options.settings.height != image.height;
         if (wrongWidth || wrongHeight) {
@@ -40,6 +41,30 @@ std::vector<TargetView> readViews(const GradOptions& options, const Scene& scene
         }
     }
     return views;
+}
+
+void requireFinite(double value, const std::string& what) {
+    if (!std::isfinite(value)) {
+        throw Error("grad: " + what + " came out " + (std::isnan(value) ? "NaN" : "infinite") +
+                    "; nothing is printed");
+    }
+}
+
+// What grad prints is a number: a NaN or infinity (null in JSON) is refused, naming it.
+void requireFiniteResult(const GradientResult& result, const std::vector<GradientCheckRow>& check) {
+    requireFinite(result.loss, "the loss");
+    for (const ParameterGradient& p : result.parameters) {
+        for (size_t c = 0; c < p.gradient.size(); ++c) {
+            requireFinite(p.gradient[c], "d loss / d " + p.name + "[" + std::to_string(c) + "]");
+        }
+    }
+    for (const GradientCheckRow& row : check) {
+        std::string name = row.name + "[" + std::to_string(row.component) + "]";
+        requireFinite(row.adjoint, "the --check adjoint of " + name);
+        requireFinite(row.adjointError, "the --check adjoint's standard error of " + name);
+        requireFinite(row.finiteDifference, "the --check finite difference of " + name);
+        requireFinite(row.finiteDifferenceError, "the --check finite difference's standard error of " + name);
+    }
 }
 
 void printText(const GradientResult& result, const std::vector<GradientCheckRow>& check) {
@@ -97,6 +122,7 @@ int runGrad(const GradOptions& options) {
         check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds);
     }
     requireNoValidationMessages(context);
+    requireFiniteResult(result, check);
     if (options.json) {
         printJson(result, check);
     } else {
@@ -122,15 +148,15 @@ CommandAction addGradCommand(CLI::App& app) {
     command->add_option("--loss", options->loss, "l2 (mean squared difference) or l1 (mean absolute difference)")
         ->default_val(options->loss)->check(CLI::IsMember({"l2", "l1"}));
     command->add_option("--width", options->settings.width, "Must match the target's width when given")
-        ->check(CLI::Range(1, 16384));
+        ->transform(integerIn(1, kMaxImageSide));
     command->add_option("--height", options->settings.height, "Must match the target's height when given")
-        ->check(CLI::Range(1, 16384));
+        ->transform(integerIn(1, kMaxImageSide));
     command->add_flag("--json", options->json, "Print exactly one JSON object: {\"loss\": x, \"gradients\": {...}}");
     command->add_flag("--check", options->check,
                       "Also compute central finite differences with common random numbers (step in "
                       "docs/gradients.md) and print both with their standard errors over --check-seeds seeds");
     command->add_option("--check-seeds", options->checkSeeds, "Seeds the check averages over")
-        ->default_val(options->checkSeeds)->check(CLI::Range(2, 1000));
+        ->default_val(options->checkSeeds)->transform(integerIn(2, 1000));
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
     return [command, options]() { return command->parsed() ? runGrad(*options) : -1; };
 }

@@ -103,8 +103,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     Scene scene = loadSceneWithOverrides(options.scene);
     requireOptimisableParameters(scene, options.optimize.parameters);
     LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
-    std::vector<TargetView> views;
-    for (const std::string& target : options.targets) views.push_back(readTarget(target, scene));
+    std::vector<TargetView> views = readTargets(options.targets, scene);
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views[0].target};
     job.inputs = {{}, options.targets, options.scene.assignments, options.settings.spp, options.settings.maxDepth};
     job.resume = !options.resume.empty();

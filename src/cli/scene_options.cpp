@@ -4,6 +4,7 @@
 
 #include "scene/load_scene.h"
 #include "scene/parameters.h"
+#include "scene/scene_warnings.h"
 
 namespace vkdr {
 
@@ -23,6 +24,9 @@ Scene loadSceneWithOverrides(const SceneOptions& options) {
     }
     for (const std::string& assignment : options.assignments) {
         applyAssignment(loaded.scene, assignment);
+    }
+    for (const std::string& warning : sceneWarnings(loaded.scene)) {
+        std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }
     return std::move(loaded.scene);
 }

@@ -1,6 +1,10 @@
 #include "cli/target_views.h"
 
+#include <cstdio>
+#include <map>
+
 #include "core/error.h"
+#include "image/finite_pixels.h"
 #include "image/image.h"
 #include "render/render_settings.h"
 
@@ -34,7 +38,28 @@ TargetView readTarget(const std::string& argument, const Scene& scene) {
                     std::to_string(target.height) + "; images of at most " + std::to_string(kMaxImageSide) +
                     " pixels a side render");
     }
+    // The loss of such a target is NaN or infinite whatever the render.
+    if (std::optional<std::string> pixel = unrepresentablePixel(target)) {
+        throw Error("--target " + argument + ": " + *pixel);
+    }
     return {camera, std::move(target)};
+}
+
+std::vector<TargetView> readTargets(const std::vector<std::string>& arguments, const Scene& scene) {
+    std::vector<TargetView> views;
+    std::map<std::string, std::string> argumentOfCamera;
+    for (const std::string& argument : arguments) {
+        views.push_back(readTarget(argument, scene));
+        const std::string& camera = views.back().camera.empty() ? scene.cameras.front().name : views.back().camera;
+        auto [earlier, first] = argumentOfCamera.emplace(camera, argument);
+        if (!first) {
+            std::fprintf(stderr,
+                         "warning: --target %s and --target %s both view camera '%s': the loss compares its one "
+                         "render with both\n",
+                         earlier->second.c_str(), argument.c_str(), camera.c_str());
+        }
+    }
+    return views;
 }
 
 }  // namespace vkdr

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/error.h"
+#include "image/finite_pixels.h"
 #include "scene/parameters.h"
 
 namespace vkdr {
@@ -29,7 +31,12 @@ std::vector<TargetView> renderTargets(const Experiment& experiment, const Scene&
         settings.camera = camera;
         settings.spp = experiment.targetSpp;
         settings.seed = experiment.optimize.seed + kTargetSeedOffset;
-        targets.push_back({camera, backend.render(scene, settings)});
+        Image target = backend.render(scene, settings);
+        if (std::optional<std::string> pixel = unrepresentablePixel(target)) {
+            throw Error(experiment.file.string() + ": the target rendered from the true values for camera '" +
+                        camera + "': " + *pixel);
+        }
+        targets.push_back({camera, std::move(target)});
     }
     return targets;
 }

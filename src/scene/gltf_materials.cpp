@@ -5,6 +5,7 @@
 #include "scene/gltf_media.h"
 #include "scene/gltf_textures.h"
 #include "scene/gltf_values.h"
+#include "scene/parameter_kinds.h"
 
 namespace vkdr {
 namespace {
@@ -54,18 +55,30 @@ void warnAboutIgnoredProperties(const tinygltf::Material& material, size_t index
     }
 }
 
-float emissiveStrength(const tinygltf::Material& material, size_t index,
-                       const GltfDiagnostics& diagnostics) {
+// emissiveFactor x KHR_materials_emissive_strength, held to the range of
+// lights/<material>/emission (at most kMaxRadiance); the factor is in [0, 1].
+glm::vec3 emission(const tinygltf::Material& material, size_t index, const GltfDiagnostics& diagnostics) {
+    std::string field = indexed("materials", index);
+    glm::vec3 factor = rgbFromFactor(diagnostics, material.emissiveFactor, field + ".emissiveFactor");
+    requireRange(diagnostics, factor, 0.0f, 1.0f, field + ".emissiveFactor");
     auto extension = material.extensions.find("KHR_materials_emissive_strength");
     if (extension == material.extensions.end()) {
-        return 1.0f;
+        return factor;
     }
-    std::string field = indexed("materials", index) + ".extensions.KHR_materials_emissive_strength";
-    double strength = readNumber(diagnostics, extension->second, field, "emissiveStrength", 1.0);
+    std::string strengthField = field + ".extensions.KHR_materials_emissive_strength.emissiveStrength";
+    double strength = readNumber(diagnostics, extension->second,
+                                 field + ".extensions.KHR_materials_emissive_strength", "emissiveStrength", 1.0);
     if (strength < 0.0) {
-        diagnostics.fail(field + ".emissiveStrength", "must be >= 0, got " + formatNumber(strength));
+        diagnostics.fail(strengthField, "must be >= 0, got " + formatNumber(strength));
     }
-    return float(strength);
+    for (int c = 0; c < 3; ++c) {
+        float radiance = factor[c] * float(strength);
+        if (std::string problem = valueProblem(describe(ParameterKind::Emission), radiance); !problem.empty()) {
+            diagnostics.fail(strengthField, "the emission, emissiveFactor[" + std::to_string(c) +
+                                                "] x emissiveStrength, " + problem);
+        }
+    }
+    return factor * float(strength);
 }
 
 }  // namespace
@@ -96,9 +109,7 @@ void readMaterials(const tinygltf::Model& model, GltfDiagnostics& diagnostics, S
             source.pbrMetallicRoughness.baseColorTexture, field + ".pbrMetallicRoughness.baseColorTexture");
 
         if (!source.emissiveFactor.empty()) {
-            glm::vec3 factor = rgbFromFactor(diagnostics, source.emissiveFactor, field + ".emissiveFactor");
-            requireRange(diagnostics, factor, 0.0f, 1.0f, field + ".emissiveFactor");
-            material.emission = factor * emissiveStrength(source, i, diagnostics);
+            material.emission = emission(source, i, diagnostics);
         }
         material.emissionTexture = textures.textureFor(source.emissiveTexture, field + ".emissiveTexture");
         scene.materials.push_back(std::move(material));

@@ -9,14 +9,26 @@ std::string member(std::string_view field, const std::string& key) {
     return std::string(field) + "." + key;
 }
 
+// Empty when `number` is finite as the float it is stored as, else why not: 1e39 is a
+// finite number in the file, but beyond float's range.
+std::string floatProblem(double number) {
+    if (!std::isfinite(number)) {
+        return "must be finite, got " + formatNumber(number);
+    }
+    if (!std::isfinite(float(number))) {
+        return "must be finite, got " + formatNumber(number) + ": beyond float range (magnitude at most 3.4e+38)";
+    }
+    return "";
+}
+
 double finiteNumber(const GltfDiagnostics& diagnostics, const tinygltf::Value& value,
                     const std::string& path) {
     if (!value.IsNumber()) {
         diagnostics.fail(path, "expected a number");
     }
     double number = value.GetNumberAsDouble();
-    if (!std::isfinite(float(number))) {  // stored as float: 1e39 overflows too
-        diagnostics.fail(path, "must be finite, got " + formatNumber(number));
+    if (std::string problem = floatProblem(number); !problem.empty()) {
+        diagnostics.fail(path, problem);
     }
     return number;
 }
@@ -71,9 +83,8 @@ glm::vec3 rgbFromFactor(const GltfDiagnostics& diagnostics, const std::vector<do
     }
     glm::vec3 rgb;
     for (int c = 0; c < 3; ++c) {
-        if (!std::isfinite(float(factor[size_t(c)]))) {
-            diagnostics.fail(indexed(field, size_t(c)),
-                             "must be finite, got " + formatNumber(factor[size_t(c)]));
+        if (std::string problem = floatProblem(factor[size_t(c)]); !problem.empty()) {
+            diagnostics.fail(indexed(field, size_t(c)), problem);
         }
         rgb[c] = float(factor[size_t(c)]);
     }

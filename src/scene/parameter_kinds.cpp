@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "image/finite_pixels.h"
+
 namespace vkdr {
 namespace {
 
@@ -14,6 +16,18 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Short of |g| = 1: a phase function this peaked is already a delta for any image we
 // can render, and the g gradient's 1/(1-g^2) term blows up beyond it.
 constexpr double kMaxAbsAnisotropy = 0.99;
+
+// Why kMaxRadiance is enough: a pixel is the mean of its samples, and a sample gathers,
+// at each of its at most kMaxScatteringVertices vertices, the emitter its ray hits (MIS
+// weight <= 1) and one light sample, whose scatter * w / pdf_light is at most
+// scatter / (2 pdf_scatter) by the power heuristic: half the emission. Albedos and
+// emission textures are at most 1, and Russian roulette scales the throughput to at
+// most 1 (a grey medium's weight sigma_s T / p is at most 1 too; a chromatic medium's
+// spectral MIS weight can reach 3, which this does not cover). So a pixel is at most
+// 1.5 kMaxScatteringVertices + 1 times the brightest radiance, emitter's or
+// background's, and must stay within what the loss can square (image/finite_pixels.h);
+// the film's sum over at most 2^20 samples per pixel is far from float's limit.
+static_assert(kMaxRadiance * (1.5 * kMaxScatteringVertices + 1.0) <= double(kMaxPixelMagnitude));
 
 // Relative, so that a fog of sigma = 1e-3 (a scene hundreds of units across) gets a
 // step of its own scale; at 0 the one-sided difference steps to 0.015. A changed sigma
@@ -49,7 +63,7 @@ constexpr std::array<ParameterDescription, 6> kDescriptions = {{
      gpu::GradientAccumulator::baseColorGradients, 0},
     {ParameterKind::BaseColorTexture, "materials/", "/base_color_texture", ParameterOwner::Material, 3, {0.0, 1.0},
      albedoStep, gpu::GradientAccumulator::texelGradients, 0},
-    {ParameterKind::Emission, "lights/", "/emission", ParameterOwner::Material, 3, {0.0, kInfinity}, emissionStep,
+    {ParameterKind::Emission, "lights/", "/emission", ParameterOwner::Material, 3, {0.0, kMaxRadiance}, emissionStep,
      gpu::GradientAccumulator::emissionGradients, 0},
 }};
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -18,8 +19,16 @@ enum class ParameterKind {
     G,                 // media/<medium>/g: Henyey-Greenstein anisotropy
     BaseColor,         // materials/<material>/base_color: RGB albedo
     BaseColorTexture,  // materials/<material>/base_color_texture: the same, per texel
-    Emission,          // lights/<material>/emission: RGB radiance
+    Emission,          // lights/<material>/emission: RGB radiance, at most kMaxRadiance
 };
+
+// The largest radiance, per channel, an emitter (emissiveFactor x emissiveStrength, or
+// lights/<material>/emission) or the background may have: brighter ones could make a
+// pixel, or the loss that squares it, overflow float (parameter_kinds.cpp derives it).
+inline constexpr double kMaxRadiance = 1e12;
+
+// The most scattering vertices a path may have (--max-depth); kMaxRadiance counts on it.
+inline constexpr uint32_t kMaxScatteringVertices = 100000;
 
 // What the middle of a parameter's name names.
 enum class ParameterOwner { Medium, Material };

@@ -160,8 +160,12 @@ void applyAssignment(Scene& scene, std::string_view assignment) {
         std::string_view text = list.substr(0, comma);
         float value = 0.0f;
         auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
+        if (text.empty() || end != text.data() + text.size() ||
+            (ec != std::errc() && ec != std::errc::result_out_of_range)) {
             fail("'" + std::string(text) + "' is not a number");
+        }
+        if (ec == std::errc::result_out_of_range) {
+            fail("'" + std::string(text) + "' is out of float range (magnitudes from 1.4e-45 to 3.4e+38, or 0)");
         }
         values.push_back(value);
         if (comma == std::string_view::npos) {

@@ -1,0 +1,42 @@
+#include "image/finite_pixels.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace vkdr {
+namespace {
+
+std::string valueText(float value) {
+    if (std::isnan(value)) {
+        return "NaN";
+    }
+    if (std::isinf(value)) {
+        return value > 0.0f ? "+infinity" : "-infinity";
+    }
+    char text[32];
+    auto [end, ec] = std::to_chars(text, text + sizeof(text), value);
+    return std::string(text, ec == std::errc() ? end : text);
+}
+
+}  // namespace
+
+std::optional<std::string> unrepresentablePixel(const Image& image) {
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const float* rgb = image.pixel(x, y);
+            for (int c = 0; c < 3; ++c) {
+                // Written so that NaN fails the test too.
+                if (std::abs(rgb[c]) <= kMaxPixelMagnitude) {
+                    continue;
+                }
+                std::string where = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " + "RGB"[c] +
+                                    " is " + valueText(rgb[c]);
+                return std::isfinite(rgb[c]) ? where + ", beyond the largest magnitude a pixel may have (" + valueText(kMaxPixelMagnitude) + ")"
+                                             : where;
+            }
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace vkdr

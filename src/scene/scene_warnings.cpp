@@ -1,0 +1,48 @@
+#include "scene/scene_warnings.h"
+
+#include <glm/glm.hpp>
+
+namespace vkdr {
+namespace {
+
+// In double, as the renderer's light distribution measures it: a triangle of zero area
+// there is never sampled as a light.
+bool hasZeroArea(const Scene& scene, const glm::uvec3& triangle) {
+    glm::dvec3 e1 = glm::dvec3(scene.positions[triangle[1]] - scene.positions[triangle[0]]);
+    glm::dvec3 e2 = glm::dvec3(scene.positions[triangle[2]] - scene.positions[triangle[0]]);
+    return glm::length(glm::cross(e1, e2)) == 0.0;
+}
+
+}  // namespace
+
+std::vector<std::string> sceneWarnings(const Scene& scene) {
+    std::vector<size_t> zeroAreaEmitters(scene.materials.size(), 0);
+    size_t emittingTriangles = 0;
+    for (size_t t = 0; t < scene.triangles.size(); ++t) {
+        const uint32_t material = scene.triangleMaterial[t];
+        if (!scene.materials[material].isEmissive()) {
+            continue;
+        }
+        if (hasZeroArea(scene, scene.triangles[t])) {
+            ++zeroAreaEmitters[material];
+        } else {
+            ++emittingTriangles;
+        }
+    }
+    std::vector<std::string> warnings;
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        if (zeroAreaEmitters[m] > 0) {
+            warnings.push_back(std::to_string(zeroAreaEmitters[m]) + " emissive triangle" +
+                               (zeroAreaEmitters[m] == 1 ? "" : "s") + " of material '" + scene.materials[m].name +
+                               "' ha" + (zeroAreaEmitters[m] == 1 ? "s" : "ve") +
+                               " zero area (degenerate) and emit nothing");
+        }
+    }
+    if (emittingTriangles == 0 && scene.background == glm::vec3(0.0f)) {
+        warnings.push_back("the scene has no light: no triangle of non-zero area has an emissive material and the "
+                           "background is black, so the image will be black");
+    }
+    return warnings;
+}
+
+}  // namespace vkdr
