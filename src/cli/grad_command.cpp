@@ -7,6 +7,7 @@
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "diff/gradient_check.h"
 #include "diff/rendered_loss_gradient.h"
 #include "optimize/loss_kind_text.h"
@@ -97,6 +98,7 @@ int runGrad(const GradOptions& options) {
         check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds);
     }
     requireNoValidationMessages(context);
+    throwIfInterrupted();  // a signal after the last pass: no result printed
     if (options.json) {
         printJson(result, check);
     } else {

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "render/camera_setup.h"
 #include "render/push_constants.h"
 #include "vk/commands.h"
@@ -233,6 +234,8 @@ gpu::QueueCountersData Renderer::recordSegmentsUntilNoRayIsLeft(CommandRecorder&
         }
         recorder.copy(paths_->queueCounters, paths_->countersReadback, sizeof(counters));
         recorder.submitAndWait();
+        // A long pass can take minutes; a signal must stop it within a batch.
+        throwIfInterrupted();
         std::memcpy(&counters, paths_->countersReadback.mapped(), sizeof(counters));
         if (counters.counts[currentRays] == 0) {
             break;
