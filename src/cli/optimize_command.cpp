@@ -109,8 +109,7 @@ std::string resumeHint(const std::filesystem::path& directory) {
 
 // A lost device or a signal stops the run like any error; what it leaves to resume from
 // is worth saying.
-template <typename Run>
-auto withResumeHint(const std::filesystem::path& directory, Run run) {
+int withResumeHint(const std::filesystem::path& directory, const std::function<int()>& run) {
     try {
         return run();
     } catch (const DeviceLostError& error) {
@@ -155,9 +154,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
                                       options.settings, loss);
     clearOldRun(options, false);
     ProgressBar bar("optimize");
-    OptimizationReport report = withResumeHint(options.out, [&] {
-        return runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
-    });
+    OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
     bar.finish();
     requireNoValidationMessages(context);
     printOutputs(options.out, report);
@@ -218,10 +215,8 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
 
     clearOldRun(options, true);
     ProgressBar bar("optimize");
-    ExperimentResult result = withResumeHint(options.out, [&] {
-        return runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
-                             progressOn(bar, experiment.optimize.iterations));
-    });
+    ExperimentResult result = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
+                                            progressOn(bar, experiment.optimize.iterations));
     bar.finish();
     requireNoValidationMessages(context);
     std::printf("%s", recoveryTable(result.recoveries).c_str());
@@ -296,8 +291,10 @@ CommandAction addOptimizeCommand(CLI::App& app) {
         options->optimize.seed = options->settings.seed;
         applyResume(*options, out);
         requireRunDirectory(*options);
-        return options->experiment.empty() ? runOptimizeScene(*options)
-                                           : runOptimizeExperiment(*options, overrides);
+        return withResumeHint(options->out, [&] {
+            return options->experiment.empty() ? runOptimizeScene(*options)
+                                               : runOptimizeExperiment(*options, overrides);
+        });
     };
 }
 
