@@ -12,4 +12,4 @@ mkdir -p "$root/out"
   -o "$root/out/cornell_fog.exr" --png "$root/out/cornell_fog.png"
 echo "The fog Cornell box is in out/cornell_fog.exr (linear EXR) and out/cornell_fog.png (preview)."
 "$root/build/src/cli/vkdiffrender" optimize --experiment "$root/scenes/experiments/cornell_absorption.json" \
-  --out "$root/out/cornell_absorption"
+  --out "$root/out/cornell_absorption" --overwrite

@@ -1,14 +1,14 @@
 #include <cstdio>
-#include <filesystem>
 
 #include "bench/bench_report.h"
 #include "bench/bench_scene.h"
 #include "bench/host_memory.h"
 #include "bench/scene_benchmark.h"
 #include "cli/commands.h"
+#include "cli/output_paths.h"
 #include "cli/progress_bar.h"
 #include "cli/sampling_options.h"
-#include "core/error.h"
+#include "core/interrupt.h"
 #include "image/atomic_write.h"
 #include "vk/context.h"
 
@@ -28,12 +28,7 @@ struct BenchOptions {
 };
 
 int runBench(BenchOptions options) {
-    if (!options.json.empty()) {
-        std::filesystem::path parent = std::filesystem::path(options.json).parent_path();
-        if (!parent.empty() && !std::filesystem::is_directory(parent)) {
-            throw Error("--json " + options.json + ": directory " + parent.string() + " does not exist");
-        }
-    }
+    if (!options.json.empty()) requireOutputFile("--json", options.json);
     if (options.settings.render.width == 0 && options.settings.render.height == 0) {
         options.settings.render.width = kDefaultWidth;
     }
@@ -71,6 +66,7 @@ int runBench(BenchOptions options) {
     }
     bar.finish();
     requireNoValidationMessages(context);
+    throwIfInterrupted();  // a signal after the last measurement: no report
 
     std::printf("%s", markdownTable(report).c_str());
     if (!options.json.empty()) {

@@ -8,6 +8,7 @@
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "diff/gradient_check.h"
 #include "diff/rendered_loss_gradient.h"
 #include "optimize/loss_kind_text.h"
@@ -123,6 +124,7 @@ int runGrad(const GradOptions& options) {
     }
     requireNoValidationMessages(context);
     requireFiniteResult(result, check);
+    throwIfInterrupted();  // a signal after the last pass: no result printed
     if (options.json) {
         printJson(result, check);
     } else {

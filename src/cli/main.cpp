@@ -4,6 +4,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 
 int main(int argc, char** argv) {
     CLI::App app("vkdiffrender: a differentiable volumetric path tracer on Vulkan", "vkdiffrender");
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
         return 2;
     }
+    vkdr::stopOnInterruptSignals();
     try {
         for (const vkdr::CommandAction& action : actions) {
             int code = action();
@@ -27,6 +29,9 @@ int main(int argc, char** argv) {
                 return code;
             }
         }
+    } catch (const vkdr::Interrupted& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return e.exitCode();
     } catch (const vkdr::Error& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

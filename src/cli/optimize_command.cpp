@@ -4,11 +4,14 @@
 
 #include "bvh/bvh.h"
 #include "cli/commands.h"
+#include "cli/number_options.h"
+#include "cli/output_paths.h"
 #include "cli/progress_bar.h"
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "diff/rendered_loss_gradient.h"
 #include "image/image.h"
 #include "optimize/checkpoint.h"
@@ -17,6 +20,7 @@
 #include "optimize/loss_kind_text.h"
 #include "optimize/optimization_run.h"
 #include "optimize/parameter_vector.h"
+#include "optimize/run_directory.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "vk/context.h"
@@ -36,6 +40,7 @@ struct OptimizeCommandOptions {
     std::string loss = "l2";
     std::string out = "optimize-out";
     std::string resume;  // a previous run's --out directory to continue in
+    bool overwrite = false;  // replace the run that --out holds
     std::string device;
 };
 
@@ -57,10 +62,30 @@ struct ExperimentOverrides {
 // --resume DIR continues the run whose outputs are in DIR, and writes there.
 void applyResume(OptimizeCommandOptions& options, const CLI::Option* outGiven) {
     if (options.resume.empty()) return;
-    if (outGiven->count() && std::filesystem::path(options.out) != std::filesystem::path(options.resume)) {
+    if (options.overwrite) {
+        throw Error("--overwrite starts a new run and --resume " + options.resume + " continues one; give one of them");
+    }
+    if (outGiven->count() && !sameFile(options.out, options.resume)) {
         throw Error("--resume " + options.resume + " writes into that directory; drop --out " + options.out);
     }
     options.out = options.resume;
+}
+
+RunStart runStart(const OptimizeCommandOptions& options) {
+    return !options.resume.empty() ? RunStart::Resume : options.overwrite ? RunStart::Overwrite : RunStart::New;
+}
+
+// Before any work: the directory can be written, and holds no other run unless told.
+void requireRunDirectory(const OptimizeCommandOptions& options) {
+    requireOutputDirectory(options.resume.empty() ? "--out" : "--resume", options.out);
+    requireRunDirectoryFor(options.out, runStart(options));
+}
+
+// Once the inputs have been checked and just before the run writes: with --overwrite,
+// nothing of the old run is left for the new one to mix with.
+void clearOldRun(const OptimizeCommandOptions& options, bool experiment) {
+    throwIfInterrupted();
+    if (options.overwrite) removeRunFiles(options.out, experiment);
 }
 
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
@@ -74,14 +99,24 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
                 directory.string().c_str());
 }
 
-// A lost device stops the run like any error; what it leaves to resume from is worth saying.
-[[noreturn]] void failWithResumeHint(const DeviceLostError& error, const std::filesystem::path& directory) {
+// What the run directory holds to resume from, for the message that ends a stopped run.
+std::string resumeHint(const std::filesystem::path& directory) {
     std::filesystem::path checkpoint = directory / kCheckpointFileName;
-    throw Error(std::string(error.what()) +
-                (std::filesystem::exists(checkpoint)
-                     ? "; " + checkpoint.string() + " is intact: run the same command with --resume " +
-                           directory.string()
-                     : "; no checkpoint had been written yet"));
+    std::error_code error;
+    if (!std::filesystem::exists(checkpoint, error)) return "no checkpoint had been written yet";
+    return checkpoint.string() + " is intact: run the same command with --resume " + directory.string();
+}
+
+// A lost device or a signal stops the run like any error; what it leaves to resume from
+// is worth saying.
+int withResumeHint(const std::filesystem::path& directory, const std::function<int()>& run) {
+    try {
+        return run();
+    } catch (const DeviceLostError& error) {
+        throw Error(std::string(error.what()) + "; " + resumeHint(directory));
+    } catch (const Interrupted& interrupted) {
+        throw Interrupted(interrupted.signal(), std::string(interrupted.what()) + "; " + resumeHint(directory));
+    }
 }
 
 std::function<void(uint32_t, double)> progressOn(ProgressBar& bar, uint32_t iterations) {
@@ -108,6 +143,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     job.inputs = {{}, options.targets, options.scene.assignments, options.settings.spp, options.settings.maxDepth};
     job.resume = !options.resume.empty();
 
+    throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});
     std::fprintf(stderr, "%s: %zu triangles, %zu views, %u spp, max depth %u, %u iterations of %s on %s\n",
                  options.scene.file.c_str(), scene.triangles.size(), views.size(), options.settings.spp,
@@ -115,13 +151,9 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
                  context.description().name.c_str());
     RenderedLossGradient lossGradient(context, scene, std::move(views), options.optimize.parameters,
                                       options.settings, loss);
+    clearOldRun(options, false);
     ProgressBar bar("optimize");
-    OptimizationReport report;
-    try {
-        report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
-    } catch (const DeviceLostError& error) {
-        failWithResumeHint(error, options.out);
-    }
+    OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
     bar.finish();
     requireNoValidationMessages(context);
     printOutputs(options.out, report);
@@ -157,7 +189,10 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     LoadedScene loaded = loadScene(experiment.scene);
     for (const std::string& warning : loaded.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    Scene checked = loaded.scene;
+    prepareExperimentScene(experiment, checked);  // its errors before any rendering
 
+    throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});
     // Only parameter values change during an experiment, never the geometry.
     Bvh bvh = buildBvh(loaded.scene.positions, loaded.scene.triangles);
@@ -177,14 +212,10 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
                  experiment.optimize.iterations, optimizerKindName(experiment.optimize.optimizer).c_str(),
                  context.description().name.c_str());
 
+    clearOldRun(options, true);
     ProgressBar bar("optimize");
-    ExperimentResult result;
-    try {
-        result = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
-                               progressOn(bar, experiment.optimize.iterations));
-    } catch (const DeviceLostError& error) {
-        failWithResumeHint(error, options.out);
-    }
+    ExperimentResult result = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
+                                            progressOn(bar, experiment.optimize.iterations));
     bar.finish();
     requireNoValidationMessages(context);
     std::printf("%s", recoveryTable(result.recoveries).c_str());
@@ -210,15 +241,15 @@ CommandAction addOptimizeCommand(CLI::App& app) {
     overrides.iterations = command->add_option("--iters", options->optimize.iterations, "Iterations")
                                ->default_val(options->optimize.iterations)->check(CLI::Range(1u, 1000000u));
     overrides.learningRate = command->add_option("--lr", options->optimize.learningRate, "Learning rate")
-                                 ->default_val(options->optimize.learningRate)->check(CLI::PositiveNumber);
+                                 ->default_val(options->optimize.learningRate)->check(finitePositiveNumber());
     overrides.learningRateDecay =
         command->add_option("--lr-decay", options->optimize.learningRateDecay,
                             "The learning rate at the last iteration as a fraction of --lr (exponential decay)")
-            ->default_val(options->optimize.learningRateDecay)->check(CLI::Range(1e-9, 1.0));
+            ->default_val(options->optimize.learningRateDecay)->check(finiteNumberIn(1e-9, 1.0));
     overrides.learningRateDecayStart =
         command->add_option("--lr-decay-start", options->optimize.learningRateDecayStart,
                             "The fraction of the iterations run at the full rate before the decay starts")
-            ->default_val(options->optimize.learningRateDecayStart)->check(CLI::Range(0.0, 0.999));
+            ->default_val(options->optimize.learningRateDecayStart)->check(finiteNumberIn(0.0, 0.999));
     overrides.logParameters =
         command->add_option("--log-param", options->optimize.logParameters,
                             "Optimise this parameter (one of the --param, positive) as the logarithm of its value: "
@@ -226,7 +257,7 @@ CommandAction addOptimizeCommand(CLI::App& app) {
     overrides.adamEpsilon =
         command->add_option("--adam-epsilon", options->optimize.adamEpsilon,
                             "Adam's epsilon, in the gradient's units: make it smaller than the gradients")
-            ->default_val(options->optimize.adamEpsilon)->check(CLI::PositiveNumber);
+            ->default_val(options->optimize.adamEpsilon)->check(finitePositiveNumber());
     overrides.optimizer = command->add_option("--optimizer", options->optimizer, "adam or sgd")
                               ->default_val(options->optimizer)->check(CLI::IsMember({"adam", "sgd"}));
     SamplingOptions sampling = addSamplingOptions(*command, options->settings);
@@ -236,7 +267,14 @@ CommandAction addOptimizeCommand(CLI::App& app) {
     overrides.loss = command->add_option("--loss", options->loss, "l2 or l1 (means over pixels and channels)")
                          ->default_val(options->loss)->check(CLI::IsMember({"l2", "l1"}));
     CLI::Option* out =
-        command->add_option("--out", options->out, "Output directory, created if missing")->default_val(options->out);
+        command
+            ->add_option("--out", options->out,
+                         "Output directory, created if missing; one that holds another run's files (log.jsonl, "
+                         "checkpoint.json, params.json, ...) is refused unless --overwrite")
+            ->default_val(options->out);
+    command->add_flag("--overwrite", options->overwrite,
+                      "Replace the run that --out holds: its files (checkpoint included) are removed before the "
+                      "new run writes; other files are left");
     command
         ->add_option("--checkpoint-every", options->optimize.checkpointEvery,
                      "Write DIR/checkpoint.json every K iterations (0: never); a stopped run loses at most K")
@@ -244,14 +282,18 @@ CommandAction addOptimizeCommand(CLI::App& app) {
         ->check(CLI::Range(0u, 1000000u));
     command->add_option("--resume", options->resume,
                         "Continue the stopped run whose --out was DIR, from DIR/checkpoint.json; give the same "
-                        "scene, targets, parameters and options");
+                        "scene, targets, parameters and options. SIGINT or SIGTERM stops a run with a checkpoint of "
+                        "its last finished iteration and exit code 130 (SIGINT) or 143 (SIGTERM)");
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
     return [command, options, overrides, out]() {
         if (!command->parsed()) return -1;
         options->optimize.seed = options->settings.seed;
         applyResume(*options, out);
-        return options->experiment.empty() ? runOptimizeScene(*options)
-                                           : runOptimizeExperiment(*options, overrides);
+        requireRunDirectory(*options);
+        return withResumeHint(options->out, [&] {
+            return options->experiment.empty() ? runOptimizeScene(*options)
+                                               : runOptimizeExperiment(*options, overrides);
+        });
     };
 }
 

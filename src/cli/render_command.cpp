@@ -1,13 +1,14 @@
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 
 #include "bvh/bvh.h"
 #include "cli/commands.h"
+#include "cli/output_paths.h"
 #include "cli/progress_bar.h"
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "image/image.h"
 #include "render/renderer.h"
 #include "vk/context.h"
@@ -23,24 +24,41 @@ struct RenderOptions {
     std::string device;
 };
 
-void requireWritableDirectory(const std::string& file, const char* option) {
-    std::filesystem::path parent = std::filesystem::path(file).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent)) {
-        throw Error(std::string(option) + " " + file + ": directory " + parent.string() + " does not exist");
+// Every output checked before any work: a bad path fails at once, not after the render.
+ImageFileType requireOutputs(const RenderOptions& options) {
+    requireOutputFile("-o", options.output);
+    std::optional<ImageFileType> type = imageFileTypeOf(options.output);
+    if (!type) {
+        throw Error("-o " + options.output + ": the extension sets the file type: .exr (32-bit float linear RGB) "
+                    "or .png (8-bit sRGB, clamped to [0, 1])");
+    }
+    if (!options.png.empty()) {
+        requireOutputFile("--png", options.png);
+        if (imageFileTypeOf(options.png) != ImageFileType::Png) {
+            throw Error("--png " + options.png + ": must end in .png");
+        }
+        requireDistinctOutputs({{"-o", options.output}, {"--png", options.png}});
+    }
+    return *type;
+}
+
+void writeImage(const std::string& file, ImageFileType type, const Image& image) {
+    if (type == ImageFileType::Exr) {
+        writeExr(file, image);
+    } else {
+        writePng(file, image);
     }
 }
 
 int runRender(const RenderOptions& options) {
-    requireWritableDirectory(options.output, "-o");
-    if (!options.png.empty()) {
-        requireWritableDirectory(options.png, "--png");
-    }
+    const ImageFileType outputType = requireOutputs(options);
     Scene scene = loadSceneWithOverrides(options.scene);
 
     auto bvhStart = std::chrono::steady_clock::now();
     Bvh bvh = buildBvh(scene.positions, scene.triangles);
     double bvhSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - bvhStart).count();
 
+    throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});
     Renderer renderer(context, scene, bvh, options.settings);
     std::fprintf(stderr, "%s: %zu triangles (BVH %.2f s), %dx%d, %u spp, max depth %u on %s\n",
@@ -52,7 +70,8 @@ int runRender(const RenderOptions& options) {
     bar.finish();
 
     requireNoValidationMessages(context);
-    writeExr(options.output, image);
+    throwIfInterrupted();  // a signal after the last pass: still no output
+    writeImage(options.output, outputType, image);
     if (!options.png.empty()) {
         writePng(options.png, image);
     }
@@ -70,11 +89,12 @@ int runRender(const RenderOptions& options) {
 }  // namespace
 
 CommandAction addRenderCommand(CLI::App& app) {
-    CLI::App* command = app.add_subcommand("render", "Render a glTF scene to a linear RGB EXR (and a PNG preview)");
+    CLI::App* command = app.add_subcommand("render", "Render a glTF scene to a linear RGB EXR or an sRGB PNG (and a PNG preview)");
     auto options = std::make_shared<RenderOptions>();
     addSceneOptions(*command, options->scene);
-    command->add_option("-o,--output", options->output, "Output EXR file (32-bit float linear RGB)")->required();
-    command->add_option("--png", options->png, "Also write an sRGB PNG preview (clamped to [0, 1])");
+    command->add_option("-o,--output", options->output, "Output image; its extension sets the type: .exr (32-bit float linear RGB) or .png (8-bit sRGB, "
+                        "clamped to [0, 1]). A regular file or a new name; a symbolic link is refused")->required();
+    command->add_option("--png", options->png, "Also write an sRGB PNG preview (clamped to [0, 1]) to this .png file, not the -o file");
     addSamplingOptions(*command, options->settings);
     command->add_option("--width", options->settings.width, "Image width in pixels (default: 512, or from --height)")
         ->check(CLI::Range(1, 16384));

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace vkdr {
 namespace {
@@ -65,6 +66,14 @@ size_t removeStaleTemporaries(const std::filesystem::path& directory) {
 
 void writeAtomically(const std::filesystem::path& file, const std::function<void(std::ofstream&)>& writeContents) {
     if (file.filename().empty()) fail(file, "not a file name");
+    // The rename would replace whatever has the name: a device node, a FIFO, a socket or
+    // a symbolic link (itself, not what it points to) would be lost.
+    std::error_code ignored;
+    std::filesystem::file_status existing = std::filesystem::symlink_status(file, ignored);
+    if (std::filesystem::exists(existing) && !std::filesystem::is_regular_file(existing)) {
+        fail(file, "it exists and is not a regular file");
+    }
+    FileWriteGuard writing;
     std::filesystem::path temporary = temporaryPathFor(file);
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) fail(file, std::strerror(errno));

@@ -1,10 +1,13 @@
 #include "optimize/iteration_log.h"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "image/atomic_write.h"
 #include "optimize/json_numbers.h"
 
@@ -26,13 +29,36 @@ std::string iterationJsonLine(const IterationRecord& record) {
     return line.dump();
 }
 
-IterationLog::IterationLog(std::filesystem::path file, uint32_t iterations) : file_(std::move(file)) {
+IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>& losses) : file_(std::move(file)) {
+    const std::string name = file_.string();
+    auto fail = [&](const std::string& problem) {
+        throw Error(name + ": " + problem + "; it is not the log of the run the checkpoint holds");
+    };
     std::ifstream in(file_);
-    for (std::string line; std::getline(in, line);) {
+    if (!in) fail("cannot be read (" + std::string(std::strerror(errno)) + ")");
+    // One run logs iterations 0, 1, 2, ... in order; it may have logged some past its
+    // last checkpoint, which are dropped.
+    uint64_t lineNumber = 0;
+    for (std::string line; std::getline(in, line) && lineNumber < losses.size(); ++lineNumber) {
         nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
-        bool earlier = record.is_object() && record.contains("iteration") &&
-                       record["iteration"].is_number_unsigned() && record["iteration"].get<uint64_t>() < iterations;
-        if (earlier) text_ += line + "\n";
+        const std::string at = "line " + std::to_string(lineNumber + 1);
+        bool wellFormed = record.is_object() && record.contains("iteration") && record["iteration"].is_number_unsigned() &&
+                          record.contains("loss") && record["loss"].is_number();
+        if (!wellFormed) fail(at + " is not an iteration's record");
+        uint64_t iteration = record["iteration"].get<uint64_t>();
+        if (iteration != lineNumber) {
+            fail(at + " is iteration " + std::to_string(iteration) + " where " + std::to_string(lineNumber) +
+                 " was expected");
+        }
+        double loss = record["loss"].get<double>();
+        if (loss != losses[lineNumber]) {
+            fail(at + ": iteration " + std::to_string(iteration) + " has loss " + nlohmann::json(loss).dump() +
+                 ", the checkpoint " + nlohmann::json(losses[lineNumber]).dump());
+        }
+        text_ += line + "\n";
+    }
+    if (lineNumber < losses.size()) {
+        fail("it has " + std::to_string(lineNumber) + " iterations, the checkpoint " + std::to_string(losses.size()));
     }
     writeAtomically(file_, [&](std::ofstream& stream) { stream << text_; });
 }

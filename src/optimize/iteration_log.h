@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "optimize/optimize_loop.h"
 
@@ -18,10 +19,12 @@ class IterationLog {
 public:
     // Starts a new log; the file is written at the first append.
     explicit IterationLog(std::filesystem::path file) : file_(std::move(file)) {}
-    // Continues the log of a run resumed after `iterations` iterations: keeps the lines
-    // of the iterations before, and drops those after (a stopped run may have logged a
-    // few past its last checkpoint), so that each iteration appears once. Rewrites the file.
-    IterationLog(std::filesystem::path file, uint32_t iterations);
+    // Continues the log of a run resumed with the checkpoint's `losses`, one per iteration
+    // done: keeps the lines of those iterations and drops those after (a stopped run may
+    // have logged a few past its last checkpoint), so that each iteration appears once.
+    // Throws vkdr::Error naming the file when it is missing or its lines are not that
+    // run's: out of order, missing, or with other losses. Rewrites the file.
+    IterationLog(std::filesystem::path file, const std::vector<double>& losses);
     void append(const IterationRecord& record);
 
 private:

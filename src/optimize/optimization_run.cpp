@@ -15,6 +15,7 @@
 #include "optimize/loss_chart.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
+#include "optimize/run_directory.h"
 #include "scene/parameters.h"
 #include "scene/write_scene.h"
 
@@ -59,12 +60,12 @@ void requireFits(const std::filesystem::path& file, const LoopState& state, cons
 }
 
 std::optional<LoopState> resumeState(const OptimizationJob& job, const Scene& scene, const RunIdentity& identity) {
-    if (!job.resume) return std::nullopt;
-    std::filesystem::path file = job.outputDirectory / kCheckpointFileName;
-    if (!std::filesystem::exists(file)) {
-        throw Error("--resume " + job.outputDirectory.string() + ": there is no " + kCheckpointFileName +
-                    " (a run writes one every --checkpoint-every iterations)");
+    if (!job.resume) {
+        requireRunDirectoryFor(job.outputDirectory, RunStart::New);
+        return std::nullopt;
     }
+    requireRunDirectoryFor(job.outputDirectory, RunStart::Resume);
+    std::filesystem::path file = job.outputDirectory / kCheckpointFileName;
     Checkpoint checkpoint = readCheckpoint(file);
     requireSameRun(file, checkpoint.run, identity);
     requireFits(file, checkpoint.state, job.options, ParameterVector(scene, job.options.parameters).size());
@@ -80,7 +81,7 @@ OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, con
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
     removeStaleTemporaries(directory);  // a killed run's partial writes
-    IterationLog log = resume ? IterationLog(directory / "log.jsonl", resume->iteration)
+    IterationLog log = resume ? IterationLog(directory / "log.jsonl", resume->losses)
                               : IterationLog(directory / "log.jsonl");
     OptimizeCallbacks callbacks{progress, [&](const IterationRecord& record) { log.append(record); },
                                 [&](const LoopState& state) {

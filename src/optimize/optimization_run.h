@@ -33,9 +33,12 @@ struct OptimizationReport {
 //               scaled difference to the target, loss.svg the loss curve.
 // When the loop fails (optimize/optimize_loop.h) only log.jsonl, up to the last good
 // iteration, and the last checkpoint are left: nothing that holds fitted values is written.
-// With job.resume it reads the checkpoint, refuses it unless it was written by a run
-// with the same identity, drops the log's lines past it and continues from it: the
-// outputs are those of the run that was never stopped.
+// Without job.resume it refuses a directory that holds another run's files
+// (optimize/run_directory.h). With job.resume it reads the checkpoint, refuses it unless
+// it was written by a run with the same identity and log.jsonl holds that run's lines up
+// to it, drops the log's lines past it and continues from it: the outputs are those of
+// the run that was never stopped. Interrupted by a signal, it leaves the log and a
+// checkpoint of the last finished iteration (optimize/optimize_loop.h), and rethrows.
 OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(uint32_t iteration, double loss)>& progress = {});
 

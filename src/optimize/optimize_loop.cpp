@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <span>
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "optimize/log_space.h"
 #include "optimize/parameter_vector.h"
 
@@ -27,17 +30,63 @@ std::vector<double> perValueLearningRates(const ParameterVector& parameters, con
     return rates;
 }
 
-void requireFinite(const GradientResult& result, uint32_t iteration) {
-    std::string where = "iteration " + std::to_string(iteration) + ": ";
-    if (!std::isfinite(result.loss)) {
-        throw Error(where + "the loss is " + std::to_string(result.loss) +
-                    "; no values from this iteration were kept (try a smaller learning rate)");
+std::string numberText(double value) {
+    if (std::isnan(value)) return "nan";
+    if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.6g", value);
+    return text;
+}
+
+std::string valuesText(std::span<const double> values) {
+    std::string text;
+    for (double value : values) text += (text.empty() ? "" : ", ") + numberText(value);
+    return "[" + text + "]";
+}
+
+// Beyond this magnitude a value is far outside any scene's scale, and the renderer's
+// float arithmetic (an optical depth, a squared difference) may overflow on it.
+constexpr double kExtremeMagnitude = 1e6;
+
+// Why a loss or gradient the render gave is not finite. Targets, parameters and
+// checkpoints are refused at load when they are not finite, and a step that leaves
+// float range is caught by requireFiniteSteps, so it is either an extreme value the
+// steps reached or the renderer itself.
+std::string nonFiniteCause(const ParameterVector& parameters) {
+    std::string extreme;
+    for (size_t i = 0; i < parameters.names().size(); ++i) {
+        std::span<const double> values = parameters.values().subspan(parameters.offset(i), parameters.count(i));
+        bool isExtreme = std::any_of(values.begin(), values.end(),
+                                     [](double value) { return std::abs(value) > kExtremeMagnitude; });
+        if (isExtreme) extreme += (extreme.empty() ? "" : ", ") + parameters.names()[i] + " = " + valuesText(values);
     }
-    for (const ParameterGradient& parameter : result.parameters) {
+    if (!extreme.empty()) {
+        return "extreme values (beyond " + numberText(kExtremeMagnitude) + " in magnitude): " + extreme +
+               "; the render's float arithmetic overflows there";
+    }
+    return "no value is extreme, so the render itself produced it: please report it with the scene and command";
+}
+
+void requireFinite(const GradientResult& result, const ParameterVector& parameters, uint32_t iteration) {
+    std::string where = "iteration " + std::to_string(iteration) + ": ";
+    const std::string kept = "; no values from this iteration were kept; ";
+    if (!std::isfinite(result.loss)) {
+        std::string at;
+        for (size_t i = 0; i < parameters.names().size(); ++i) {
+            at += (at.empty() ? "" : ", ") + parameters.names()[i] + " = " +
+                  valuesText(parameters.values().subspan(parameters.offset(i), parameters.count(i)));
+        }
+        throw Error(where + "the loss is " + numberText(result.loss) + " at " + at + kept +
+                    nonFiniteCause(parameters));
+    }
+    for (size_t i = 0; i < result.parameters.size(); ++i) {
+        const ParameterGradient& parameter = result.parameters[i];
         for (double gradient : parameter.gradient) {
             if (!std::isfinite(gradient)) {
-                throw Error(where + "the gradient of " + parameter.name + " is " + std::to_string(gradient) +
-                            "; no values from this iteration were kept (try a smaller learning rate)");
+                std::span<const double> values =
+                    parameters.values().subspan(parameters.offset(i), parameters.count(i));
+                throw Error(where + "the gradient of " + parameter.name + " is " + numberText(gradient) + " at " +
+                            parameter.name + " = " + valuesText(values) + kept + nonFiniteCause(parameters));
             }
         }
     }
@@ -51,7 +100,7 @@ void requireFiniteSteps(const ParameterVector& parameters, uint32_t iteration) {
             double value = parameters.values()[parameters.offset(i) + c];
             if (!std::isfinite(float(value))) {
                 throw Error("iteration " + std::to_string(iteration) + ": the step took " + parameters.names()[i] +
-                            " to " + std::to_string(value) +
+                            " to " + numberText(value) +
                             ", beyond float range; no values from this iteration were kept (try a smaller "
                             "learning rate)");
             }
@@ -59,7 +108,7 @@ void requireFiniteSteps(const ParameterVector& parameters, uint32_t iteration) {
     }
 }
 
-// The gradient in the ParameterVector's layout. A LossGradient that does not answer for
+// The gradient in the ParameterVector's layout, not yet checked to be finite. A LossGradient that does not answer for
 // exactly the parameters asked for is a bug, not a user error.
 std::vector<double> flatGradient(const ParameterVector& parameters, const GradientResult& result) {
     if (result.parameters.size() != parameters.names().size()) {
@@ -130,10 +179,24 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         first = resume->iteration;
     }
     const LogSpace logSpace(parameters, options.logParameters);
+    auto stateAfter = [&](uint32_t done) {
+        std::vector<double> values(parameters.values().begin(), parameters.values().end());
+        return LoopState{done, std::move(values), optimizer->state(), result.losses, result.forwardMs,
+                         result.adjointMs};
+    };
     for (uint32_t iteration = first; iteration < options.iterations; ++iteration) {
-        GradientResult evaluation = lossGradient.evaluate(scene, options.seed + iteration);
-        requireFinite(evaluation, iteration);
+        GradientResult evaluation;
+        try {
+            throwIfInterrupted();
+            evaluation = lossGradient.evaluate(scene, options.seed + iteration);
+        } catch (const Interrupted&) {
+            // Stopped between iterations or within one: what the finished ones reached
+            // is worth keeping, whenever the last checkpoint was.
+            if (callbacks.checkpoint && iteration > first) callbacks.checkpoint(stateAfter(iteration));
+            throw;
+        }
         std::vector<double> gradient = flatGradient(parameters, evaluation);
+        requireFinite(evaluation, parameters, iteration);
 
         optimizer->setLearningRateScale(std::pow(options.learningRateDecay, decayProgress(options, iteration)));
         logSpace.enter(parameters.values(), gradient);
@@ -157,9 +220,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         uint32_t done = iteration + 1;
         if (callbacks.checkpoint && options.checkpointEvery > 0 && done % options.checkpointEvery == 0 &&
             done < options.iterations) {
-            std::vector<double> values(parameters.values().begin(), parameters.values().end());
-            callbacks.checkpoint(LoopState{done, std::move(values), optimizer->state(), result.losses,
-                                           result.forwardMs, result.adjointMs});
+            callbacks.checkpoint(stateAfter(done));
         }
     }
     return result;

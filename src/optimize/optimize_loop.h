@@ -63,7 +63,8 @@ struct OptimizeCallbacks {
     std::function<void(uint32_t iteration, double loss)> progress;
     std::function<void(const IterationRecord&)> iterationDone;
     // After every OptimizeOptions::checkpointEvery iterations, except after the last one
-    // (the run's outputs follow it), once `scene` holds the new values.
+    // (the run's outputs follow it), once `scene` holds the new values; and when a
+    // signal interrupts the loop (optimize() says when).
     std::function<void(const LoopState&)> checkpoint;
 };
 
@@ -77,8 +78,12 @@ struct OptimizeResult {
 // Gradient descent on `scene`'s parameters: each iteration evaluates the loss and its
 // gradient with seed + iteration, steps, projects onto the constraints
 // (optimize/constraints.h) and writes the new values into `scene`. Throws vkdr::Error
-// naming the iteration (and the parameter) when the loss or a gradient is not finite,
-// before anything of that iteration reaches `scene` or the callbacks.
+// naming the iteration, the parameter, its values and the likely cause when the loss or
+// a gradient is not finite, before anything of that iteration reaches `scene` or the
+// callbacks. On a SIGINT or SIGTERM (core/interrupt.h), noticed between iterations or by
+// the LossGradient within one, it calls the checkpoint callback with the state after the
+// last finished iteration (if one finished since the start or the resume) and rethrows
+// Interrupted.
 // With `resume` (a LoopState from the checkpoint callback of a run with the same
 // options) it writes resume->values into `scene` and continues from resume->iteration;
 // its losses and times are part of the result.

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "render/camera_setup.h"
 #include "render/push_constants.h"
 #include "vk/commands.h"
@@ -22,8 +23,13 @@ constexpr uint64_t kMaxPathsPerPass = 1u << 21;
 uint64_t defaultPathsPerPass(const VulkanContext& context) {
     return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1u << 20 : kMaxPathsPerPass;
 }
-// Segments recorded before the host looks whether any path is still alive.
-constexpr uint32_t kSegmentsPerBatch = 8;
+// Segments recorded before the host looks whether any path is still alive, and whether
+// a signal asks it to stop (core/interrupt.h). A GPU runs a segment of a wide pass in
+// milliseconds and saves round trips by batching; a CPU device takes up to a second for
+// one, and would leave a signal unanswered for several.
+uint32_t segmentsPerBatch(const VulkanContext& context) {
+    return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : 8;
+}
 
 // Pass-through boundaries add segments without adding depth; the limit only guards
 // against a path caught between boundaries by round-off.
@@ -226,13 +232,15 @@ gpu::QueueCountersData Renderer::recordSegmentsUntilNoRayIsLeft(CommandRecorder&
     uint32_t currentRays = gpu::kQueueRays0;
     const uint32_t segments = segmentLimit(settings_.maxDepth);
     gpu::QueueCountersData counters{};
+    const uint32_t batch = segmentsPerBatch(context_);
     for (uint32_t segment = 0; segment < segments;) {
-        for (uint32_t k = 0; k < kSegmentsPerBatch && segment < segments; ++k, ++segment) {
+        for (uint32_t k = 0; k < batch && segment < segments; ++k, ++segment) {
             recordSegment(recorder, stages, constants, currentRays);
             currentRays = currentRays == gpu::kQueueRays0 ? gpu::kQueueRays1 : gpu::kQueueRays0;
         }
         recorder.copy(paths_->queueCounters, paths_->countersReadback, sizeof(counters));
         recorder.submitAndWait();
+        throwIfInterrupted();
         std::memcpy(&counters, paths_->countersReadback.mapped(), sizeof(counters));
         if (counters.counts[currentRays] == 0) {
             break;

@@ -3,8 +3,10 @@
 // checkpoint, and --resume finishes with the values of a run that never stopped.
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -103,6 +105,47 @@ TEST_F(OptimizeResume, RefusesAResumeWithOtherOptionsOrAnotherOut) {
     EXPECT_EQ(nothing.exitCode, 2);
     EXPECT_NE(nothing.err.find("no checkpoint.json"), std::string::npos) << nothing.err;
     EXPECT_EQ(slurp(cut / "checkpoint.json"), checkpoint);
+}
+
+// A log.jsonl that is not the checkpoint's run (another run's lines mixed in, lines
+// lost, a loss edited) would make the resumed run's log a mixture: --resume refuses it.
+TEST_F(OptimizeResume, RefusesALogThatDoesNotMatchTheCheckpoint) {
+    fs::path cut = scratch_ / "cut";
+    ASSERT_EQ(runCli(command_ + " --out " + cut.string(), scratch_, kLoseDeviceMidRun).exitCode, 2);
+    const std::string checkpoint = slurp(cut / "checkpoint.json");
+    std::vector<std::string> lines;
+    std::istringstream log(slurp(cut / "log.jsonl"));
+    for (std::string line; std::getline(log, line);) lines.push_back(line);
+    ASSERT_GE(lines.size(), 2u);
+
+    auto expectRefused = [&](const std::vector<std::string>& logLines, const std::string& what) {
+        std::string text;
+        for (const std::string& line : logLines) text += line + "\n";
+        std::ofstream(cut / "log.jsonl", std::ios::trunc) << text;
+        RunResult r = runCli(command_ + " --resume " + cut.string(), scratch_);
+        EXPECT_EQ(r.exitCode, 2) << what << "\n" << r.err;
+        EXPECT_NE(r.err.find("error: " + (cut / "log.jsonl").string()), std::string::npos) << what << "\n" << r.err;
+        EXPECT_EQ(r.err.find("error: "), r.err.rfind("error: ")) << r.err;
+        EXPECT_EQ(slurp(cut / "log.jsonl"), text) << what;
+        EXPECT_EQ(slurp(cut / "checkpoint.json"), checkpoint) << what;
+        EXPECT_FALSE(fs::exists(cut / "params.json")) << what;
+    };
+    std::vector<std::string> edited = lines;
+    nlohmann::json first = nlohmann::json::parse(edited[0]);
+    first["loss"] = first["loss"].get<double>() * 2.0;
+    edited[0] = first.dump();
+    expectRefused(edited, "a loss that differs");
+    expectRefused({lines.begin() + 1, lines.end()}, "the first line missing");
+    expectRefused({lines[0]}, "lines up to the checkpoint missing");
+    expectRefused({}, "an empty log");
+    std::vector<std::string> twice = {lines[0], lines[0]};
+    twice.insert(twice.end(), lines.begin() + 1, lines.end());
+    expectRefused(twice, "a line repeated");
+    expectRefused({lines[0], "not json"}, "a damaged line");
+    fs::remove(cut / "log.jsonl");
+    RunResult missing = runCli(command_ + " --resume " + cut.string(), scratch_);
+    EXPECT_EQ(missing.exitCode, 2) << missing.err;
+    EXPECT_NE(missing.err.find("log.jsonl"), std::string::npos) << missing.err;
 }
 
 }  // namespace

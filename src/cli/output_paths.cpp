@@ -1,0 +1,110 @@
+#include "cli/output_paths.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+
+#include "core/error.h"
+
+namespace vkdr {
+namespace fs = std::filesystem;
+namespace {
+
+[[noreturn]] void fail(const std::string& option, const fs::path& path, const std::string& problem) {
+    throw Error(option + " " + path.string() + ": " + problem);
+}
+
+// What is at `path`, following a final symbolic link or not; not_found when nothing is.
+fs::file_status statusOf(const std::string& option, const fs::path& path, bool followLink) {
+    std::error_code error;
+    fs::file_status status = followLink ? fs::status(path, error) : fs::symlink_status(path, error);
+    if (error && status.type() != fs::file_type::not_found) fail(option, path, error.message());
+    return status;
+}
+
+void requireWritableDirectory(const std::string& option, const fs::path& path, const fs::path& directory) {
+    fs::file_status parent = statusOf(option, directory, true);
+    if (!fs::exists(parent)) fail(option, path, "directory " + directory.string() + " does not exist");
+    if (!fs::is_directory(parent)) fail(option, path, directory.string() + " is not a directory");
+    if (access(directory.c_str(), W_OK | X_OK) != 0) {
+        fail(option, path, "cannot write in directory " + directory.string() + ": " + std::strerror(errno));
+    }
+}
+
+std::string lowercase(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return text;
+}
+
+// The path as the file system resolves it: absolute, without "." and "..", through
+// every symbolic link of the part that exists.
+fs::path resolved(const fs::path& path) {
+    std::error_code error;
+    fs::path absolute = fs::absolute(path, error);
+    if (error) return path.lexically_normal();
+    fs::path canonical = fs::weakly_canonical(absolute, error);
+    return error ? absolute.lexically_normal() : canonical;
+}
+
+}  // namespace
+
+void requireOutputFile(const std::string& option, const fs::path& file) {
+    if (file.empty()) throw Error(option + ": give a file name");
+    fs::file_status status = statusOf(option, file, false);
+    if (fs::is_symlink(status)) {
+        fail(option, file,
+             "is a symbolic link; writing would replace the link itself, so give the path it points to");
+    }
+    if (fs::is_directory(status)) fail(option, file, "is a directory; give a file name");
+    if (fs::exists(status) && !fs::is_regular_file(status)) {
+        fail(option, file, "exists and is not a regular file (a device, FIFO or socket); it is not replaced");
+    }
+    fs::path name = file.filename();
+    if (name.empty() || name == "." || name == "..") fail(option, file, "not a file name");
+    fs::path parent = file.parent_path();
+    requireWritableDirectory(option, file, parent.empty() ? fs::path(".") : parent);
+}
+
+void requireOutputDirectory(const std::string& option, const fs::path& directory) {
+    if (directory.empty()) throw Error(option + ": give a directory");
+    fs::file_status status = statusOf(option, directory, true);
+    if (fs::exists(status)) {
+        if (!fs::is_directory(status)) fail(option, directory, "exists and is not a directory");
+        requireWritableDirectory(option, directory, directory);
+        return;
+    }
+    // Created with its missing parents: the nearest ancestor that exists must take them.
+    fs::path ancestor = resolved(directory).parent_path();
+    while (!fs::exists(statusOf(option, ancestor, true)) && ancestor.has_relative_path()) {
+        ancestor = ancestor.parent_path();
+    }
+    requireWritableDirectory(option, directory, ancestor);
+}
+
+bool sameFile(const fs::path& a, const fs::path& b) {
+    if (resolved(a) == resolved(b)) return true;
+    std::error_code error;
+    return fs::equivalent(a, b, error) && !error;
+}
+
+void requireDistinctOutputs(const std::vector<NamedOutput>& outputs) {
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        for (size_t j = i + 1; j < outputs.size(); ++j) {
+            if (sameFile(outputs[i].path, outputs[j].path)) {
+                throw Error(outputs[i].option + " " + outputs[i].path.string() + " and " + outputs[j].option + " " +
+                            outputs[j].path.string() + " are the same file; give each its own");
+            }
+        }
+    }
+}
+
+std::optional<ImageFileType> imageFileTypeOf(const fs::path& file) {
+    std::string extension = lowercase(file.extension().string());
+    if (extension == ".exr") return ImageFileType::Exr;
+    if (extension == ".png") return ImageFileType::Png;
+    return std::nullopt;
+}
+
+}  // namespace vkdr

@@ -1,0 +1,177 @@
+// Where commands write: every output path is checked before any work, nothing but a
+// regular file is replaced, two outputs never share a file, the file type follows the
+// extension, an optimisation's directory holds one run, and numeric options are finite.
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cli_run.h"
+
+namespace vkdr::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class OutputSafety : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / "vkdr_output_safety_tests" / info->name();
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    RunResult run(const std::string& args) { return runCli(args, dir_); }
+
+    std::string fog() const { return std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf"; }
+    // A scene that does not exist: a command that names its output as the fault, not
+    // this, checked the output before any other work.
+    std::string noScene() const { return (dir_ / "no_such_scene.gltf").string(); }
+
+    // One error line naming `what`, exit code 2.
+    void expectRefused(const std::string& args, const std::string& what) {
+        RunResult r = run(args);
+        EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+        EXPECT_EQ(r.err.find("error: "), r.err.rfind("error: ")) << r.err;
+        EXPECT_NE(r.err.find(what), std::string::npos) << "does not name " << what << ":\n" << r.err;
+        EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    }
+
+    std::string small() const { return " --width 8 --height 8 --spp 1 --max-depth 2"; }
+
+    fs::path fogTarget() {
+        fs::path target = dir_ / "target.exr";
+        EXPECT_EQ(run("render " + fog() + small() + " -o " + target.string()).exitCode, 0);
+        return target;
+    }
+
+    std::string optimizeCommand(const fs::path& target, int iterations = 2) const {
+        return "optimize " + fog() + " --target " + target.string() + " --param media/fog/sigma_a --iters " +
+               std::to_string(iterations) + " --spp 1 --max-depth 2";
+    }
+
+    fs::path dir_;
+};
+
+// A path of each kind that is not a regular file, each made in `directory`.
+std::vector<fs::path> specialFiles(const fs::path& directory) {
+    fs::path fifo = directory / "fifo.exr", folder = directory / "folder.exr", link = directory / "link.exr",
+             socketPath = directory / "socket.exr";
+    EXPECT_EQ(mkfifo(fifo.c_str(), 0644), 0);
+    fs::create_directory(folder);
+    std::ofstream(directory / "real.exr") << "previous result";
+    fs::create_symlink(directory / "real.exr", link);
+    int socketFd = socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::snprintf(address.sun_path, sizeof(address.sun_path), "%s", socketPath.c_str());
+    EXPECT_EQ(bind(socketFd, reinterpret_cast<sockaddr*>(&address), sizeof(address)), 0);
+    close(socketFd);
+    return {fifo, folder, link, socketPath, "/dev/null"};
+}
+
+TEST_F(OutputSafety, RefusesToReplaceAnythingButARegularFileBeforeAnyWork) {
+    for (const fs::path& special : specialFiles(dir_)) {
+        fs::file_type before = fs::symlink_status(special).type();
+        expectRefused("render " + noScene() + " -o " + special.string(), "-o " + special.string());
+        expectRefused("render " + noScene() + " -o " + (dir_ / "new.exr").string() + " --png " + special.string(),
+                      "--png " + special.string());
+        expectRefused("bench " + noScene() + " --json " + special.string(), "--json " + special.string());
+        EXPECT_EQ(fs::symlink_status(special).type(), before) << special;
+    }
+    EXPECT_EQ(slurp(dir_ / "real.exr"), "previous result");
+    fs::path file = dir_ / "file";
+    std::ofstream(file) << "not a directory";
+    expectRefused(optimizeCommand(file) + " --out " + file.string(), "--out " + file.string());
+    expectRefused(optimizeCommand(file) + " --out " + (file / "below").string(), "--out " + (file / "below").string());
+    expectRefused("render " + noScene() + " -o " + (dir_ / "missing" / "x.exr").string(), "-o ");
+    expectRefused("render " + noScene() + " -o " + (dir_ / "x.exr").string() + " --png " +
+                      (dir_ / "missing" / "x.png").string(),
+                  "--png ");
+}
+
+TEST_F(OutputSafety, RefusesTwoOutputsThatAreOneFile) {
+    fs::create_directory(dir_ / "sub");
+    std::string png = (dir_ / "same.png").string();
+    for (const std::string& other : {png, (dir_ / "." / "same.png").string(), (dir_ / "sub" / ".." / "same.png").string()}) {
+        expectRefused("render " + noScene() + " -o " + png + " --png " + other, "the same file");
+    }
+    fs::create_directory_symlink(dir_ / "sub", dir_ / "alias");
+    expectRefused("render " + noScene() + " -o " + (dir_ / "sub" / "a.png").string() + " --png " +
+                      (dir_ / "alias" / "a.png").string(),
+                  "the same file");
+    EXPECT_FALSE(fs::exists(dir_ / "same.png"));
+}
+
+TEST_F(OutputSafety, TheExtensionOfTheOutputSetsItsType) {
+    fs::path png = dir_ / "image.PNG", exr = dir_ / "image.Exr", preview = dir_ / "preview.png";
+    RunResult r = run("render " + fog() + small() + " -o " + png.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(slurp(png).substr(0, 4), "\x89PNG");
+    r = run("render " + fog() + small() + " -o " + exr.string() + " --png " + preview.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(slurp(exr).substr(0, 4), std::string("\x76\x2f\x31\x01"));
+    EXPECT_EQ(slurp(preview).substr(0, 4), "\x89PNG");
+
+    expectRefused("render " + noScene() + " -o " + (dir_ / "image.jpg").string(), ".exr");
+    expectRefused("render " + noScene() + " -o " + (dir_ / "image").string(), ".png");
+    expectRefused("render " + noScene() + " -o " + exr.string() + " --png " + (dir_ / "preview.exr").string(),
+                  "--png " + (dir_ / "preview.exr").string() + ": must end in .png");
+}
+
+TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
+    fs::path target = fogTarget(), out = dir_ / "out";
+    ASSERT_EQ(run(optimizeCommand(target) + " --checkpoint-every 1 --out " + out.string()).exitCode, 0);
+    std::string log = slurp(out / "log.jsonl");
+    ASSERT_TRUE(fs::exists(out / "checkpoint.json"));
+    std::ofstream(out / "notes.txt") << "mine";
+
+    expectRefused(optimizeCommand(target) + " --out " + out.string(), "--overwrite");
+    EXPECT_EQ(slurp(out / "log.jsonl"), log);
+    // Any one of a run's files marks the directory as a run's.
+    for (const char* name : {"log.jsonl", "checkpoint.json", "params.json", "scene.gltf", "final.exr", "final.png",
+                             "diff.png", "loss.svg"}) {
+        fs::path other = dir_ / "other";
+        fs::create_directories(other);
+        std::ofstream(other / name) << "another run";
+        expectRefused(optimizeCommand(target) + " --out " + other.string(), name);
+        expectRefused("optimize --experiment " + noScene() + " --out " + other.string(), name);
+        fs::remove_all(other);
+    }
+
+    RunResult replaced = run(optimizeCommand(target, 3) + " --checkpoint-every 0 --overwrite --out " + out.string());
+    ASSERT_EQ(replaced.exitCode, 0) << replaced.err;
+    EXPECT_FALSE(fs::exists(out / "checkpoint.json")) << "the old run's checkpoint is left to resume from";
+    std::ifstream lines(out / "log.jsonl");
+    size_t count = 0;
+    for (std::string line; std::getline(lines, line);) ++count;
+    EXPECT_EQ(count, 3u);
+    EXPECT_EQ(slurp(out / "notes.txt"), "mine");
+}
+
+TEST_F(OutputSafety, NumericOptionsMustBeFiniteAndInRange) {
+    fs::path out = dir_ / "out";
+    const std::string command = "optimize " + noScene() + " --target t.exr --param media/fog/sigma_a --out " + out.string();
+    for (const char* option : {"--lr", "--adam-epsilon", "--lr-decay"}) {
+        for (const char* value : {"nan", "inf", "-inf", "0", "-1", "1e999"}) {
+            expectRefused(command + " " + option + " " + value, option);
+        }
+    }
+    for (const char* value : {"nan", "inf", "-0.5", "1"}) {
+        expectRefused(command + " --lr-decay-start " + value, "--lr-decay-start");
+    }
+    EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace vkdr::test
