@@ -187,7 +187,7 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     Experiment experiment = readExperiment(options.experiment);
     applyOverrides(options, overrides, experiment);
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
-    LoadedScene loaded = loadScene(experiment.scene);
+    LoadedScene loaded = loadScene(experiment.scene, options.scene.access);
     for (const std::string& warning : loaded.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     Scene checked = loaded.scene;
     prepareExperimentScene(experiment, checked);  // its errors before any rendering

@@ -45,8 +45,10 @@ void createDirectory(const std::filesystem::path& directory) {
 
 // A checkpoint from a run with the same identity fits unless the file was edited.
 void requireFits(const std::filesystem::path& file, const LoopState& state, const OptimizeOptions& options,
-                 size_t valueCount) {
+                 const Scene& scene) {
     auto fail = [&](const std::string& problem) { throw Error(file.string() + ": " + problem); };
+    ParameterVector parameters(scene, options.parameters);
+    const size_t valueCount = parameters.size();
     if (state.iteration == 0 || state.iteration >= options.iterations) {
         fail("iteration " + std::to_string(state.iteration) + " is not within the run's " +
              std::to_string(options.iterations) + " iterations");
@@ -56,6 +58,19 @@ void requireFits(const std::filesystem::path& file, const LoopState& state, cons
     size_t moments = options.optimizer == OptimizerKind::Adam ? valueCount : 0;
     if (state.optimizer.mean.size() != moments || state.optimizer.meanSquare.size() != moments) {
         fail("optimizer: expected " + std::to_string(moments) + " moments of each kind");
+    }
+    // A hand-edited value outside its parameter's range is refused here, naming the file,
+    // not later by the scene: projecting it into the range would change it.
+    std::copy(state.values.begin(), state.values.end(), parameters.values().begin());
+    parameters.project();
+    for (size_t i = 0; i < parameters.names().size(); ++i) {
+        for (size_t c = 0; c < parameters.count(i); ++c) {
+            const size_t at = parameters.offset(i) + c;
+            if (parameters.values()[at] != state.values[at]) {
+                fail("values: " + parameters.names()[i] + "[" + std::to_string(c) + "] = " +
+                     std::to_string(state.values[at]) + " is outside the parameter's range");
+            }
+        }
     }
 }
 
@@ -68,7 +83,7 @@ std::optional<LoopState> resumeState(const OptimizationJob& job, const Scene& sc
     std::filesystem::path file = job.outputDirectory / kCheckpointFileName;
     Checkpoint checkpoint = readCheckpoint(file);
     requireSameRun(file, checkpoint.run, identity);
-    requireFits(file, checkpoint.state, job.options, ParameterVector(scene, job.options.parameters).size());
+    requireFits(file, checkpoint.state, job.options, scene);
     return checkpoint.state;
 }
 

@@ -222,6 +222,28 @@ TEST(Checkpoint, RefusesNumbersOutOfRangeNamingTheFileAndKey) {
     expectRefused([](auto& d) { d["optimizer"]["steps"] = -3; }, {"steps", "integer"});
 }
 
+// A value within float range but outside its parameter's range (g = 5) is refused when
+// the run resumes, naming the file and the parameter.
+TEST(Checkpoint, ResumeRefusesAValueOutsideItsParametersRange) {
+    ScratchDirectory scratch;
+    OptimizationJob job = fogJob(scratch.path(), 6);
+    job.options.checkpointEvery = 2;
+    {
+        Scene scene = loadScene(kFogScene).scene;
+        QuadraticLossGradient loss(fogMinima());
+        runUntil(job, 3);
+    }
+    std::filesystem::path file = scratch / kCheckpointFileName;
+    nlohmann::ordered_json document = nlohmann::ordered_json::parse(std::ifstream(file));
+    document["values"][3] = 5.0;  // media/fog/g, after sigma_a's three
+    writeBytes(file, document.dump());
+    job.resume = true;
+    Scene scene = loadScene(kFogScene).scene;
+    QuadraticLossGradient loss(fogMinima());
+    expectErrorMentioning([&] { runOptimization(loss, scene, job); },
+                          {file.string(), "values", "media/fog/g[0]", "outside"});
+}
+
 TEST(Checkpoint, AdamContinuesFromItsStateExactly) {
     AdamOptimizer first(std::vector<double>(2, 0.1)), second(std::vector<double>(2, 0.1));
     std::vector<double> x = {1.0, -1.0}, y = x;
