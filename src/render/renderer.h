@@ -32,8 +32,8 @@ using ProgressCallback = std::function<void(double)>;
 
 // Parameter gradients as the adjoint pass accumulates them, one vector per accumulator
 // of VKDR_GRADIENT_ACCUMULATORS (device_types.h): `media` has gpu::kMediumGradientStride
-// floats per medium, `baseColors` and `emissions` 4 per material, `texels` 4 per texel
-// (textures one after another as in Scene::textures).
+// values per medium, `baseColors` and `emissions` gpu::kColorGradientStride per material,
+// `texels` as many per texel (textures one after another as in Scene::textures).
 struct SceneGradients {
 #define VKDR_SCENE_GRADIENTS_FIELD(name, field, ...) std::vector<float> field;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_SCENE_GRADIENTS_FIELD)
