@@ -132,7 +132,7 @@ void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
 void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
     GpuMaterial m = P.materials.v[material];
     addBaseColorGradient(material, g * baseColorTexture(m, uv));
-    if (m.baseColorTexture >= 0) {
+    if (m.baseColorTexture >= 0 && P.texelGradientsWanted != 0u) {
         addTexelGradients(m.baseColorTexture, uv, g * m.baseColor.rgb);
     }
 }

@@ -259,6 +259,7 @@ struct RenderParams {
     float filmScale;                                // 1 / spp: film sum to pixel value
     float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels
     uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
+    uint texelGradientsWanted;                      // 1: texelGradients has room for every texel; 0: none wanted
     uint splitSample;                               // > 0: film and loss keep the samples below it apart
     uint imagePixels;                               // width * height
     // Fixed-point sums from one copy of each gradient accumulator to the next (0: one copy).

@@ -45,9 +45,12 @@ struct SceneGradients {
 // on in derivative mode to find that factor's gradient (docs/gradients.md), which costs
 // as much as the rest of a path; where that gradient is not wanted the path ends there,
 // as in the primal pass, and the other gradients are the same.
+// Texel gradients take 144 bytes per texel of every texture: they are held only when
+// wanted.
 struct DerivativeTargets {
     bool mediumScattering = true;
     bool baseColor = true;
+    bool texels = true;
 };
 
 // One render with its loss and the loss's gradient (Renderer::renderWithGradients).
@@ -147,6 +150,7 @@ private:
     std::unique_ptr<AdjointBuffers> adjoint_;
     LossKind lossKind_;
     uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
+    bool texelGradientsWanted_ = false;  // RenderParams.texelGradientsWanted
     uint32_t splitSample_ = 0;        // RenderParams.splitSample: > 0 when backpropagateInOnePass serves
     Buffer params_;
     RenderStats stats_;

@@ -35,11 +35,13 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
     const uint64_t keptPaths = onePass ? 0 : pixels * (settings_.spp / 2);
     const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
-                                                mediumCount_, materialCount_, texelCount_,
+                                                mediumCount_, materialCount_,
+                                                derivativeTargets.texels ? texelCount_ : 0,
                                                 keptPaths * 16 <= keptBudget ? keptPaths : 0);
     lossKind_ = loss;
     derivativeTargets_ = (derivativeTargets.mediumScattering ? 1u << gpu::kTargetMediumScattering : 0u) |
                          (derivativeTargets.baseColor ? 1u << gpu::kTargetBaseColor : 0u);
+    texelGradientsWanted_ = derivativeTargets.texels;
     std::vector<glm::vec4> texels(size_t(target.width) * target.height);
     for (size_t i = 0; i < texels.size(); ++i) {
         texels[i] = glm::vec4(target.rgb[3 * i], target.rgb[3 * i + 1], target.rgb[3 * i + 2], 0.0f);
