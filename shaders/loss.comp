@@ -6,6 +6,7 @@
 // the pass.samplesInPass samples it sums. dLoss/dI is divided by the full samples per
 // pixel, so every path of the render carries its share whichever image it was taken at.
 #include "lib/stage_common.glsl"
+#include "lib/fixed_point_sums.glsl"
 
 // The loss of one pixel's image value, and its dLoss/dI scaled for imageAdjoint.
 float pixelLoss(uint p, vec3 image, out vec3 imageAdjoint) {
@@ -48,9 +49,5 @@ void main() {
         loss = pixelLoss(p, film / float(pass.samplesInPass), imageAdjoint);
     }
     P.imageAdjoint.v[p] = vec4(imageAdjoint, 0.0f);
-    // One atomic per subgroup: many pixels add into one address.
-    float subgroupLoss = subgroupAdd(loss * P.lossScale);
-    if (subgroupElect()) {
-        atomicAdd(P.lossSum.v[0], subgroupLoss);
-    }
+    addFixedPoint(P.lossSum, 0u, loss * P.lossScale);
 }

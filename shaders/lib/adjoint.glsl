@@ -11,6 +11,7 @@
 // second zero factor makes the derivative zero, as it should.
 #ifndef VKDR_ADJOINT_GLSL
 #define VKDR_ADJOINT_GLSL
+#include "fixed_point_sums.glsl"
 #include "scene_access.glsl"
 
 // Factors whose gradient waits for the next segment (derivative-mode targets are in
@@ -70,38 +71,34 @@ void endReplay(uint slot) {
     }
 }
 
-// Adds g to gradients[first], [first + 1], [first + 2] of this subgroup's copy (copies
-// `copyStride` floats apart; kGradientCopies in device_types.h). Most lanes of a
-// subgroup add to the same few parameters, and float atomics on one address serialise,
-// so the lanes that share `first` sum their values first and one of them adds the sum:
-// the loop peels off one distinct `first` per iteration. A call site must pass one
-// buffer for all its lanes, since the lanes are grouped by `first` alone.
-void addGradient(FloatBuffer gradients, uint copyStride, uint first, vec3 g) {
+// Adds the first `channels` of g to the sums first, first + 1, ... of this subgroup's
+// copy (copies `copyStride` sums apart; kGradientCopies in device_types.h). Most lanes
+// of a subgroup add to the same few parameters, so the lanes that share `first` add
+// together (addFixedPoint sums their digits first): the loop peels off one distinct
+// `first` per iteration. A call site must pass one buffer for all its lanes, since the
+// lanes are grouped by `first` alone.
+void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec3 g, uint channels) {
     uint copy = (gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID) % kGradientCopies;
-    uint base = copy * copyStride + first;
+    uint sum = (copy * copyStride + first) * kFixedPointWordsPerSum;
     for (;;) {
         uint leader = subgroupBroadcastFirst(first);
         if (first == leader) {
-            vec3 sum = subgroupAdd(g);
-            if (subgroupElect()) {
-                for (uint c = 0u; c < 3u; ++c) {
-                    if (sum[c] != 0.0f) {
-                        atomicAdd(gradients.v[base + c], sum[c]);
-                    }
-                }
+            for (uint c = 0u; c < channels; ++c) {
+                addFixedPoint(gradients, sum + c * kFixedPointWordsPerSum, g[c]);
             }
             break;
         }
     }
 }
 
-void addMediumGradient(uint medium, uint firstComponent, vec3 g) {
-    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent, g);
+void addMediumGradient(uint medium, uint firstComponent, vec3 g, uint channels) {
+    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent, g,
+                channels);
 }
 
 void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
-    addMediumGradient(medium, kMediumGradientSigmaA, dSigmaA);
-    addMediumGradient(medium, kMediumGradientSigmaS, dSigmaS);
+    addMediumGradient(medium, kMediumGradientSigmaA, dSigmaA, 3u);
+    addMediumGradient(medium, kMediumGradientSigmaS, dSigmaS, 3u);
 }
 
 // A gradient with respect to sigma_t = sigma_a + sigma_s, which both share.
@@ -110,22 +107,23 @@ void addSigmaTGradient(uint medium, vec3 dSigmaT) {
 }
 
 void addPhaseGGradient(uint medium, float g) {
-    addMediumGradient(medium, kMediumGradientG, vec3(g, 0.0f, 0.0f));
+    addMediumGradient(medium, kMediumGradientG, vec3(g, 0.0f, 0.0f), 1u);
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
-    addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * 4u, g);
+    addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * kColorGradientStride, g, 3u);
 }
 
 void addEmissionGradient(uint material, vec3 g) {
-    addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * 4u, g);
+    addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * kColorGradientStride, g, 3u);
 }
 
 // g = dLoss/d(texture value at uv), spread over the texels the lookup blends.
 void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
     BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
     for (int corner = 0; corner < 4; ++corner) {
-        addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * 4u, g * footprint.weight[corner]);
+        addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * kColorGradientStride,
+                    g * footprint.weight[corner], 3u);
     }
 }
 
@@ -134,7 +132,7 @@ void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
 void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
     GpuMaterial m = P.materials.v[material];
     addBaseColorGradient(material, g * baseColorTexture(m, uv));
-    if (m.baseColorTexture >= 0) {
+    if (m.baseColorTexture >= 0 && P.texelGradientsWanted != 0u) {
         addTexelGradients(m.baseColorTexture, uv, g * m.baseColor.rgb);
     }
 }
@@ -142,7 +140,7 @@ void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
 // g = the gradient gathered by a path's derivative channels, for the parameter they follow.
 void addTargetGradient(vec3 g) {
     if (adjoint.targetKind == kTargetMediumScattering) {
-        addMediumGradient(adjoint.targetIndex, kMediumGradientSigmaS, g);
+        addMediumGradient(adjoint.targetIndex, kMediumGradientSigmaS, g, 3u);
     } else if (adjoint.targetKind == kTargetBaseColor) {
         addBaseColorGradient(adjoint.targetIndex, g);
     }

@@ -20,6 +20,7 @@ struct Vec4Buffer { static constexpr uint32_t kElementBytes = 16; };
 struct UVec4Buffer { static constexpr uint32_t kElementBytes = 16; };
 struct UintBuffer { static constexpr uint32_t kElementBytes = 4; };
 struct FloatBuffer { static constexpr uint32_t kElementBytes = 4; };
+struct Int64Buffer { static constexpr uint32_t kElementBytes = 8; };
 #else
 #define VKDR_BUFFER(Type) Type
 #endif
@@ -58,16 +59,31 @@ const uint kTargetBaseColor = 2u;         // base colour of a material (factor o
 // Where each parameter's gradient sits among its medium's kMediumGradientStride floats.
 const uint kMediumGradientSigmaA = 0u;  // rgb
 const uint kMediumGradientSigmaS = 3u;  // rgb
-const uint kMediumGradientG = 6u;       // one float
-const uint kMediumGradientStride = 8u;
+const uint kMediumGradientG = 6u;       // one value
+const uint kMediumGradientStride = 7u;
+// A base colour, emission or texel gradient: rgb.
+const uint kColorGradientStride = 3u;
+
+// Gradients and the loss are summed as fixed-point numbers (shaders/lib/fixed_point.glsl),
+// so that a sum has the same bits whatever order its terms arrive in: kFixedPointWords
+// signed 64-bit words, word k weighing 2^(32 k + kFixedPointLowestBit), then one word of
+// kFixedPoint* flags. Terms are held from 2^-96 (smaller ones are dropped, 26 orders of
+// magnitude below any gradient a float image can give) up to 2^64.
+const uint kFixedPointWords = 5u;
+const int kFixedPointLowestBit = -96;
+const uint kFixedPointFlagsWord = kFixedPointWords;
+const uint kFixedPointWordsPerSum = kFixedPointWords + 1u;
+const uint kFixedPointNaN = 1u;               // a term was NaN
+const uint kFixedPointPositiveOverflow = 2u;  // a term or the sum reached +2^64 or beyond (+inf included)
+const uint kFixedPointNegativeOverflow = 4u;  // the same below -2^64
 
 // The medium, base colour and emission gradients have kGradientCopies copies, a
 // RenderParams.<accumulator>CopyStride apart: a subgroup adds to the copy of its index
-// modulo kGradientCopies, so that fewer subgroups contend for one address (float atomics
-// on one address serialise on a GPU), and the host sums the copies. Texel gradients
-// spread over the texels already and have one copy (a copy stride of 0).
+// modulo kGradientCopies, so that fewer subgroups contend for one address (atomics on
+// one address serialise on a GPU), and the host sums the copies. Texel gradients spread
+// over the texels already and have one copy (a copy stride of 0). Strides count sums.
 const uint kGradientCopies = 32u;
-const uint kGradientCopyAlignment = 32u;  // floats: copies start 128 bytes apart
+const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
 
 // Per-path state, one element per path slot, each quantity in an array of its own
 // (structure of arrays): X(name, buffer type), then what it holds. This line is the
@@ -96,15 +112,15 @@ const uint kGradientCopyAlignment = 32u;  // floats: copies start 128 bytes apar
     X(shadowEmissionGradient, Vec4Buffer) /* rgb dC/demission; w: light material (uint bits) */ \
     X(shadowVertex, UVec4Buffer)          /* x: vertex kind, y: material or medium index, z: derivative channels */
 
-// The adjoint pass's gradient accumulators: X(name, SceneGradients field (host), floats
+// The adjoint pass's gradient accumulators: X(name, SceneGradients field (host), sums
 // per item, copies, items (AdjointBuffers' count of them)). Each line declares the
 // RenderParams address and copy stride, the host's GradientCopies, its clearing, its
 // read-back and the sum of its copies into SceneGradients.
 #define VKDR_GRADIENT_ACCUMULATORS(X) \
     X(mediumGradients, media, kMediumGradientStride, kGradientCopies, mediumCount) \
-    X(baseColorGradients, baseColors, 4u, kGradientCopies, materialCount) /* rgb */ \
-    X(emissionGradients, emissions, 4u, kGradientCopies, materialCount)   /* rgb */ \
-    X(texelGradients, texels, 4u, 1u, texelCount) /* rgb, in the layout of RenderParams.texels */
+    X(baseColorGradients, baseColors, kColorGradientStride, kGradientCopies, materialCount) \
+    X(emissionGradients, emissions, kColorGradientStride, kGradientCopies, materialCount) \
+    X(texelGradients, texels, kColorGradientStride, 1u, texelCount) /* in the order of RenderParams.texels */
 
 #ifdef __cplusplus
 // The host's names for the accumulators, in the order of the list, and their layouts.
@@ -112,7 +128,7 @@ const uint kGradientCopyAlignment = 32u;  // floats: copies start 128 bytes apar
 enum class GradientAccumulator { VKDR_GRADIENT_ACCUMULATORS(VKDR_ACCUMULATOR_ENUMERATOR) };
 #undef VKDR_ACCUMULATOR_ENUMERATOR
 struct GradientAccumulatorLayout {
-    uint floatsPerItem;
+    uint sumsPerItem;
     uint copies;
 };
 #define VKDR_ACCUMULATOR_LAYOUT(name, field, floats, copies, items) GradientAccumulatorLayout{floats, copies},
@@ -191,6 +207,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4Buffer 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer UVec4Buffer { uvec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintBuffer { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatBuffer { float v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer Int64Buffer { int64_t v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer MaterialBuffer { GpuMaterial v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer MediumBuffer { GpuMedium v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer TextureBuffer { GpuTexture v[]; };
@@ -226,10 +243,10 @@ struct RenderParams {
     VKDR_BUFFER(Vec4Buffer) target;                 // per pixel: rgb target image
     VKDR_BUFFER(Vec4Buffer) imageAdjoint;           // per pixel: rgb dLoss/dI, divided by spp; then, with
                                                     // splitSample > 0, the same for samples below it
-    VKDR_BUFFER(FloatBuffer) lossSum;               // [0]: sum of the per-pixel losses
+    VKDR_BUFFER(Int64Buffer) lossSum;               // one fixed-point sum of the per-pixel losses
     VKDR_BUFFER(Vec4Buffer) filmBaseline;           // per pixel: a copy of the film, subtracted by the loss stage on
                                                     // request; with splitSample > 0, the samples below it
-#define VKDR_DECLARE_ACCUMULATOR(name, field, floats, copies, items) VKDR_BUFFER(FloatBuffer) name;
+#define VKDR_DECLARE_ACCUMULATOR(name, field, floats, copies, items) VKDR_BUFFER(Int64Buffer) name;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_ACCUMULATOR)
 #undef VKDR_DECLARE_ACCUMULATOR
     uint pathCapacity;
@@ -242,9 +259,10 @@ struct RenderParams {
     float filmScale;                                // 1 / spp: film sum to pixel value
     float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels
     uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
+    uint texelGradientsWanted;                      // 1: texelGradients has room for every texel; 0: none wanted
     uint splitSample;                               // > 0: film and loss keep the samples below it apart
     uint imagePixels;                               // width * height
-    // Floats from one copy of each gradient accumulator to the next (0: one copy).
+    // Fixed-point sums from one copy of each gradient accumulator to the next (0: one copy).
 #define VKDR_DECLARE_COPY_STRIDE(name, field, floats, copies, items) uint name##CopyStride;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_COPY_STRIDE)
 #undef VKDR_DECLARE_COPY_STRIDE

@@ -38,16 +38,16 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
     const size_t owner = description.owner == ParameterOwner::Medium
                              ? indexByName(scene.media, parsed.owner, name)
                              : indexByName(scene.materials, parsed.owner, name);
-    const size_t floatsPerItem = gpu::layoutOf(description.accumulator).floatsPerItem;
+    const size_t sumsPerItem = gpu::layoutOf(description.accumulator).sumsPerItem;
     GradientSlot slot{name, description.kind, kSceneGradients[size_t(description.accumulator)]};
     if (description.accumulator == gpu::GradientAccumulator::texelGradients) {
         // A texture's parameter is every texel of it, each an item of its own.
         const size_t texture = size_t(scene.materials[owner].baseColorTexture);
-        slot.first = firstTexel(scene, texture) * floatsPerItem + description.firstFloat;
+        slot.first = firstTexel(scene, texture) * sumsPerItem + description.firstFloat;
         slot.groups = scene.textures[texture].texels.size();
-        slot.stride = floatsPerItem;
+        slot.stride = sumsPerItem;
     } else {
-        slot.first = owner * floatsPerItem + description.firstFloat;
+        slot.first = owner * sumsPerItem + description.firstFloat;
     }
     return slot;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/fixed_point_value.h"
 #include "vk/context.h"
 
 namespace vkdr {
@@ -12,41 +13,43 @@ Buffer perPath(const VulkanContext& context, uint32_t capacity, const char* name
     return Buffer(context, uint64_t(capacity) * Element::kElementBytes, MemoryUse::Device, name);
 }
 
-uint32_t copyStrideOf(uint32_t floats, uint32_t copyCount) {
+constexpr uint64_t kBytesPerSum = gpu::kFixedPointWordsPerSum * 8;
+
+uint32_t copyStrideOf(uint32_t sums, uint32_t copyCount) {
     if (copyCount == 1) {
         return 0;
     }
-    return (floats + gpu::kGradientCopyAlignment - 1) / gpu::kGradientCopyAlignment * gpu::kGradientCopyAlignment;
+    return (sums + gpu::kGradientCopyAlignment - 1) / gpu::kGradientCopyAlignment * gpu::kGradientCopyAlignment;
 }
 
 // An accumulator's copies, with room for `items` of what it accumulates (at least one).
 GradientCopies gradientCopies(const VulkanContext& context, gpu::GradientAccumulator accumulator, uint32_t items,
                               const char* name) {
     const gpu::GradientAccumulatorLayout layout = gpu::layoutOf(accumulator);
-    return GradientCopies(context, std::max(1u, items) * layout.floatsPerItem, layout.copies, name);
+    return GradientCopies(context, std::max(1u, items) * layout.sumsPerItem, layout.copies, name);
 }
 
 }  // namespace
 
-GradientCopies::GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, uint32_t copyCount,
+GradientCopies::GradientCopies(const VulkanContext& context, uint32_t sumsPerCopy, uint32_t copyCount,
                                const char* name)
-    : floats(floatsPerCopy),
+    : sums(sumsPerCopy),
       copies(copyCount),
-      copyStride(copyStrideOf(floatsPerCopy, copyCount)),
-      buffer(context, (uint64_t(copyCount - 1) * copyStride + floatsPerCopy) * 4, MemoryUse::Device, name) {}
+      copyStride(copyStrideOf(sumsPerCopy, copyCount)),
+      buffer(context, (uint64_t(copyCount - 1) * copyStride + sumsPerCopy) * kBytesPerSum, MemoryUse::Device,
+             name) {}
 
-std::vector<float> GradientCopies::roomForCopies() const {
-    return std::vector<float>(size_t(copies - 1) * copyStride + floats);
+std::vector<int64_t> GradientCopies::roomForCopies() const {
+    return std::vector<int64_t>(buffer.size() / 8);
 }
 
-std::vector<float> GradientCopies::sumOfCopies(std::span<const float> values) const {
-    std::vector<float> sum(floats, 0.0f);
-    for (uint32_t copy = 0; copy < copies; ++copy) {
-        for (uint32_t i = 0; i < floats; ++i) {
-            sum[i] += values[size_t(copy) * copyStride + i];
-        }
+std::vector<float> GradientCopies::sumOfCopies(std::span<const int64_t> words) const {
+    std::vector<float> values(sums);
+    const size_t copyWords = size_t(copyStride) * gpu::kFixedPointWordsPerSum;
+    for (uint32_t i = 0; i < sums; ++i) {
+        values[i] = float(fixedPointValue(words.subspan(size_t(i) * gpu::kFixedPointWordsPerSum), copies, copyWords));
     }
-    return sum;
+    return values;
 }
 
 #define VKDR_ALLOCATE_PATH_ARRAY(name, Type) name(perPath<gpu::Type>(context, capacity, #name)),
@@ -83,7 +86,7 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
       VKDR_ADJOINT_PATH_ARRAYS(VKDR_ALLOCATE_PATH_ARRAY)
       target(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "target"),
       imageAdjoint(context, uint64_t(pixelCount) * 32, MemoryUse::Device, "image adjoint"),  // two halves
-      lossSum(context, 16, MemoryUse::Device, "loss sum"),
+      lossSum(context, kBytesPerSum, MemoryUse::Device, "loss sum"),
       filmBaseline(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "film baseline"),
       VKDR_GRADIENT_ACCUMULATORS(VKDR_ALLOCATE_ACCUMULATOR)
       keptRadiance() {

@@ -34,20 +34,20 @@ struct PathBuffers {
     void setAddresses(gpu::RenderParams& params) const;
 };
 
-// gpu::kGradientCopies copies (or one) of `floats` gradient accumulators, `copyStride`
-// floats apart (device_types.h): subgroups add to different copies, and the host sums them.
+// gpu::kGradientCopies copies (or one) of `sums` fixed-point gradient sums, `copyStride`
+// sums apart (device_types.h): subgroups add to different copies, and the host sums them.
 struct GradientCopies {
-    GradientCopies(const VulkanContext& context, uint32_t floatsPerCopy, uint32_t copyCount, const char* name);
+    GradientCopies(const VulkanContext& context, uint32_t sumsPerCopy, uint32_t copyCount, const char* name);
 
-    uint32_t floats;
+    uint32_t sums;
     uint32_t copies;
     uint32_t copyStride;  // 0 for a single copy
     Buffer buffer;
 
-    // Room on the host for all the copies (for downloadBuffers), and the `floats`
-    // accumulators that they sum to.
-    std::vector<float> roomForCopies() const;
-    std::vector<float> sumOfCopies(std::span<const float> values) const;
+    // Room on the host for the words of all the copies (for downloadBuffers), and the
+    // `sums` values that they total to.
+    std::vector<int64_t> roomForCopies() const;
+    std::vector<float> sumOfCopies(std::span<const int64_t> words) const;
 };
 
 // What the adjoint pass adds: per path slot its replay state (VKDR_ADJOINT_PATH_ARRAYS),
@@ -60,7 +60,7 @@ struct AdjointBuffers {
 
     uint32_t capacity;
     VKDR_ADJOINT_PATH_ARRAYS(VKDR_PATH_ARRAY_MEMBER)
-    Buffer target, imageAdjoint, lossSum, filmBaseline;
+    Buffer target, imageAdjoint, lossSum, filmBaseline;  // lossSum: one fixed-point sum
 #define VKDR_GRADIENT_ACCUMULATOR_MEMBER(name, field, floats, copies, items) GradientCopies name;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_GRADIENT_ACCUMULATOR_MEMBER)
 #undef VKDR_GRADIENT_ACCUMULATOR_MEMBER

@@ -122,6 +122,7 @@ void Renderer::uploadParams() {
         adjoint_->setAddresses(p);
         p.lossKind = lossKind_ == LossKind::L1 ? gpu::kLossL1 : gpu::kLossL2;
         p.derivativeTargets = derivativeTargets_;
+        p.texelGradientsWanted = texelGradientsWanted_ ? 1u : 0u;
         p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));
         p.splitSample = splitSample_;
         p.imagePixels = camera_.width * camera_.height;

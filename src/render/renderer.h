@@ -32,8 +32,8 @@ using ProgressCallback = std::function<void(double)>;
 
 // Parameter gradients as the adjoint pass accumulates them, one vector per accumulator
 // of VKDR_GRADIENT_ACCUMULATORS (device_types.h): `media` has gpu::kMediumGradientStride
-// floats per medium, `baseColors` and `emissions` 4 per material, `texels` 4 per texel
-// (textures one after another as in Scene::textures).
+// values per medium, `baseColors` and `emissions` gpu::kColorGradientStride per material,
+// `texels` as many per texel (textures one after another as in Scene::textures).
 struct SceneGradients {
 #define VKDR_SCENE_GRADIENTS_FIELD(name, field, ...) std::vector<float> field;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_SCENE_GRADIENTS_FIELD)
@@ -45,9 +45,12 @@ struct SceneGradients {
 // on in derivative mode to find that factor's gradient (docs/gradients.md), which costs
 // as much as the rest of a path; where that gradient is not wanted the path ends there,
 // as in the primal pass, and the other gradients are the same.
+// Texel gradients take 144 bytes per texel of every texture: they are held only when
+// wanted.
 struct DerivativeTargets {
     bool mediumScattering = true;
     bool baseColor = true;
+    bool texels = true;
 };
 
 // One render with its loss and the loss's gradient (Renderer::renderWithGradients).
@@ -147,6 +150,7 @@ private:
     std::unique_ptr<AdjointBuffers> adjoint_;
     LossKind lossKind_;
     uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
+    bool texelGradientsWanted_ = false;  // RenderParams.texelGradientsWanted
     uint32_t splitSample_ = 0;        // RenderParams.splitSample: > 0 when backpropagateInOnePass serves
     Buffer params_;
     RenderStats stats_;

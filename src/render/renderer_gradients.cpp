@@ -3,6 +3,7 @@
 #include "render/renderer.h"
 
 #include "core/error.h"
+#include "core/fixed_point_value.h"
 #include "core/milliseconds_of.h"
 #include "render/push_constants.h"
 #include "vk/commands.h"
@@ -34,11 +35,13 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
     const uint64_t keptPaths = onePass ? 0 : pixels * (settings_.spp / 2);
     const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
-                                                mediumCount_, materialCount_, texelCount_,
+                                                mediumCount_, materialCount_,
+                                                derivativeTargets.texels ? texelCount_ : 0,
                                                 keptPaths * 16 <= keptBudget ? keptPaths : 0);
     lossKind_ = loss;
     derivativeTargets_ = (derivativeTargets.mediumScattering ? 1u << gpu::kTargetMediumScattering : 0u) |
                          (derivativeTargets.baseColor ? 1u << gpu::kTargetBaseColor : 0u);
+    texelGradientsWanted_ = derivativeTargets.texels;
     std::vector<glm::vec4> texels(size_t(target.width) * target.height);
     for (size_t i = 0; i < texels.size(); ++i) {
         texels[i] = glm::vec4(target.rgb[3 * i], target.rgb[3 * i + 1], target.rgb[3 * i + 2], 0.0f);
@@ -52,9 +55,9 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
 
 double Renderer::loss() {
     submitLoss(settings_.spp, gpu::kLossImageFilm);
-    float sum[4];
-    downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(sum)));
-    return sum[0];
+    int64_t words[gpu::kFixedPointWordsPerSum];
+    downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(words)));
+    return fixedPointValue(words);
 }
 
 void Renderer::submitLoss(uint32_t samples, uint32_t image) {
@@ -112,13 +115,13 @@ GradientEvaluation Renderer::renderWithGradients() {
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
 
     std::vector<glm::vec4> film(size_t(camera_.width) * camera_.height);
-    float lossSum[4];
+    int64_t lossWords[gpu::kFixedPointWordsPerSum];
     std::vector<Download> downloads{{&paths_->film, std::as_writable_bytes(std::span(film))},
-                                    {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossSum))}};
+                                    {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossWords))}};
     // Every copy of every accumulator, in the order of VKDR_GRADIENT_ACCUMULATORS; the
     // spans in `downloads` point into each vector's own storage, which stays put as
     // `copies` grows.
-    std::vector<std::vector<float>> copies;
+    std::vector<std::vector<int64_t>> copies;
 #define VKDR_DOWNLOAD_ACCUMULATOR(name, ...)                                               \
     copies.push_back(adjoint_->name.roomForCopies());                                      \
     downloads.push_back({&adjoint_->name.buffer, std::as_writable_bytes(std::span(copies.back()))});
@@ -126,7 +129,7 @@ GradientEvaluation Renderer::renderWithGradients() {
 #undef VKDR_DOWNLOAD_ACCUMULATOR
     downloadBuffers(context_, downloads);
     result.image = imageOfFilm(film);
-    result.loss = lossSum[0];
+    result.loss = fixedPointValue(lossWords);
     auto copiesOf = copies.begin();
 #define VKDR_SUM_ACCUMULATOR(name, field, ...) result.gradients.field = adjoint_->name.sumOfCopies(*copiesOf++);
     VKDR_GRADIENT_ACCUMULATORS(VKDR_SUM_ACCUMULATOR)

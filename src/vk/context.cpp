@@ -233,7 +233,7 @@ void VulkanContext::createDevice() {
     queueInfo.pQueuePriorities = &priority;
 
     RequiredFeatures features;
-    std::vector<const char*> extensions(std::begin(kRequiredDeviceExtensions), std::end(kRequiredDeviceExtensions));
+    std::vector<const char*> extensions;
     // Optional: lets the benchmark report the driver's own count of memory in use.
     memoryBudget_ = supportsExtension(physicalDevice_, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
     if (memoryBudget_) {

@@ -1,23 +1,24 @@
 #include "vk/device_features.h"
 
-#include <cstring>
-
 namespace vkdr {
 
 RequiredFeatures::RequiredFeatures() {
-    atomicFloat.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT;
-    atomicFloat.shaderBufferFloat32AtomicAdd = VK_TRUE;  // gradient accumulation
     vulkan12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
-    vulkan12.pNext = &atomicFloat;
     vulkan12.bufferDeviceAddress = VK_TRUE;  // every stage reads its buffers by address
+    // Gradients and the loss are fixed-point sums of 64-bit words (shaders/lib/fixed_point.glsl).
+    vulkan12.shaderBufferInt64Atomics = VK_TRUE;
+    vulkan12.shaderSubgroupExtendedTypes = VK_TRUE;
     features2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    features2.features.shaderInt64 = VK_TRUE;
     features2.pNext = &vulkan12;
 }
 
 std::vector<std::string> requiredFeatureNames() {
     return {"Vulkan 1.2",
             "bufferDeviceAddress",
-            "VK_EXT_shader_atomic_float: shaderBufferFloat32AtomicAdd",
+            "shaderInt64",
+            "shaderBufferInt64Atomics",
+            "shaderSubgroupExtendedTypes",
             "compute-stage subgroup operations: basic, ballot, arithmetic",
             "timestampComputeAndGraphics"};
 }
@@ -30,30 +31,21 @@ std::vector<std::string> missingFeatures(VkPhysicalDevice device) {
         return {"Vulkan 1.2"};
     }
 
-    uint32_t extensionCount = 0;
-    vkEnumerateDeviceExtensionProperties(device, nullptr, &extensionCount, nullptr);
-    std::vector<VkExtensionProperties> extensions(extensionCount);
-    vkEnumerateDeviceExtensionProperties(device, nullptr, &extensionCount, extensions.data());
-    auto hasExtension = [&](const char* name) {
-        for (const VkExtensionProperties& e : extensions) {
-            if (std::strcmp(e.extensionName, name) == 0) {
-                return true;
-            }
-        }
-        return false;
-    };
-
-    VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomicFloat{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
     VkPhysicalDeviceVulkan12Features vulkan12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    vulkan12.pNext = &atomicFloat;
     VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features2.pNext = &vulkan12;
     vkGetPhysicalDeviceFeatures2(device, &features2);
     if (!vulkan12.bufferDeviceAddress) {
         missing.push_back("bufferDeviceAddress");
     }
-    if (!hasExtension(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME) || !atomicFloat.shaderBufferFloat32AtomicAdd) {
-        missing.push_back("VK_EXT_shader_atomic_float: shaderBufferFloat32AtomicAdd");
+    if (!features2.features.shaderInt64) {
+        missing.push_back("shaderInt64");
+    }
+    if (!vulkan12.shaderBufferInt64Atomics) {
+        missing.push_back("shaderBufferInt64Atomics");
+    }
+    if (!vulkan12.shaderSubgroupExtendedTypes) {
+        missing.push_back("shaderSubgroupExtendedTypes");
     }
 
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};

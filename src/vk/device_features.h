@@ -15,10 +15,7 @@ struct RequiredFeatures {
 
     VkPhysicalDeviceFeatures2 features2{};
     VkPhysicalDeviceVulkan12Features vulkan12{};
-    VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomicFloat{};
 };
-
-inline constexpr const char* kRequiredDeviceExtensions[] = {VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME};
 
 // Names of everything vkdiffrender needs, for `vkdiffrender info`.
 std::vector<std::string> requiredFeatureNames();

@@ -32,7 +32,9 @@ std::vector<float> indices(size_t count) {
 
 std::vector<double> gradientOf(const std::string& name) {
     const Scene scene = sceneWithTwoOfEverything();
-    const SceneGradients gradients{indices(2 * gpu::kMediumGradientStride), indices(8), indices(8), indices(12)};
+    const uint32_t color = gpu::kColorGradientStride;
+    const SceneGradients gradients{indices(2 * gpu::kMediumGradientStride), indices(2 * color), indices(2 * color),
+                                   indices(3 * color)};
     return gatherGradient(resolveGradientSlots(scene, {name}).at(0), gradients);
 }
 
@@ -47,10 +49,11 @@ TEST(GradientSlot, ReadsEveryKindFromItsAccumulator) {
     EXPECT_EQ(gradientOf("media/smoke/sigma_a"), sequence(smoke + gpu::kMediumGradientSigmaA, 3));
     EXPECT_EQ(gradientOf("media/smoke/sigma_s"), sequence(smoke + gpu::kMediumGradientSigmaS, 3));
     EXPECT_EQ(gradientOf("media/fog/g"), sequence(gpu::kMediumGradientG, 1));
-    EXPECT_EQ(gradientOf("materials/light/base_color"), sequence(4, 3));
-    EXPECT_EQ(gradientOf("lights/light/emission"), sequence(4, 3));
-    // The checker's two texels follow the first texture's one; each is RGBA, of which the gradient is the RGB.
-    EXPECT_EQ(gradientOf("materials/light/base_color_texture"), (std::vector<double>{4, 5, 6, 8, 9, 10}));
+    const double color = gpu::kColorGradientStride;
+    EXPECT_EQ(gradientOf("materials/light/base_color"), sequence(color, 3));
+    EXPECT_EQ(gradientOf("lights/light/emission"), sequence(color, 3));
+    // The checker's two texels follow the first texture's one.
+    EXPECT_EQ(gradientOf("materials/light/base_color_texture"), sequence(color, 6));
 }
 
 TEST(GradientSlot, KeepsTheKindForTheAdjointsDerivativeTargets) {

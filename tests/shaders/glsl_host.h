@@ -6,6 +6,8 @@
 
 #include <glm/glm.hpp>
 
+#include "device_types.h"
+
 namespace vkdr::glsl {
 // Internal linkage: every test file gets its own copy of the non-inline GLSL functions.
 namespace {
@@ -13,12 +15,14 @@ namespace {
 // Each test uses a few of the library's functions.
 #pragma GCC diagnostic ignored "-Wunused-function"
 using namespace glm;
+using namespace gpu;
 using uint = uint32_t;
 #include "constants.glsl"
 #include "rng.glsl"
 #include "sampling.glsl"
 #include "phase_hg.glsl"
 #include "medium.glsl"
+#include "fixed_point.glsl"
 #pragma GCC diagnostic pop
 }  // namespace
 }  // namespace vkdr::glsl
