@@ -44,10 +44,4 @@ float lightPdfSolidAngle(float pdfArea, vec3 from, vec3 lightPosition, vec3 ligh
     return cosLight > 0.0f ? pdfArea * dist2 / cosLight : 0.0f;
 }
 
-float powerHeuristic(float pdfA, float pdfB) {
-    float a = pdfA * pdfA;
-    float b = pdfB * pdfB;
-    return a + b > 0.0f ? a / (a + b) : 0.0f;
-}
-
 #endif

@@ -27,6 +27,22 @@ vec2 sampleUniformTriangle(vec2 u) {
     return vec2(su * (1.0f - u.y), su * u.y);
 }
 
+// The power heuristic's MIS weight pdfA^2 / (pdfA^2 + pdfB^2), from the ratio of the
+// smaller pdf to the larger: squaring a pdf would overflow above 1.8e19 (an emitter seen
+// almost edge-on has an unbounded solid-angle pdf) and give inf / inf. Any pdf in
+// [0, inf] gives a weight in [0, 1]; 0 when pdfA is 0.
+float powerHeuristic(float pdfA, float pdfB) {
+    if (!(pdfA > 0.0f)) {
+        return 0.0f;
+    }
+    if (pdfB >= pdfA) {
+        float r = pdfA / pdfB;
+        return r * r / (1.0f + r * r);
+    }
+    float r = pdfB / pdfA;
+    return 1.0f / (1.0f + r * r);
+}
+
 // Direction with the given cosine to `axis` and azimuth 2 pi u.
 vec3 directionAround(vec3 axis, float cosTheta, float u) {
     float sinTheta = sqrt(max(0.0f, 1.0f - cosTheta * cosTheta));

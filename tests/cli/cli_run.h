@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string>
 
+#include <gtest/gtest.h>
+
 namespace vkdr::test {
 
 struct RunResult {
@@ -31,5 +33,24 @@ inline RunResult runCli(const std::string& args, const std::filesystem::path& sc
     int status = std::system(command.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(scratch / "stdout"), slurp(scratch / "stderr")};
 }
+
+// A command-line test with a scratch directory of its own, named after its suite and
+// test, made empty before the test and removed after it.
+class CliScratchTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = std::filesystem::temp_directory_path() / ("vkdr_" + std::string(info->test_suite_name())) /
+               info->name();
+        std::filesystem::remove_all(dir_);
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+
+    RunResult run(const std::string& args) { return runCli(args, dir_); }
+    static std::string fog() { return std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf"; }
+
+    std::filesystem::path dir_;
+};
 
 }  // namespace vkdr::test

@@ -15,17 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CliTest : public ::testing::Test {
+class CliTest : public CliScratchTest {
 protected:
-    void SetUp() override {
-        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / "vkdr_cli_tests" / info->name();
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-
-    RunResult run(const std::string& args) { return runCli(args, dir_); }
-
     // A failed command must say "error:" once, name `what`, exit with 2, and leave
     // the previous output file as it was.
     void expectCleanFailure(const std::string& args, const std::string& what) {
@@ -49,7 +40,6 @@ protected:
         return target;
     }
 
-    fs::path dir_;
 };
 
 TEST_F(CliTest, HelpDescribesEverySubcommand) {

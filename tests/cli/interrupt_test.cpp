@@ -36,18 +36,8 @@ bool holdsTemporaries(const fs::path& directory) {
     return false;
 }
 
-class Interrupt : public ::testing::Test {
+class Interrupt : public CliScratchTest {
 protected:
-    void SetUp() override {
-        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / "vkdr_interrupt_tests" / info->name();
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string fog() const { return std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf"; }
-
     fs::path target(int size) {
         fs::path file = dir_ / "target.exr";
         RunResult r = runCli("render " + fog() + " --width " + std::to_string(size) + " --height " +
@@ -59,7 +49,6 @@ protected:
 
     bool printed(const std::string& text) const { return slurp(dir_ / "stderr").find(text) != std::string::npos; }
 
-    fs::path dir_;
 };
 
 TEST_F(Interrupt, OptimizeCheckpointsItsLastFinishedIterationAndResumeEndsLikeAnUninterruptedRun) {

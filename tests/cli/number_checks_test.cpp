@@ -18,19 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class NumberChecksTest : public ::testing::Test {
+class NumberChecksTest : public CliScratchTest {
 protected:
-    void SetUp() override {
-        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / "vkdr_number_checks" / info->name();
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-
-    RunResult run(const std::string& args) { return runCli(args, dir_); }
-
-    std::string fog() const { return std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf"; }
-
     // A 16x16 render of the fog box, read back.
     Image render(const std::string& options, const std::string& name = "render.exr") {
         fs::path out = dir_ / name;
@@ -58,7 +47,6 @@ protected:
         }
     }
 
-    fs::path dir_;
 };
 
 void expectFinite(const Image& image) {

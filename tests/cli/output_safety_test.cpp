@@ -20,19 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class OutputSafety : public ::testing::Test {
+class OutputSafety : public CliScratchTest {
 protected:
-    void SetUp() override {
-        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / "vkdr_output_safety_tests" / info->name();
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    RunResult run(const std::string& args) { return runCli(args, dir_); }
-
-    std::string fog() const { return std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf"; }
     // A scene that does not exist: a command that names its output as the fault, not
     // this, checked the output before any other work.
     std::string noScene() const { return (dir_ / "no_such_scene.gltf").string(); }
@@ -60,7 +49,6 @@ protected:
                std::to_string(iterations) + " --spp 1 --max-depth 2";
     }
 
-    fs::path dir_;
 };
 
 // A path of each kind that is not a regular file, each made in `directory`.
