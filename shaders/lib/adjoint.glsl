@@ -72,57 +72,58 @@ void endReplay(uint slot) {
 }
 
 // Adds the first `channels` of g to the sums first, first + 1, ... of this subgroup's
-// copy (copies `copyStride` sums apart; kGradientCopies in device_types.h). Most lanes
-// of a subgroup add to the same few parameters, so the lanes that share `first` add
-// together (addFixedPoint sums their digits first): the loop peels off one distinct
-// `first` per iteration. A call site must pass one buffer for all its lanes, since the
-// lanes are grouped by `first` alone.
-void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec3 g, uint channels) {
+// copy (copies `copyStride` sums apart; kGradientCopies in device_types.h), and to those
+// from first + alsoAt on as well unless `alsoAt` is 0. Most lanes of a subgroup add to the
+// same few parameters, so the lanes that share `first` add together (addFixedPoint sums
+// their digits first): the loop peels off one distinct `first` per iteration. A call site
+// must pass one buffer and one `alsoAt` for all its lanes, since the lanes are grouped by
+// `first` alone.
+void addGradient(Int64Buffer gradients, uint copyStride, uint first, uint alsoAt, vec3 g, uint channels) {
     uint copy = (gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID) % kGradientCopies;
     uint sum = (copy * copyStride + first) * kFixedPointWordsPerSum;
+    uint second = alsoAt == 0u ? kFixedPointNoSum : sum + alsoAt * kFixedPointWordsPerSum;
     for (;;) {
         uint leader = subgroupBroadcastFirst(first);
         if (first == leader) {
-            for (uint c = 0u; c < channels; ++c) {
-                addFixedPoint(gradients, sum + c * kFixedPointWordsPerSum, g[c]);
-            }
+            addFixedPoint(gradients, sum, second, g, channels);
             break;
         }
     }
 }
 
-void addMediumGradient(uint medium, uint firstComponent, vec3 g, uint channels) {
-    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent, g,
-                channels);
+void addMediumGradient(uint medium, uint firstComponent, uint alsoAt, vec3 g, uint channels) {
+    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent,
+                alsoAt, g, channels);
 }
 
 void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
-    addMediumGradient(medium, kMediumGradientSigmaA, dSigmaA, 3u);
-    addMediumGradient(medium, kMediumGradientSigmaS, dSigmaS, 3u);
+    addMediumGradient(medium, kMediumGradientSigmaA, 0u, dSigmaA, 3u);
+    addMediumGradient(medium, kMediumGradientSigmaS, 0u, dSigmaS, 3u);
 }
 
-// A gradient with respect to sigma_t = sigma_a + sigma_s, which both share.
+// A gradient with respect to sigma_t = sigma_a + sigma_s, which both share: summed once,
+// added to both.
 void addSigmaTGradient(uint medium, vec3 dSigmaT) {
-    addSigmaGradient(medium, dSigmaT, dSigmaT);
+    addMediumGradient(medium, kMediumGradientSigmaA, kMediumGradientSigmaS - kMediumGradientSigmaA, dSigmaT, 3u);
 }
 
 void addPhaseGGradient(uint medium, float g) {
-    addMediumGradient(medium, kMediumGradientG, vec3(g, 0.0f, 0.0f), 1u);
+    addMediumGradient(medium, kMediumGradientG, 0u, vec3(g, 0.0f, 0.0f), 1u);
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
-    addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * kColorGradientStride, g, 3u);
+    addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * kColorGradientStride, 0u, g, 3u);
 }
 
 void addEmissionGradient(uint material, vec3 g) {
-    addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * kColorGradientStride, g, 3u);
+    addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * kColorGradientStride, 0u, g, 3u);
 }
 
 // g = dLoss/d(texture value at uv), spread over the texels the lookup blends.
 void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
     BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
     for (int corner = 0; corner < 4; ++corner) {
-        addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * kColorGradientStride,
+        addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * kColorGradientStride, 0u,
                     g * footprint.weight[corner], 3u);
     }
 }
@@ -140,7 +141,7 @@ void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
 // g = the gradient gathered by a path's derivative channels, for the parameter they follow.
 void addTargetGradient(vec3 g) {
     if (adjoint.targetKind == kTargetMediumScattering) {
-        addMediumGradient(adjoint.targetIndex, kMediumGradientSigmaS, g, 3u);
+        addMediumGradient(adjoint.targetIndex, kMediumGradientSigmaS, 0u, g, 3u);
     } else if (adjoint.targetKind == kTargetBaseColor) {
         addBaseColorGradient(adjoint.targetIndex, g);
     }

@@ -25,23 +25,49 @@ void addToWord(Int64Buffer sums, uint sum, uint k, int64_t value) {
     }
 }
 
-// Adds x to the sum at `sum` (the index of its first word). Every active lane of the
-// subgroup must call it with the same `sum`: the lanes' digits are added up first with
+// Adds the first `channels` components of x to the sums at `sum`, `sum` +
+// kFixedPointWordsPerSum, ... (the index of each one's first word) and, unless `alsoAt`
+// is kFixedPointNoSum, to those at `alsoAt` too. Every active lane of the subgroup must
+// call it with the same `sum` and `alsoAt`: the lanes' digits are added up first with
 // integer subgroup sums, exact in any grouping, so one lane adds each word's total.
-void addFixedPoint(Int64Buffer sums, uint sum, float x) {
-    FixedPointTerm term = fixedPointTerm(x);
-    uint flags = subgroupOr(term.flags);
-    bool adds = term.word < kFixedPointWords;
-    uint lowest = subgroupMin(adds ? term.word : kFixedPointWords);
-    uint highest = subgroupMax(adds ? term.word + 1u : 0u);
-    for (uint k = lowest; k <= highest && k < kFixedPointWords; ++k) {
-        int64_t digits = subgroupAdd(fixedPointDigit(term, k));
-        if (subgroupElect() && digits != int64_t(0)) {
-            addToWord(sums, sum, k, digits);
+const uint kFixedPointNoSum = 0xffffffffu;
+
+void addFixedPoint(Int64Buffer sums, uint sum, uint alsoAt, vec3 x, uint channels) {
+    FixedPointTerm terms[3] = FixedPointTerm[3](fixedPointTerm(x.x), fixedPointTerm(x.y), fixedPointTerm(x.z));
+    uvec3 flags = subgroupOr(uvec3(terms[0].flags, terms[1].flags, terms[2].flags));
+    uint lowest = kFixedPointWords;
+    uint highest = 0u;
+    for (uint c = 0u; c < 3u; ++c) {
+        if (terms[c].word < kFixedPointWords) {
+            lowest = min(lowest, terms[c].word);
+            highest = max(highest, terms[c].word + 1u);
         }
     }
-    if (flags != 0u && subgroupElect()) {
-        atomicOr(sums.v[sum + kFixedPointFlagsWord], int64_t(flags));
+    lowest = subgroupMin(lowest);
+    highest = min(subgroupMax(highest), kFixedPointWords - 1u);
+    for (uint k = lowest; k <= highest; ++k) {
+        i64vec3 digits = subgroupAdd(i64vec3(fixedPointDigit(terms[0], k), fixedPointDigit(terms[1], k),
+                                             fixedPointDigit(terms[2], k)));
+        if (subgroupElect()) {
+            for (uint c = 0u; c < channels; ++c) {
+                if (digits[c] != int64_t(0)) {
+                    addToWord(sums, sum + c * kFixedPointWordsPerSum, k, digits[c]);
+                    if (alsoAt != kFixedPointNoSum) {
+                        addToWord(sums, alsoAt + c * kFixedPointWordsPerSum, k, digits[c]);
+                    }
+                }
+            }
+        }
+    }
+    if (subgroupElect()) {
+        for (uint c = 0u; c < channels; ++c) {
+            if (flags[c] != 0u) {
+                atomicOr(sums.v[sum + c * kFixedPointWordsPerSum + kFixedPointFlagsWord], int64_t(flags[c]));
+                if (alsoAt != kFixedPointNoSum) {
+                    atomicOr(sums.v[alsoAt + c * kFixedPointWordsPerSum + kFixedPointFlagsWord], int64_t(flags[c]));
+                }
+            }
+        }
     }
 }
 
