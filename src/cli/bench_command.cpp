@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/output_paths.h"
 #include "cli/progress_bar.h"
+#include "cli/number_options.h"
 #include "cli/sampling_options.h"
 #include "core/interrupt.h"
 #include "image/atomic_write.h"
@@ -90,15 +91,15 @@ CommandAction addBenchCommand(CLI::App& app) {
     command->remove_option(sampling.seed);  // the benchmark picks its own seeds
     command->add_option("--width", options->settings.render.width,
                         "Image width in pixels (default: 256, or from --height)")
-        ->check(CLI::Range(1, 16384));
+        ->transform(integerIn(1, kMaxImageSide));
     command->add_option("--height", options->settings.render.height,
                         "Image height in pixels (default: from the width and the camera's aspect ratio)")
-        ->check(CLI::Range(1, 16384));
+        ->transform(integerIn(1, kMaxImageSide));
     command
         ->add_option("--iters", options->settings.iterations,
                      "Timed runs of each measurement after one warm-up; the figures are their median")
         ->default_val(options->settings.iterations)
-        ->check(CLI::Range(1u, 1000u));
+        ->transform(integerIn(1, 1000));
     command->add_option("--json", options->json, "Also write the results as JSON (docs/performance.md)");
     command->add_option("--scenes-dir", options->scenesDirectory, "Where the shipped scenes are")
         ->default_val(options->scenesDirectory);

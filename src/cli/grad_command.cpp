@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/number_options.h"
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "cli/target_views.h"

@@ -1,5 +1,6 @@
 #include "cli/number_options.h"
 
+#include <charconv>
 #include <cmath>
 #include <sstream>
 
@@ -32,6 +33,24 @@ CLI::Validator finitePositiveNumber() {
 CLI::Validator finiteNumberIn(double lower, double upper) {
     return finiteNumberWhere([lower, upper](double value) { return value >= lower && value <= upper; },
                              "a finite number in [" + numberText(lower) + ", " + numberText(upper) + "]");
+}
+
+CLI::Validator integerIn(uint64_t low, uint64_t high, const std::string& kind) {
+    const std::string expected =
+        kind.empty() ? "an integer from " + std::to_string(low) + " to " + std::to_string(high) : kind;
+    return CLI::Validator(
+        [=](std::string& input) -> std::string {
+            uint64_t value = 0;
+            const char* end = input.data() + input.size();
+            auto [stop, ec] = std::from_chars(input.data(), end, value);
+            bool digitsOnly = !input.empty() && input.find_first_not_of("0123456789") == std::string::npos;
+            if (!digitsOnly || ec != std::errc() || stop != end || value < low || value > high) {
+                return "must be " + expected + ", got " + input;
+            }
+            input = std::to_string(value);
+            return "";
+        },
+        "UINT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
 }
 
 }  // namespace vkdr

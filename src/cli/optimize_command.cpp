@@ -239,7 +239,7 @@ CommandAction addOptimizeCommand(CLI::App& app) {
                         "Run a self-contained experiment file (docs/optimisation.md) instead of SCENE");
     ExperimentOverrides overrides;
     overrides.iterations = command->add_option("--iters", options->optimize.iterations, "Iterations")
-                               ->default_val(options->optimize.iterations)->check(CLI::Range(1u, 1000000u));
+                               ->default_val(options->optimize.iterations)->transform(integerIn(1, 1000000));
     overrides.learningRate = command->add_option("--lr", options->optimize.learningRate, "Learning rate")
                                  ->default_val(options->optimize.learningRate)->check(finitePositiveNumber());
     overrides.learningRateDecay =
@@ -279,7 +279,7 @@ CommandAction addOptimizeCommand(CLI::App& app) {
         ->add_option("--checkpoint-every", options->optimize.checkpointEvery,
                      "Write DIR/checkpoint.json every K iterations (0: never); a stopped run loses at most K")
         ->default_val(options->optimize.checkpointEvery)
-        ->check(CLI::Range(0u, 1000000u));
+        ->transform(integerIn(0, 1000000));
     command->add_option("--resume", options->resume,
                         "Continue the stopped run whose --out was DIR, from DIR/checkpoint.json; give the same "
                         "scene, targets, parameters and options. SIGINT or SIGTERM stops a run with a checkpoint of "

@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "cli/output_paths.h"
 #include "cli/progress_bar.h"
+#include "cli/number_options.h"
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "core/error.h"
@@ -97,10 +98,10 @@ CommandAction addRenderCommand(CLI::App& app) {
     command->add_option("--png", options->png, "Also write an sRGB PNG preview (clamped to [0, 1]) to this .png file, not the -o file");
     addSamplingOptions(*command, options->settings);
     command->add_option("--width", options->settings.width, "Image width in pixels (default: 512, or from --height)")
-        ->check(CLI::Range(1, 16384));
+        ->transform(integerIn(1, kMaxImageSide));
     command->add_option("--height", options->settings.height,
                         "Image height in pixels (default: from the width and the camera's aspect ratio)")
-        ->check(CLI::Range(1, 16384));
+        ->transform(integerIn(1, kMaxImageSide));
     command->add_option("--camera", options->settings.camera, "Camera node name (default: the first camera)");
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
     return [command, options]() { return command->parsed() ? runRender(*options) : -1; };

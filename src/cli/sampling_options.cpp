@@ -1,29 +1,11 @@
 #include "cli/sampling_options.h"
 
-#include <charconv>
 #include <limits>
 
+#include "cli/number_options.h"
 #include "scene/parameter_kinds.h"
 
 namespace vkdr {
-
-CLI::Validator integerIn(uint64_t low, uint64_t high, const std::string& kind) {
-    const std::string expected =
-        kind.empty() ? "an integer from " + std::to_string(low) + " to " + std::to_string(high) : kind;
-    return CLI::Validator(
-        [=](std::string& input) -> std::string {
-            uint64_t value = 0;
-            const char* end = input.data() + input.size();
-            auto [stop, ec] = std::from_chars(input.data(), end, value);
-            bool digitsOnly = !input.empty() && input.find_first_not_of("0123456789") == std::string::npos;
-            if (!digitsOnly || ec != std::errc() || stop != end || value < low || value > high) {
-                return "must be " + expected + ", got " + input;
-            }
-            input = std::to_string(value);
-            return "";
-        },
-        "UINT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
-}
 
 SamplingOptions addSamplingOptions(CLI::App& command, RenderSettings& settings) {
     SamplingOptions options;

@@ -1,5 +1,7 @@
 #include "diff/gradient_slots.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "device_types.h"
 #include "scene/parameters.h"
@@ -57,6 +59,9 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
 std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::vector<std::string>& names) {
     std::vector<GradientSlot> slots;
     for (const std::string& name : names) {
+        if (std::count(names.begin(), names.end(), name) > 1) {
+            throw Error("parameter '" + name + "' is given twice");
+        }
         getParameter(scene, name);  // throws, listing the valid names, if unknown
         slots.push_back(resolveGradientSlot(scene, name));
     }

@@ -138,12 +138,21 @@ TEST_F(NumberChecksTest, NumericOptionsSayWhatTheyMustBe) {
     expectError(run(render + " --seed -1"), {"--seed", seed, "got -1"});
     expectError(run(render + " --spp 1.5"), {"--spp", "must be an integer from 1 to 1048576, got 1.5"});
     expectError(run(render + " --max-depth 1e3"), {"--max-depth", "must be an integer from 0 to 100000, got 1e3"});
+    expectError(run(render + " --width abc"), {"--width", "must be an integer from 1 to 16384, got abc"});
+    expectError(run(render + " --height 0"), {"--height", "must be an integer from 1 to 16384, got 0"});
+    const std::string optimize = "optimize " + fog() + " --target t.exr --param media/fog/g --out " +
+                                 (dir_ / "run").string();
+    expectError(run(optimize + " --iters 1e3"), {"--iters", "must be an integer from 1 to 1000000, got 1e3"});
+    expectError(run(optimize + " --checkpoint-every -1"),
+                {"--checkpoint-every", "must be an integer from 0 to 1000000, got -1"});
+    expectError(run("bench cornell_fog --iters 0"), {"--iters", "must be an integer from 1 to 1000, got 0"});
     for (const char* value : {"1e-50", "1e50"}) {
         RunResult r = run(render + " --set media/fog/sigma_a=" + value);
         expectError(r, {std::string("'") + value + "' is out of float range"});
         EXPECT_EQ(r.err.find("not a number"), std::string::npos) << r.err;
     }
     EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+    EXPECT_FALSE(fs::exists(dir_ / "run"));
 }
 
 TEST_F(NumberChecksTest, IntegersAreDecimal) {

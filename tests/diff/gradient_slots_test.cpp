@@ -63,6 +63,8 @@ TEST(GradientSlot, KeepsTheKindForTheAdjointsDerivativeTargets) {
     EXPECT_EQ(slots[1].kind, ParameterKind::Emission);
     expectErrorMentioning([&] { resolveGradientSlots(scene, {"media/haze/g"}); },
                           {"unknown parameter 'media/haze/g'", "media/fog/g"});
+    expectErrorMentioning([&] { resolveGradientSlots(scene, {"media/fog/g", "lights/light/emission", "media/fog/g"}); },
+                          {"parameter 'media/fog/g' is given twice"});
 }
 
 }  // namespace
