@@ -1,4 +1,7 @@
 #pragma once
+#include <sys/stat.h>
+
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -20,6 +23,16 @@ inline void expectErrorMentioning(const std::function<void()>& action, const std
                 << "'" << part << "' not in: " << error.what();
         }
     }
+}
+
+// Expects `read` to refuse a directory and a FIFO (made in `directory`) with an error
+// naming each and what it is, without waiting for a writer on the FIFO.
+inline void expectNonRegularFilesRefused(const std::filesystem::path& directory,
+                                         const std::function<void(const std::filesystem::path&)>& read) {
+    std::filesystem::create_directory(directory / "folder.json");
+    expectErrorMentioning([&] { read(directory / "folder.json"); }, {"folder.json", "is a directory"});
+    ASSERT_EQ(::mkfifo((directory / "pipe.json").c_str(), 0600), 0);
+    expectErrorMentioning([&] { read(directory / "pipe.json"); }, {"pipe.json", "FIFO"});
 }
 
 }  // namespace vkdr::test
