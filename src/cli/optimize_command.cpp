@@ -81,6 +81,27 @@ void requireRunDirectory(const OptimizeCommandOptions& options) {
     requireRunDirectoryFor(options.out, runStart(options));
 }
 
+// The files a run writes into its directory (and --overwrite removes) must not be ones
+// it reads: `optimize scene.gltf --out .` would replace the user's scene.
+void requireRunWritesNoInput(const std::filesystem::path& directory, const std::vector<NamedOutput>& inputs) {
+    std::vector<const char*> written(runFileNames().begin(), runFileNames().end());
+    written.insert(written.end(), experimentFileNames().begin(), experimentFileNames().end());
+    for (const char* name : written) {
+        for (const NamedOutput& input : inputs) {
+            if (sameFile(directory / name, input.path)) {
+                throw Error("--out " + directory.string() + ": the run writes " + name + " there, which is " +
+                            input.option + " " + input.path.string() + "; give another --out");
+            }
+        }
+    }
+}
+
+// The file of a --target FILE or CAMERA=FILE, as readTarget splits it.
+std::string targetFile(const std::string& target) {
+    size_t equals = target.find('=');
+    return equals == std::string::npos ? target : target.substr(equals + 1);
+}
+
 // Once the inputs have been checked and just before the run writes: with --overwrite,
 // nothing of the old run is left for the new one to mix with.
 void clearOldRun(const OptimizeCommandOptions& options, bool experiment) {
@@ -134,6 +155,9 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     options.optimize.parameters = options.parameters;
     options.optimize.optimizer = parseOptimizerKind(options.optimizer);
     LossKind loss = parseLossKind(options.loss);
+    std::vector<NamedOutput> inputs = {{"SCENE", options.scene.file}};
+    for (const std::string& target : options.targets) inputs.push_back({"--target", targetFile(target)});
+    requireRunWritesNoInput(options.out, inputs);
 
     Scene scene = loadSceneWithOverrides(options.scene);
     requireOptimisableParameters(scene, options.optimize.parameters);
@@ -184,7 +208,9 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
         throw Error("--experiment: the experiment file gives the scene, targets and parameters; "
                     "drop SCENE, --target, --param and --set");
     }
+    requireRunWritesNoInput(options.out, {{"--experiment", options.experiment}});
     Experiment experiment = readExperiment(options.experiment);
+    requireRunWritesNoInput(options.out, {{"the experiment's scene", experiment.scene}});
     applyOverrides(options, overrides, experiment);
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     LoadedScene loaded = loadScene(experiment.scene, options.scene.access);

@@ -147,6 +147,32 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
     EXPECT_EQ(slurp(out / "notes.txt"), "mine");
 }
 
+// The files a run writes must not be what it reads, --overwrite or not: the scene, a
+// target, the experiment file.
+TEST_F(OutputSafety, ARunNeverWritesOverItsOwnInputs) {
+    fs::path target = fogTarget();
+    fs::copy_file(fog(), dir_ / "scene.gltf");
+    const std::string scene = slurp(dir_ / "scene.gltf");
+    expectRefused("optimize " + (dir_ / "scene.gltf").string() + " --target " + target.string() +
+                      " --param media/fog/sigma_a --iters 1 --spp 1 --overwrite --out " + dir_.string(),
+                  "SCENE");
+    EXPECT_EQ(slurp(dir_ / "scene.gltf"), scene);
+
+    fs::path out = dir_ / "out";
+    fs::create_directories(out);
+    fs::copy_file(target, out / "final.exr");
+    const std::string pixels = slurp(out / "final.exr");
+    expectRefused(optimizeCommand(out / "final.exr") + " --overwrite --out " + out.string(), "--target");
+    expectRefused(optimizeCommand("camera=" + (out / "final.exr").string()) + " --overwrite --out " + out.string(),
+                  "--target");
+    EXPECT_EQ(slurp(out / "final.exr"), pixels);
+
+    std::ofstream(out / "params.json") << "{}";
+    expectRefused("optimize --experiment " + (out / "params.json").string() + " --overwrite --out " + out.string(),
+                  "--experiment");
+    EXPECT_EQ(slurp(out / "params.json"), "{}");
+}
+
 TEST_F(OutputSafety, NumericOptionsMustBeFiniteAndInRange) {
     fs::path out = dir_ / "out";
     const std::string command = "optimize " + noScene() + " --target t.exr --param media/fog/sigma_a --out " + out.string();
