@@ -89,6 +89,21 @@ TEST_F(CliTest, MissingOutputDirectory) {
     EXPECT_NE(r.err.find("no/such/dir"), std::string::npos) << r.err;
 }
 
+// A test that sets VKDR_SIMULATE_DEVICE_LOST to something unreadable must not pass by
+// never losing the device.
+TEST_F(CliTest, AnUnreadableSimulatedDeviceLossIsRefused) {
+    for (const char* value : {"abc", "-5", "0", "12x"}) {
+        RunResult r = runCli("render " + scene("cornell_fog.gltf") + " --width 8 --spp 1 -o " +
+                                 (dir_ / "out.exr").string(),
+                             dir_, std::string("VKDR_SIMULATE_DEVICE_LOST=") + value);
+        EXPECT_EQ(r.exitCode, 2) << value << ": " << r.err;
+        EXPECT_NE(r.err.find("VKDR_SIMULATE_DEVICE_LOST=" + std::string(value) + ": expected a positive integer"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+    }
+}
+
 TEST_F(CliTest, RendersExrAndPngDeterministically) {
     fs::path exr = dir_ / "fog.exr", png = dir_ / "fog.png";
     std::string args = "render " + scene("cornell_fog.gltf") + " --width 24 --height 24 --spp 2 --max-depth 3 -o ";
