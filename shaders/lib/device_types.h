@@ -68,14 +68,15 @@ const uint kColorGradientStride = 3u;
 // so that a sum has the same bits whatever order its terms arrive in: kFixedPointWords
 // signed 64-bit words, word k weighing 2^(32 k + kFixedPointLowestBit), then one word of
 // kFixedPoint* flags. Terms are held from 2^-96 (smaller ones are dropped, 26 orders of
-// magnitude below any gradient a float image can give) up to 2^64.
-const uint kFixedPointWords = 5u;
+// magnitude below any gradient a float image can give) up to the largest float, with two
+// words to spare above it for the carries of a sum.
+const uint kFixedPointWords = 8u;
 const int kFixedPointLowestBit = -96;
 const uint kFixedPointFlagsWord = kFixedPointWords;
 const uint kFixedPointWordsPerSum = kFixedPointWords + 1u;
 const uint kFixedPointNaN = 1u;               // a term was NaN
-const uint kFixedPointPositiveOverflow = 2u;  // a term or the sum reached +2^64 or beyond (+inf included)
-const uint kFixedPointNegativeOverflow = 4u;  // the same below -2^64
+const uint kFixedPointPositiveOverflow = 2u;  // a term was +inf, or the sum outgrew the words
+const uint kFixedPointNegativeOverflow = 4u;  // the same for -inf
 
 // The medium, base colour and emission gradients have kGradientCopies copies, a
 // RenderParams.<accumulator>CopyStride apart: a subgroup adds to the copy of its index

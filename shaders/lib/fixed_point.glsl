@@ -58,9 +58,10 @@ int64_t fixedPointDigit(FixedPointTerm term, uint k) {
 
 // A word of a sum holds at most 2^63. An addition that takes a word's magnitude to
 // kFixedPointCarryAt or beyond moves all but its low 32 bits into the next word, which
-// keeps the total; every word then stays below 3 * kFixedPointCarryAt even when several
-// additions cross at once, each moving its own carry.
-const int64_t kFixedPointCarryAt = int64_t(1) << 60;
+// keeps the total. An addition is below 2^39 (a subgroup's digits), so between two
+// crossings there are thousands of additions, and a word would need 2^11 carries of one
+// sign in flight at once to overflow.
+const int64_t kFixedPointCarryAt = int64_t(1) << 52;
 
 // The carry that an addition taking a word from `before` to `after` moves up (0: none),
 // in units of the next word.

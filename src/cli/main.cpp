@@ -1,6 +1,7 @@
 // vkdiffrender: a differentiable Monte Carlo path tracer for participating media.
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -34,6 +35,10 @@ int main(int argc, char** argv) {
         return e.exitCode();
     } catch (const vkdr::Error& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::bad_alloc&) {
+        // An input too large for this machine's memory (a huge file, image or scene).
+        std::fprintf(stderr, "error: out of host memory: the inputs are too large for this machine\n");
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "internal error: %s\n", e.what());

@@ -10,6 +10,7 @@
 #include "cli/scene_options.h"
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "image/finite_pixels.h"
 #include "image/image.h"
 #include "render/renderer.h"
 #include "vk/context.h"
@@ -72,6 +73,11 @@ int runRender(const RenderOptions& options) {
 
     requireNoValidationMessages(context);
     throwIfInterrupted();  // a signal after the last pass: still no output
+    // Accepted inputs keep every pixel finite (docs/scene-format.md); should one not be,
+    // no file gets it.
+    if (std::optional<std::string> bad = unrepresentablePixel(image)) {
+        throw Error("the render's " + *bad + "; nothing was written");
+    }
     writeImage(options.output, outputType, image);
     if (!options.png.empty()) {
         writePng(options.png, image);

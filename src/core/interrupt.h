@@ -40,11 +40,10 @@ inline void stopNow(int signal) {
 inline void onStopSignal(int signal) {
     int none = 0;
     if (signalReceived.compare_exchange_strong(none, signal)) return;
-    if (filesBeingWritten.load() > 0) {
-        stopDeferred.store(signal);
-    } else {
-        stopNow(signal);
-    }
+    // Recorded first, so that a write ending now sees it (FileWriteGuard); if no write is
+    // under way after all, stop here.
+    stopDeferred.store(signal);
+    if (filesBeingWritten.load() == 0) stopNow(signal);
 }
 }  // namespace interrupt_detail
 
@@ -56,6 +55,9 @@ inline const char* signalName(int signal) {
 inline void stopOnInterruptSignals() {
     struct sigaction action {};
     action.sa_handler = interrupt_detail::onStopSignal;
+    // Reads and writes the signal lands in carry on: the work stops at its next poll,
+    // not with a short write of the result it was printing.
+    action.sa_flags = SA_RESTART;
     sigemptyset(&action.sa_mask);
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);

@@ -18,6 +18,7 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 constexpr double kFloatMax = double(std::numeric_limits<float>::max());
+constexpr double kDoubleMax = std::numeric_limits<double>::max();
 
 std::string text(double value) {
     char number[32];
@@ -63,8 +64,8 @@ public:
         return value.get<double>();
     }
 
-    // Numbers within [minimum, maximum]: parameter values become floats, and Adam takes
-    // the square root of its second moments.
+    // Numbers within [minimum, maximum]: parameter values become floats (the default
+    // range), and Adam takes the square root of its second moments.
     std::vector<double> numbers(const Json& object, const std::string& key, double minimum = -kFloatMax,
                                 double maximum = kFloatMax) const {
         const Json& array = member(object, key);
@@ -127,9 +128,11 @@ Checkpoint readCheckpoint(const std::filesystem::path& file) {
     state.values = reader.numbers(document, "values");
     const Json& optimizer = reader.member(document, "optimizer");
     state.optimizer.steps = reader.count(optimizer, "steps");
-    state.optimizer.mean = reader.numbers(optimizer, "mean");
-    state.optimizer.meanSquare = reader.numbers(optimizer, "mean_square", 0.0);
-    state.losses = reader.numbers(document, "losses");
+    // Adam's moments and the losses are doubles: a gradient beyond 1.8e19 squares past
+    // float range.
+    state.optimizer.mean = reader.numbers(optimizer, "mean", -kDoubleMax, kDoubleMax);
+    state.optimizer.meanSquare = reader.numbers(optimizer, "mean_square", 0.0, kDoubleMax);
+    state.losses = reader.numbers(document, "losses", 0.0, kDoubleMax);
     state.forwardMs = reader.number(document, "forward_ms");
     state.adjointMs = reader.number(document, "adjoint_ms");
     return checkpoint;

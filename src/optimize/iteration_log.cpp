@@ -1,14 +1,14 @@
 #include "optimize/iteration_log.h"
 
-#include <cerrno>
-#include <cstring>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "image/atomic_write.h"
+#include "image/regular_file.h"
 #include "optimize/json_numbers.h"
 
 namespace vkdr {
@@ -34,8 +34,8 @@ IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>
     auto fail = [&](const std::string& problem) {
         throw Error(name + ": " + problem + "; it is not the log of the run the checkpoint holds");
     };
-    std::ifstream in(file_);
-    if (!in) fail("cannot be read (" + std::string(std::strerror(errno)) + ")");
+    if (std::string reason = notRegularFileReason(file_); !reason.empty()) fail(reason);
+    std::istringstream in(readRegularFile(file_));
     // One run logs iterations 0, 1, 2, ... in order; it may have logged some past its
     // last checkpoint, which are dropped.
     uint64_t lineNumber = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/error.h"
 #include "core/fixed_point_value.h"
 #include "vk/context.h"
 
@@ -23,10 +24,19 @@ uint32_t copyStrideOf(uint32_t sums, uint32_t copyCount) {
 }
 
 // An accumulator's copies, with room for `items` of what it accumulates (at least one).
+// The shaders index its words with 32-bit integers, which bounds the items.
 GradientCopies gradientCopies(const VulkanContext& context, gpu::GradientAccumulator accumulator, uint32_t items,
                               const char* name) {
     const gpu::GradientAccumulatorLayout layout = gpu::layoutOf(accumulator);
-    return GradientCopies(context, std::max(1u, items) * layout.sumsPerItem, layout.copies, name);
+    const uint64_t maxSums = UINT32_MAX / (uint64_t(layout.copies) * gpu::kFixedPointWordsPerSum) -
+                             gpu::kGradientCopyAlignment;
+    const uint64_t sums = std::max<uint64_t>(1, items) * layout.sumsPerItem;
+    if (sums > maxSums) {
+        throw Error(std::string(name) + ": " + std::to_string(items) + " items to differentiate, more than the " +
+                    std::to_string(maxSums / layout.sumsPerItem) +
+                    " the adjoint pass can address; differentiate fewer or smaller textures");
+    }
+    return GradientCopies(context, uint32_t(sums), layout.copies, name);
 }
 
 }  // namespace

@@ -37,12 +37,13 @@ uint32_t segmentLimit(uint32_t maxDepth) {
     return 4 * (maxDepth + 1) + 64;
 }
 
+// Saturates: a count that does not fit is refused where it is used (path_buffers.cpp).
 uint32_t totalTexels(const Scene& scene) {
     uint64_t count = 0;
     for (const Texture& texture : scene.textures) {
         count += texture.texels.size();
     }
-    return static_cast<uint32_t>(count);
+    return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
 }
 
 uint32_t bit(uint32_t queue) {

@@ -45,7 +45,7 @@ struct SceneGradients {
 // on in derivative mode to find that factor's gradient (docs/gradients.md), which costs
 // as much as the rest of a path; where that gradient is not wanted the path ends there,
 // as in the primal pass, and the other gradients are the same.
-// Texel gradients take 144 bytes per texel of every texture: they are held only when
+// Texel gradients take 216 bytes per texel of every texture: they are held only when
 // wanted.
 struct DerivativeTargets {
     bool mediumScattering = true;

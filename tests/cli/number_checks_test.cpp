@@ -84,6 +84,18 @@ TEST_F(NumberChecksTest, AnisotropyAtTheEndsOfItsRangeRendersAndDifferentiatesFi
 
 TEST_F(NumberChecksTest, TheBrightestAcceptedEmissionGivesFinitePixels) {
     expectFinite(render("--spp 16 --max-depth 20 --set lights/light/emission=1e12 --set media/fog/sigma_s=0"));
+    // Its loss and gradients are finite too: the squared differences of a small image
+    // (few pixels to average over) are far beyond 2^64 and within the fixed-point sums.
+    fs::path dark = targetWith(0.0f, 0, 0, 0);
+    RunResult bright = run("grad " + fog() + " --target " + dark.string() +
+                           " --param lights/light/emission --param media/fog/sigma_a --set lights/light/emission=1e12"
+                           " --spp 4 --json");
+    ASSERT_EQ(bright.exitCode, 0) << bright.err;
+    nlohmann::json result = nlohmann::json::parse(bright.out);
+    EXPECT_TRUE(result["loss"].is_number() && result["loss"].get<double>() > 1e19) << bright.out;
+    for (const auto& [name, gradient] : result["gradients"].items()) {
+        for (const nlohmann::json& value : gradient) EXPECT_TRUE(value.is_number()) << name << ": " << bright.out;
+    }
     RunResult r = run("render " + fog() + " --set lights/light/emission=1e38 -o " + (dir_ / "bright.exr").string());
     expectError(r, {"lights/light/emission", "must be in [0, 1e+12], got 1e+38"});
     EXPECT_FALSE(fs::exists(dir_ / "bright.exr"));

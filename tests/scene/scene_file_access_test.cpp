@@ -78,7 +78,11 @@ TEST(SceneFileAccess, RefusesBuffersOutsideItsDirectoryWithoutSayingTheirSize) {
         fs::path scene = s.withBufferUri(uri);
         expectRefused(scene, {"edited.gltf", "buffers[0].uri", std::string(uri), "outside the scene's directory",
                               "--allow-outside-files"});
-        EXPECT_EQ(errorOf(scene).find(size), std::string::npos) << errorOf(scene);
+        // The scratch directory's name may hold any digits; the rest must not give the size.
+        std::string message = errorOf(scene);
+        const std::string directory = s.directory.path().string();
+        for (size_t at; (at = message.find(directory)) != std::string::npos;) message.erase(at, directory.size());
+        EXPECT_EQ(message.find(size), std::string::npos) << errorOf(scene);
     }
     EXPECT_EQ(loadScene(s.withBufferUri("../secret/geom.bin"), {true}).scene.triangles.size(), 12u);
 }
