@@ -78,20 +78,18 @@ RunStart runStart(const OptimizeCommandOptions& options) {
 // Before any work: the directory can be written, and holds no other run unless told.
 void requireRunDirectory(const OptimizeCommandOptions& options) {
     requireOutputDirectory(options.resume.empty() ? "--out" : "--resume", options.out);
-    requireRunDirectoryFor(options.out, runStart(options));
+    requireRunDirectoryFor(options.out, runStart(options), !options.experiment.empty());
 }
 
 // The files a run writes into its directory (and --overwrite removes) must not be ones
 // it reads: `optimize scene.gltf --out .` would replace the user's scene.
-void requireRunWritesNoInput(const std::filesystem::path& directory, const std::vector<NamedOutput>& inputs) {
-    std::vector<const char*> written(runFileNames().begin(), runFileNames().end());
-    written.insert(written.end(), experimentFileNames().begin(), experimentFileNames().end());
-    for (const char* name : written) {
-        for (const NamedOutput& input : inputs) {
-            if (sameFile(directory / name, input.path)) {
-                throw Error("--out " + directory.string() + ": the run writes " + name + " there, which is " +
-                            input.option + " " + input.path.string() + "; give another --out");
-            }
+void requireRunWritesNoInput(const std::filesystem::path& directory, bool experiment,
+                             const std::vector<NamedOutput>& inputs) {
+    for (const NamedOutput& input : inputs) {
+        const std::filesystem::path parent = input.path.parent_path().empty() ? "." : input.path.parent_path();
+        if (isRunFileName(input.path.filename().string(), experiment) && sameFile(parent, directory)) {
+            throw Error("--out " + directory.string() + ": the run writes " + input.path.filename().string() +
+                        " there, which is " + input.option + " " + input.path.string() + "; give another --out");
         }
     }
 }
@@ -157,7 +155,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     LossKind loss = parseLossKind(options.loss);
     std::vector<NamedOutput> inputs = {{"SCENE", options.scene.file}};
     for (const std::string& target : options.targets) inputs.push_back({"--target", targetFile(target)});
-    requireRunWritesNoInput(options.out, inputs);
+    requireRunWritesNoInput(options.out, false, inputs);
 
     Scene scene = loadSceneWithOverrides(options.scene);
     requireOptimisableParameters(scene, options.optimize.parameters);
@@ -208,9 +206,9 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
         throw Error("--experiment: the experiment file gives the scene, targets and parameters; "
                     "drop SCENE, --target, --param and --set");
     }
-    requireRunWritesNoInput(options.out, {{"--experiment", options.experiment}});
+    requireRunWritesNoInput(options.out, true, {{"--experiment", options.experiment}});
     Experiment experiment = readExperiment(options.experiment);
-    requireRunWritesNoInput(options.out, {{"the experiment's scene", experiment.scene}});
+    requireRunWritesNoInput(options.out, true, {{"the experiment's scene", experiment.scene}});
     applyOverrides(options, overrides, experiment);
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     LoadedScene loaded = loadScene(experiment.scene, options.scene.access);

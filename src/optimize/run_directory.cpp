@@ -1,6 +1,8 @@
 #include "optimize/run_directory.h"
 
+#include <algorithm>
 #include <array>
+#include <regex>
 #include <vector>
 
 #include "core/error.h"
@@ -13,17 +15,24 @@ namespace {
 constexpr std::array<const char*, 8> kRunFiles = {"log.jsonl", "checkpoint.json", "params.json", "scene.gltf",
                                                   "final.exr", "final.png",       "diff.png",    "loss.svg"};
 constexpr std::array<const char*, 2> kExperimentFiles = {"target.exr", "target.png"};
+// What scene.gltf refers to beside it (scene/write_scene.h): a .glb's binary chunk,
+// base colour textures, and copies of external files from outside the directory.
+const std::regex kSceneCompanion(R"(scene\.(bin|image[0-9]+\.png|(buffers|images)[0-9]+(\.[A-Za-z0-9]+)?))");
 
 bool present(const fs::path& file) {
     std::error_code error;
     return fs::exists(fs::symlink_status(file, error));
 }
 
-std::vector<std::string> presentRunFiles(const fs::path& directory) {
+// The run files in `directory`, sorted; none when it does not exist.
+std::vector<std::string> presentRunFiles(const fs::path& directory, bool experiment) {
     std::vector<std::string> found;
-    for (const char* name : kRunFiles) {
-        if (present(directory / name)) found.push_back(name);
+    std::error_code error;
+    for (const fs::directory_entry& entry : fs::directory_iterator(directory, error)) {
+        std::string name = entry.path().filename().string();
+        if (isRunFileName(name, experiment)) found.push_back(name);
     }
+    std::sort(found.begin(), found.end());
     return found;
 }
 
@@ -35,15 +44,12 @@ std::string listed(const std::vector<std::string>& names) {
 
 }  // namespace
 
-std::span<const char* const> runFileNames() {
-    return kRunFiles;
+bool isRunFileName(const std::string& name, bool experiment) {
+    auto named = [&](const auto& names) { return std::find(names.begin(), names.end(), name) != names.end(); };
+    return named(kRunFiles) || std::regex_match(name, kSceneCompanion) || (experiment && named(kExperimentFiles));
 }
 
-std::span<const char* const> experimentFileNames() {
-    return kExperimentFiles;
-}
-
-void requireRunDirectoryFor(const fs::path& directory, RunStart start) {
+void requireRunDirectoryFor(const fs::path& directory, RunStart start, bool experiment) {
     const std::string dir = directory.string();
     if (start == RunStart::Resume) {
         if (!present(directory / kCheckpointFileName)) {
@@ -52,7 +58,7 @@ void requireRunDirectoryFor(const fs::path& directory, RunStart start) {
         }
         return;
     }
-    std::vector<std::string> found = presentRunFiles(directory);
+    std::vector<std::string> found = presentRunFiles(directory, experiment);
     if (found.empty()) return;
     if (start == RunStart::New) {
         throw Error("--out " + dir + " holds another run (" + listed(found) + "): give --overwrite to replace it, " +
@@ -67,10 +73,8 @@ void requireRunDirectoryFor(const fs::path& directory, RunStart start) {
     }
 }
 
-void removeRunFiles(const fs::path& directory, bool experimentFiles) {
-    std::vector<std::string> names(kRunFiles.begin(), kRunFiles.end());
-    if (experimentFiles) names.insert(names.end(), kExperimentFiles.begin(), kExperimentFiles.end());
-    for (const std::string& name : names) {
+void removeRunFiles(const fs::path& directory, bool experiment) {
+    for (const std::string& name : presentRunFiles(directory, experiment)) {
         std::error_code error;
         fs::remove(directory / name, error);
         if (error) throw Error("--overwrite: cannot remove " + (directory / name).string() + ": " + error.message());

@@ -126,9 +126,10 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
 
     expectRefused(optimizeCommand(target) + " --out " + out.string(), "--overwrite");
     EXPECT_EQ(slurp(out / "log.jsonl"), log);
-    // Any one of a run's files marks the directory as a run's.
+    // Any one of a run's files marks the directory as a run's, what scene.gltf refers to
+    // beside it included.
     for (const char* name : {"log.jsonl", "checkpoint.json", "params.json", "scene.gltf", "final.exr", "final.png",
-                             "diff.png", "loss.svg"}) {
+                             "diff.png", "loss.svg", "scene.bin", "scene.image0.png", "scene.buffers2.bin"}) {
         fs::path other = dir_ / "other";
         fs::create_directories(other);
         std::ofstream(other / name) << "another run";
@@ -145,6 +146,13 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
     for (std::string line; std::getline(lines, line);) ++count;
     EXPECT_EQ(count, 3u);
     EXPECT_EQ(slurp(out / "notes.txt"), "mine");
+
+    // --overwrite removes only the run's files: a scene.blend or notes are the user's.
+    std::ofstream(out / "scene.bin") << "old run";
+    std::ofstream(out / "scene.blend") << "mine";
+    ASSERT_EQ(run(optimizeCommand(target, 1) + " --overwrite --out " + out.string()).exitCode, 0);
+    EXPECT_FALSE(fs::exists(out / "scene.bin"));
+    EXPECT_EQ(slurp(out / "scene.blend"), "mine");
 }
 
 // The files a run writes must not be what it reads, --overwrite or not: the scene, a
