@@ -113,7 +113,7 @@ void printJson(const GradientResult& result, const std::vector<GradientCheckRow>
 }
 
 int runGrad(const GradOptions& options) {
-    Scene scene = loadSceneWithOverrides(options.scene);
+    Scene scene = std::move(loadSceneWithOverrides(options.scene).scene);
     std::vector<TargetView> views = readViews(options, scene);
     VulkanContext context(ContextOptions{options.device});
     RenderedLossGradient lossGradient(context, scene, views, options.parameters, options.settings,

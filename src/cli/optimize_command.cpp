@@ -23,6 +23,7 @@
 #include "optimize/run_directory.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "scene/scene_warnings.h"
 #include "vk/context.h"
 #include "vk/vulkan.h"
 
@@ -94,6 +95,12 @@ void requireRunWritesNoInput(const std::filesystem::path& directory, bool experi
     }
 }
 
+std::vector<NamedOutput> filesTheSceneReads(const LoadedScene& loaded) {
+    std::vector<NamedOutput> files;
+    for (const std::filesystem::path& file : loaded.externalFiles) files.push_back({"a file the scene reads", file});
+    return files;
+}
+
 // The file of a --target FILE or CAMERA=FILE, as readTarget splits it.
 std::string targetFile(const std::string& target) {
     size_t equals = target.find('=');
@@ -157,7 +164,9 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     for (const std::string& target : options.targets) inputs.push_back({"--target", targetFile(target)});
     requireRunWritesNoInput(options.out, false, inputs);
 
-    Scene scene = loadSceneWithOverrides(options.scene);
+    LoadedScene loaded = loadSceneWithOverrides(options.scene);
+    requireRunWritesNoInput(options.out, false, filesTheSceneReads(loaded));
+    Scene& scene = loaded.scene;
     requireOptimisableParameters(scene, options.optimize.parameters);
     LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
     std::vector<TargetView> views = readTargets(options.targets, scene);
@@ -213,8 +222,10 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     LoadedScene loaded = loadScene(experiment.scene, options.scene.access);
     for (const std::string& warning : loaded.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    requireRunWritesNoInput(options.out, true, filesTheSceneReads(loaded));
     Scene checked = loaded.scene;
     prepareExperimentScene(experiment, checked);  // its errors before any rendering
+    for (const std::string& warning : sceneWarnings(checked)) std::fprintf(stderr, "warning: %s\n", warning.c_str());
 
     throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});

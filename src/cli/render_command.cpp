@@ -54,7 +54,17 @@ void writeImage(const std::string& file, ImageFileType type, const Image& image)
 
 int runRender(const RenderOptions& options) {
     const ImageFileType outputType = requireOutputs(options);
-    Scene scene = loadSceneWithOverrides(options.scene);
+    LoadedScene loaded = loadSceneWithOverrides(options.scene);
+    for (const std::filesystem::path& input : loaded.externalFiles) {
+        std::vector<NamedOutput> outputs = {{"-o", options.output}};
+        if (!options.png.empty()) outputs.push_back({"--png", options.png});
+        for (const NamedOutput& output : outputs) {
+            if (sameFile(output.path, input)) {
+                throw Error(output.option + " " + output.path.string() + " is a file the scene reads; give another");
+            }
+        }
+    }
+    Scene& scene = loaded.scene;
 
     auto bvhStart = std::chrono::steady_clock::now();
     Bvh bvh = buildBvh(scene.positions, scene.triangles);

@@ -17,7 +17,7 @@ void addSceneOptions(CLI::App& command, SceneOptions& options) {
                      "Let the scene read buffers and images outside its own directory (absolute paths, ../)");
 }
 
-Scene loadSceneWithOverrides(const SceneOptions& options) {
+LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     LoadedScene loaded = loadScene(options.file, options.access);
     for (const std::string& warning : loaded.warnings) {
         std::fprintf(stderr, "warning: %s\n", warning.c_str());
@@ -28,7 +28,7 @@ Scene loadSceneWithOverrides(const SceneOptions& options) {
     for (const std::string& warning : sceneWarnings(loaded.scene)) {
         std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }
-    return std::move(loaded.scene);
+    return loaded;
 }
 
 }  // namespace vkdr

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "scene/load_scene.h"
 #include "scene/scene.h"
 #include "scene/scene_file_access.h"
 
@@ -19,6 +20,6 @@ struct SceneOptions {
 void addSceneOptions(CLI::App& command, SceneOptions& options);
 
 // Loads the scene, prints the loader's warnings, applies the --set overrides.
-Scene loadSceneWithOverrides(const SceneOptions& options);
+LoadedScene loadSceneWithOverrides(const SceneOptions& options);
 
 }  // namespace vkdr

@@ -53,7 +53,8 @@ void addSceneMedium(const tinygltf::Model& model, GltfDiagnostics& diagnostics, 
 
 LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& access) {
     GltfDiagnostics diagnostics(file.string());
-    tinygltf::Model model = readGltfModel(file, access, diagnostics);
+    std::vector<std::filesystem::path> externalFiles;
+    tinygltf::Model model = readGltfModel(file, access, diagnostics, externalFiles);
     requireUnderstoodExtensions(model, diagnostics);
     if (!model.lights.empty()) {
         diagnostics.warn("extensions.KHR_lights_punctual",
@@ -69,7 +70,7 @@ LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& 
         diagnostics.fail("", "the scene has no triangles");
     }
     prepareMediumBoundaries(scene, instances, diagnostics);
-    return {std::move(scene), diagnostics.takeWarnings()};
+    return {std::move(scene), diagnostics.takeWarnings(), std::move(externalFiles)};
 }
 
 }  // namespace vkdr

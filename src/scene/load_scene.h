@@ -10,7 +10,8 @@ namespace vkdr {
 
 struct LoadedScene {
     Scene scene;
-    std::vector<std::string> warnings;  // things in the file that were ignored or approximated
+    std::vector<std::string> warnings;                 // things in the file that were ignored or approximated
+    std::vector<std::filesystem::path> externalFiles;  // the buffers and images it read, links resolved
 };
 
 // Reads a .gltf or .glb file into a flattened, world-space Scene (docs/scene-format.md

@@ -70,6 +70,7 @@ bool loadBoundedImage(tinygltf::Image* image, const int imageIndex, std::string*
 struct FileAccessState {
     const SceneFiles& files;
     std::string prefix;  // the base directory as tinygltf joins it: ending in '/'
+    std::vector<std::filesystem::path>& read;  // the files read, symbolic links resolved
 };
 
 // The decoded URI in a path tinygltf asks for; nullopt for its working-directory guess.
@@ -87,7 +88,7 @@ bool fileExists(const std::string& path, void* user) {
 std::string expandFilePath(const std::string& path, void*) { return path; }
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
-    const auto& state = *static_cast<const FileAccessState*>(user);
+    auto& state = *static_cast<FileAccessState*>(user);
     std::optional<std::string> requested = requestedPath(path, state);
     ResolvedFile resolved = requested ? state.files.resolvePath(*requested) : ResolvedFile{{}, "is not read"};
     if (!resolved.problem.empty()) {
@@ -97,6 +98,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* error, const st
     try {
         std::string bytes = readRegularFile(resolved.file);
         out->assign(bytes.begin(), bytes.end());
+        state.read.push_back(resolved.file);
         return true;
     } catch (const Error& e) {
         *error = e.what();
@@ -139,7 +141,7 @@ std::string_view glbJson(std::string_view bytes, GltfDiagnostics& diagnostics) {
 }  // namespace
 
 tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFileAccess& access,
-                              GltfDiagnostics& diagnostics) {
+                              GltfDiagnostics& diagnostics, std::vector<std::filesystem::path>& externalFiles) {
     std::string extension = lowercaseExtension(file);
     if (extension != ".gltf" && extension != ".glb") {
         diagnostics.fail("", "expected a .gltf or .glb file");
@@ -154,7 +156,7 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
     requireReadableUris(binary ? std::string(glbJson(bytes, diagnostics)) : bytes, files, diagnostics);
 
     std::string baseDirectory = files.directory().string();
-    FileAccessState state{files, baseDirectory.back() == '/' ? baseDirectory : baseDirectory + "/"};
+    FileAccessState state{files, baseDirectory.back() == '/' ? baseDirectory : baseDirectory + "/", externalFiles};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({fileExists, expandFilePath, readWholeFile, writeWholeFile, &state});
     loader.SetImageLoader(loadBoundedImage, nullptr);

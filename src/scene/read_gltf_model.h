@@ -1,5 +1,6 @@
 #pragma once
 #include <filesystem>
+#include <vector>
 
 #include <tiny_gltf.h>
 
@@ -11,8 +12,8 @@ namespace vkdr {
 // Parses a .gltf or .glb file with tinygltf, buffers and images included (external
 // files, data URIs and GLB chunks alike). External files are read only as `access`
 // allows; a refused one fails naming its field ("buffers[1].uri"). Otherwise fails with
-// tinygltf's own error text.
+// tinygltf's own error text. The external files it read are added to `externalFiles`.
 tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFileAccess& access,
-                              GltfDiagnostics& diagnostics);
+                              GltfDiagnostics& diagnostics, std::vector<std::filesystem::path>& externalFiles);
 
 }  // namespace vkdr

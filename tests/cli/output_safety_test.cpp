@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cli_run.h"
 
@@ -179,6 +180,48 @@ TEST_F(OutputSafety, ARunNeverWritesOverItsOwnInputs) {
     expectRefused("optimize --experiment " + (out / "params.json").string() + " --overwrite --out " + out.string(),
                   "--experiment");
     EXPECT_EQ(slurp(out / "params.json"), "{}");
+}
+
+// The fog box with its buffer in an external file of `bufferName` beside `directory/name`.
+fs::path fogWithExternalBuffer(const fs::path& directory, const std::string& name, const std::string& bufferName) {
+    nlohmann::json gltf = nlohmann::json::parse(slurp(std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf"));
+    const std::string uri = gltf["buffers"][0]["uri"];
+    const std::string base64 = uri.substr(uri.find(',') + 1);
+    std::string bytes;
+    int value = 0, bits = -8;
+    for (char c : base64) {
+        const size_t digit = std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(c);
+        if (digit == std::string::npos) break;
+        value = (value << 6) | int(digit);
+        bits += 6;
+        if (bits >= 0) {
+            bytes.push_back(char((value >> bits) & 0xff));
+            bits -= 8;
+        }
+    }
+    std::ofstream(directory / bufferName, std::ios::binary) << bytes;
+    gltf["buffers"][0]["uri"] = bufferName;
+    std::ofstream(directory / name) << gltf.dump();
+    return directory / name;
+}
+
+// Nor over a file the scene reads.
+TEST_F(OutputSafety, NoOutputIsAFileTheSceneReads) {
+    fs::path target = fogTarget();
+    fs::path scene = fogWithExternalBuffer(dir_, "model.gltf", "scene.bin");
+    const std::string buffer = slurp(dir_ / "scene.bin");
+    expectRefused("optimize " + scene.string() + " --target " + target.string() +
+                      " --param media/fog/sigma_a --iters 1 --spp 1 --overwrite --out " + dir_.string(),
+                  "a file the scene reads");
+    EXPECT_EQ(slurp(dir_ / "scene.bin"), buffer);
+
+    fs::path odd = fogWithExternalBuffer(dir_, "odd.gltf", "data.png");
+    expectRefused("render " + odd.string() + small() + " -o " + (dir_ / "data.png").string(), "a file the scene reads");
+    expectRefused("render " + odd.string() + small() + " -o " + (dir_ / "x.exr").string() + " --png " +
+                      (dir_ / "data.png").string(),
+                  "a file the scene reads");
+    EXPECT_EQ(slurp(dir_ / "data.png"), buffer);
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
 }
 
 TEST_F(OutputSafety, NumericOptionsMustBeFiniteAndInRange) {
