@@ -100,6 +100,15 @@ void requireDistinctOutputs(const std::vector<NamedOutput>& outputs) {
     }
 }
 
+void requireOutputsAreNotInputs(const std::vector<NamedOutput>& outputs,
+                                const std::vector<fs::path>& inputFiles, const std::string& inputs) {
+    for (const NamedOutput& output : outputs) {
+        for (const fs::path& input : inputFiles) {
+            if (sameFile(output.path, input)) fail(output.option, output.path, "is " + inputs + "; give another");
+        }
+    }
+}
+
 std::optional<ImageFileType> imageFileTypeOf(const fs::path& file) {
     std::string extension = lowercase(file.extension().string());
     if (extension == ".exr") return ImageFileType::Exr;

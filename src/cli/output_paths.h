@@ -32,6 +32,11 @@ bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b);
 // Refuses two outputs that are one file (sameFile): the second write would replace the first.
 void requireDistinctOutputs(const std::vector<NamedOutput>& outputs);
 
+// Refuses an output that is one of the files a command reads (sameFile), which are
+// described together as `inputs` ("a file the scene reads").
+void requireOutputsAreNotInputs(const std::vector<NamedOutput>& outputs,
+                                const std::vector<std::filesystem::path>& inputFiles, const std::string& inputs);
+
 enum class ImageFileType { Exr, Png };
 
 // The type an image file has by its extension: ".exr" or ".png", in any case; nullopt

@@ -26,6 +26,12 @@ struct RenderOptions {
     std::string device;
 };
 
+std::vector<NamedOutput> outputsOf(const RenderOptions& options) {
+    std::vector<NamedOutput> outputs = {{"-o", options.output}};
+    if (!options.png.empty()) outputs.push_back({"--png", options.png});
+    return outputs;
+}
+
 // Every output checked before any work: a bad path fails at once, not after the render.
 ImageFileType requireOutputs(const RenderOptions& options) {
     requireOutputFile("-o", options.output);
@@ -39,7 +45,7 @@ ImageFileType requireOutputs(const RenderOptions& options) {
         if (imageFileTypeOf(options.png) != ImageFileType::Png) {
             throw Error("--png " + options.png + ": must end in .png");
         }
-        requireDistinctOutputs({{"-o", options.output}, {"--png", options.png}});
+        requireDistinctOutputs(outputsOf(options));
     }
     return *type;
 }
@@ -55,15 +61,7 @@ void writeImage(const std::string& file, ImageFileType type, const Image& image)
 int runRender(const RenderOptions& options) {
     const ImageFileType outputType = requireOutputs(options);
     LoadedScene loaded = loadSceneWithOverrides(options.scene);
-    for (const std::filesystem::path& input : loaded.externalFiles) {
-        std::vector<NamedOutput> outputs = {{"-o", options.output}};
-        if (!options.png.empty()) outputs.push_back({"--png", options.png});
-        for (const NamedOutput& output : outputs) {
-            if (sameFile(output.path, input)) {
-                throw Error(output.option + " " + output.path.string() + " is a file the scene reads; give another");
-            }
-        }
-    }
+    requireOutputsAreNotInputs(outputsOf(options), loaded.externalFiles, "a file the scene reads");
     Scene& scene = loaded.scene;
 
     auto bvhStart = std::chrono::steady_clock::now();
