@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what vkdiffrender needs to build, run and test on Debian 12 (and clang with
+# Installs what vkdiffrender needs to build, run and test on Debian 12 (the Python module's
+# pybind11, numpy, PyTorch and pytest among them; clang with
 # its libFuzzer runtime for tools/fuzz.sh) from Debian's packages, then the Khronos glTF
 # validator from npm into build/npm for the test that validates the shipped and
 # documented scenes. Run as root; does nothing that is already done.
@@ -13,6 +14,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libglm-dev libtbb-dev libcli11-dev
   libgtest-dev
+  pybind11-dev python3-dev python3-numpy python3-torch python3-pytest
   clang libclang-rt-14-dev
 )
 # node and npm run the glTF validator; a node from elsewhere (NodeSource) carries its own npm.

@@ -5,7 +5,7 @@
 #include "bench/host_memory.h"
 #include "bench/scene_benchmark.h"
 #include "cli/commands.h"
-#include "cli/output_paths.h"
+#include "image/output_paths.h"
 #include "cli/progress_bar.h"
 #include "cli/number_options.h"
 #include "cli/sampling_options.h"

@@ -3,7 +3,7 @@
 
 #include "bvh/bvh.h"
 #include "cli/commands.h"
-#include "cli/output_paths.h"
+#include "image/output_paths.h"
 #include "cli/progress_bar.h"
 #include "cli/number_options.h"
 #include "cli/sampling_options.h"

@@ -91,6 +91,15 @@ public:
     double loss();
     GradientEvaluation renderWithGradients();
 
+    // Gradients of a loss the caller computes from render()'s image. enableImageAdjoint()
+    // allocates the adjoint state without a target; backpropagate() takes dLoss/dI (one
+    // RGB value per pixel) and returns dLoss/dparameters, replaying the paths with random
+    // numbers independent of the image render() gives at the current seed, so that the
+    // gradient carries no covariance of the image with its own derivative
+    // (docs/gradients.md, "A loss of your own").
+    void enableImageAdjoint(const DerivativeTargets& derivativeTargets = {});
+    SceneGradients backpropagate(const Image& imageAdjoint);
+
     // The radiance of the path slots of the last pass, one per path in flight: after a
     // primal pass each path's L; after an adjoint pass what the replay left of it (L_rem),
     // zero but for rounding wherever the replay took the primal pass's decisions.
@@ -128,6 +137,14 @@ private:
     void backpropagateWithReplay(GradientEvaluation& result);
     void backpropagateSplitSamples(GradientEvaluation& result);
     void backpropagateInOnePass(GradientEvaluation& result);
+    // Allocates the adjoint state; keptPaths as for AdjointBuffers.
+    void allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths);
+    // Replays every sample and runs its adjoint pass, at random numbers independent of
+    // render()'s at the current seed; imageAdjoint must hold dLoss/dI.
+    void replayIndependentlyAndBackpropagate();
+    void recordClearAccumulators(CommandRecorder& recorder);
+    // Downloads the gradient accumulators, together with `alsoDownload`, in one go.
+    SceneGradients downloadGradients(std::vector<Download> alsoDownload);
     // One segment of every path alive: closest hits, free flights, vertices, shadow rays.
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
                        uint32_t currentRays);

@@ -13,8 +13,9 @@
 namespace vkdr {
 namespace {
 
-// Flipped in the seed of the paths replayed when the image cannot lend them its
-// samples (one sample per pixel), which makes them independent of the image's.
+// Flipped in the seed of the paths replayed for an image they must be independent of:
+// when the image cannot lend them its samples (one sample per pixel), and for a loss
+// the caller computes (backpropagate).
 constexpr uint32_t kIndependentSeedBit = 1u << 31;
 
 }  // namespace
@@ -24,9 +25,6 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
         throw Error("the target is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
                     " but the render is " + std::to_string(width()) + "x" + std::to_string(height()));
     }
-    if (!pipelines_.gradient) {
-        pipelines_.gradient = std::make_unique<GradientPipelines>(context_);
-    }
     const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
     const bool onePass = settings_.spp >= 2 && pixels * settings_.spp <= paths_->capacity;
     splitSample_ = onePass ? settings_.spp / 2 : 0;
@@ -34,14 +32,8 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
     // half renders (backpropagateSplitSamples), when that fits in its budget.
     const uint64_t keptPaths = onePass ? 0 : pixels * (settings_.spp / 2);
     const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
-    adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
-                                                mediumCount_, materialCount_,
-                                                derivativeTargets.texels ? texelCount_ : 0,
-                                                keptPaths * 16 <= keptBudget ? keptPaths : 0);
     lossKind_ = loss;
-    derivativeTargets_ = (derivativeTargets.mediumScattering ? 1u << gpu::kTargetMediumScattering : 0u) |
-                         (derivativeTargets.baseColor ? 1u << gpu::kTargetBaseColor : 0u);
-    texelGradientsWanted_ = derivativeTargets.texels;
+    allocateAdjoint(derivativeTargets, keptPaths * 16 <= keptBudget ? keptPaths : 0);
     std::vector<glm::vec4> texels(size_t(target.width) * target.height);
     for (size_t i = 0; i < texels.size(); ++i) {
         texels[i] = glm::vec4(target.rgb[3 * i], target.rgb[3 * i + 1], target.rgb[3 * i + 2], 0.0f);
@@ -50,7 +42,79 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
     CommandRecorder recorder(context_);
     recorder.copy(staging, adjoint_->target, adjoint_->target.size());
     recorder.submitAndWait();
+}
+
+void Renderer::enableImageAdjoint(const DerivativeTargets& derivativeTargets) {
+    splitSample_ = 0;
+    allocateAdjoint(derivativeTargets, 0);
+}
+
+void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths) {
+    if (!pipelines_.gradient) {
+        pipelines_.gradient = std::make_unique<GradientPipelines>(context_);
+    }
+    adjoint_.reset();  // the old state's memory is free before the new one takes its own
+    adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
+                                                mediumCount_, materialCount_,
+                                                derivativeTargets.texels ? texelCount_ : 0, keptPaths);
+    derivativeTargets_ = (derivativeTargets.mediumScattering ? 1u << gpu::kTargetMediumScattering : 0u) |
+                         (derivativeTargets.baseColor ? 1u << gpu::kTargetBaseColor : 0u);
+    texelGradientsWanted_ = derivativeTargets.texels;
     uploadParams();
+}
+
+SceneGradients Renderer::backpropagate(const Image& imageAdjoint) {
+    if (!adjoint_) {
+        throw Error("internal: backpropagate() before enableImageAdjoint()");
+    }
+    if (imageAdjoint.width != width() || imageAdjoint.height != height()) {
+        throw Error("the image adjoint is " + std::to_string(imageAdjoint.width) + "x" +
+                    std::to_string(imageAdjoint.height) + " but the render is " + std::to_string(width()) + "x" +
+                    std::to_string(height()));
+    }
+    // Each path carries its pixel's dLoss/dI divided by the samples per pixel (adjoint.glsl).
+    const float perSample = 1.0f / float(settings_.spp);
+    std::vector<glm::vec4> perPixel(size_t(imageAdjoint.width) * imageAdjoint.height);
+    for (size_t i = 0; i < perPixel.size(); ++i) {
+        const float* rgb = &imageAdjoint.rgb[3 * i];
+        perPixel[i] = glm::vec4(rgb[0] * perSample, rgb[1] * perSample, rgb[2] * perSample, 0.0f);
+    }
+    Buffer staging = uploadVector<glm::vec4>(context_, perPixel, "image adjoint (staging)");
+    stats_ = {};
+    {
+        CommandRecorder recorder(context_);
+        recorder.copy(staging, adjoint_->imageAdjoint, staging.size());
+        recordClearAccumulators(recorder);
+        recorder.submitAndWait();
+    }
+    replayIndependentlyAndBackpropagate();
+    stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
+    return downloadGradients({});
+}
+
+void Renderer::recordClearAccumulators(CommandRecorder& recorder) {
+#define VKDR_CLEAR_ACCUMULATOR(name, ...) recorder.fill(adjoint_->name.buffer, 0);
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_CLEAR_ACCUMULATOR)
+#undef VKDR_CLEAR_ACCUMULATOR
+}
+
+SceneGradients Renderer::downloadGradients(std::vector<Download> alsoDownload) {
+    // Every copy of every accumulator, in the order of VKDR_GRADIENT_ACCUMULATORS; the
+    // spans in the downloads point into each vector's own storage, which stays put as
+    // `copies` grows.
+    std::vector<std::vector<int64_t>> copies;
+#define VKDR_DOWNLOAD_ACCUMULATOR(name, ...)                                               \
+    copies.push_back(adjoint_->name.roomForCopies());                                      \
+    alsoDownload.push_back({&adjoint_->name.buffer, std::as_writable_bytes(std::span(copies.back()))});
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_DOWNLOAD_ACCUMULATOR)
+#undef VKDR_DOWNLOAD_ACCUMULATOR
+    downloadBuffers(context_, alsoDownload);
+    SceneGradients gradients;
+    auto copiesOf = copies.begin();
+#define VKDR_SUM_ACCUMULATOR(name, field, ...) gradients.field = adjoint_->name.sumOfCopies(*copiesOf++);
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_SUM_ACCUMULATOR)
+#undef VKDR_SUM_ACCUMULATOR
+    return gradients;
 }
 
 double Renderer::loss() {
@@ -95,9 +159,7 @@ GradientEvaluation Renderer::renderWithGradients() {
     stats_ = {};
     {
         CommandRecorder recorder(context_);
-#define VKDR_CLEAR_ACCUMULATOR(name, ...) recorder.fill(adjoint_->name.buffer, 0);
-        VKDR_GRADIENT_ACCUMULATORS(VKDR_CLEAR_ACCUMULATOR)
-#undef VKDR_CLEAR_ACCUMULATOR
+        recordClearAccumulators(recorder);
         recordClearFilm(recorder);
         if (splitSample_ > 0) {
             recorder.fill(adjoint_->filmBaseline, 0);
@@ -116,24 +178,10 @@ GradientEvaluation Renderer::renderWithGradients() {
 
     std::vector<glm::vec4> film(size_t(camera_.width) * camera_.height);
     int64_t lossWords[gpu::kFixedPointWordsPerSum];
-    std::vector<Download> downloads{{&paths_->film, std::as_writable_bytes(std::span(film))},
-                                    {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossWords))}};
-    // Every copy of every accumulator, in the order of VKDR_GRADIENT_ACCUMULATORS; the
-    // spans in `downloads` point into each vector's own storage, which stays put as
-    // `copies` grows.
-    std::vector<std::vector<int64_t>> copies;
-#define VKDR_DOWNLOAD_ACCUMULATOR(name, ...)                                               \
-    copies.push_back(adjoint_->name.roomForCopies());                                      \
-    downloads.push_back({&adjoint_->name.buffer, std::as_writable_bytes(std::span(copies.back()))});
-    VKDR_GRADIENT_ACCUMULATORS(VKDR_DOWNLOAD_ACCUMULATOR)
-#undef VKDR_DOWNLOAD_ACCUMULATOR
-    downloadBuffers(context_, downloads);
+    result.gradients = downloadGradients({{&paths_->film, std::as_writable_bytes(std::span(film))},
+                                          {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossWords))}});
     result.image = imageOfFilm(film);
     result.loss = fixedPointValue(lossWords);
-    auto copiesOf = copies.begin();
-#define VKDR_SUM_ACCUMULATOR(name, field, ...) result.gradients.field = adjoint_->name.sumOfCopies(*copiesOf++);
-    VKDR_GRADIENT_ACCUMULATORS(VKDR_SUM_ACCUMULATOR)
-#undef VKDR_SUM_ACCUMULATOR
     return result;
 }
 
@@ -200,14 +248,23 @@ void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
     });
     result.adjointMs += millisecondsOf([&] {
         submitLoss(settings_.spp, gpu::kLossImageFilm);
-        const uint32_t seed = settings_.seed;
-        setSeed(seed ^ kIndependentSeedBit);
+        replayIndependentlyAndBackpropagate();
+    });
+}
+
+void Renderer::replayIndependentlyAndBackpropagate() {
+    const uint32_t seed = settings_.seed;
+    setSeed(seed ^ kIndependentSeedBit);
+    try {
         forEachPass({0, settings_.spp}, [this](const PassRange& range) {
             runPass(range, PassMode::Replay);
             runPass(range, PassMode::Adjoint);
         }, {});
-        setSeed(seed);
-    });
+    } catch (...) {
+        setSeed(seed);  // an interrupted replay leaves the renderer as it found it
+        throw;
+    }
+    setSeed(seed);
 }
 
 }  // namespace vkdr

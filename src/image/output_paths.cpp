@@ -1,4 +1,4 @@
-#include "cli/output_paths.h"
+#include "image/output_paths.h"
 
 #include <unistd.h>
 

@@ -1,0 +1,183 @@
+#include "python/scene_session.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "diff/gradient_slots.h"
+#include "image/finite_pixels.h"
+#include "image/output_paths.h"
+#include "scene/parameters.h"
+#include "scene/scene_warnings.h"
+#include "scene/write_scene.h"
+
+namespace vkdr {
+namespace {
+
+// Renderers kept per session: each holds its paths' buffers (tens of MB at the default
+// paths per pass), and a loop seldom alternates between more views than this.
+constexpr size_t kCachedRenderers = 4;
+
+bool sameView(const RenderSettings& a, const RenderSettings& b) {
+    return a.camera == b.camera && a.width == b.width && a.height == b.height && a.spp == b.spp &&
+           a.maxDepth == b.maxDepth && a.pathsPerPass == b.pathsPerPass;
+}
+
+// What the adjoint must follow for these gradients (render/renderer.h, DerivativeTargets).
+DerivativeTargets derivativeTargetsOf(const std::vector<GradientSlot>& slots) {
+    DerivativeTargets targets{false, false, false};
+    for (const GradientSlot& slot : slots) {
+        targets.mediumScattering |= slot.kind == ParameterKind::SigmaS;
+        targets.baseColor |= slot.kind == ParameterKind::BaseColor || slot.kind == ParameterKind::BaseColorTexture;
+        targets.texels |= slot.kind == ParameterKind::BaseColorTexture;
+    }
+    return targets;
+}
+
+bool covers(const DerivativeTargets& have, const DerivativeTargets& want) {
+    return (have.mediumScattering || !want.mediumScattering) && (have.baseColor || !want.baseColor) &&
+           (have.texels || !want.texels);
+}
+
+}  // namespace
+
+struct SceneSession::CachedRenderer {
+    RenderSettings settings;
+    std::unique_ptr<Renderer> renderer;
+    uint64_t parameterVersion = 0;
+    std::optional<DerivativeTargets> adjoint;  // what enableImageAdjoint was given, if called
+};
+
+SceneSession::SceneSession(const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles)
+    : file_(file), loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})) {
+    warnings_ = loaded_.warnings;
+    for (std::string& warning : sceneWarnings(loaded_.scene)) {
+        warnings_.push_back(std::move(warning));
+    }
+    bvh_ = buildBvh(loaded_.scene.positions, loaded_.scene.triangles);
+    context_ = std::make_unique<VulkanContext>(ContextOptions{device});
+}
+
+SceneSession::~SceneSession() {
+    renderers_.clear();  // before the context they were made on
+}
+
+std::vector<ParameterInfo> SceneSession::parameters() const {
+    std::vector<ParameterInfo> infos;
+    for (const std::string& name : parameterNames(loaded_.scene)) {
+        infos.push_back(parameter(name));
+    }
+    return infos;
+}
+
+ParameterInfo SceneSession::parameter(const std::string& name) const {
+    const size_t values = getParameter(loaded_.scene, name).size();  // throws for an unknown name
+    const ParameterDescription& description = *parseParameterName(name)->description;
+    ParameterInfo info{name, {description.channels}, description.range};
+    if (description.kind == ParameterKind::BaseColorTexture) {
+        for (const Material& material : loaded_.scene.materials) {
+            if (!material.isMediumBoundary() && name == parameterName(description.kind, material.name)) {
+                const Texture& texture = loaded_.scene.textures[size_t(material.baseColorTexture)];
+                info.shape = {size_t(texture.height), size_t(texture.width), description.channels};
+            }
+        }
+    }
+    size_t count = 1;
+    for (size_t extent : info.shape) count *= extent;
+    if (count != values) {
+        throw Error("internal: " + name + " has " + std::to_string(values) + " values, not as its shape says");
+    }
+    return info;
+}
+
+std::vector<float> SceneSession::get(const std::string& name) const {
+    return getParameter(loaded_.scene, name);
+}
+
+void SceneSession::set(const std::string& name, const std::vector<float>& values) {
+    setParameter(loaded_.scene, name, values);
+    ++parameterVersion_;
+}
+
+SceneSession::CachedRenderer& SceneSession::rendererFor(const RenderSettings& settings) {
+    auto found = renderers_.begin();
+    while (found != renderers_.end() && !sameView(found->settings, settings)) ++found;
+    if (found == renderers_.end()) {
+        if (renderers_.size() == kCachedRenderers) {
+            renderers_.pop_back();  // its memory is free before the new renderer takes its own
+        }
+        renderers_.push_front(CachedRenderer{settings, std::make_unique<Renderer>(*context_, loaded_.scene, bvh_, settings),
+                                             parameterVersion_, std::nullopt});
+    } else {
+        renderers_.splice(renderers_.begin(), renderers_, found);
+    }
+    CachedRenderer& cached = renderers_.front();
+    if (cached.parameterVersion != parameterVersion_) {
+        cached.renderer->setParameters(loaded_.scene);
+        cached.parameterVersion = parameterVersion_;
+    }
+    cached.renderer->setSeed(settings.seed);
+    return cached;
+}
+
+template <typename Work>
+auto SceneSession::withRenderer(const RenderSettings& settings, Work work) {
+    CachedRenderer& cached = rendererFor(settings);
+    try {
+        auto result = work(cached);
+        requireNoValidationMessages(*context_);
+        return result;
+    } catch (...) {
+        // Work cut short (Ctrl-C, a device error) may leave the renderer's queues
+        // mid-pass: the next call builds a fresh one.
+        renderers_.pop_front();
+        throw;
+    }
+}
+
+Image SceneSession::render(const RenderSettings& settings) {
+    Image image = withRenderer(settings, [](CachedRenderer& cached) { return cached.renderer->render(); });
+    // Accepted scenes keep every pixel finite (docs/scene-format.md); should one not be,
+    // the caller gets an error, not the number.
+    if (std::optional<std::string> bad = unrepresentablePixel(image)) {
+        throw Error("the render's " + *bad);
+    }
+    return image;
+}
+
+std::vector<ParameterGradient> SceneSession::backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
+                                                           const std::vector<std::string>& names) {
+    for (size_t i = 0; i < imageAdjoint.rgb.size(); ++i) {
+        if (!std::isfinite(imageAdjoint.rgb[i])) {
+            const size_t pixel = i / 3;
+            throw Error("the image adjoint is not finite at pixel (" + std::to_string(pixel % size_t(imageAdjoint.width)) +
+                        ", " + std::to_string(pixel / size_t(imageAdjoint.width)) + ")");
+        }
+    }
+    const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
+    const DerivativeTargets wanted = derivativeTargetsOf(slots);
+    const SceneGradients gradients = withRenderer(settings, [&](CachedRenderer& cached) {
+        if (!cached.adjoint || !covers(*cached.adjoint, wanted)) {
+            cached.renderer->enableImageAdjoint(wanted);
+            cached.adjoint = wanted;
+        }
+        return cached.renderer->backpropagate(imageAdjoint);
+    });
+    std::vector<ParameterGradient> result;
+    for (const GradientSlot& slot : slots) {
+        result.push_back({slot.name, getParameter(loaded_.scene, slot.name), gatherGradient(slot, gradients)});
+    }
+    return result;
+}
+
+void SceneSession::write(const std::filesystem::path& out) const {
+    if (out.extension() != ".gltf") {
+        throw Error(out.string() + ": the scene is written as .gltf; give a path ending in .gltf");
+    }
+    requireOutputFile("scene", out);
+    std::vector<std::filesystem::path> inputs = loaded_.externalFiles;
+    inputs.push_back(file_);
+    requireOutputsAreNotInputs({{"scene", out.string()}}, inputs, "a file the scene reads");
+    writeSceneWithParameters(file_, loaded_.scene, out);
+}
+
+}  // namespace vkdr

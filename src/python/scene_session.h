@@ -1,0 +1,77 @@
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <list>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "diff/loss_gradient.h"
+#include "image/image.h"
+#include "render/render_settings.h"
+#include "render/renderer.h"
+#include "scene/load_scene.h"
+#include "scene/parameter_kinds.h"
+#include "vk/context.h"
+
+namespace vkdr {
+
+// A named parameter as the Python module presents it: its array shape ((3,) for RGB,
+// (1,) for g, (height, width, 3) for a texture) and the range its values must lie in.
+struct ParameterInfo {
+    std::string name;
+    std::vector<size_t> shape;
+    ValueRange range;
+};
+
+// One loaded scene on one device, for the Python module: renders, differentiates an
+// image adjoint the caller computed, reads and sets parameters, and writes the scene
+// back. It drives the same Renderer as the command line; renderers (one per camera,
+// size, samples and depth) are kept between calls, so a loop that renders the same view
+// again pays no pipeline or buffer set-up.
+class SceneSession {
+public:
+    SceneSession(const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles);
+    ~SceneSession();
+
+    const std::filesystem::path& file() const { return file_; }
+    const std::vector<std::string>& warnings() const { return warnings_; }
+    const VulkanContext& context() const { return *context_; }
+    const Scene& scene() const { return loaded_.scene; }
+
+    std::vector<ParameterInfo> parameters() const;
+    ParameterInfo parameter(const std::string& name) const;
+    std::vector<float> get(const std::string& name) const;
+    // One value sets every channel (and texel); otherwise as many values as the parameter has.
+    void set(const std::string& name, const std::vector<float>& values);
+
+    Image render(const RenderSettings& settings);
+    // dLoss/dparameter for each name, for the image adjoint dLoss/dI of render(settings)'s
+    // image (Renderer::backpropagate).
+    std::vector<ParameterGradient> backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
+                                                 const std::vector<std::string>& names);
+
+    // The scene with the current parameter values as a .gltf (scene/write_scene.h); never
+    // over the scene file or a file it reads.
+    void write(const std::filesystem::path& out) const;
+
+private:
+    struct CachedRenderer;
+    // The renderer for these settings, made (or moved to the front of renderers_) and
+    // given the current parameters and the settings' seed.
+    CachedRenderer& rendererFor(const RenderSettings& settings);
+    // work(renderer) with that renderer; any exception discards it.
+    template <typename Work>
+    auto withRenderer(const RenderSettings& settings, Work work);
+
+    std::filesystem::path file_;
+    LoadedScene loaded_;
+    std::vector<std::string> warnings_;
+    Bvh bvh_;
+    std::unique_ptr<VulkanContext> context_;
+    std::list<CachedRenderer> renderers_;  // most recently used first
+    uint64_t parameterVersion_ = 0;        // counts set() calls, so renderers know when to upload
+};
+
+}  // namespace vkdr

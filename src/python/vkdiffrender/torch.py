@@ -1,0 +1,69 @@
+"""vkdiffrender's render as a differentiable PyTorch operation.
+
+    from vkdiffrender.torch import render
+    sigma_a = torch.tensor([0.3, 0.3, 0.3], requires_grad=True)
+    image = render(scene, {"media/fog/sigma_a": sigma_a}, spp=32, seed=it)
+    loss = ((image - target) ** 2).mean()
+    loss.backward()  # sigma_a.grad
+
+The forward pass sets the scene's parameters to the tensors' values and renders. The
+backward pass hands the upstream gradient dLoss/dI to Scene.backpropagate, which
+replays the paths with random numbers independent of the forward image's: the gradient
+is then free of the covariance between the image and its own derivative, the bias a
+nonlinear loss would otherwise get (docs/python.md, "Why the backward pass renders
+again").
+"""
+import torch
+
+__all__ = ["render"]
+
+
+def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8, camera="", paths_per_pass=0):
+    """Renders `scene` with `parameters` (a dict of parameter name -> tensor) and returns
+    an (H, W, 3) float32 tensor, on the device of the first parameter tensor, whose
+    gradient flows back to every tensor that requires it.
+
+    A tensor may have the parameter's shape (scene.parameter(name).shape) or a single
+    element, which sets every channel (and texel); its gradient then sums theirs.
+    """
+    settings = dict(spp=spp, seed=seed, width=width, height=height, max_depth=max_depth, camera=camera,
+                    paths_per_pass=paths_per_pass)
+    names = list(parameters)
+    tensors = [torch.as_tensor(parameters[name]) for name in names]
+    return _Render.apply(scene, names, settings, *tensors)
+
+
+class _Render(torch.autograd.Function):
+    @staticmethod
+    def forward(ctx, scene, names, settings, *tensors):
+        values = [tensor.detach().to("cpu", torch.float32).numpy().copy() for tensor in tensors]
+        for name, value in zip(names, values):
+            scene[name] = value
+        image = scene.render(**settings)
+        ctx.scene, ctx.names, ctx.settings, ctx.values = scene, names, settings, values
+        ctx.tensor_shapes = [(tensor.shape, tensor.dtype, tensor.device) for tensor in tensors]
+        device = tensors[0].device if tensors else torch.device("cpu")
+        return torch.from_numpy(image).to(device)
+
+    @staticmethod
+    @torch.autograd.function.once_differentiable
+    def backward(ctx, image_gradient):
+        wanted = [name for name, needed in zip(ctx.names, ctx.needs_input_grad[3:]) if needed]
+        if not wanted:
+            return (None, None, None) + (None,) * len(ctx.names)
+        # The scene may have been changed since the forward pass: the gradient is taken
+        # at the values that pass rendered with.
+        for name, value in zip(ctx.names, ctx.values):
+            ctx.scene[name] = value
+        adjoint = image_gradient.detach().to("cpu", torch.float32).contiguous().numpy()
+        gradients = ctx.scene.backpropagate(adjoint, wanted, **ctx.settings)
+        results = []
+        for name, (shape, dtype, device) in zip(ctx.names, ctx.tensor_shapes):
+            if name not in gradients:
+                results.append(None)
+                continue
+            gradient = torch.from_numpy(gradients[name])
+            if shape.numel() == 1 and gradient.numel() != 1:
+                gradient = gradient.sum()
+            results.append(gradient.reshape(shape).to(dtype=dtype, device=device))
+        return (None, None, None) + tuple(results)
