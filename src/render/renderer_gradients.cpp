@@ -84,6 +84,7 @@ SceneGradients Renderer::backpropagate(const Image& imageAdjoint) {
     {
         CommandRecorder recorder(context_);
         recorder.copy(staging, adjoint_->imageAdjoint, staging.size());
+        recorder.fill(paths_->queueCounters, 0);  // render() may not have run on this renderer yet
         recordClearAccumulators(recorder);
         recorder.submitAndWait();
     }

@@ -1,0 +1,71 @@
+"""The module against the command line: the same image bit for bit, the same gradient
+within standard errors; and repeatability."""
+import json
+import subprocess
+
+import numpy as np
+import vkdiffrender
+
+from sample_means import assert_agree, mean_and_standard_error
+
+WIDTH, SPP = 32, 16
+
+
+def test_render_is_bit_identical_to_the_command_line(cli, fog_scene_file, tmp_path):
+    out = tmp_path / "cli.exr"
+    subprocess.run([cli, "render", str(fog_scene_file), "-o", str(out), "--spp", "4", "--width", "24",
+                    "--seed", "7", "--max-depth", "5", "--set", "media/fog/sigma_s=0.1,0.2,0.3"],
+                   check=True, capture_output=True)
+    scene = vkdiffrender.Scene(fog_scene_file)
+    scene["media/fog/sigma_s"] = np.array([0.1, 0.2, 0.3], dtype=np.float32)
+    image = scene.render(spp=4, width=24, seed=7, max_depth=5)
+    assert image.shape == (24, 24, 3) and image.dtype == np.float32
+    assert np.array_equal(image, vkdiffrender.read_image(out))
+    # A renderer kept from an earlier call gives the same image as a fresh one.
+    scene.render(spp=4, width=24, seed=8, max_depth=5)
+    assert np.array_equal(image, scene.render(spp=4, width=24, seed=7, max_depth=5))
+
+
+def test_backpropagate_repeats_bit_for_bit(fog_scene_file):
+    scene = vkdiffrender.Scene(fog_scene_file)
+    adjoint = np.random.default_rng(3).normal(size=(WIDTH, WIDTH, 3)).astype(np.float32)
+    names = ["media/fog/sigma_a", "media/fog/g", "materials/white/base_color"]
+    first = scene.backpropagate(adjoint, names, spp=4, width=WIDTH, seed=5)
+    second = scene.backpropagate(adjoint, names, spp=4, width=WIDTH, seed=5)
+    assert list(first) == names
+    for name in names:
+        assert first[name].shape == scene.parameter(name).shape
+        assert np.array_equal(first[name], second[name])
+
+
+def test_l2_image_adjoint_gives_the_command_lines_gradient(cli, fog_scene_file, tmp_path):
+    """grad's L2 loss is the mean over pixels and channels of (I - T)^2, so its dLoss/dI
+    is 2 (I - T) / (3 pixels). Both estimators are unbiased for the gradient of the loss
+    of the expected image (docs/gradients.md; docs/python.md): their means over seeds
+    agree within standard errors."""
+    target_file = tmp_path / "target.exr"
+    subprocess.run([cli, "render", str(fog_scene_file), "-o", str(target_file), "--spp", "64", "--width",
+                    str(WIDTH), "--set", "media/fog/sigma_a=0.05", "--set", "media/fog/sigma_s=0.1"],
+                   check=True, capture_output=True)
+    names = ["media/fog/sigma_a", "media/fog/sigma_s", "media/fog/g", "materials/red/base_color",
+             "lights/light/emission"]
+    seeds = 16
+    command = [cli, "grad", str(fog_scene_file), "--target", str(target_file), "--spp", str(SPP), "--json"]
+    for name in names:
+        command += ["--param", name]
+    cli_samples = {name: [] for name in names}
+    for seed in range(seeds):
+        result = subprocess.run(command + ["--seed", str(seed)], check=True, capture_output=True, text=True)
+        for name, gradient in json.loads(result.stdout)["gradients"].items():
+            cli_samples[name].append(gradient)
+
+    scene = vkdiffrender.Scene(fog_scene_file)
+    target = vkdiffrender.read_image(target_file)
+    samples = {name: [] for name in names}
+    for seed in range(seeds):
+        image = scene.render(spp=SPP, width=WIDTH, seed=1000 + seed)
+        adjoint = 2.0 * (image - target) / image.size
+        for name, gradient in scene.backpropagate(adjoint, names, spp=SPP, width=WIDTH, seed=1000 + seed).items():
+            samples[name].append(gradient)
+    for name in names:
+        assert_agree(name, *mean_and_standard_error(samples[name]), *mean_and_standard_error(cli_samples[name]))
