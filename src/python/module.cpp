@@ -233,4 +233,9 @@ PYBIND11_MODULE(_vkdiffrender, m) {
             return names;
         },
         "The Vulkan devices a Scene can be loaded on: pass an index or part of a name as device=");
+
+    // Shown as vkdiffrender.Scene, not as the native module's vkdiffrender._vkdiffrender.Scene.
+    for (const char* name : {"Error", "Parameter", "Scene"}) {
+        m.attr(name).attr("__module__") = "vkdiffrender";
+    }
 }

@@ -1,0 +1,149 @@
+"""Bad input raises vkdiffrender.Error with the command line's message and leaves the
+interpreter (and the scene) usable; Ctrl-C interrupts a render; the device works with
+Python's lock released."""
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+import vkdiffrender
+
+WIDTH = 16
+
+
+@pytest.fixture(scope="module")
+def scene(fog_scene_file):
+    return vkdiffrender.Scene(fog_scene_file)
+
+
+def cli_error(cli, *arguments):
+    """The message the command line prints after 'error: ', which must exit with 2."""
+    result = subprocess.run([cli, *arguments], capture_output=True, text=True)
+    assert result.returncode == 2, result.stderr
+    return result.stderr.strip().splitlines()[-1].removeprefix("error: ")
+
+
+def test_messages_are_the_command_lines(cli, fog_scene_file, tmp_path):
+    missing = tmp_path / "missing.gltf"
+    with pytest.raises(vkdiffrender.Error) as raised:
+        vkdiffrender.Scene(missing)
+    assert str(raised.value) == cli_error(cli, "render", str(missing), "-o", str(tmp_path / "a.exr"))
+    scene = vkdiffrender.Scene(fog_scene_file)
+    for assignment in ["media/smoke/sigma_a=1", "media/fog/g=1.5", "media/fog/sigma_a=-1"]:
+        name, value = assignment.split("=")
+        with pytest.raises(vkdiffrender.Error) as raised:
+            scene[name] = float(value)
+        assert str(raised.value) == cli_error(cli, "render", str(fog_scene_file), "-o", str(tmp_path / "a.exr"),
+                                              "--set", assignment)
+
+
+@pytest.mark.parametrize("value,problem", [
+    (np.float32("nan"), "finite"),
+    (np.array([0.1, 0.2], np.float32), "expected shape (3,)"),
+    (np.zeros((1, 3), np.float32), "expected shape (3,)"),
+])
+def test_bad_parameter_values_are_refused(scene, value, problem):
+    before = scene["media/fog/sigma_a"].copy()
+    with pytest.raises(vkdiffrender.Error, match=problem.replace("(", r"\(").replace(")", r"\)")):
+        scene["media/fog/sigma_a"] = value
+    assert np.array_equal(scene["media/fog/sigma_a"], before)
+
+
+@pytest.mark.parametrize("call,problem", [
+    (lambda s: s.render(spp=0, width=WIDTH), "spp"),
+    (lambda s: s.render(width=-1), "width"),
+    (lambda s: s.render(width=WIDTH, max_depth=10**6), "max_depth"),
+    (lambda s: s.render(width=WIDTH, camera="nope"), "nope"),
+    (lambda s: s["nope"], "nope"),
+    (lambda s: s.backpropagate(np.zeros((WIDTH, WIDTH, 3), np.float32), ["media/fog/nope"], width=WIDTH,
+                               spp=1), "media/fog/nope"),
+    (lambda s: s.backpropagate(np.zeros((WIDTH, 3), np.float32), ["media/fog/g"], width=WIDTH), "shape"),
+    (lambda s: s.backpropagate(np.zeros((WIDTH + 1, WIDTH, 3), np.float32), ["media/fog/g"], width=WIDTH,
+                               spp=1), "image adjoint"),
+    (lambda s: s.backpropagate(np.full((WIDTH, WIDTH, 3), np.inf, np.float32), ["media/fog/g"], width=WIDTH,
+                               spp=1), "not finite"),
+])
+def test_bad_calls_raise(scene, call, problem):
+    with pytest.raises(vkdiffrender.Error, match=problem):
+        call(scene)
+    assert scene.render(spp=1, width=WIDTH).shape == (WIDTH, WIDTH, 3)  # still usable
+
+
+def test_files_are_checked(scene, fog_scene_file, tmp_path):
+    with pytest.raises(vkdiffrender.Error, match="expected a .gltf or .glb file"):
+        vkdiffrender.Scene(tmp_path)
+    (tmp_path / "folder.gltf").mkdir()
+    with pytest.raises(vkdiffrender.Error, match="is a directory"):
+        vkdiffrender.Scene(tmp_path / "folder.gltf")
+    with pytest.raises(vkdiffrender.Error, match=".gltf"):
+        scene.write(tmp_path / "fitted.txt")
+    with pytest.raises(vkdiffrender.Error, match="a file the scene reads"):
+        scene.write(fog_scene_file)
+    with pytest.raises(vkdiffrender.Error, match="extension"):
+        vkdiffrender.write_image(tmp_path / "a.jpg", np.zeros((2, 2, 3), np.float32))
+    good = tmp_path / "a.exr"
+    vkdiffrender.write_image(good, np.ones((2, 2, 3), np.float32))
+    with pytest.raises(vkdiffrender.Error, match="NaN"):
+        vkdiffrender.write_image(good, np.full((2, 2, 3), np.nan, np.float32))
+    assert np.array_equal(vkdiffrender.read_image(good), np.ones((2, 2, 3), np.float32))  # not written over
+    with pytest.raises(vkdiffrender.Error, match="missing.exr"):
+        vkdiffrender.read_image(tmp_path / "missing.exr")
+    with pytest.raises(vkdiffrender.Error):
+        vkdiffrender.Scene(fog_scene_file, device="no such device")
+
+
+def test_write_gives_a_scene_that_loads_with_the_values(scene, tmp_path):
+    scene["media/fog/sigma_a"] = np.array([0.02, 0.03, 0.04], np.float32)
+    scene.write(tmp_path / "fitted.gltf")
+    assert np.array_equal(vkdiffrender.Scene(tmp_path / "fitted.gltf")["media/fog/sigma_a"],
+                          np.array([0.02, 0.03, 0.04], np.float32))
+
+
+def test_the_device_works_without_pythons_lock(scene):
+    ticks = 0
+    done = threading.Event()
+
+    def count():
+        nonlocal ticks
+        while not done.is_set():
+            ticks += 1
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    try:
+        scene.render(spp=64, width=64)
+    finally:
+        done.set()
+        counter.join()
+    assert ticks > 10
+
+
+CHILD = """
+import sys, time, vkdiffrender
+scene = vkdiffrender.Scene(sys.argv[1])
+print("rendering", flush=True)
+start = time.monotonic()
+try:
+    scene.render(spp=1 << 16, width=256)
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print("interrupted after %.1f s" % (time.monotonic() - start), flush=True)
+print("still works:", scene.render(spp=1, width=8).shape, flush=True)
+"""
+
+
+def test_ctrl_c_interrupts_a_render(fog_scene_file):
+    child = subprocess.Popen([sys.executable, "-c", CHILD, str(fog_scene_file)], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=os.environ)
+    assert child.stdout.readline().strip() == "rendering"
+    time.sleep(1.0)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=120)
+    assert child.returncode == 0, err
+    assert out.startswith("interrupted after"), out + err
+    assert "still works: (8, 8, 3)" in out

@@ -1,0 +1,106 @@
+"""vkdiffrender.torch.render's gradients, through a nonlinear loss, against central
+finite differences with common random numbers, for every kind of parameter.
+
+The loss is a masked, weighted L2 of the luminance: nonlinear in the image, and
+quadratic, so that both sides estimate the gradient of the loss of the expected image
+without bias. The backward pass replays with random numbers independent of the forward
+image's, so E[dL/dI(I1) . dI2/dtheta] = dL/dI(E[I]) . dE[I]/dtheta (docs/python.md). The
+finite differences evaluate the loss as the product of two independent images' residuals,
+whose expectation is the loss of the expected image exactly, at theta +- h with the same
+random numbers on both sides. Both are averaged over seeds and compared within their
+standard errors (sample_means.py); the step h leaves a bias of O(h^2) in the
+differences, far below their standard error at these steps."""
+import numpy as np
+import pytest
+import torch
+import vkdiffrender
+import vkdiffrender.torch as vt
+
+from conftest import SCENES
+from sample_means import assert_agree, mean_and_standard_error
+from textured_scene import write_textured_fog_scene
+
+WIDTH, SPP, SEEDS = 32, 16, 16
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
+
+# (parameter, value the gradient is taken at, finite-difference step); a single value
+# sets every channel (and texel), so the gradient is the derivative along all of them.
+PARAMETERS = [
+    ("media/fog/sigma_a", 0.05, 0.005),
+    ("media/fog/sigma_s", 0.1, 0.01),
+    ("media/fog/g", 0.3, 0.05),
+    ("materials/white/base_color", 0.6, 0.05),
+    ("materials/poster/base_color_texture", 0.5, 0.05),
+    ("lights/light/emission", 10.0, 1.0),
+]
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    return vkdiffrender.Scene(write_textured_fog_scene(tmp_path_factory.mktemp("scene")))
+
+
+@pytest.fixture(scope="module")
+def loss_terms(scene):
+    """The target luminance and the per-pixel weights: 0 on the top rows (the light),
+    growing towards the bottom elsewhere."""
+    target = scene.render(spp=64, width=WIDTH, seed=99) @ LUMINANCE
+    rows = np.arange(WIDTH, dtype=np.float32)[:, None] * np.ones((1, WIDTH), dtype=np.float32)
+    weights = np.where(rows < WIDTH // 4, 0.0, 1.0 + rows / WIDTH).astype(np.float32)
+    return target, weights / weights.sum()
+
+
+def masked_luminance_loss(image, target, weights):
+    residual = image @ torch.from_numpy(LUMINANCE) - torch.from_numpy(target)
+    return (torch.from_numpy(weights) * residual * residual).sum()
+
+
+def loss_of_expected_image(scene, name, value, seed_a, seed_b, target, weights):
+    scene[name] = value
+    residual_a = scene.render(spp=SPP, width=WIDTH, seed=seed_a) @ LUMINANCE - target
+    residual_b = scene.render(spp=SPP, width=WIDTH, seed=seed_b) @ LUMINANCE - target
+    return float((weights * residual_a * residual_b).sum(dtype=np.float64))
+
+
+@pytest.mark.parametrize("name,value,step", PARAMETERS, ids=[p[0] for p in PARAMETERS])
+def test_torch_gradient_matches_finite_differences(scene, loss_terms, name, value, step):
+    target, weights = loss_terms
+    adjoint_samples, difference_samples = [], []
+    for seed in range(SEEDS):
+        parameter = torch.tensor(value, requires_grad=True)
+        image = vt.render(scene, {name: parameter}, spp=SPP, width=WIDTH, seed=3 * seed)
+        masked_luminance_loss(image, target, weights).backward()
+        adjoint_samples.append(parameter.grad.item())
+        seeds = (3 * seed + 1, 3 * seed + 2)
+        above = loss_of_expected_image(scene, name, value + step, *seeds, target, weights)
+        below = loss_of_expected_image(scene, name, value - step, *seeds, target, weights)
+        difference_samples.append((above - below) / (2 * step))
+    assert_agree(name, *mean_and_standard_error(adjoint_samples), *mean_and_standard_error(difference_samples))
+
+
+def test_full_shaped_tensors_get_per_channel_gradients(scene, loss_terms):
+    """A tensor of the parameter's shape gets Scene.backpropagate's gradient, channel by
+    channel, for the upstream gradient the loss gives the image."""
+    target, weights = loss_terms
+    sigma_a = torch.tensor([0.02, 0.05, 0.08], requires_grad=True)
+    texels = torch.full((4, 4, 3), 0.4, requires_grad=True)
+    parameters = {"media/fog/sigma_a": sigma_a, "materials/poster/base_color_texture": texels}
+    image = vt.render(scene, parameters, spp=4, width=WIDTH, seed=7)
+    image.retain_grad()
+    masked_luminance_loss(image, target, weights).backward()
+    expected = scene.backpropagate(image.grad.numpy(), list(parameters), spp=4, width=WIDTH, seed=7)
+    assert np.array_equal(sigma_a.grad.numpy(), expected["media/fog/sigma_a"].astype(np.float32))
+    assert np.array_equal(texels.grad.numpy(), expected["materials/poster/base_color_texture"].astype(np.float32))
+    assert np.any(texels.grad.numpy() != 0)
+
+
+def test_backward_takes_the_values_of_its_forward_pass(scene):
+    """Changing the scene between forward and backward does not change the gradient."""
+    sigma_a = torch.tensor(0.05, requires_grad=True)
+    image = vt.render(scene, {"media/fog/sigma_a": sigma_a}, spp=4, width=WIDTH, seed=11)
+    scene["media/fog/sigma_a"] = 0.5
+    image.sum().backward()
+    scene["media/fog/sigma_a"] = 0.05
+    expected = scene.backpropagate(np.ones((WIDTH, WIDTH, 3), np.float32), ["media/fog/sigma_a"], spp=4,
+                                   width=WIDTH, seed=11)
+    assert sigma_a.grad.item() == pytest.approx(expected["media/fog/sigma_a"].sum(), rel=1e-6)
