@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Times the Python module against the command line on the same scene and settings, in
-one run: a forward render (Scene.render against `vkdiffrender bench`'s forward pass),
-and a gradient iteration (vkdiffrender.torch.render, an L2 loss and backward() against
-bench's gradient iteration, which renders with gradients in the command line's own
-estimator). Each figure is the median of --iters runs after a warm-up; bench runs before
-and after the module's runs, and both of its results are shown.
+one run: a forward render (Scene.render against `vkdiffrender bench`'s forward pass);
+a gradient iteration by the command line's own estimator (Scene.loss_gradient with an
+L2 loss against bench's gradient iteration); and one through PyTorch
+(vkdiffrender.torch.render, an L2 loss written in torch, backward()), whose backward
+pass renders again (docs/python.md, "Cost"). Each figure is the median of --iters runs
+after a warm-up; bench runs before and after the module's runs, and both of its results
+are shown.
 
 Usage: PYTHONPATH=build/python /usr/bin/python3 tools/bench_python.py
            [--scene scenes/cornell_fog.gltf] [--width 128] [--spp 16] [--iters 5]
@@ -65,15 +67,18 @@ def main():
         ((image - target) ** 2).mean().backward()
 
     forward = median_ms(lambda: scene.render(**settings), options.iters)
-    gradient = median_ms(gradient_iteration, options.iters)
+    loss_gradient = median_ms(lambda: scene.loss_gradient(target.numpy(), [name], **settings), options.iters)
+    torch_gradient = median_ms(gradient_iteration, options.iters)
     after = command_line_ms(options.cli, options)
 
     print(f"{options.scene.name}, {options.width}x{options.width}, {options.spp} spp, on {scene.device}; "
           f"median of {options.iters}, ms")
     print("| | command line (before) | Python module | command line (after) | module / command line |")
     print("|---|--:|--:|--:|--:|")
-    for label, mine, cli_before, cli_after in [("forward render", forward, before[0], after[0]),
-                                               ("gradient iteration", gradient, before[1], after[1])]:
+    rows = [("forward render: Scene.render", forward, before[0], after[0]),
+            ("gradient iteration: Scene.loss_gradient", loss_gradient, before[1], after[1]),
+            ("gradient iteration: vkdiffrender.torch, backward()", torch_gradient, before[1], after[1])]
+    for label, mine, cli_before, cli_after in rows:
         ratio = mine / statistics.mean([cli_before, cli_after])
         print(f"| {label} | {cli_before:.1f} | {mine:.1f} | {cli_after:.1f} | {ratio:.2f} |")
 

@@ -65,6 +65,9 @@ RenderSettings settingsOf(uint32_t spp, uint32_t seed, int width, int height, ui
         throw Error("width and height must be in [1, " + std::to_string(kMaxImageSide) +
                     "], or 0 for the camera's default");
     }
+    if (spp < 1 || spp > kMaxSamplesPerPixel) {
+        throw Error("spp must be in [1, " + std::to_string(kMaxSamplesPerPixel) + "], got " + std::to_string(spp));
+    }
     if (maxDepth > kMaxScatteringVertices) {
         throw Error("max_depth must be in [0, " + std::to_string(kMaxScatteringVertices) + "], got " +
                     std::to_string(maxDepth));
@@ -93,6 +96,15 @@ void setParameter(SceneSession& session, const std::string& name, const FloatArr
 py::array_t<float> getParameter(const SceneSession& session, const std::string& name) {
     const ParameterInfo info = session.parameter(name);
     return arrayOf(session.get(name), info.shape);
+}
+
+// Each parameter's gradient, shaped as the parameter, by name in the order asked for.
+py::dict gradientDictionary(const SceneSession& session, std::vector<ParameterGradient>& gradients) {
+    py::dict result;
+    for (ParameterGradient& g : gradients) {
+        result[py::str(g.name)] = arrayOf(std::move(g.gradient), session.parameter(g.name).shape);
+    }
+    return result;
 }
 
 // The render settings every device call takes, with their defaults (as the CLI's).
@@ -175,14 +187,31 @@ PYBIND11_MODULE(_vkdiffrender, m) {
                     gradients = s.backpropagate(settings, adjoint, names);
                     throwIfInterrupted();
                 }
-                py::dict result;
-                for (ParameterGradient& g : gradients) {
-                    std::vector<size_t> shape = s.parameter(g.name).shape;
-                    result[py::str(g.name)] = arrayOf(std::move(g.gradient), shape);
-                }
-                return result;
+                return gradientDictionary(s, gradients);
             },
             py::arg("image_adjoint"), py::arg("parameters"), VKDR_RENDER_ARGUMENTS)
+        .def(
+            "loss_gradient",
+            [](SceneSession& s, const FloatArray& targetArray, const std::vector<std::string>& names,
+               const std::string& lossName, uint32_t spp, uint32_t seed, int width, int height, uint32_t maxDepth,
+               const std::string& camera, uint32_t pathsPerPass) {
+                const RenderSettings settings = settingsOf(spp, seed, width, height, maxDepth, camera, pathsPerPass);
+                const Image target = imageOfArray(targetArray, "the target");
+                if (lossName != "l2" && lossName != "l1") {
+                    throw Error("loss must be \"l2\" or \"l1\", got \"" + lossName + "\"");
+                }
+                const LossKind loss = lossName == "l2" ? LossKind::L2 : LossKind::L1;
+                SceneSession::LossGradient result;
+                {
+                    py::gil_scoped_release release;
+                    StopSignalScope signals;
+                    result = s.lossGradient(settings, target, loss, names);
+                    throwIfInterrupted();
+                }
+                return py::make_tuple(result.loss, arrayOfImage(std::move(result.image)),
+                                      gradientDictionary(s, result.gradients));
+            },
+            py::arg("target"), py::arg("parameters"), py::arg("loss") = "l2", VKDR_RENDER_ARGUMENTS)
         .def(
             "write",
             [](const SceneSession& s, const std::filesystem::path& out) {

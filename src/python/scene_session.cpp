@@ -40,15 +40,23 @@ bool covers(const DerivativeTargets& have, const DerivativeTargets& want) {
 
 }  // namespace
 
+// How a renderer's adjoint state was last set up: for a caller's image adjoint (no loss)
+// or for a loss against a target, and for which derivative targets.
+struct AdjointSetUp {
+    std::optional<LossKind> loss;
+    DerivativeTargets targets;
+};
+
 struct SceneSession::CachedRenderer {
     RenderSettings settings;
     std::unique_ptr<Renderer> renderer;
     uint64_t parameterVersion = 0;
-    std::optional<DerivativeTargets> adjoint;  // what enableImageAdjoint was given, if called
+    std::optional<AdjointSetUp> adjoint;  // none until a gradient is asked for
 };
 
 SceneSession::SceneSession(const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles)
-    : file_(file), loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})) {
+    // Absolute, so that write() finds the original after the caller changes directory.
+    : file_(std::filesystem::absolute(file)), loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})) {
     warnings_ = loaded_.warnings;
     for (std::string& warning : sceneWarnings(loaded_.scene)) {
         warnings_.push_back(std::move(warning));
@@ -156,12 +164,36 @@ std::vector<ParameterGradient> SceneSession::backpropagate(const RenderSettings&
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     const SceneGradients gradients = withRenderer(settings, [&](CachedRenderer& cached) {
-        if (!cached.adjoint || !covers(*cached.adjoint, wanted)) {
+        if (!cached.adjoint || cached.adjoint->loss || !covers(cached.adjoint->targets, wanted)) {
             cached.renderer->enableImageAdjoint(wanted);
-            cached.adjoint = wanted;
+            cached.adjoint = AdjointSetUp{std::nullopt, wanted};
         }
         return cached.renderer->backpropagate(imageAdjoint);
     });
+    return namedGradients(slots, gradients);
+}
+
+SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& settings, const Image& target,
+                                                      LossKind loss, const std::vector<std::string>& names) {
+    if (std::optional<std::string> bad = unrepresentablePixel(target)) {
+        throw Error("the target's " + *bad);
+    }
+    const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
+    const DerivativeTargets wanted = derivativeTargetsOf(slots);
+    GradientEvaluation evaluation = withRenderer(settings, [&](CachedRenderer& cached) {
+        if (!cached.adjoint || cached.adjoint->loss != loss || !covers(cached.adjoint->targets, wanted)) {
+            cached.renderer->enableGradients(target, loss, wanted);
+            cached.adjoint = AdjointSetUp{loss, wanted};
+        } else {
+            cached.renderer->setTarget(target);
+        }
+        return cached.renderer->renderWithGradients();
+    });
+    return {evaluation.loss, std::move(evaluation.image), namedGradients(slots, evaluation.gradients)};
+}
+
+std::vector<ParameterGradient> SceneSession::namedGradients(const std::vector<GradientSlot>& slots,
+                                                            const SceneGradients& gradients) const {
     std::vector<ParameterGradient> result;
     for (const GradientSlot& slot : slots) {
         result.push_back({slot.name, getParameter(loaded_.scene, slot.name), gatherGradient(slot, gradients)});

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "diff/gradient_slots.h"
 #include "diff/loss_gradient.h"
 #include "image/image.h"
 #include "render/render_settings.h"
@@ -52,6 +53,17 @@ public:
     std::vector<ParameterGradient> backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
                                                  const std::vector<std::string>& names);
 
+    // The command line's loss and gradient (grad, optimize): the image of render(settings),
+    // its loss against `target`, and dLoss/dparameter for each name by the split-sample
+    // estimator (Renderer::renderWithGradients).
+    struct LossGradient {
+        double loss;
+        Image image;
+        std::vector<ParameterGradient> gradients;
+    };
+    LossGradient lossGradient(const RenderSettings& settings, const Image& target, LossKind loss,
+                              const std::vector<std::string>& names);
+
     // The scene with the current parameter values as a .gltf (scene/write_scene.h); never
     // over the scene file or a file it reads.
     void write(const std::filesystem::path& out) const;
@@ -64,6 +76,9 @@ private:
     // work(renderer) with that renderer; any exception discards it.
     template <typename Work>
     auto withRenderer(const RenderSettings& settings, Work work);
+
+    std::vector<ParameterGradient> namedGradients(const std::vector<GradientSlot>& slots,
+                                                  const SceneGradients& gradients) const;
 
     std::filesystem::path file_;
     LoadedScene loaded_;

@@ -3,6 +3,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "bvh/bvh.h"
@@ -88,6 +89,8 @@ public:
     // the last render() with the target. renderWithGradients() renders at the current
     // seed and back-propagates the loss of that image to the parameters.
     void enableGradients(const Image& target, LossKind loss, const DerivativeTargets& derivativeTargets = {});
+    // A new target for the enabled loss, of the render's size.
+    void setTarget(const Image& target);
     double loss();
     GradientEvaluation renderWithGradients();
 
@@ -137,6 +140,8 @@ private:
     void backpropagateWithReplay(GradientEvaluation& result);
     void backpropagateSplitSamples(GradientEvaluation& result);
     void backpropagateInOnePass(GradientEvaluation& result);
+    // Throws vkdr::Error naming `what` unless the image has the render's size.
+    void requireRenderSize(const Image& image, const std::string& what) const;
     // Allocates the adjoint state; keptPaths as for AdjointBuffers.
     void allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths);
     // Replays every sample and runs its adjoint pass, at random numbers independent of

@@ -21,10 +21,7 @@ constexpr uint32_t kIndependentSeedBit = 1u << 31;
 }  // namespace
 
 void Renderer::enableGradients(const Image& target, LossKind loss, const DerivativeTargets& derivativeTargets) {
-    if (target.width != width() || target.height != height()) {
-        throw Error("the target is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
-                    " but the render is " + std::to_string(width()) + "x" + std::to_string(height()));
-    }
+    requireRenderSize(target, "the target");
     const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
     const bool onePass = settings_.spp >= 2 && pixels * settings_.spp <= paths_->capacity;
     splitSample_ = onePass ? settings_.spp / 2 : 0;
@@ -34,6 +31,21 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
     const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
     lossKind_ = loss;
     allocateAdjoint(derivativeTargets, keptPaths * 16 <= keptBudget ? keptPaths : 0);
+    setTarget(target);
+}
+
+void Renderer::requireRenderSize(const Image& image, const std::string& what) const {
+    if (image.width != width() || image.height != height()) {
+        throw Error(what + " is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                    " but the render is " + std::to_string(width()) + "x" + std::to_string(height()));
+    }
+}
+
+void Renderer::setTarget(const Image& target) {
+    if (!adjoint_) {
+        throw Error("internal: setTarget() before enableGradients()");
+    }
+    requireRenderSize(target, "the target");
     std::vector<glm::vec4> texels(size_t(target.width) * target.height);
     for (size_t i = 0; i < texels.size(); ++i) {
         texels[i] = glm::vec4(target.rgb[3 * i], target.rgb[3 * i + 1], target.rgb[3 * i + 2], 0.0f);
@@ -67,11 +79,7 @@ SceneGradients Renderer::backpropagate(const Image& imageAdjoint) {
     if (!adjoint_) {
         throw Error("internal: backpropagate() before enableImageAdjoint()");
     }
-    if (imageAdjoint.width != width() || imageAdjoint.height != height()) {
-        throw Error("the image adjoint is " + std::to_string(imageAdjoint.width) + "x" +
-                    std::to_string(imageAdjoint.height) + " but the render is " + std::to_string(width()) + "x" +
-                    std::to_string(height()));
-    }
+    requireRenderSize(imageAdjoint, "the image adjoint");
     // Each path carries its pixel's dLoss/dI divided by the samples per pixel (adjoint.glsl).
     const float perSample = 1.0f / float(settings_.spp);
     std::vector<glm::vec4> perPixel(size_t(imageAdjoint.width) * imageAdjoint.height);

@@ -69,3 +69,26 @@ def test_l2_image_adjoint_gives_the_command_lines_gradient(cli, fog_scene_file, 
             samples[name].append(gradient)
     for name in names:
         assert_agree(name, *mean_and_standard_error(samples[name]), *mean_and_standard_error(cli_samples[name]))
+
+
+def test_loss_gradient_is_the_command_lines_bit_for_bit(cli, fog_scene_file, tmp_path):
+    """Scene.loss_gradient runs grad's estimator on the same renderer: at seed 0 (which
+    grad's single view renders with too) the loss and gradients have the same bits."""
+    target_file = tmp_path / "target.exr"
+    subprocess.run([cli, "render", str(fog_scene_file), "-o", str(target_file), "--spp", "8", "--width", "24",
+                    "--set", "media/fog/sigma_a=0.05"], check=True, capture_output=True)
+    names = ["media/fog/sigma_a", "media/fog/sigma_s", "media/fog/g", "materials/white/base_color"]
+    for loss in ["l2", "l1"]:
+        command = [cli, "grad", str(fog_scene_file), "--target", str(target_file), "--spp", "4", "--seed", "0",
+                   "--loss", loss, "--json"]
+        for name in names:
+            command += ["--param", name]
+        expected = json.loads(subprocess.run(command, check=True, capture_output=True, text=True).stdout)
+        scene = vkdiffrender.Scene(fog_scene_file)
+        value, image, gradients = scene.loss_gradient(vkdiffrender.read_image(target_file), names, loss=loss,
+                                                      spp=4, width=24, seed=0)
+        assert value == expected["loss"]
+        assert image.shape == (24, 24, 3)
+        assert np.array_equal(image, scene.render(spp=4, width=24, seed=0))
+        for name in names:
+            assert gradients[name].tolist() == expected["gradients"][name], name
