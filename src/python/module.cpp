@@ -7,6 +7,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -21,6 +22,19 @@ namespace vkdr {
 namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// Runs `work` with Python's lock released; when called from the main thread, Ctrl-C
+// stops it with KeyboardInterrupt. Must be entered with the lock held.
+template <typename Work>
+auto runOnDevice(Work work) {
+    py::object threading = py::module_::import("threading");
+    const bool mainThread = threading.attr("current_thread")().is(threading.attr("main_thread")());
+    py::gil_scoped_release release;
+    StopSignalScope signals(mainThread);
+    auto result = work();
+    throwIfInterrupted();
+    return result;
+}
 
 // Hands the vector's storage to numpy without a copy: the array owns it.
 template <typename T>
@@ -43,12 +57,25 @@ std::string shapeText(const std::vector<size_t>& shape) {
     return text + ")";
 }
 
+// Numbers as numpy makes float32 of them; None (which numpy would make NaN) is refused.
+FloatArray floatArrayOf(const py::object& value, const std::string& what) {
+    if (value.is_none()) {
+        throw py::type_error(what + ": expected numbers, got None");
+    }
+    FloatArray array = FloatArray::ensure(value);
+    if (!array) {
+        throw py::error_already_set();
+    }
+    return array;
+}
+
 std::vector<size_t> shapeOf(const FloatArray& array) {
     return std::vector<size_t>(array.shape(), array.shape() + array.ndim());
 }
 
 // An (H, W, 3) array as an Image; `what` names it in errors.
-Image imageOfArray(const FloatArray& array, const std::string& what) {
+Image imageOfArray(const py::object& value, const std::string& what) {
+    const FloatArray array = floatArrayOf(value, what);
     if (array.ndim() != 3 || array.shape(2) != 3 || array.shape(0) < 1 || array.shape(1) < 1) {
         throw Error(what + " must have shape (height, width, 3), got " + shapeText(shapeOf(array)));
     }
@@ -59,44 +86,48 @@ Image imageOfArray(const FloatArray& array, const std::string& what) {
     return image;
 }
 
-RenderSettings settingsOf(uint32_t spp, uint32_t seed, int width, int height, uint32_t maxDepth,
-                          const std::string& camera, uint32_t pathsPerPass) {
-    if (width < 0 || width > kMaxImageSide || height < 0 || height > kMaxImageSide) {
-        throw Error("width and height must be in [1, " + std::to_string(kMaxImageSide) +
-                    "], or 0 for the camera's default");
+// The command line's check of an integer option (cli/number_options.h), with the
+// keyword's name where the command line names its option.
+uint32_t integerIn(const char* keyword, int64_t value, int64_t low, int64_t high, const std::string& kind = "") {
+    if (value < low || value > high) {
+        const std::string expected =
+            kind.empty() ? "an integer from " + std::to_string(low) + " to " + std::to_string(high) : kind;
+        throw Error(std::string(keyword) + ": must be " + expected + ", got " + std::to_string(value));
     }
-    if (spp < 1 || spp > kMaxSamplesPerPixel) {
-        throw Error("spp must be in [1, " + std::to_string(kMaxSamplesPerPixel) + "], got " + std::to_string(spp));
-    }
-    if (maxDepth > kMaxScatteringVertices) {
-        throw Error("max_depth must be in [0, " + std::to_string(kMaxScatteringVertices) + "], got " +
-                    std::to_string(maxDepth));
-    }
-    RenderSettings settings;
-    settings.spp = spp;
-    settings.seed = seed;
-    settings.width = width;
-    settings.height = height;
-    settings.maxDepth = maxDepth;
-    settings.camera = camera;
-    settings.pathsPerPass = pathsPerPass;
-    return settings;
+    return uint32_t(value);
 }
 
-void setParameter(SceneSession& session, const std::string& name, const FloatArray& value) {
-    const ParameterInfo info = session.parameter(name);
-    std::vector<float> values(value.data(), value.data() + value.size());
-    if (value.size() != 1 && shapeOf(value) != info.shape) {
-        throw Error(name + ": expected shape " + shapeText(info.shape) + " or one value, got " +
-                    shapeText(shapeOf(value)));
-    }
-    session.set(name, values);
-}
+// The keywords every device call takes, with the command line's defaults.
+struct RenderKeywords {
+    int64_t spp, seed, width, height, maxDepth;
+    std::string camera;
+    int64_t pathsPerPass;
 
-py::array_t<float> getParameter(const SceneSession& session, const std::string& name) {
-    const ParameterInfo info = session.parameter(name);
-    return arrayOf(session.get(name), info.shape);
-}
+    RenderSettings settings() const {
+        RenderSettings settings;
+        settings.spp = integerIn("spp", spp, 1, kMaxSamplesPerPixel);
+        constexpr int64_t kMaxSeed = std::numeric_limits<uint32_t>::max();
+        settings.seed = integerIn("seed", seed, 0, kMaxSeed,
+                                  "a 32-bit unsigned integer (0.." + std::to_string(kMaxSeed) + ")");
+        settings.width = int(integerIn("width", width, 0, kMaxImageSide));
+        settings.height = int(integerIn("height", height, 0, kMaxImageSide));
+        settings.maxDepth = integerIn("max_depth", maxDepth, 0, kMaxScatteringVertices);
+        settings.camera = camera;
+        settings.pathsPerPass = integerIn("paths_per_pass", pathsPerPass, 0, 1 << 21);
+        return settings;
+    }
+};
+
+#define VKDR_RENDER_KEYWORDS                                                                                \
+    py::kw_only(), py::arg("spp") = 16, py::arg("seed") = 0, py::arg("width") = 0, py::arg("height") = 0, \
+        py::arg("max_depth") = 8, py::arg("camera") = "", py::arg("paths_per_pass") = 0
+
+#define VKDR_RENDER_KEYWORD_PARAMETERS                                                                 \
+    int64_t spp, int64_t seed, int64_t width, int64_t height, int64_t maxDepth, const std::string& camera, \
+        int64_t pathsPerPass
+
+#define VKDR_RENDER_KEYWORD_VALUES \
+    RenderKeywords { spp, seed, width, height, maxDepth, camera, pathsPerPass }
 
 // Each parameter's gradient, shaped as the parameter, by name in the order asked for.
 py::dict gradientDictionary(const SceneSession& session, std::vector<ParameterGradient>& gradients) {
@@ -107,10 +138,173 @@ py::dict gradientDictionary(const SceneSession& session, std::vector<ParameterGr
     return result;
 }
 
-// The render settings every device call takes, with their defaults (as the CLI's).
-#define VKDR_RENDER_ARGUMENTS                                                                              \
-    py::kw_only(), py::arg("spp") = 16u, py::arg("seed") = 0u, py::arg("width") = 0, py::arg("height") = 0, \
-        py::arg("max_depth") = 8u, py::arg("camera") = "", py::arg("paths_per_pass") = 0u
+void setParameter(SceneSession& session, const std::string& name, const py::object& value) {
+    const FloatArray array = floatArrayOf(value, name);
+    const ParameterInfo info = session.parameter(name);
+    if (array.size() != 1 && shapeOf(array) != info.shape) {
+        throw Error(name + ": expected shape " + shapeText(info.shape) + " or one value, got " +
+                    shapeText(shapeOf(array)));
+    }
+    std::vector<float> values(array.data(), array.data() + array.size());
+    py::gil_scoped_release release;  // waits for another thread's render to finish
+    session.set(name, values);
+}
+
+py::array_t<float> getParameter(const SceneSession& session, const std::string& name) {
+    const ParameterInfo info = session.parameter(name);
+    return arrayOf(session.get(name), info.shape);
+}
+
+py::array_t<float> render(SceneSession& session, const RenderKeywords& keywords) {
+    const RenderSettings settings = keywords.settings();
+    return arrayOfImage(runOnDevice([&] { return session.render(settings); }));
+}
+
+py::dict backpropagate(SceneSession& session, const py::object& imageAdjoint, const std::vector<std::string>& names,
+                       const RenderKeywords& keywords) {
+    const RenderSettings settings = keywords.settings();
+    const Image adjoint = imageOfArray(imageAdjoint, "the image adjoint");
+    std::vector<ParameterGradient> gradients =
+        runOnDevice([&] { return session.backpropagate(settings, adjoint, names); });
+    return gradientDictionary(session, gradients);
+}
+
+py::tuple lossGradient(SceneSession& session, const py::object& targetArray, const std::vector<std::string>& names,
+                       const std::string& lossName, const RenderKeywords& keywords) {
+    const RenderSettings settings = keywords.settings();
+    const Image target = imageOfArray(targetArray, "the target");
+    if (lossName != "l2" && lossName != "l1") {
+        throw Error("loss: " + lossName + " not in {l2,l1}");
+    }
+    const LossKind loss = lossName == "l2" ? LossKind::L2 : LossKind::L1;
+    SceneSession::LossGradient result =
+        runOnDevice([&] { return session.lossGradient(settings, target, loss, names); });
+    return py::make_tuple(result.loss, arrayOfImage(std::move(result.image)),
+                          gradientDictionary(session, result.gradients));
+}
+
+void writeImage(const std::filesystem::path& file, const py::object& array) {
+    const Image image = imageOfArray(array, "the image");
+    requireOutputFile("write_image", file);
+    const std::optional<ImageFileType> type = imageFileTypeOf(file);
+    if (!type) {
+        throw Error(file.string() + ": the extension sets the file type: .exr (32-bit float linear RGB) "
+                    "or .png (8-bit sRGB, clamped to [0, 1])");
+    }
+    if (std::optional<std::string> bad = unrepresentablePixel(image)) {
+        throw Error("the image's " + *bad + "; nothing was written");
+    }
+    py::gil_scoped_release release;
+    if (*type == ImageFileType::Exr) {
+        writeExr(file, image);
+    } else {
+        writePng(file, image);
+    }
+}
+
+void bindParameter(py::module_& m) {
+    py::class_<ParameterInfo>(m, "Parameter", "A named scene parameter: its array shape and valid range.")
+        .def_readonly("name", &ParameterInfo::name, "media/<medium>/sigma_a and so on")
+        .def_property_readonly(
+            "shape", [](const ParameterInfo& p) { return py::tuple(py::cast(p.shape)); },
+            "(3,) for RGB, (1,) for g, (height, width, 3) for a base colour texture")
+        .def_property_readonly(
+            "lower", [](const ParameterInfo& p) { return p.range.lower; }, "the smallest valid value")
+        .def_property_readonly(
+            "upper", [](const ParameterInfo& p) { return p.range.upper; }, "the largest valid value (inf: none)")
+        .def("__repr__", [](const ParameterInfo& p) {
+            return "Parameter('" + p.name + "', shape=" + shapeText(p.shape) + ", range=[" +
+                   py::str(py::float_(p.range.lower)).cast<std::string>() + ", " +
+                   py::str(py::float_(p.range.upper)).cast<std::string>() + "])";
+        });
+}
+
+void bindScene(py::module_& m) {
+    py::class_<SceneSession>(m, "Scene", "A glTF scene loaded onto a Vulkan device (docs/python.md).")
+        .def(py::init([](const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles) {
+                 py::gil_scoped_release release;
+                 return std::make_unique<SceneSession>(file, device, allowOutsideFiles);
+             }),
+             py::arg("file"), py::kw_only(), py::arg("device") = "", py::arg("allow_outside_files") = false,
+             "Loads a .gltf or .glb. device: an index or part of a name (vkdiffrender.devices()); "
+             "allow_outside_files: let the scene read files outside its own directory.")
+        .def_property_readonly("file", &SceneSession::file, "The absolute path the scene was loaded from")
+        .def_property_readonly("warnings", &SceneSession::warnings, "What the loader ignored or approximated")
+        .def_property_readonly(
+            "device", [](const SceneSession& s) { return s.context().description().name; },
+            "The name of the Vulkan device the scene renders on")
+        .def("parameters", &SceneSession::parameters, "Every named parameter, as Parameter objects")
+        .def("parameter", &SceneSession::parameter, py::arg("name"), "One named parameter, as a Parameter")
+        .def("__getitem__", &getParameter, py::arg("name"), "A copy of the parameter's values, float32")
+        .def("__setitem__", &setParameter, py::arg("name"), py::arg("value"),
+             "Sets a parameter: one value sets every channel (and texel), else the parameter's exact shape")
+        .def(
+            "__contains__",
+            [](const SceneSession& s, const std::string& name) {
+                const std::vector<ParameterInfo> all = s.parameters();
+                return std::any_of(all.begin(), all.end(), [&](const ParameterInfo& p) { return p.name == name; });
+            },
+            py::arg("name"))
+        .def(
+            "render", [](SceneSession& s, VKDR_RENDER_KEYWORD_PARAMETERS) { return render(s, VKDR_RENDER_KEYWORD_VALUES); },
+            VKDR_RENDER_KEYWORDS,
+            "Renders the camera; returns an (H, W, 3) float32 array of linear RGB. The same seed and settings "
+            "give the same image bit for bit, the image of `vkdiffrender render`.")
+        .def(
+            "backpropagate",
+            [](SceneSession& s, const py::object& adjoint, const std::vector<std::string>& names,
+               VKDR_RENDER_KEYWORD_PARAMETERS) { return backpropagate(s, adjoint, names, VKDR_RENDER_KEYWORD_VALUES); },
+            py::arg("image_adjoint"), py::arg("parameters"), VKDR_RENDER_KEYWORDS,
+            "dLoss/dparameter for each named parameter, given dLoss/dI (an (H, W, 3) array) of the image "
+            "render() gives with the same keywords; a dict of float64 arrays shaped as the parameters. The "
+            "paths are replayed with random numbers independent of that image's (docs/python.md).")
+        .def(
+            "loss_gradient",
+            [](SceneSession& s, const py::object& target, const std::vector<std::string>& names,
+               const std::string& loss, VKDR_RENDER_KEYWORD_PARAMETERS) {
+                return lossGradient(s, target, names, loss, VKDR_RENDER_KEYWORD_VALUES);
+            },
+            py::arg("target"), py::arg("parameters"), py::arg("loss") = "l2", VKDR_RENDER_KEYWORDS,
+            "The command line's loss (\"l2\" or \"l1\") against target and its gradient, as `vkdiffrender grad`: "
+            "returns (loss, image, gradients).")
+        .def(
+            "write",
+            [](const SceneSession& s, const std::filesystem::path& out) {
+                py::gil_scoped_release release;
+                s.write(out);
+            },
+            py::arg("path"),
+            "Writes the scene with the current parameter values as a .gltf, as `vkdiffrender optimize` does; "
+            "never over the scene or a file it reads.");
+}
+
+void bindFunctions(py::module_& m) {
+    m.def(
+        "read_image",
+        [](const std::filesystem::path& file) {
+            Image image;
+            {
+                py::gil_scoped_release release;
+                image = readImage(file);
+            }
+            return arrayOfImage(std::move(image));
+        },
+        py::arg("path"),
+        "Reads an EXR (linear), PNG or JPEG (sRGB, decoded to linear) as an (H, W, 3) float32 array.");
+    m.def("write_image", &writeImage, py::arg("path"), py::arg("image"),
+          "Writes an (H, W, 3) array as .exr (32-bit float linear RGB) or .png (8-bit sRGB, clamped to [0, 1]), "
+          "atomically; refuses NaN and infinite pixels.");
+    m.def(
+        "devices",
+        []() {
+            py::gil_scoped_release release;
+            VulkanContext context(ContextOptions{});
+            std::vector<std::string> names;
+            for (const DeviceDescription& device : context.allDevices()) names.push_back(device.name);
+            return names;
+        },
+        "The Vulkan devices a Scene can be loaded on, in index order: pass an index or part of a name as device=.");
+}
 
 }  // namespace
 }  // namespace vkdr
@@ -129,140 +323,9 @@ PYBIND11_MODULE(_vkdiffrender, m) {
             PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
         }
     });
-
-    py::class_<ParameterInfo>(m, "Parameter", "A named scene parameter: its array shape and valid range")
-        .def_readonly("name", &ParameterInfo::name)
-        .def_property_readonly("shape", [](const ParameterInfo& p) { return py::tuple(py::cast(p.shape)); })
-        .def_property_readonly("lower", [](const ParameterInfo& p) { return p.range.lower; })
-        .def_property_readonly("upper", [](const ParameterInfo& p) { return p.range.upper; })
-        .def("__repr__", [](const ParameterInfo& p) {
-            return "Parameter('" + p.name + "', shape=" + shapeText(p.shape) + ", range=[" +
-                   py::str(py::float_(p.range.lower)).cast<std::string>() + ", " +
-                   py::str(py::float_(p.range.upper)).cast<std::string>() + "])";
-        });
-
-    py::class_<SceneSession>(m, "Scene", "A glTF scene loaded onto a Vulkan device")
-        .def(py::init([](const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles) {
-                 py::gil_scoped_release release;
-                 return std::make_unique<SceneSession>(file, device, allowOutsideFiles);
-             }),
-             py::arg("file"), py::kw_only(), py::arg("device") = "", py::arg("allow_outside_files") = false)
-        .def_property_readonly("file", &SceneSession::file)
-        .def_property_readonly("warnings", &SceneSession::warnings)
-        .def_property_readonly("device", [](const SceneSession& s) { return s.context().description().name; })
-        .def("parameters", &SceneSession::parameters)
-        .def("parameter", &SceneSession::parameter, py::arg("name"))
-        .def("__getitem__", &getParameter, py::arg("name"))
-        .def("__setitem__", &setParameter, py::arg("name"), py::arg("value"))
-        .def("__contains__", [](const SceneSession& s, const std::string& name) {
-            const std::vector<ParameterInfo> all = s.parameters();
-            return std::any_of(all.begin(), all.end(), [&](const ParameterInfo& p) { return p.name == name; });
-        })
-        .def(
-            "render",
-            [](SceneSession& s, uint32_t spp, uint32_t seed, int width, int height, uint32_t maxDepth,
-               const std::string& camera, uint32_t pathsPerPass) {
-                const RenderSettings settings = settingsOf(spp, seed, width, height, maxDepth, camera, pathsPerPass);
-                Image image;
-                {
-                    py::gil_scoped_release release;
-                    StopSignalScope signals;
-                    image = s.render(settings);
-                    throwIfInterrupted();
-                }
-                return arrayOfImage(std::move(image));
-            },
-            VKDR_RENDER_ARGUMENTS)
-        .def(
-            "backpropagate",
-            [](SceneSession& s, const FloatArray& imageAdjoint, const std::vector<std::string>& names, uint32_t spp,
-               uint32_t seed, int width, int height, uint32_t maxDepth, const std::string& camera,
-               uint32_t pathsPerPass) {
-                const RenderSettings settings = settingsOf(spp, seed, width, height, maxDepth, camera, pathsPerPass);
-                const Image adjoint = imageOfArray(imageAdjoint, "the image adjoint");
-                std::vector<ParameterGradient> gradients;
-                {
-                    py::gil_scoped_release release;
-                    StopSignalScope signals;
-                    gradients = s.backpropagate(settings, adjoint, names);
-                    throwIfInterrupted();
-                }
-                return gradientDictionary(s, gradients);
-            },
-            py::arg("image_adjoint"), py::arg("parameters"), VKDR_RENDER_ARGUMENTS)
-        .def(
-            "loss_gradient",
-            [](SceneSession& s, const FloatArray& targetArray, const std::vector<std::string>& names,
-               const std::string& lossName, uint32_t spp, uint32_t seed, int width, int height, uint32_t maxDepth,
-               const std::string& camera, uint32_t pathsPerPass) {
-                const RenderSettings settings = settingsOf(spp, seed, width, height, maxDepth, camera, pathsPerPass);
-                const Image target = imageOfArray(targetArray, "the target");
-                if (lossName != "l2" && lossName != "l1") {
-                    throw Error("loss must be \"l2\" or \"l1\", got \"" + lossName + "\"");
-                }
-                const LossKind loss = lossName == "l2" ? LossKind::L2 : LossKind::L1;
-                SceneSession::LossGradient result;
-                {
-                    py::gil_scoped_release release;
-                    StopSignalScope signals;
-                    result = s.lossGradient(settings, target, loss, names);
-                    throwIfInterrupted();
-                }
-                return py::make_tuple(result.loss, arrayOfImage(std::move(result.image)),
-                                      gradientDictionary(s, result.gradients));
-            },
-            py::arg("target"), py::arg("parameters"), py::arg("loss") = "l2", VKDR_RENDER_ARGUMENTS)
-        .def(
-            "write",
-            [](const SceneSession& s, const std::filesystem::path& out) {
-                py::gil_scoped_release release;
-                s.write(out);
-            },
-            py::arg("path"));
-
-    m.def(
-        "read_image",
-        [](const std::filesystem::path& file) {
-            Image image;
-            {
-                py::gil_scoped_release release;
-                image = readImage(file);
-            }
-            return arrayOfImage(std::move(image));
-        },
-        py::arg("path"));
-    m.def(
-        "write_image",
-        [](const std::filesystem::path& file, const FloatArray& array) {
-            const Image image = imageOfArray(array, "the image");
-            requireOutputFile("write_image", file);
-            const std::optional<ImageFileType> type = imageFileTypeOf(file);
-            if (!type) {
-                throw Error(file.string() + ": the extension sets the file type: .exr (32-bit float linear RGB) "
-                            "or .png (8-bit sRGB, clamped to [0, 1])");
-            }
-            if (std::optional<std::string> bad = unrepresentablePixel(image)) {
-                throw Error("the image's " + *bad + "; nothing was written");
-            }
-            py::gil_scoped_release release;
-            if (*type == ImageFileType::Exr) {
-                writeExr(file, image);
-            } else {
-                writePng(file, image);
-            }
-        },
-        py::arg("path"), py::arg("image"));
-    m.def(
-        "devices",
-        []() {
-            py::gil_scoped_release release;
-            VulkanContext context(ContextOptions{});
-            std::vector<std::string> names;
-            for (const DeviceDescription& device : context.allDevices()) names.push_back(device.name);
-            return names;
-        },
-        "The Vulkan devices a Scene can be loaded on: pass an index or part of a name as device=");
-
+    bindParameter(m);
+    bindScene(m);
+    bindFunctions(m);
     // Shown as vkdiffrender.Scene, not as the native module's vkdiffrender._vkdiffrender.Scene.
     for (const char* name : {"Error", "Parameter", "Scene"}) {
         m.attr(name).attr("__module__") = "vkdiffrender";

@@ -70,6 +70,7 @@ SceneSession::~SceneSession() {
 }
 
 std::vector<ParameterInfo> SceneSession::parameters() const {
+    std::lock_guard lock(mutex_);
     std::vector<ParameterInfo> infos;
     for (const std::string& name : parameterNames(loaded_.scene)) {
         infos.push_back(parameter(name));
@@ -78,6 +79,7 @@ std::vector<ParameterInfo> SceneSession::parameters() const {
 }
 
 ParameterInfo SceneSession::parameter(const std::string& name) const {
+    std::lock_guard lock(mutex_);
     const size_t values = getParameter(loaded_.scene, name).size();  // throws for an unknown name
     const ParameterDescription& description = *parseParameterName(name)->description;
     ParameterInfo info{name, {description.channels}, description.range};
@@ -98,10 +100,12 @@ ParameterInfo SceneSession::parameter(const std::string& name) const {
 }
 
 std::vector<float> SceneSession::get(const std::string& name) const {
+    std::lock_guard lock(mutex_);
     return getParameter(loaded_.scene, name);
 }
 
 void SceneSession::set(const std::string& name, const std::vector<float>& values) {
+    std::lock_guard lock(mutex_);
     setParameter(loaded_.scene, name, values);
     ++parameterVersion_;
 }
@@ -143,6 +147,7 @@ auto SceneSession::withRenderer(const RenderSettings& settings, Work work) {
 }
 
 Image SceneSession::render(const RenderSettings& settings) {
+    std::lock_guard lock(mutex_);
     Image image = withRenderer(settings, [](CachedRenderer& cached) { return cached.renderer->render(); });
     // Accepted scenes keep every pixel finite (docs/scene-format.md); should one not be,
     // the caller gets an error, not the number.
@@ -154,6 +159,7 @@ Image SceneSession::render(const RenderSettings& settings) {
 
 std::vector<ParameterGradient> SceneSession::backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
                                                            const std::vector<std::string>& names) {
+    std::lock_guard lock(mutex_);
     for (size_t i = 0; i < imageAdjoint.rgb.size(); ++i) {
         if (!std::isfinite(imageAdjoint.rgb[i])) {
             const size_t pixel = i / 3;
@@ -162,6 +168,9 @@ std::vector<ParameterGradient> SceneSession::backpropagate(const RenderSettings&
         }
     }
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
+    if (slots.empty()) {
+        return {};
+    }
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     const SceneGradients gradients = withRenderer(settings, [&](CachedRenderer& cached) {
         if (!cached.adjoint || cached.adjoint->loss || !covers(cached.adjoint->targets, wanted)) {
@@ -175,6 +184,7 @@ std::vector<ParameterGradient> SceneSession::backpropagate(const RenderSettings&
 
 SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& settings, const Image& target,
                                                       LossKind loss, const std::vector<std::string>& names) {
+    std::lock_guard lock(mutex_);
     if (std::optional<std::string> bad = unrepresentablePixel(target)) {
         throw Error("the target's " + *bad);
     }
@@ -197,11 +207,18 @@ std::vector<ParameterGradient> SceneSession::namedGradients(const std::vector<Gr
     std::vector<ParameterGradient> result;
     for (const GradientSlot& slot : slots) {
         result.push_back({slot.name, getParameter(loaded_.scene, slot.name), gatherGradient(slot, gradients)});
+        for (double value : result.back().gradient) {
+            if (!std::isfinite(value)) {
+                throw Error("the gradient of " + slot.name + " is not finite: the image adjoint (or the target's "
+                            "difference from the image) is too large to sum");
+            }
+        }
     }
     return result;
 }
 
 void SceneSession::write(const std::filesystem::path& out) const {
+    std::lock_guard lock(mutex_);
     if (out.extension() != ".gltf") {
         throw Error(out.string() + ": the scene is written as .gltf; give a path ending in .gltf");
     }

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <list>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,8 @@ struct ParameterInfo {
 // image adjoint the caller computed, reads and sets parameters, and writes the scene
 // back. It drives the same Renderer as the command line; renderers (one per camera,
 // size, samples and depth) are kept between calls, so a loop that renders the same view
-// again pays no pipeline or buffer set-up.
+// again pays no pipeline or buffer set-up. Calls from several threads take turns: the
+// device's queue and the cached renderers serve one call at a time.
 class SceneSession {
 public:
     SceneSession(const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles);
@@ -80,6 +82,7 @@ private:
     std::vector<ParameterGradient> namedGradients(const std::vector<GradientSlot>& slots,
                                                   const SceneGradients& gradients) const;
 
+    mutable std::recursive_mutex mutex_;  // held by every public call; they call each other
     std::filesystem::path file_;
     LoadedScene loaded_;
     std::vector<std::string> warnings_;

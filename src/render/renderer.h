@@ -148,6 +148,11 @@ private:
     // render()'s at the current seed; imageAdjoint must hold dLoss/dI.
     void replayIndependentlyAndBackpropagate();
     void recordClearAccumulators(CommandRecorder& recorder);
+    // What the adjoint state was allocated for: a loss against a target
+    // (enableGradients) or a caller's image adjoint (enableImageAdjoint). Each gradient
+    // call requires its own, since the two set the samples' split apart.
+    enum class AdjointUse { None, Loss, ImageAdjoint };
+    void requireAdjointUse(AdjointUse use, const char* call) const;
     // Downloads the gradient accumulators, together with `alsoDownload`, in one go.
     SceneGradients downloadGradients(std::vector<Download> alsoDownload);
     // One segment of every path alive: closest hits, free flights, vertices, shadow rays.
@@ -170,6 +175,7 @@ private:
     StagePipelines pipelines_;
     std::unique_ptr<PathBuffers> paths_;
     std::unique_ptr<AdjointBuffers> adjoint_;
+    AdjointUse adjointUse_ = AdjointUse::None;
     LossKind lossKind_;
     uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
     bool texelGradientsWanted_ = false;  // RenderParams.texelGradientsWanted

@@ -31,7 +31,17 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
     const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
     lossKind_ = loss;
     allocateAdjoint(derivativeTargets, keptPaths * 16 <= keptBudget ? keptPaths : 0);
+    adjointUse_ = AdjointUse::Loss;
     setTarget(target);
+}
+
+void Renderer::requireAdjointUse(AdjointUse use, const char* call) const {
+    if (adjointUse_ != use) {
+        throw Error(std::string("internal: ") + call + " on a renderer whose gradients are enabled for " +
+                    (adjointUse_ == AdjointUse::None   ? "nothing"
+                     : adjointUse_ == AdjointUse::Loss ? "a loss (enableGradients)"
+                                                       : "an image adjoint (enableImageAdjoint)"));
+    }
 }
 
 void Renderer::requireRenderSize(const Image& image, const std::string& what) const {
@@ -42,9 +52,7 @@ void Renderer::requireRenderSize(const Image& image, const std::string& what) co
 }
 
 void Renderer::setTarget(const Image& target) {
-    if (!adjoint_) {
-        throw Error("internal: setTarget() before enableGradients()");
-    }
+    requireAdjointUse(AdjointUse::Loss, "setTarget()");
     requireRenderSize(target, "the target");
     std::vector<glm::vec4> texels(size_t(target.width) * target.height);
     for (size_t i = 0; i < texels.size(); ++i) {
@@ -59,6 +67,7 @@ void Renderer::setTarget(const Image& target) {
 void Renderer::enableImageAdjoint(const DerivativeTargets& derivativeTargets) {
     splitSample_ = 0;
     allocateAdjoint(derivativeTargets, 0);
+    adjointUse_ = AdjointUse::ImageAdjoint;
 }
 
 void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths) {
@@ -76,9 +85,7 @@ void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint6
 }
 
 SceneGradients Renderer::backpropagate(const Image& imageAdjoint) {
-    if (!adjoint_) {
-        throw Error("internal: backpropagate() before enableImageAdjoint()");
-    }
+    requireAdjointUse(AdjointUse::ImageAdjoint, "backpropagate()");
     requireRenderSize(imageAdjoint, "the image adjoint");
     // Each path carries its pixel's dLoss/dI divided by the samples per pixel (adjoint.glsl).
     const float perSample = 1.0f / float(settings_.spp);
@@ -127,6 +134,7 @@ SceneGradients Renderer::downloadGradients(std::vector<Download> alsoDownload) {
 }
 
 double Renderer::loss() {
+    requireAdjointUse(AdjointUse::Loss, "loss()");
     submitLoss(settings_.spp, gpu::kLossImageFilm);
     int64_t words[gpu::kFixedPointWordsPerSum];
     downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(words)));
@@ -165,6 +173,7 @@ void Renderer::copyKeptRadiance(const PassRange& range, bool keep) {
 }
 
 GradientEvaluation Renderer::renderWithGradients() {
+    requireAdjointUse(AdjointUse::Loss, "renderWithGradients()");
     stats_ = {};
     {
         CommandRecorder recorder(context_);

@@ -5,9 +5,10 @@ import math
 import numpy as np
 
 # Two estimates agree when they differ by at most this many combined standard errors.
-# Over 16 seeds a mean's error follows Student's t with 15 degrees of freedom, which
-# exceeds 5 with probability 1.6e-4: a test of a few such comparisons fails by chance
-# well under once in a thousand runs (and every run at fixed seeds repeats bit for bit).
+# Each side is a mean over 16 seeds, so their difference over its estimated standard
+# error follows Student's t with about 30 degrees of freedom, which exceeds 5 with
+# probability 2e-5: even a test of a dozen such comparisons fails by chance once in a few
+# thousand runs (and at fixed seeds every run on a device repeats bit for bit).
 AGREEMENT_IN_STANDARD_ERRORS = 5.0
 
 

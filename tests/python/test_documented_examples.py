@@ -8,6 +8,10 @@ import re
 import subprocess
 import sys
 
+import pytest
+
+pytest.importorskip("torch")  # the page's PyTorch examples and the example script need it
+
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 PYTHON_BLOCK = re.compile(r"^```python[ \t]*\n(.*?)^```[ \t]*$", re.MULTILINE | re.DOTALL)
 

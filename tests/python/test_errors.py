@@ -24,7 +24,7 @@ def cli_error(cli, *arguments):
     """The message the command line prints after 'error: ', which must exit with 2."""
     result = subprocess.run([cli, *arguments], capture_output=True, text=True)
     assert result.returncode == 2, result.stderr
-    return result.stderr.strip().splitlines()[-1].removeprefix("error: ")
+    return next(line for line in result.stderr.splitlines() if line.startswith("error: ")).removeprefix("error: ")
 
 
 def test_messages_are_the_command_lines(cli, fog_scene_file, tmp_path):
@@ -39,6 +39,24 @@ def test_messages_are_the_command_lines(cli, fog_scene_file, tmp_path):
             scene[name] = float(value)
         assert str(raised.value) == cli_error(cli, "render", str(fog_scene_file), "-o", str(tmp_path / "a.exr"),
                                               "--set", assignment)
+
+
+def test_keyword_messages_are_the_command_lines_options(cli, fog_scene_file, tmp_path):
+    """A keyword's error is the command line's for its option, naming the keyword."""
+    scene = vkdiffrender.Scene(fog_scene_file)
+    for keyword, option, value in [("spp", "--spp", 0), ("max_depth", "--max-depth", 100001),
+                                   ("seed", "--seed", 1 << 32)]:
+        with pytest.raises(vkdiffrender.Error) as raised:
+            scene.render(width=WIDTH, **{keyword: value})
+        expected = cli_error(cli, "render", str(fog_scene_file), "-o", str(tmp_path / "a.exr"), option, str(value))
+        assert str(raised.value) == expected.replace(option, keyword, 1)
+    with pytest.raises(vkdiffrender.Error) as raised:
+        scene.loss_gradient(np.zeros((WIDTH, WIDTH, 3), np.float32), ["media/fog/g"], loss="l3", width=WIDTH)
+    target = tmp_path / "target.exr"
+    vkdiffrender.write_image(target, np.zeros((WIDTH, WIDTH, 3), np.float32))
+    expected = cli_error(cli, "grad", str(fog_scene_file), "--target", str(target), "--param", "media/fog/g",
+                         "--loss", "l3")
+    assert str(raised.value) == expected.replace("--loss", "loss", 1)
 
 
 @pytest.mark.parametrize("value,problem", [
@@ -59,6 +77,9 @@ def test_bad_parameter_values_are_refused(scene, value, problem):
     (lambda s: s.render(width=WIDTH, max_depth=10**6), "max_depth"),
     (lambda s: s.render(width=WIDTH, camera="nope"), "nope"),
     (lambda s: s["nope"], "nope"),
+    (lambda s: s.render(width=WIDTH, paths_per_pass=1 << 22), "paths_per_pass"),
+    (lambda s: s.loss_gradient(np.full((WIDTH, WIDTH, 3), np.nan, np.float32), ["media/fog/g"], width=WIDTH,
+                               spp=2), "target"),
     (lambda s: s.backpropagate(np.zeros((WIDTH, WIDTH, 3), np.float32), ["media/fog/nope"], width=WIDTH,
                                spp=1), "media/fog/nope"),
     (lambda s: s.backpropagate(np.zeros((WIDTH, 3), np.float32), ["media/fog/g"], width=WIDTH), "shape"),
@@ -71,6 +92,20 @@ def test_bad_calls_raise(scene, call, problem):
     with pytest.raises(vkdiffrender.Error, match=problem):
         call(scene)
     assert scene.render(spp=1, width=WIDTH).shape == (WIDTH, WIDTH, 3)  # still usable
+
+
+def test_none_is_a_type_error(scene):
+    with pytest.raises(TypeError, match="None"):
+        scene["media/fog/sigma_a"] = None
+    with pytest.raises(TypeError, match="None"):
+        scene.backpropagate(None, ["media/fog/g"], width=WIDTH)
+
+
+def test_an_unsummable_image_adjoint_is_an_error_not_an_infinite_gradient(scene):
+    huge = np.full((WIDTH, WIDTH, 3), 3e38, np.float32)
+    with pytest.raises(vkdiffrender.Error, match="not finite"):
+        scene.backpropagate(huge, ["media/fog/sigma_a"], spp=2, width=WIDTH)
+    assert scene.backpropagate(huge, [], spp=2, width=WIDTH) == {}
 
 
 def test_files_are_checked(scene, fog_scene_file, tmp_path):
@@ -121,6 +156,25 @@ def test_the_device_works_without_pythons_lock(scene):
         done.set()
         counter.join()
     assert ticks > 10
+
+
+def test_threads_sharing_a_scene_take_turns(scene):
+    """Calls on one Scene from several threads wait for each other; each gets the image a
+    call on its own would."""
+    settings = [dict(spp=1, width=8 + k % 3, seed=k) for k in range(9)]
+    expected = [scene.render(**s) for s in settings]
+    results = [None] * len(settings)
+
+    def work(first):
+        for k in range(first, len(settings), 3):
+            results[k] = scene.render(**settings[k])
+
+    threads = [threading.Thread(target=work, args=(first,)) for first in range(3)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert all(np.array_equal(a, b) for a, b in zip(results, expected))
 
 
 CHILD = """

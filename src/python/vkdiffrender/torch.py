@@ -7,7 +7,8 @@
     loss.backward()  # sigma_a.grad
 
 The forward pass sets the scene's parameters to the tensors' values and renders. The
-backward pass hands the upstream gradient dLoss/dI to Scene.backpropagate, which
+backward pass sets every parameter back to the values the forward pass rendered with and
+hands the upstream gradient dLoss/dI to Scene.backpropagate, which
 replays the paths with random numbers independent of the forward image's: the gradient
 is then free of the covariance between the image and its own derivative, the bias a
 nonlinear loss would otherwise get (docs/python.md, "Why the backward pass renders
@@ -36,11 +37,13 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
 class _Render(torch.autograd.Function):
     @staticmethod
     def forward(ctx, scene, names, settings, *tensors):
-        values = [tensor.detach().to("cpu", torch.float32).numpy().copy() for tensor in tensors]
-        for name, value in zip(names, values):
-            scene[name] = value
+        for name, tensor in zip(names, tensors):
+            scene[name] = tensor.detach().to("cpu", torch.float32).numpy()
         image = scene.render(**settings)
-        ctx.scene, ctx.names, ctx.settings, ctx.values = scene, names, settings, values
+        # Every parameter, not only the tensors': the backward pass must differentiate the
+        # scene this pass rendered, whatever is set in between (another view, say).
+        ctx.values = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
+        ctx.scene, ctx.names, ctx.settings = scene, names, settings
         ctx.tensor_shapes = [(tensor.shape, tensor.dtype, tensor.device) for tensor in tensors]
         device = tensors[0].device if tensors else torch.device("cpu")
         return torch.from_numpy(image).to(device)
@@ -51,9 +54,7 @@ class _Render(torch.autograd.Function):
         wanted = [name for name, needed in zip(ctx.names, ctx.needs_input_grad[3:]) if needed]
         if not wanted:
             return (None, None, None) + (None,) * len(ctx.names)
-        # The scene may have been changed since the forward pass: the gradient is taken
-        # at the values that pass rendered with.
-        for name, value in zip(ctx.names, ctx.values):
+        for name, value in ctx.values.items():
             ctx.scene[name] = value
         adjoint = image_gradient.detach().to("cpu", torch.float32).contiguous().numpy()
         gradients = ctx.scene.backpropagate(adjoint, wanted, **ctx.settings)
