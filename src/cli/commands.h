@@ -12,5 +12,7 @@ CommandAction addInfoCommand(CLI::App& app);
 CommandAction addGradCommand(CLI::App& app);
 CommandAction addOptimizeCommand(CLI::App& app);
 CommandAction addBenchCommand(CLI::App& app);
+// `help [COMMAND]`: the same text as COMMAND --help.
+CommandAction addHelpCommand(CLI::App& app);
 
 }  // namespace vkdr

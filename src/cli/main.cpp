@@ -4,20 +4,23 @@
 #include <new>
 
 #include "cli/commands.h"
+#include "cli/help_formatter.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 
 int main(int argc, char** argv) {
     CLI::App app("vkdiffrender: a differentiable volumetric path tracer on Vulkan", "vkdiffrender");
     app.require_subcommand(1);
+    app.set_version_flag("--version", std::string("vkdiffrender ") + VKDR_VERSION);
+    app.formatter(std::make_shared<vkdr::HelpFormatter>());  // before the subcommands, which inherit it
     std::vector<vkdr::CommandAction> actions = {vkdr::addRenderCommand(app), vkdr::addGradCommand(app),
                                                 vkdr::addOptimizeCommand(app), vkdr::addBenchCommand(app),
-                                                vkdr::addInfoCommand(app)};
+                                                vkdr::addInfoCommand(app), vkdr::addHelpCommand(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) {
-            return app.exit(e);  // --help
+            return app.exit(e);  // --help, --version
         }
         std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
         return 2;

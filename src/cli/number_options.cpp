@@ -50,7 +50,7 @@ CLI::Validator integerIn(uint64_t low, uint64_t high, const std::string& kind) {
             input = std::to_string(value);
             return "";
         },
-        "UINT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
+        expected);
 }
 
 }  // namespace vkdr

@@ -58,6 +58,33 @@ TEST_F(CliTest, HelpDescribesEverySubcommand) {
     EXPECT_EQ(run("--help").exitCode, 0);
 }
 
+TEST_F(CliTest, HelpIsInWordsAndReachableByHelpCommand) {
+    for (const char* command : {"render", "grad", "optimize", "bench", "info"}) {
+        RunResult help = run(std::string(command) + " --help");
+        EXPECT_EQ(help.exitCode, 0) << command;
+        // CLI11's type and validator names ("UINT:UINT in [1 - 1048576]=16") never show.
+        for (const char* internal : {"UINT", "INT:", "FLOAT", "TEXT:", "REQUIRED", "]="}) {
+            EXPECT_EQ(help.out.find(internal), std::string::npos) << command << " shows " << internal;
+        }
+        RunResult viaHelp = run(std::string("help ") + command);
+        EXPECT_EQ(viaHelp.exitCode, 0) << command;
+        EXPECT_EQ(viaHelp.out, help.out) << command;
+    }
+    EXPECT_NE(run("render --help").out.find("--spp N"), std::string::npos);
+    EXPECT_NE(run("render --help").out.find("an integer from 1 to 1048576; default 16"), std::string::npos);
+    EXPECT_EQ(run("help").out, run("--help").out);
+    RunResult unknown = run("help nope");
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_NE(unknown.err.find("error: help: no command 'nope'; the commands are render, grad"), std::string::npos)
+        << unknown.err;
+}
+
+TEST_F(CliTest, VersionIsPrinted) {
+    RunResult version = run("--version");
+    EXPECT_EQ(version.exitCode, 0);
+    EXPECT_EQ(version.out.rfind("vkdiffrender ", 0), 0u) << version.out;
+}
+
 TEST_F(CliTest, MissingSceneFile) {
     expectCleanFailure("render " + (dir_ / "nowhere.gltf").string(), "nowhere.gltf");
 }
