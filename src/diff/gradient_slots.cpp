@@ -81,4 +81,14 @@ std::vector<double> gatherGradient(const GradientSlot& slot, const SceneGradient
     return gradient;
 }
 
+DerivativeTargets derivativeTargetsOf(const std::vector<GradientSlot>& slots) {
+    DerivativeTargets targets{false, false, false};
+    for (const GradientSlot& slot : slots) {
+        targets.mediumScattering |= slot.kind == ParameterKind::SigmaS;
+        targets.baseColor |= slot.kind == ParameterKind::BaseColor || slot.kind == ParameterKind::BaseColorTexture;
+        targets.texels |= slot.kind == ParameterKind::BaseColorTexture;
+    }
+    return targets;
+}
+
 }  // namespace vkdr

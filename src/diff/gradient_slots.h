@@ -24,6 +24,10 @@ struct GradientSlot {
 // valid ones (scene/parameters.h).
 std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::vector<std::string>& names);
 
+// What the adjoint pass must follow to find these gradients (render/renderer.h,
+// DerivativeTargets): only the kinds of parameter among the slots.
+DerivativeTargets derivativeTargetsOf(const std::vector<GradientSlot>& slots);
+
 // The parameter's gradient, one value per float of the parameter (scene/parameters.h).
 std::vector<double> gatherGradient(const GradientSlot& slot, const SceneGradients& gradients);
 

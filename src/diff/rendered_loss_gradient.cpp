@@ -31,13 +31,7 @@ RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const S
         throw Error("no target image given");
     }
     impl_->slots = resolveGradientSlots(scene, parameters);
-    DerivativeTargets derivativeTargets{false, false, false};
-    for (const GradientSlot& slot : impl_->slots) {
-        derivativeTargets.mediumScattering |= slot.kind == ParameterKind::SigmaS;
-        derivativeTargets.baseColor |=
-            slot.kind == ParameterKind::BaseColor || slot.kind == ParameterKind::BaseColorTexture;
-        derivativeTargets.texels |= slot.kind == ParameterKind::BaseColorTexture;
-    }
+    const DerivativeTargets derivativeTargets = derivativeTargetsOf(impl_->slots);
     Bvh bvh = buildBvh(scene.positions, scene.triangles);
     for (const TargetView& view : views) {
         RenderSettings viewSettings = settings;

@@ -22,17 +22,6 @@ bool sameView(const RenderSettings& a, const RenderSettings& b) {
            a.maxDepth == b.maxDepth && a.pathsPerPass == b.pathsPerPass;
 }
 
-// What the adjoint must follow for these gradients (render/renderer.h, DerivativeTargets).
-DerivativeTargets derivativeTargetsOf(const std::vector<GradientSlot>& slots) {
-    DerivativeTargets targets{false, false, false};
-    for (const GradientSlot& slot : slots) {
-        targets.mediumScattering |= slot.kind == ParameterKind::SigmaS;
-        targets.baseColor |= slot.kind == ParameterKind::BaseColor || slot.kind == ParameterKind::BaseColorTexture;
-        targets.texels |= slot.kind == ParameterKind::BaseColorTexture;
-    }
-    return targets;
-}
-
 bool covers(const DerivativeTargets& have, const DerivativeTargets& want) {
     return (have.mediumScattering || !want.mediumScattering) && (have.baseColor || !want.baseColor) &&
            (have.texels || !want.texels);

@@ -148,6 +148,9 @@ private:
     // render()'s at the current seed; imageAdjoint must hold dLoss/dI.
     void replayIndependentlyAndBackpropagate();
     void recordClearAccumulators(CommandRecorder& recorder);
+    // A host-visible buffer of the image's pixels times `scale`, as the per-pixel vec4s
+    // of the target and image-adjoint buffers, to copy from.
+    Buffer perPixelStaging(const Image& image, float scale, const std::string& name) const;
     // What the adjoint state was allocated for: a loss against a target
     // (enableGradients) or a caller's image adjoint (enableImageAdjoint). Each gradient
     // call requires its own, since the two set the samples' split apart.

@@ -54,11 +54,7 @@ void Renderer::requireRenderSize(const Image& image, const std::string& what) co
 void Renderer::setTarget(const Image& target) {
     requireAdjointUse(AdjointUse::Loss, "setTarget()");
     requireRenderSize(target, "the target");
-    std::vector<glm::vec4> texels(size_t(target.width) * target.height);
-    for (size_t i = 0; i < texels.size(); ++i) {
-        texels[i] = glm::vec4(target.rgb[3 * i], target.rgb[3 * i + 1], target.rgb[3 * i + 2], 0.0f);
-    }
-    Buffer staging = uploadVector<glm::vec4>(context_, texels, "target (staging)");
+    Buffer staging = perPixelStaging(target, 1.0f, "target (staging)");
     CommandRecorder recorder(context_);
     recorder.copy(staging, adjoint_->target, adjoint_->target.size());
     recorder.submitAndWait();
@@ -88,13 +84,7 @@ SceneGradients Renderer::backpropagate(const Image& imageAdjoint) {
     requireAdjointUse(AdjointUse::ImageAdjoint, "backpropagate()");
     requireRenderSize(imageAdjoint, "the image adjoint");
     // Each path carries its pixel's dLoss/dI divided by the samples per pixel (adjoint.glsl).
-    const float perSample = 1.0f / float(settings_.spp);
-    std::vector<glm::vec4> perPixel(size_t(imageAdjoint.width) * imageAdjoint.height);
-    for (size_t i = 0; i < perPixel.size(); ++i) {
-        const float* rgb = &imageAdjoint.rgb[3 * i];
-        perPixel[i] = glm::vec4(rgb[0] * perSample, rgb[1] * perSample, rgb[2] * perSample, 0.0f);
-    }
-    Buffer staging = uploadVector<glm::vec4>(context_, perPixel, "image adjoint (staging)");
+    Buffer staging = perPixelStaging(imageAdjoint, 1.0f / float(settings_.spp), "image adjoint (staging)");
     stats_ = {};
     {
         CommandRecorder recorder(context_);
@@ -106,6 +96,15 @@ SceneGradients Renderer::backpropagate(const Image& imageAdjoint) {
     replayIndependentlyAndBackpropagate();
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
     return downloadGradients({});
+}
+
+Buffer Renderer::perPixelStaging(const Image& image, float scale, const std::string& name) const {
+    std::vector<glm::vec4> perPixel(size_t(image.width) * image.height);
+    for (size_t i = 0; i < perPixel.size(); ++i) {
+        const float* rgb = &image.rgb[3 * i];
+        perPixel[i] = glm::vec4(rgb[0] * scale, rgb[1] * scale, rgb[2] * scale, 0.0f);
+    }
+    return uploadVector<glm::vec4>(context_, perPixel, name);
 }
 
 void Renderer::recordClearAccumulators(CommandRecorder& recorder) {
