@@ -54,38 +54,35 @@ struct NextEventQuery {
     uint index;        // material (surface) or medium (medium vertex)
 };
 
-// Samples a point on an emitter and queues a shadow ray carrying its MIS-weighted,
-// unoccluded contribution beta * scatter * Le * w / pdf. `scatter` is f * cos (surface)
-// or the phase value (medium); `scatterPdf` is the density the other strategy would have
-// sampled the direction with. For the adjoint, `dScatter` is d scatter / d albedo
+// Queues a shadow ray towards a sampled light carrying its MIS-weighted, unoccluded
+// contribution beta * scatter * Le * w / pdf. `scatter` is f * cos (surface) or the
+// phase value (medium) for the direction light.wi; `scatterPdf` is the density the other
+// strategy would have sampled it with. For the adjoint, `dScatter` is d scatter / d albedo
 // (surface) and `dLogPhase` is d log phase / d g (medium).
-void nextEvent(uint slot, NextEventQuery query, LightSample ls, vec3 scatter, float scatterPdf, vec3 dScatter,
+void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter, float scatterPdf, vec3 dScatter,
                float dLogPhase) {
-    vec3 wi = normalize(ls.position - query.position);
-    GpuMaterial light = P.materials.v[ls.material];
-    vec3 lePerUnit = emissionPerUnit(light, ls.normal, ls.uv, -wi);
-    vec3 le = light.emission.rgb * lePerUnit;
-    float pdfLight = lightPdfSolidAngle(ls.pdfArea, query.position, ls.position, ls.normal);
+    vec3 le = light.parameter * light.perUnit;
     bool contributes = maxComponent(le * scatter) > 0.0f;
-    bool hasGradient = kAdjoint && maxComponent(le * dScatter) > 0.0f;
-    if (pdfLight <= 0.0f || !(contributes || hasGradient)) {
+    // The emitter's own gradient is wanted even where its parameter is 0.
+    bool hasGradient = kAdjoint && (maxComponent(le * dScatter) > 0.0f || maxComponent(light.perUnit * scatter) > 0.0f);
+    if (light.pdf <= 0.0f || !(contributes || hasGradient)) {
         return;
     }
-    float weight = powerHeuristic(pdfLight, scatterPdf) / pdfLight;
-    float distance = length(ls.position - query.position) - 2.0f * P.rayEpsilon;
-    P.shadowOrigin.v[slot] = vec4(query.position, distance);
-    P.shadowDirection.v[slot] = vec4(wi, uintBitsToFloat(query.medium));
+    float weight = (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
+    P.shadowOrigin.v[slot] = vec4(query.position, light.distance - 2.0f * P.rayEpsilon);
+    P.shadowDirection.v[slot] = vec4(light.wi, uintBitsToFloat(query.medium));
     P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, 0.0f);
     if (kAdjoint) {
         P.shadowScatterGradient.v[slot] = vec4(query.beta * dScatter * le * weight, dLogPhase);
-        P.shadowEmissionGradient.v[slot] = vec4(query.beta * scatter * lePerUnit * weight, uintBitsToFloat(ls.material));
+        P.shadowEmissionGradient.v[slot] =
+            vec4(query.beta * scatter * light.perUnit * weight, uintBitsToFloat(light.emitter));
         P.shadowVertex.v[slot] = uvec4(query.vertexKind, query.index, adjoint.derivativeChannels, 0u);
     }
     queuePush(kQueueShadow, slot);
 }
 
-LightSample sampleLightFor(PathInfo info) {
-    return sampleLight(segmentRandom(info, kDimLight).xyz);
+LightArrival sampleLightFor(PathInfo info, vec3 from) {
+    return lightArrival(sampleLight(segmentRandom(info, kDimLight).xyz), from);
 }
 
 void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit, uint medium) {
@@ -120,6 +117,9 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     }
     ++info.depth;
     vec3 n = dot(sp.normal, toViewer) > 0.0f ? sp.normal : -sp.normal;
+    // The Lambertian lobe follows the shading normal; directions below the geometric
+    // surface get nothing, so no light leaks through it.
+    vec3 ns = shadingNormal(triangle, hit.y, hit.z, n);
     vec3 texture = baseColorTexture(material, sp.uv);
     vec3 albedo = material.baseColor.rgb * texture;
     vec3 origin = sp.position + n * P.rayEpsilon;
@@ -127,22 +127,26 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
         P.vertexUv.v[slot] = vec4(sp.uv, 0.0f, 0.0f);
     }
     if (P.lightCount > 0u) {
-        LightSample ls = sampleLightFor(info);
-        float cosine = dot(n, normalize(ls.position - origin));
-        if (cosine > 0.0f) {
-            nextEvent(slot, NextEventQuery(origin, medium, beta, kVertexSurface, sp.material), ls,
+        // Measured from the surface itself; only the shadow ray starts off it.
+        LightArrival light = sampleLightFor(info, sp.position);
+        float cosine = dot(ns, light.wi);
+        if (cosine > 0.0f && dot(n, light.wi) > 0.0f) {
+            nextEvent(slot, NextEventQuery(origin, medium, beta, kVertexSurface, sp.material), light,
                       albedo * (kInvPi * cosine), kInvPi * cosine, vec3(kInvPi * cosine), 0.0f);
         }
     }
     vec4 u = segmentRandom(info, kDimScatter);
-    vec3 wi = frameFromNormal(n) * sampleCosineHemisphere(u.xy);
+    vec3 wi = frameFromNormal(ns) * sampleCosineHemisphere(u.xy);
+    if (dot(n, wi) <= 0.0f) {
+        return;
+    }
     setPendingFactor(slot, kPendingBaseColor, sp.material, logDerivativeOfLinear(albedo));
     beta = multiplyByParameter(beta, material.baseColor.rgb, texture, kTargetBaseColor, sp.material);
     if (!survivesRoulette(beta, info.depth, u.z)) {
         return;
     }
     P.beta.v[slot].rgb = beta;
-    P.misVertex.v[slot] = vec4(sp.position, max(dot(n, wi), 0.0f) * kInvPi);
+    P.misVertex.v[slot] = vec4(sp.position, max(dot(ns, wi), 0.0f) * kInvPi);
     continuePath(slot, info, origin, wi, medium);
 }
 
@@ -154,10 +158,10 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
     vec3 position = origin + direction * hit.x;
     float g = P.media.v[medium].g;
     if (P.lightCount > 0u) {
-        LightSample ls = sampleLightFor(info);
-        float mu = dot(direction, normalize(ls.position - position));
+        LightArrival light = sampleLightFor(info, position);
+        float mu = dot(direction, light.wi);
         float phase = hgPhase(mu, g);
-        nextEvent(slot, NextEventQuery(position, medium, beta, kVertexMedium, medium), ls, vec3(phase), phase,
+        nextEvent(slot, NextEventQuery(position, medium, beta, kVertexMedium, medium), light, vec3(phase), phase,
                   vec3(0.0f), hgPhaseDLogG(mu, g));
     }
     vec4 u = segmentRandom(info, kDimScatter);

@@ -116,7 +116,7 @@ void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr, MediumLengths
     } else {
         addPhaseGGradient(vertex.y, (weight.x + weight.y + weight.z) * scatterGradient.w);
     }
-    addEmissionGradient(floatBitsToUint(emissionGradient.w), delta * emissionGradient.rgb * tr * normal);
+    addEmitterGradient(floatBitsToUint(emissionGradient.w), delta * emissionGradient.rgb * tr * normal);
 }
 
 void main() {

@@ -119,6 +119,20 @@ void addEmissionGradient(uint material, vec3 g) {
     addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * kColorGradientStride, 0u, g, 3u);
 }
 
+void addLightIntensityGradient(uint light, vec3 g) {
+    addGradient(P.lightGradients, P.lightGradientsCopyStride, light * kColorGradientStride, 0u, g, 3u);
+}
+
+// The gradient of an emitter's parameter: a material's emission or a punctual light's
+// intensity (`emitter` as in LightArrival.emitter).
+void addEmitterGradient(uint emitter, vec3 g) {
+    if ((emitter & kPunctualEmitter) != 0u) {
+        addLightIntensityGradient(P.punctualLights.v[emitter & ~kPunctualEmitter].light, g);
+    } else {
+        addEmissionGradient(emitter, g);
+    }
+}
+
 // g = dLoss/d(texture value at uv), spread over the texels the lookup blends.
 void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
     BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);

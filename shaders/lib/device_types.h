@@ -110,7 +110,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(adjointState, UVec4Buffer)          /* see AdjointState in adjoint.glsl */ \
     X(vertexUv, Vec4Buffer)               /* xy: texture coordinates of the last surface vertex */ \
     X(shadowScatterGradient, Vec4Buffer)  /* rgb dC/dalbedo (surface); w: d log phase / dg (medium) */ \
-    X(shadowEmissionGradient, Vec4Buffer) /* rgb dC/demission; w: light material (uint bits) */ \
+    X(shadowEmissionGradient, Vec4Buffer) /* rgb dC/demission; w: the emitter (uint bits, see kPunctualEmitter) */ \
     X(shadowVertex, UVec4Buffer)          /* x: vertex kind, y: material or medium index, z: derivative channels */
 
 // The adjoint pass's gradient accumulators: X(name, SceneGradients field (host), sums
@@ -121,6 +121,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(mediumGradients, media, kMediumGradientStride, kGradientCopies, mediumCount) \
     X(baseColorGradients, baseColors, kColorGradientStride, kGradientCopies, materialCount) \
     X(emissionGradients, emissions, kColorGradientStride, kGradientCopies, materialCount) \
+    X(lightGradients, lights, kColorGradientStride, kGradientCopies, punctualLightCount) \
     X(texelGradients, texels, kColorGradientStride, 1u, texelCount) /* in the order of RenderParams.texels */
 
 #ifdef __cplusplus
@@ -156,6 +157,26 @@ struct GpuMaterial {
     int interiorMedium;        // >= 0: pass-through boundary around media[i]
     uint doubleSided;          // 1: emits from both sides
 };
+
+// A punctual light as placed in the scene (Scene::lightPlacements, with its light's values).
+const uint kLightPoint = 0u;
+const uint kLightSpot = 1u;
+const uint kLightDirectional = 2u;
+struct GpuPunctualLight {
+    vec3 position;
+    uint type;                 // kLightPoint, kLightSpot or kLightDirectional
+    vec3 direction;            // unit, where it shines
+    float cosOuterCone;        // spot only
+    vec3 intensity;            // rgb color x intensity
+    float cosInnerCone;        // spot only
+    uint light;                // index into Scene::punctualLights: where its gradient goes
+    float pmf;                 // probability of choosing it for next-event estimation
+    uint pad0, pad1;
+};
+
+// Entries of RenderParams.lightSources, and the emitter of a next-event estimate: an
+// emissive triangle's index, or kPunctualEmitter | a GpuPunctualLight's index.
+const uint kPunctualEmitter = 0x80000000u;
 
 struct GpuMedium {
     vec3 sigma_a;              // absorption, per unit length
@@ -212,6 +233,7 @@ layout(buffer_reference, std430, buffer_reference_align = 8) buffer Int64Buffer 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer MaterialBuffer { GpuMaterial v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer MediumBuffer { GpuMedium v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer TextureBuffer { GpuTexture v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer PunctualLightBuffer { GpuPunctualLight v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer TriangleInfoBuffer { GpuTriangleInfo v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer QueueCounters { QueueCountersData c; };
 #endif
@@ -223,14 +245,17 @@ struct RenderParams {
     // Scene
     VKDR_BUFFER(Vec4Buffer) triangleVertices;       // 3 per triangle (BVH order), xyz
     VKDR_BUFFER(Vec4Buffer) triangleUvs;            // 2 per triangle: (uv0, uv1), (uv2, -)
+    VKDR_BUFFER(Vec4Buffer) triangleNormals;        // 3 per triangle, xyz: unit shading normals, or 0: flat
     VKDR_BUFFER(TriangleInfoBuffer) triangleInfo;
     VKDR_BUFFER(Vec4Buffer) bvhNodes;               // 2 per node, see src/bvh/bvh.h
     VKDR_BUFFER(MaterialBuffer) materials;
     VKDR_BUFFER(MediumBuffer) media;
     VKDR_BUFFER(TextureBuffer) textures;
     VKDR_BUFFER(Vec4Buffer) texels;                 // linear RGBA
-    VKDR_BUFFER(UintBuffer) lightTriangles;         // emissive triangles (BVH-order index)
+    VKDR_BUFFER(UintBuffer) lightSources;           // emissive triangles (BVH-order index) and punctual
+                                                    // lights (kPunctualEmitter | index into punctualLights)
     VKDR_BUFFER(FloatBuffer) lightCdf;              // lightCount + 1 entries, 0 .. 1
+    VKDR_BUFFER(PunctualLightBuffer) punctualLights;
     // Path state
 #define VKDR_DECLARE_PATH_ARRAY(name, Type) VKDR_BUFFER(Type) name;
     VKDR_PATH_ARRAYS(VKDR_DECLARE_PATH_ARRAY)

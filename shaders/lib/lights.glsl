@@ -1,15 +1,19 @@
-// Emissive triangles as lights, chosen in proportion to their power (host-built CDF).
+// The lights of next-event estimation: emissive triangles and punctual lights (point,
+// spot, directional), chosen in proportion to their power (host-built CDF).
 #ifndef VKDR_LIGHTS_GLSL
 #define VKDR_LIGHTS_GLSL
 #include "scene_access.glsl"
 #include "sampling.glsl"
 
+const uint kNoPunctualLight = 0xffffffffu;
+
 struct LightSample {
-    vec3 position;
-    vec3 normal;
+    vec3 position;   // on the emitter, or the punctual light's position
+    vec3 normal;     // the emitter's geometric normal
     vec2 uv;
-    uint material;
-    float pdfArea;   // pmf of the triangle / its area
+    uint material;   // the emitter's material
+    float pdfArea;   // pmf of the triangle / its area; a punctual light's pmf
+    uint punctual;   // index into P.punctualLights, or kNoPunctualLight for a triangle
 };
 
 // First index i with cdf[i + 1] > u, by binary search (log2 of the light count steps).
@@ -28,12 +32,16 @@ uint findLight(float u) {
 }
 
 LightSample sampleLight(vec3 u) {
-    uint light = findLight(u.x);
-    uint triangle = P.lightTriangles.v[light];
+    uint source = P.lightSources.v[findLight(u.x)];
+    if ((source & kPunctualEmitter) != 0u) {
+        uint index = source & ~kPunctualEmitter;
+        GpuPunctualLight light = P.punctualLights.v[index];
+        return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, index);
+    }
     vec2 b = sampleUniformTriangle(u.yz);
-    SurfacePoint sp = surfacePoint(triangle, b.x, b.y);
+    SurfacePoint sp = surfacePoint(source, b.x, b.y);
     return LightSample(sp.position, sp.normal, sp.uv, sp.material,
-                       P.triangleInfo.v[triangle].lightPmf / sp.area);
+                       P.triangleInfo.v[source].lightPmf / sp.area, kNoPunctualLight);
 }
 
 // Solid-angle density of reaching a point on an emitter from `from` by light sampling.
@@ -42,6 +50,62 @@ float lightPdfSolidAngle(float pdfArea, vec3 from, vec3 lightPosition, vec3 ligh
     float dist2 = dot(d, d);
     float cosLight = abs(dot(lightNormal, d)) / sqrt(dist2);
     return cosLight > 0.0f ? pdfArea * dist2 / cosLight : 0.0f;
+}
+
+// glTF's spot cone (KHR_lights_punctual): full intensity inside the inner cone, none
+// outside the outer one, and between them the square of a linear ramp in the cosine.
+float spotFalloff(GpuPunctualLight light, float cosAngle) {
+    float ramp = (cosAngle - light.cosOuterCone) / max(light.cosInnerCone - light.cosOuterCone, 1e-3f);
+    float t = clamp(ramp, 0.0f, 1.0f);
+    return t * t;
+}
+
+// What a light sample sends towards `from`: its direction and distance, the radiance
+// arriving (from a punctual light: the irradiance on a plane facing it) per unit of the
+// emitter's parameter (emission or intensity), that parameter, and the density of the
+// sample in solid angle, or for a punctual light its pmf, the weight of a delta.
+struct LightArrival {
+    vec3 wi;
+    float distance;
+    vec3 perUnit;
+    vec3 parameter;
+    float pdf;
+    bool isDelta;   // a punctual light: no other strategy finds it, so no MIS
+    uint emitter;   // the material, or kPunctualEmitter | the punctual light
+};
+
+LightArrival lightArrival(LightSample ls, vec3 from) {
+    LightArrival a;
+    if (ls.punctual == kNoPunctualLight) {
+        a.wi = normalize(ls.position - from);
+        a.distance = length(ls.position - from);
+        GpuMaterial light = P.materials.v[ls.material];
+        a.perUnit = emissionPerUnit(light, ls.normal, ls.uv, -a.wi);
+        a.parameter = light.emission.rgb;
+        a.pdf = lightPdfSolidAngle(ls.pdfArea, from, ls.position, ls.normal);
+        a.isDelta = false;
+        a.emitter = ls.material;
+        return a;
+    }
+    GpuPunctualLight light = P.punctualLights.v[ls.punctual];
+    a.parameter = light.intensity;
+    a.pdf = ls.pdfArea;
+    a.isDelta = true;
+    a.emitter = kPunctualEmitter | ls.punctual;
+    if (light.type == kLightDirectional) {
+        // From infinitely far: a medium filling all space extinguishes it, as it does the background.
+        a.wi = -light.direction;
+        a.distance = kFar;
+        a.perUnit = vec3(1.0f);
+        return a;
+    }
+    vec3 d = light.position - from;
+    float dist2 = dot(d, d);
+    a.distance = sqrt(dist2);
+    a.wi = d / a.distance;
+    float falloff = light.type == kLightSpot ? spotFalloff(light, dot(light.direction, -a.wi)) : 1.0f;
+    a.perUnit = vec3(dist2 > 0.0f ? falloff / dist2 : 0.0f);
+    return a;
 }
 
 #endif

@@ -31,6 +31,19 @@ SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
     return sp;
 }
 
+// The interpolated shading normal at (b1, b2), turned to the side of `facing` (the
+// geometric normal on the viewer's side); `facing` itself where the mesh has no normals.
+vec3 shadingNormal(uint triangle, float b1, float b2, vec3 facing) {
+    vec3 n = (1.0f - b1 - b2) * P.triangleNormals.v[3u * triangle].xyz +
+             b1 * P.triangleNormals.v[3u * triangle + 1u].xyz + b2 * P.triangleNormals.v[3u * triangle + 2u].xyz;
+    float length2 = dot(n, n);
+    if (!(length2 > 0.0f)) {
+        return facing;
+    }
+    n *= inversesqrt(length2);
+    return dot(n, facing) < 0.0f ? -n : n;
+}
+
 // Whether the triangle blocks light: anything but a pass-through medium boundary.
 bool isOpaque(uint triangle) {
     return P.materials.v[P.triangleInfo.v[triangle].material].interiorMedium < 0;

@@ -16,7 +16,7 @@ size_t indexByName(const std::vector<T>& items, std::string_view name, const std
             return i;
         }
     }
-    throw Error("parameter " + parameter + ": no medium or material named " + std::string(name));
+    throw Error("parameter " + parameter + ": no medium, material or light named " + std::string(name));
 }
 
 // Where a texture starts in the texel array the renderer uploads (textures one after another).
@@ -37,9 +37,9 @@ constexpr std::vector<float> SceneGradients::*kSceneGradients[] = {
 GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
     const ParsedParameterName parsed = *parseParameterName(name);
     const ParameterDescription& description = *parsed.description;
-    const size_t owner = description.owner == ParameterOwner::Medium
-                             ? indexByName(scene.media, parsed.owner, name)
-                             : indexByName(scene.materials, parsed.owner, name);
+    const size_t owner = description.owner == ParameterOwner::Medium     ? indexByName(scene.media, parsed.owner, name)
+                         : description.owner == ParameterOwner::Material ? indexByName(scene.materials, parsed.owner, name)
+                                                                         : indexByName(scene.punctualLights, parsed.owner, name);
     const size_t sumsPerItem = gpu::layoutOf(description.accumulator).sumsPerItem;
     GradientSlot slot{name, description.kind, kSceneGradients[size_t(description.accumulator)]};
     if (description.accumulator == gpu::GradientAccumulator::texelGradients) {

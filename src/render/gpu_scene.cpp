@@ -45,6 +45,30 @@ std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
     return out;
 }
 
+// The placed punctual lights with their lights' values and `placementPmf`.
+std::vector<gpu::GpuPunctualLight> devicePunctualLights(const Scene& scene, std::span<const float> placementPmf) {
+    std::vector<gpu::GpuPunctualLight> out;
+    for (size_t i = 0; i < scene.lightPlacements.size(); ++i) {
+        const LightPlacement& placement = scene.lightPlacements[i];
+        const PunctualLight& light = scene.punctualLights[placement.light];
+        const uint32_t type = light.type == PunctualLight::Type::Point  ? gpu::kLightPoint
+                              : light.type == PunctualLight::Type::Spot ? gpu::kLightSpot
+                                                                        : gpu::kLightDirectional;
+        out.push_back({placement.position, type, placement.direction, light.cosOuterCone, light.intensity,
+                       light.cosInnerCone, placement.light, placementPmf[i], 0u, 0u});
+    }
+    return out;
+}
+
+// What the emitter distribution depends on (GpuScene::emitterPowers).
+std::vector<glm::vec3> emitterPowers(const Scene& scene) {
+    std::vector<glm::vec3> powers = meanEmittedRadiance(scene);
+    for (const PunctualLight& light : scene.punctualLights) {
+        powers.push_back(light.intensity);
+    }
+    return powers;
+}
+
 // Every texture's texels, one texture after another.
 std::vector<glm::vec4> allTexels(const Scene& scene) {
     std::vector<glm::vec4> texels;
@@ -60,10 +84,15 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     const size_t count = bvh.triangleOrder.size();
     std::vector<glm::vec4> vertices(3 * count);
     std::vector<glm::vec4> uvs(2 * count, glm::vec4(0.0f));
+    std::vector<glm::vec4> normals(3 * count, glm::vec4(0.0f));
+    const bool hasNormals = scene.normals.size() == scene.positions.size();
     for (size_t i = 0; i < count; ++i) {
         const glm::uvec3& tri = scene.triangles[bvh.triangleOrder[i]];
         for (int k = 0; k < 3; ++k) {
             vertices[3 * i + k] = glm::vec4(scene.positions[tri[k]], 0.0f);
+            if (hasNormals) {
+                normals[3 * i + k] = glm::vec4(scene.normals[tri[k]], 0.0f);
+            }
         }
         if (!scene.uvs.empty()) {
             uvs[2 * i] = glm::vec4(scene.uvs[tri[0]], scene.uvs[tri[1]]);
@@ -80,6 +109,7 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     GpuScene gpu;
     gpu.triangleVertices = uploadVector<glm::vec4>(context, vertices, "triangle vertices");
     gpu.triangleUvs = uploadVector<glm::vec4>(context, uvs, "triangle uvs");
+    gpu.triangleNormals = uploadVector<glm::vec4>(context, normals, "triangle normals");
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
     gpu.rayEpsilon = kRayEpsilonPerExtent * sceneExtent(scene);
@@ -96,10 +126,11 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
     std::vector<glm::vec4> texels = allTexels(scene);
     overwriteBuffer(context, gpu.texels, std::as_bytes(std::span(texels)), "texels");
 
-    std::vector<glm::vec3> emitted = meanEmittedRadiance(scene);
-    if (gpu.emitterRadiance && emitted == *gpu.emitterRadiance) {
+    std::vector<glm::vec3> powers = emitterPowers(scene);
+    if (gpu.emitterPowers && powers == *gpu.emitterPowers) {
         return;
     }
+    std::vector<glm::vec3> emitted = meanEmittedRadiance(scene);
     LightDistribution lights = buildLightDistribution(scene, emitted);
     std::vector<gpu::GpuTriangleInfo> info(triangleOrder.size());
     std::vector<uint32_t> bvhPosition(scene.triangles.size());
@@ -108,15 +139,17 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
         bvhPosition[t] = static_cast<uint32_t>(i);
         info[i] = {scene.triangleMaterial[t], mediumIndex(scene.triangleOutsideMedium[t]), lights.trianglePmf[t], 0u};
     }
-    std::vector<uint32_t> lightTriangles;
-    for (uint32_t t : lights.triangles) {
-        lightTriangles.push_back(bvhPosition[t]);
+    std::vector<uint32_t> sources;
+    for (uint32_t source : lights.sources) {
+        sources.push_back((source & gpu::kPunctualEmitter) ? source : bvhPosition[source]);
     }
+    const std::vector<gpu::GpuPunctualLight> punctual = devicePunctualLights(scene, lights.placementPmf);
     overwriteBuffer(context, gpu.triangleInfo, std::as_bytes(std::span(info)), "triangle info");
-    overwriteBuffer(context, gpu.lightTriangles, std::as_bytes(std::span(lightTriangles)), "light triangles");
+    overwriteBuffer(context, gpu.lightSources, std::as_bytes(std::span(sources)), "light sources");
     overwriteBuffer(context, gpu.lightCdf, std::as_bytes(std::span(lights.cdf)), "light cdf");
-    gpu.lightCount = static_cast<uint32_t>(lightTriangles.size());
-    gpu.emitterRadiance = std::move(emitted);
+    overwriteBuffer(context, gpu.punctualLights, std::as_bytes(std::span(punctual)), "punctual lights");
+    gpu.lightCount = static_cast<uint32_t>(sources.size());
+    gpu.emitterPowers = std::move(powers);
 }
 
 }  // namespace vkdr

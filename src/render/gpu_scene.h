@@ -13,22 +13,25 @@ namespace vkdr {
 class VulkanContext;
 
 // The scene as the stages read it: triangles and their attributes in BVH leaf order,
-// the BVH, materials, media, textures and the emitter CDF.
+// the BVH, materials, media, textures, the punctual lights and the emitter CDF.
 struct GpuScene {
     Buffer triangleVertices;
     Buffer triangleUvs;
+    Buffer triangleNormals;
     Buffer triangleInfo;
     Buffer bvhNodes;
     Buffer materials;
     Buffer media;
     Buffer textures;
     Buffer texels;
-    Buffer lightTriangles;
+    Buffer lightSources;
     Buffer lightCdf;
+    Buffer punctualLights;
     uint32_t lightCount = 0;
     float rayEpsilon = 0.0f;  // scene units
-    // Each material's mean emitted radiance when the emitter distribution was built.
-    std::optional<std::vector<glm::vec3>> emitterRadiance;
+    // Each material's mean emitted radiance, then each punctual light's intensity, when
+    // the emitter distribution was built.
+    std::optional<std::vector<glm::vec3>> emitterPowers;
 };
 
 GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh);
@@ -36,7 +39,8 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
 // Uploads what the differentiable parameters change, for new parameter values of the
 // same scene (geometry, material assignment and sidedness as before): materials, media
 // and texels, written in place, and the emitter distribution (per triangle, as large
-// as the geometry) only when a material's mean emitted radiance changed.
+// as the geometry) and punctual lights only when a material's mean emitted radiance or
+// a light's intensity changed.
 void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std::span<const uint32_t> triangleOrder,
                            GpuScene& gpu);
 

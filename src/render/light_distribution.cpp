@@ -1,5 +1,9 @@
 #include "render/light_distribution.h"
 
+#include <algorithm>
+
+#include "device_types.h"
+
 namespace vkdr {
 namespace {
 
@@ -10,6 +14,38 @@ glm::vec3 averageTexel(const Texture& texture) {
     }
     return texture.texels.empty() ? glm::vec3(0.0f) : glm::vec3(sum / double(texture.texels.size()));
 }
+
+double meanChannel(glm::vec3 rgb) {
+    return (double(rgb.r) + double(rgb.g) + double(rgb.b)) / 3.0;
+}
+
+// Radius of a sphere around every vertex: a directional light's flux is what crosses a
+// disc of this radius.
+double sceneRadius(const Scene& scene) {
+    glm::dvec3 lo(std::numeric_limits<double>::max());
+    glm::dvec3 hi(-std::numeric_limits<double>::max());
+    for (const glm::vec3& p : scene.positions) {
+        lo = glm::min(lo, glm::dvec3(p));
+        hi = glm::max(hi, glm::dvec3(p));
+    }
+    return scene.positions.empty() ? 1.0 : std::max(0.5 * glm::length(hi - lo), 1e-3);
+}
+
+// Emitted flux / pi: a point light's 4 pi I, a spot light's at most 2 pi (1 - cos outer) I,
+// a directional light's pi R^2 E.
+double punctualPower(const PunctualLight& light, double radius) {
+    const double intensity = meanChannel(light.intensity);
+    switch (light.type) {
+    case PunctualLight::Type::Point: return 4.0 * intensity;
+    case PunctualLight::Type::Spot: return 2.0 * (1.0 - double(light.cosOuterCone)) * intensity;
+    case PunctualLight::Type::Directional: return radius * radius * intensity;
+    }
+    return 0.0;
+}
+
+// A share of the choices every punctual light keeps however dim it is, so that one
+// whose intensity is 0 is still sampled and gets a gradient to grow from.
+constexpr double kPunctualPowerFloor = 0.01;
 
 }  // namespace
 
@@ -26,12 +62,12 @@ std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene) {
 LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm::vec3> radiance) {
     std::vector<double> materialPower(scene.materials.size(), 0.0);
     for (size_t m = 0; m < scene.materials.size(); ++m) {
-        const glm::vec3& r = radiance[m];
-        materialPower[m] = (r.r + r.g + r.b) / 3.0 * (scene.materials[m].doubleSided ? 2.0 : 1.0);
+        materialPower[m] = meanChannel(radiance[m]) * (scene.materials[m].doubleSided ? 2.0 : 1.0);
     }
 
     LightDistribution lights;
     lights.trianglePmf.assign(scene.triangles.size(), 0.0f);
+    lights.placementPmf.assign(scene.lightPlacements.size(), 0.0f);
     std::vector<double> power;
     for (size_t t = 0; t < scene.triangles.size(); ++t) {
         double p = materialPower[scene.triangleMaterial[t]];
@@ -43,20 +79,36 @@ LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm
         glm::dvec3 e2 = glm::dvec3(scene.positions[tri[2]] - scene.positions[tri[0]]);
         double area = 0.5 * glm::length(glm::cross(e1, e2));
         if (area > 0.0) {
-            lights.triangles.push_back(static_cast<uint32_t>(t));
+            lights.sources.push_back(static_cast<uint32_t>(t));
             power.push_back(p * area);
         }
+    }
+    const size_t firstPunctual = power.size();
+    const double radius = sceneRadius(scene);
+    for (size_t i = 0; i < scene.lightPlacements.size(); ++i) {
+        lights.sources.push_back(gpu::kPunctualEmitter | static_cast<uint32_t>(i));
+        power.push_back(punctualPower(scene.punctualLights[scene.lightPlacements[i].light], radius));
     }
     double total = 0.0;
     for (double p : power) {
         total += p;
+    }
+    const double floor = total > 0.0 ? kPunctualPowerFloor * total / double(power.size()) : 1.0;
+    for (size_t i = firstPunctual; i < power.size(); ++i) {
+        total += std::max(power[i], floor) - power[i];
+        power[i] = std::max(power[i], floor);
     }
     lights.cdf.push_back(0.0f);
     double running = 0.0;
     for (size_t i = 0; i < power.size(); ++i) {
         running += power[i];
         lights.cdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(running / total));
-        lights.trianglePmf[lights.triangles[i]] = static_cast<float>(power[i] / total);
+        const float pmf = static_cast<float>(power[i] / total);
+        if (i < firstPunctual) {
+            lights.trianglePmf[lights.sources[i]] = pmf;
+        } else {
+            lights.placementPmf[i - firstPunctual] = pmf;
+        }
     }
     return lights;
 }

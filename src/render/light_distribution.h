@@ -7,16 +7,20 @@
 
 namespace vkdr {
 
-// Emissive triangles chosen for next-event estimation in proportion to their power
-// (area x mean emitted radiance x sides that emit).
+// The lights next-event estimation chooses from, in proportion to their power (emitted
+// flux / pi): emissive triangles (area x mean emitted radiance x sides that emit) and
+// placed punctual lights (Scene::lightPlacements).
 struct LightDistribution {
-    std::vector<uint32_t> triangles;    // emissive triangles, scene order
-    std::vector<float> cdf;             // triangles.size() + 1 entries from 0 to 1
+    // Emissive triangles (scene order), then gpu::kPunctualEmitter | placement index.
+    std::vector<uint32_t> sources;
+    std::vector<float> cdf;             // sources.size() + 1 entries from 0 to 1
     std::vector<float> trianglePmf;     // per scene triangle; 0 for non-emitters
+    std::vector<float> placementPmf;    // per light placement
 };
 
 // Each material's mean emitted radiance: its emission times the mean of its emission
-// texture. The light distribution depends on the parameters only through these.
+// texture. The light distribution depends on the parameters only through these and
+// the punctual lights' intensities.
 std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene);
 
 // `radiance`: meanEmittedRadiance(scene).

@@ -90,7 +90,8 @@ void PathBuffers::setAddresses(gpu::RenderParams& params) const {
     name(gradientCopies(context, gpu::GradientAccumulator::name, items, #name)),
 
 AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount,
-                               uint32_t mediumCount, uint32_t materialCount, uint32_t texelCount,
+                               uint32_t mediumCount, uint32_t materialCount, uint32_t punctualLightCount,
+                               uint32_t texelCount,
                                uint64_t keptPaths)
     : capacity(capacity),
       VKDR_ADJOINT_PATH_ARRAYS(VKDR_ALLOCATE_PATH_ARRAY)

@@ -69,6 +69,7 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       triangleOrder_(bvh.triangleOrder),
       mediumCount_(static_cast<uint32_t>(scene.media.size())),
       materialCount_(static_cast<uint32_t>(scene.materials.size())),
+      punctualLightCount_(static_cast<uint32_t>(scene.punctualLights.size())),
       texelCount_(totalTexels(scene)),
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context),
@@ -110,8 +111,10 @@ void Renderer::uploadParams() {
     p.media = scene_.media.address();
     p.textures = scene_.textures.address();
     p.texels = scene_.texels.address();
-    p.lightTriangles = scene_.lightTriangles.address();
+    p.triangleNormals = scene_.triangleNormals.address();
+    p.lightSources = scene_.lightSources.address();
     p.lightCdf = scene_.lightCdf.address();
+    p.punctualLights = scene_.punctualLights.address();
     paths_->setAddresses(p);
     p.lightCount = scene_.lightCount;
     p.maxDepth = settings_.maxDepth;

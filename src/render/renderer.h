@@ -34,6 +34,7 @@ using ProgressCallback = std::function<void(double)>;
 // Parameter gradients as the adjoint pass accumulates them, one vector per accumulator
 // of VKDR_GRADIENT_ACCUMULATORS (device_types.h): `media` has gpu::kMediumGradientStride
 // values per medium, `baseColors` and `emissions` gpu::kColorGradientStride per material,
+// `lights` as many per punctual light (Scene::punctualLights),
 // `texels` as many per texel (textures one after another as in Scene::textures).
 struct SceneGradients {
 #define VKDR_SCENE_GRADIENTS_FIELD(name, field, ...) std::vector<float> field;
@@ -173,6 +174,7 @@ private:
     std::vector<uint32_t> triangleOrder_;
     uint32_t mediumCount_;
     uint32_t materialCount_;
+    uint32_t punctualLightCount_;
     uint32_t texelCount_;
     GpuScene scene_;
     StagePipelines pipelines_;

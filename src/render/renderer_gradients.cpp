@@ -72,7 +72,7 @@ void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint6
     }
     adjoint_.reset();  // the old state's memory is free before the new one takes its own
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
-                                                mediumCount_, materialCount_,
+                                                mediumCount_, materialCount_, punctualLightCount_,
                                                 derivativeTargets.texels ? texelCount_ : 0, keptPaths);
     derivativeTargets_ = (derivativeTargets.mediumScattering ? 1u << gpu::kTargetMediumScattering : 0u) |
                          (derivativeTargets.baseColor ? 1u << gpu::kTargetBaseColor : 0u);

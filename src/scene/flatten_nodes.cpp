@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_lights.h"
 
 namespace vkdr {
 namespace {
@@ -44,6 +45,15 @@ glm::mat4 localTransform(const tinygltf::Node& node) {
     return transform;
 }
 
+// A usable unit normal, or (0, 0, 0) (the triangle's own normal) for a zero or
+// non-finite one, which some exporters write for degenerate vertices.
+glm::vec3 shadingNormal(glm::vec3 n) {
+    float length = glm::length(n);
+    glm::vec3 unit = n / length;
+    bool usable = length > 0.0f && std::isfinite(unit.x) && std::isfinite(unit.y) && std::isfinite(unit.z);
+    return usable ? unit : glm::vec3(0.0f);
+}
+
 const char* modeName(int mode) {
     switch (mode) {
     case TINYGLTF_MODE_POINTS: return "POINTS";
@@ -63,6 +73,7 @@ struct DecodedPrimitive {
     std::string field;                  // its JSON path, for messages
     std::vector<glm::vec3> positions;   // in mesh space
     std::vector<glm::vec2> uvs;         // one per position
+    std::vector<glm::vec3> normals;     // one per position, or none (flat shading)
     std::vector<glm::uvec3> triangles;  // counter-clockwise, indexing positions
     uint32_t material = 0;
 };
@@ -111,6 +122,9 @@ public:
         }
         if (node.camera >= 0) {
             addCamera(node, indexed("nodes", size_t(nodeIndex)), nodeToWorld);
+        }
+        if (auto light = placeNodeLight(model_, size_t(nodeIndex), nodeToWorld, diagnostics_)) {
+            scene_.lightPlacements.push_back(*light);
         }
         for (size_t c = 0; c < node.children.size(); ++c) {
             visit(node.children[c], nodeToWorld, {nodeIndex, c}, depth + 1);
@@ -171,15 +185,12 @@ private:
         if (position == primitive.attributes.end()) {
             diagnostics_.fail(field + ".attributes", "no POSITION attribute");
         }
-        if (primitive.attributes.count("NORMAL")) {
-            diagnostics_.warn("", "vertex normals are ignored; shading uses flat triangle normals");
-        }
         if (!primitive.targets.empty()) {
             diagnostics_.warn(field + ".targets", "morph targets are ignored");
         }
         DecodedPrimitive decoded;
         decoded.field = field;
-        decoded.positions = readPositions(model_, position->second, diagnostics_, field + ".attributes.POSITION");
+        decoded.positions = readVec3s(model_, position->second, diagnostics_, field + ".attributes.POSITION");
         decoded.uvs.assign(decoded.positions.size(), glm::vec2(0.0f));
         if (auto texcoord = primitive.attributes.find("TEXCOORD_0");
             texcoord != primitive.attributes.end()) {
@@ -188,6 +199,14 @@ private:
                 diagnostics_.fail(field + ".attributes.TEXCOORD_0",
                                   std::to_string(decoded.uvs.size()) + " elements, POSITION has " +
                                       std::to_string(decoded.positions.size()));
+            }
+        }
+        if (auto normal = primitive.attributes.find("NORMAL"); normal != primitive.attributes.end()) {
+            decoded.normals = readVec3s(model_, normal->second, diagnostics_, field + ".attributes.NORMAL");
+            if (decoded.normals.size() != decoded.positions.size()) {
+                diagnostics_.fail(field + ".attributes.NORMAL", std::to_string(decoded.normals.size()) +
+                                                                    " elements, POSITION has " +
+                                                                    std::to_string(decoded.positions.size()));
             }
         }
         std::vector<uint32_t> indices;
@@ -228,6 +247,13 @@ private:
             scene_.positions.push_back(world);
         }
         scene_.uvs.insert(scene_.uvs.end(), primitive.uvs.begin(), primitive.uvs.end());
+        // Normals transform by the inverse transpose, which keeps them perpendicular to
+        // the surface under non-uniform scales and turns them with a mirroring transform.
+        glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(meshToWorld)));
+        for (size_t v = 0; v < primitive.positions.size(); ++v) {
+            scene_.normals.push_back(primitive.normals.empty() ? glm::vec3(0.0f)
+                                                               : shadingNormal(normalToWorld * primitive.normals[v]));
+        }
         for (glm::uvec3 triangle : primitive.triangles) {
             if (mirrored) {
                 std::swap(triangle.y, triangle.z);

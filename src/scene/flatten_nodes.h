@@ -19,8 +19,8 @@ struct MeshInstance {
 
 // Walks the glTF scene's node hierarchy (the default scene, else the first, else every
 // root node) and bakes each mesh instance into world space: appends to
-// Scene::positions, uvs, triangles and triangleMaterial, and to Scene::cameras in the
-// order the nodes are visited. Triangles are wound counter-clockwise seen from the
+// Scene::positions, normals, uvs, triangles and triangleMaterial, and to Scene::cameras and
+// Scene::lightPlacements in the order the nodes are visited. Triangles are wound counter-clockwise seen from the
 // front in world space, even under mirroring transforms. Primitives without a material
 // get a glTF-default material named "default", appended to Scene::materials.
 std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnostics& diagnostics,

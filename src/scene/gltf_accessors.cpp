@@ -109,7 +109,7 @@ float normalizedComponent(const unsigned char* bytes, int componentType) {
 
 }  // namespace
 
-std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor,
+std::vector<glm::vec3> readVec3s(const tinygltf::Model& model, int accessor,
                                      const GltfDiagnostics& diagnostics, std::string_view field) {
     ElementRange range = checkedElements(model, accessor, TINYGLTF_TYPE_VEC3,
                                          {TINYGLTF_COMPONENT_TYPE_FLOAT}, diagnostics, field);

@@ -15,7 +15,8 @@ namespace vkdr {
 // one the attribute allows. `field` names the referring property, e.g.
 // "meshes[0].primitives[1].attributes.POSITION".
 
-std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor,
+// Float three-vectors: POSITION, NORMAL.
+std::vector<glm::vec3> readVec3s(const tinygltf::Model& model, int accessor,
                                      const GltfDiagnostics& diagnostics, std::string_view field);
 
 // Float, or normalized unsigned byte / short (KHR_mesh_quantization spellings).

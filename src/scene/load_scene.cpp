@@ -6,6 +6,7 @@
 
 #include "scene/flatten_nodes.h"
 #include "scene/gltf_diagnostics.h"
+#include "scene/gltf_lights.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_media.h"
 #include "scene/medium_boundaries.h"
@@ -16,10 +17,10 @@ namespace {
 
 // Extensions a file may require: the ones read, and the ones whose absence only loses
 // detail (with a warning).
-constexpr std::array<std::string_view, 7> kUnderstoodExtensions = {
+constexpr std::array<std::string_view, 8> kUnderstoodExtensions = {
     "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_volume",            "KHR_texture_transform",      kMediumExtension,
-    kBackgroundExtension};
+    "KHR_materials_volume",            "KHR_texture_transform",      kPunctualLightsExtension,
+    kMediumExtension,                  kBackgroundExtension};
 
 void requireUnderstoodExtensions(const tinygltf::Model& model, const GltfDiagnostics& diagnostics) {
     for (size_t i = 0; i < model.extensionsRequired.size(); ++i) {
@@ -56,12 +57,9 @@ LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& 
     std::vector<std::filesystem::path> externalFiles;
     tinygltf::Model model = readGltfModel(file, access, diagnostics, externalFiles);
     requireUnderstoodExtensions(model, diagnostics);
-    if (!model.lights.empty()) {
-        diagnostics.warn("extensions.KHR_lights_punctual",
-                         "punctual lights are ignored; only emissive surfaces emit light");
-    }
 
     Scene scene;
+    scene.punctualLights = readPunctualLights(model, diagnostics);
     readMaterials(model, diagnostics, scene);
     addSceneMedium(model, diagnostics, scene);
     scene.background = readBackground(model, diagnostics);

@@ -52,7 +52,7 @@ double emissionStep(float value) {
     return 1e-2 * std::max(std::abs(double(value)), 0.1);
 }
 
-constexpr std::array<ParameterDescription, 6> kDescriptions = {{
+constexpr std::array<ParameterDescription, 7> kDescriptions = {{
     {ParameterKind::SigmaA, "media/", "/sigma_a", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
      gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientSigmaA},
     {ParameterKind::SigmaS, "media/", "/sigma_s", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
@@ -65,6 +65,10 @@ constexpr std::array<ParameterDescription, 6> kDescriptions = {{
      albedoStep, gpu::GradientAccumulator::texelGradients, 0},
     {ParameterKind::Emission, "lights/", "/emission", ParameterOwner::Material, 3, {0.0, kMaxRadiance}, emissionStep,
      gpu::GradientAccumulator::emissionGradients, 0},
+    // Held to an emitter's range too; a point light's irradiance grows without bound
+    // near it (as 1 / distance^2), which the renderer's check of every pixel catches.
+    {ParameterKind::LightIntensity, "lights/", "/intensity", ParameterOwner::PunctualLight, 3, {0.0, kMaxRadiance},
+     emissionStep, gpu::GradientAccumulator::lightGradients, 0},
 }};
 
 // describe() indexes the table by kind.
@@ -98,7 +102,9 @@ const ParameterDescription& describe(ParameterKind kind) {
 }
 
 std::string parameterPattern(const ParameterDescription& description) {
-    const char* owner = description.owner == ParameterOwner::Medium ? "<medium>" : "<material>";
+    const char* owner = description.owner == ParameterOwner::Medium     ? "<medium>"
+                        : description.owner == ParameterOwner::Material ? "<material>"
+                                                                        : "<light>";
     return std::string(description.prefix) + owner + std::string(description.field);
 }
 

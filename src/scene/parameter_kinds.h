@@ -20,6 +20,7 @@ enum class ParameterKind {
     BaseColor,         // materials/<material>/base_color: RGB albedo
     BaseColorTexture,  // materials/<material>/base_color_texture: the same, per texel
     Emission,          // lights/<material>/emission: RGB radiance, at most kMaxRadiance
+    LightIntensity,    // lights/<light>/intensity: a punctual light's RGB color x intensity
 };
 
 // The largest radiance, per channel, an emitter (emissiveFactor x emissiveStrength, or
@@ -31,7 +32,7 @@ inline constexpr double kMaxRadiance = 1e12;
 inline constexpr uint32_t kMaxScatteringVertices = 100000;
 
 // What the middle of a parameter's name names.
-enum class ParameterOwner { Medium, Material };
+enum class ParameterOwner { Medium, Material, PunctualLight };
 
 // The closed interval a parameter's values must lie in, both when set and while optimised.
 struct ValueRange {

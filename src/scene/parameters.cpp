@@ -61,6 +61,14 @@ auto findStorage(SceneType& scene, std::string_view name) {
         }
         return storage;
     }
+    if (parsed->description->owner == ParameterOwner::PunctualLight) {
+        for (auto& light : scene.punctualLights) {
+            if (light.name == parsed->owner) {
+                storage = packedStorage<Float>(glm::value_ptr(light.intensity), kind);
+            }
+        }
+        return storage;
+    }
     for (auto& material : scene.materials) {
         if (material.name != parsed->owner || material.isMediumBoundary()) {
             continue;
@@ -108,6 +116,9 @@ std::vector<std::string> parameterNames(const Scene& scene) {
         if (!material.isMediumBoundary() && material.isEmissive()) {
             names.push_back(parameterName(ParameterKind::Emission, material.name));
         }
+    }
+    for (const PunctualLight& light : scene.punctualLights) {
+        names.push_back(parameterName(ParameterKind::LightIntensity, light.name));
     }
     return names;
 }

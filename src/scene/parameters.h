@@ -15,7 +15,7 @@ namespace vkdr {
 // materials have no base colour or emission.
 
 // Every parameter of the scene: media in order (sigma_a, sigma_s, g each), then base
-// colours, then the emissions of emissive materials.
+// colours, then the emissions of emissive materials, then the punctual lights' intensities.
 std::vector<std::string> parameterNames(const Scene& scene);
 
 // The current value (3 floats, 1 for g, 3 per texel for a texture). Throws vkdr::Error for an unknown name,

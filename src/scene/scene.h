@@ -46,10 +46,33 @@ struct Medium {
     float g = 0.0f;    // Henyey-Greenstein anisotropy, in [-0.99, 0.99] (scene/parameter_kinds.h)
 };
 
+// A KHR_lights_punctual light as the file defines it. `intensity` is the glTF light's
+// color x intensity: radiant intensity per steradian (point, spot) or irradiance
+// (directional), in the units of an emitter's radiance. One definition may be placed by
+// several nodes; its parameter sets them all.
+struct PunctualLight {
+    enum class Type { Point, Spot, Directional };
+    std::string name;            // parameter prefix is "lights/<name>/"
+    Type type = Type::Point;
+    glm::vec3 intensity{1.0f};
+    float cosInnerCone = 1.0f;   // spot: full intensity within the inner cone,
+    float cosOuterCone = 0.0f;   // none outside the outer one
+};
+
+// Where a node puts a punctual light, in world space.
+struct LightPlacement {
+    uint32_t light = 0;                      // index into Scene::punctualLights
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, where the light shines: its node's -Z
+};
+
 // A flattened scene: every mesh instance baked into world space.
 struct Scene {
     std::vector<glm::vec3> positions;           // world space, per vertex
     std::vector<glm::vec2> uvs;                 // TEXCOORD_0 per vertex (0,0 when absent)
+    // Shading normals per vertex, unit, in world space: the NORMAL attribute where a mesh
+    // has one, else (0, 0, 0), which means the triangle's own normal.
+    std::vector<glm::vec3> normals;
     std::vector<glm::uvec3> triangles;          // vertex indices, counter-clockwise = front
     std::vector<uint32_t> triangleMaterial;     // per triangle, index into materials
     // Per triangle: the medium on the front (outward) side of a boundary triangle,
@@ -62,6 +85,8 @@ struct Scene {
     std::vector<Medium> media;
     std::vector<Texture> textures;
     std::vector<Camera> cameras;
+    std::vector<PunctualLight> punctualLights;  // in the file's order
+    std::vector<LightPlacement> lightPlacements;
     int32_t sceneMedium = kNoMedium;            // fills all space outside enclosed media
     glm::vec3 background{0.0f};                 // radiance of rays that escape the scene
 };

@@ -38,9 +38,21 @@ std::vector<std::string> sceneWarnings(const Scene& scene) {
                                " zero area (degenerate) and emit nothing");
         }
     }
-    if (emittingTriangles == 0 && scene.background == glm::vec3(0.0f)) {
-        warnings.push_back("the scene has no light: no triangle of non-zero area has an emissive material and the "
-                           "background is black, so the image will be black");
+    std::vector<bool> placed(scene.punctualLights.size(), false);
+    size_t shiningLights = 0;
+    for (const LightPlacement& placement : scene.lightPlacements) {
+        placed[placement.light] = true;
+        shiningLights += scene.punctualLights[placement.light].intensity != glm::vec3(0.0f) ? 1 : 0;
+    }
+    for (size_t i = 0; i < placed.size(); ++i) {
+        if (!placed[i]) {
+            warnings.push_back("light '" + scene.punctualLights[i].name + "' is placed by no node and lights nothing");
+        }
+    }
+    if (emittingTriangles == 0 && shiningLights == 0 && scene.background == glm::vec3(0.0f)) {
+        warnings.push_back("the scene has no light: no triangle of non-zero area has an emissive material, no "
+                           "punctual light has an intensity above 0 and the background is black, so the image "
+                           "will be black");
     }
     return warnings;
 }

@@ -196,6 +196,27 @@ void writeSceneMedium(json& document, const Scene& scene) {
     writeParticipatingMedia(document["extensions"][kMediumExtension], scene.media[size_t(scene.sceneMedium)]);
 }
 
+// A light's colour stays in [0, 1] as glTF asks: the brightest channel becomes the
+// intensity (the old colour is kept for a light whose intensity is 0).
+void writePunctualLights(json& document, const Scene& scene, const std::filesystem::path& original) {
+    if (scene.punctualLights.empty()) {
+        return;
+    }
+    json& lights = document["extensions"]["KHR_lights_punctual"]["lights"];
+    if (!lights.is_array() || lights.size() != scene.punctualLights.size()) {
+        failReading(original, "its KHR_lights_punctual lights differ from the scene's to write back (was it loaded "
+                              "from this file?)");
+    }
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const glm::vec3 intensity = scene.punctualLights[i].intensity;
+        const float brightest = largestChannel(intensity);
+        lights[i]["intensity"] = exactJsonNumber(brightest);
+        if (brightest > 0.0f) {
+            lights[i]["color"] = rgbJson(intensity / brightest);
+        }
+    }
+}
+
 // The written scene must load by the same rule as any other (scene_file_access.h): files
 // the original refers to stay where they are when they lie in the output's directory
 // tree, and are copied beside the output, as <stem>.<array><i><extension>, when not.
@@ -291,6 +312,7 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     json& document = source.document;
     writeMaterials(document, scene, original);
     writeSceneMedium(document, scene);
+    writePunctualLights(document, scene, original);
 
     referToExternalFiles(document, "buffers", original, out);
     referToExternalFiles(document, "images", original, out);

@@ -21,6 +21,10 @@ Scene sceneWithTwoOfEverything() {
     light.emission = glm::vec3(1.0f);
     light.baseColorTexture = 1;
     scene.materials = {white, light};
+    PunctualLight bulb, sun;
+    bulb.name = "bulb";
+    sun.name = "sun";
+    scene.punctualLights = {bulb, sun};
     return scene;
 }
 
@@ -34,7 +38,7 @@ std::vector<double> gradientOf(const std::string& name) {
     const Scene scene = sceneWithTwoOfEverything();
     const uint32_t color = gpu::kColorGradientStride;
     const SceneGradients gradients{indices(2 * gpu::kMediumGradientStride), indices(2 * color), indices(2 * color),
-                                   indices(3 * color)};
+                                   indices(2 * color), indices(3 * color)};
     return gatherGradient(resolveGradientSlots(scene, {name}).at(0), gradients);
 }
 
@@ -52,6 +56,7 @@ TEST(GradientSlot, ReadsEveryKindFromItsAccumulator) {
     const double color = gpu::kColorGradientStride;
     EXPECT_EQ(gradientOf("materials/light/base_color"), sequence(color, 3));
     EXPECT_EQ(gradientOf("lights/light/emission"), sequence(color, 3));
+    EXPECT_EQ(gradientOf("lights/sun/intensity"), sequence(color, 3));
     // The checker's two texels follow the first texture's one.
     EXPECT_EQ(gradientOf("materials/light/base_color_texture"), sequence(color, 6));
 }

@@ -53,7 +53,7 @@ struct PixelExpectation {
 PixelExpectation absorbedEmitter(glm::dvec3 le, glm::dvec3 sigmaA, const std::vector<double>& distances);
 
 // Every pixel within 6 standard errors of its expectation (plus a relative float
-// tolerance), and the sum over the image within 4 standard errors.
+// tolerance), and the sum over the image within 4 standard errors (plus the same tolerance).
 void expectPixelsMatch(const Image& image, uint32_t spp, double floatTolerance,
                        const std::function<PixelExpectation(int x, int y)>& expectation);
 

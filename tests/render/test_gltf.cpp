@@ -5,6 +5,9 @@
 #include <fstream>
 #include <map>
 
+#define GLM_ENABLE_EXPERIMENTAL
+#include <glm/gtx/quaternion.hpp>
+
 namespace vkdr::test {
 namespace {
 
@@ -108,18 +111,27 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
         }
         size_t positionsOffset = bin.size();
         append(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
+        size_t normalsOffset = bin.size();
+        append(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
         size_t indicesOffset = bin.size();
         append(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
         size_t view = views.size();
-        views.push_back({{"buffer", 0}, {"byteOffset", positionsOffset}, {"byteLength", indicesOffset - positionsOffset}});
+        views.push_back({{"buffer", 0}, {"byteOffset", positionsOffset}, {"byteLength", normalsOffset - positionsOffset}});
         views.push_back({{"buffer", 0}, {"byteOffset", indicesOffset}, {"byteLength", bin.size() - indicesOffset}});
         size_t accessor = accessors.size();
         accessors.push_back({{"bufferView", view}, {"componentType", 5126}, {"count", m.positions.size()},
                              {"type", "VEC3"}, {"min", vec(lo)}, {"max", vec(hi)}});
         accessors.push_back({{"bufferView", view + 1}, {"componentType", 5125},
                              {"count", 3 * m.triangles.size()}, {"type", "SCALAR"}});
+        nlohmann::json attributes = {{"POSITION", accessor}};
+        if (!m.normals.empty()) {
+            views.push_back({{"buffer", 0}, {"byteOffset", normalsOffset}, {"byteLength", indicesOffset - normalsOffset}});
+            accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5126},
+                                 {"count", m.normals.size()}, {"type", "VEC3"}});
+            attributes["NORMAL"] = accessors.size() - 1;
+        }
         nodes.push_back({{"mesh", meshJson.size()}});
-        meshJson.push_back({{"primitives", {{{"attributes", {{"POSITION", accessor}}},
+        meshJson.push_back({{"primitives", {{{"attributes", attributes},
                                            {"indices", accessor + 1},
                                            {"material", m.material}}}}});
     }
@@ -129,6 +141,13 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
         camera["rotation"] = {0.0, 1.0, 0.0, 0.0};
     }
     nodes.push_back(camera);
+    for (const TestLightNode& l : lightNodes) {
+        // The rotation taking the node's -Z to `direction`.
+        glm::quat q = glm::rotation(glm::vec3(0.0f, 0.0f, -1.0f), glm::normalize(l.direction));
+        nodes.push_back({{"translation", vec(l.position)},
+                         {"rotation", {q.x, q.y, q.z, q.w}},
+                         {"extensions", {{"KHR_lights_punctual", {{"light", l.light}}}}}});
+    }
     nlohmann::json sceneNodes = nlohmann::json::array();
     for (size_t i = 0; i < nodes.size(); ++i) {
         sceneNodes.push_back(i);
@@ -149,11 +168,15 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
             }
         }
     }
-    for (auto& [key, value] : extensions.items()) {
+    nlohmann::json rootExtensions = extensions;
+    if (!lights.empty()) {
+        rootExtensions["KHR_lights_punctual"] = {{"lights", lights}};
+    }
+    for (auto& [key, value] : rootExtensions.items()) {
         used.push_back(key);
     }
-    if (!extensions.empty()) {
-        gltf["extensions"] = extensions;
+    if (!rootExtensions.empty()) {
+        gltf["extensions"] = rootExtensions;
     }
     if (!used.empty()) {
         std::sort(used.begin(), used.end());

@@ -14,6 +14,14 @@ struct TestMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;  // counter-clockwise seen from the front
     int material = 0;
+    std::vector<glm::vec3> normals;     // the NORMAL attribute, one per position, or none
+};
+
+// A node placing KHR_lights_punctual light `light`, shining along `direction`.
+struct TestLightNode {
+    int light = 0;
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
 };
 
 // Axis-aligned box, normals pointing out.
@@ -27,6 +35,8 @@ struct TestGltf {
     std::vector<TestMesh> meshes;
     nlohmann::json materials = nlohmann::json::array();
     nlohmann::json extensions = nlohmann::json::object();  // root extensions
+    nlohmann::json lights = nlohmann::json::array();       // KHR_lights_punctual's definitions
+    std::vector<TestLightNode> lightNodes;
     glm::vec3 cameraPosition{0.0f};
     bool cameraLooksAlongPlusZ = true;  // else along -Z
     float yfov = 0.5f;

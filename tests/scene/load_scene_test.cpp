@@ -267,16 +267,25 @@ TEST(LoadScene, ReadsPerspectiveCamerasInNodeOrderAndSkipsOrthographic) {
     EXPECT_NE(loaded.warnings[0].find("cameras[2]: only perspective cameras"), std::string::npos);
 }
 
-TEST(LoadScene, WarnsOnceAboutIgnoredVertexNormals) {
+TEST(LoadScene, VertexNormalsTransformByTheInverseTransposeAndAreUnit) {
     TemporaryDirectory directory;
     GltfBuilder builder;
-    int mesh = builder.addMesh("quad", floorQuad(1.0f));
-    builder.document()["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 0;  // any VEC3 accessor
-    builder.addNode({{"mesh", mesh}});
-    builder.addNode({{"mesh", mesh}});
+    int withNormals = builder.addMesh("quad", floorQuad(1.0f));
+    builder.document()["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 0;  // the positions, as normals
+    int flat = builder.addMesh("flat", floorQuad(1.0f));
+    builder.addNode({{"mesh", withNormals}, {"scale", {2.0, 1.0, 1.0}}});
+    builder.addNode({{"mesh", flat}});
     LoadedScene loaded = loadScene(builder.writeGltf(directory / "normals.gltf"));
-    ASSERT_EQ(loaded.warnings.size(), 1u);
-    EXPECT_NE(loaded.warnings[0].find("vertex normals are ignored"), std::string::npos);
+    const Scene& scene = loaded.scene;
+    EXPECT_TRUE(loaded.warnings.empty());
+    ASSERT_EQ(scene.normals.size(), scene.positions.size());
+    const size_t perMesh = scene.positions.size() / 2;
+    for (size_t v = 0; v < perMesh; ++v) {
+        // Position (2x, y, z) came from (x, y, z); its normal is (x / 2, y, z), normalised.
+        glm::vec3 source = scene.positions[v] / glm::vec3(2.0f, 1.0f, 1.0f);
+        expectNear(scene.normals[v], glm::normalize(source / glm::vec3(2.0f, 1.0f, 1.0f)));
+        EXPECT_EQ(scene.normals[perMesh + v], glm::vec3(0.0f));  // no NORMAL: the triangle's own
+    }
 }
 
 }  // namespace

@@ -70,6 +70,9 @@ Scene sceneWithEveryKind() {
     Scene scene = sceneWithEverything();
     scene.textures.push_back({"checker", 2, 1, {glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), glm::vec4(0.4f, 0.5f, 0.6f, 1.0f)}});
     scene.materials[0].baseColorTexture = 0;
+    PunctualLight bulb;
+    bulb.name = "bulb";
+    scene.punctualLights.push_back(bulb);
     return scene;
 }
 
@@ -79,6 +82,7 @@ std::string ownerOf(ParameterKind kind) {
     case ParameterKind::SigmaS:
     case ParameterKind::G: return "fog";
     case ParameterKind::Emission: return "light";
+    case ParameterKind::LightIntensity: return "bulb";
     default: return "white";
     }
 }

@@ -66,6 +66,27 @@ TEST(WriteScene, RoundTripsEveryParameterOfTheExampleScene) {
     EXPECT_EQ(reloaded.triangles.size(), scene.triangles.size());
 }
 
+TEST(WriteScene, WritesPunctualLightIntensitiesAsAColourAtMostOneTimesAnIntensity) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("floor", floorQuad(1.0f))}});
+    builder.document()["extensions"]["KHR_lights_punctual"]["lights"] = {
+        {{"name", "bulb"}, {"type", "point"}, {"color", {1.0, 0.5, 0.5}}, {"intensity", 2.0}},
+        {{"name", "sun"}, {"type", "directional"}}};
+    builder.addNode({{"translation", {0.0, 1.0, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    std::filesystem::path original = builder.writeGltf(directory / "lights.gltf");
+    Scene scene = loadScene(original).scene;
+    set(scene, "lights/bulb/intensity", {0.25f, 7.5f, 3.0f});
+    set(scene, "lights/sun/intensity", {0.0f});
+
+    std::filesystem::path out = directory / "fitted.gltf";
+    Scene reloaded = writeAndReload(original, scene, out);
+    expectSameParameters(scene, reloaded);
+    json bulb = readJson(out)["extensions"]["KHR_lights_punctual"]["lights"][0];
+    EXPECT_EQ(bulb["intensity"].get<double>(), 7.5);
+    EXPECT_EQ(bulb["color"][1].get<double>(), 1.0);
+}
+
 TEST(WriteScene, SplitsEmissionIntoAFactorAtMostOneAndAStrength) {
     TemporaryDirectory directory;
     std::filesystem::path original = std::filesystem::path(VKDR_TEST_DATA_DIR) / "example.gltf";

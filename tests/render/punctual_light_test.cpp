@@ -1,0 +1,217 @@
+// KHR_lights_punctual lights and shading normals against closed forms. A diffuse plane
+// facing the camera is lit by one light and nothing else: every sample's next-event
+// estimate is the exact irradiance times albedo / pi at the point its ray hits, so a
+// pixel's expectation and variance are the mean and variance of that closed form over
+// the pixel's area (by quadrature); light reflected further escapes to a black background.
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include "diff/gradient_over_seeds.h"
+#include "diff/rendered_loss_gradient.h"
+#include "render_test_support.h"
+#include "scene/load_scene.h"
+#include "test_gltf.h"
+
+namespace vkdr::test {
+namespace {
+
+constexpr float kAlbedo = 0.6f;
+constexpr float kPlaneZ = 2.0f;       // the plane faces the camera at the origin, looking along +z
+constexpr float kYfov = 0.9f;
+constexpr int kSide = 16;
+constexpr uint32_t kSpp = 256;
+constexpr double kFloatTolerance = 2e-5;
+
+TestGltf litPlane() {
+    TestGltf g;
+    g.materials = {diffuseMaterial("plane", glm::vec3(kAlbedo))};
+    g.meshes = {quadZ(0.0f, 0.0f, 50.0f, kPlaneZ, false, 0)};
+    g.cameraPosition = glm::vec3(0.0f);
+    g.yfov = kYfov;
+    return g;
+}
+
+// The point of the plane that image position (x, y) in pixels sees, relative to the
+// plane's centre; radially symmetric expectations need no sign conventions.
+glm::dvec2 planePoint(double x, double y) {
+    double t = std::tan(0.5 * kYfov);
+    return glm::dvec2((x / kSide * 2.0 - 1.0) * t, (y / kSide * 2.0 - 1.0) * t) * double(kPlaneZ);
+}
+
+// Mean and variance over the pixel of the radiance `radiance(point)` (one channel,
+// scaled by `rgb`), by a 48 x 48 midpoint rule.
+PixelExpectation overPixel(int x, int y, glm::dvec3 rgb, const std::function<double(glm::dvec2)>& radiance) {
+    constexpr int kSub = 48;
+    double sum = 0.0, sumSquares = 0.0;
+    for (int s = 0; s < kSub * kSub; ++s) {
+        double value = radiance(planePoint(x + (s % kSub + 0.5) / kSub, y + (s / kSub + 0.5) / kSub));
+        sum += value;
+        sumSquares += value * value;
+    }
+    double mean = sum / (kSub * kSub);
+    double variance = std::max(0.0, sumSquares / (kSub * kSub) - mean * mean);
+    return {mean * rgb, variance * rgb * rgb};
+}
+
+// glTF's recommended spot falloff.
+double spotFalloff(double cosAngle, double inner, double outer) {
+    double t = std::clamp((cosAngle - std::cos(outer)) / (std::cos(inner) - std::cos(outer)), 0.0, 1.0);
+    return t * t;
+}
+
+nlohmann::json light(const std::string& name, const std::string& type, glm::vec3 color, float intensity) {
+    return {{"name", name}, {"type", type}, {"color", {color.x, color.y, color.z}}, {"intensity", intensity}};
+}
+
+const glm::vec3 kColor(1.0f, 0.5f, 0.25f);
+constexpr float kIntensity = 3.0f;
+constexpr double kLightHeight = 0.7;  // the light's distance in front of the plane
+
+class PunctualLightTest : public RenderTest {};
+
+TEST_F(PunctualLightTest, PointLightIlluminatesAsInverseSquareTimesCosine) {
+    TestGltf g = litPlane();
+    g.lights = {light("bulb", "point", kColor, kIntensity)};
+    g.lightNodes = {{0, glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight)}};
+    Image image = renderFile(g.write(tempDir(), "point"), {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 3});
+    expectPixelsMatch(image, kSpp, kFloatTolerance, [](int x, int y) {
+        return overPixel(x, y, glm::dvec3(kColor) * double(kIntensity), [](glm::dvec2 p) {
+            double d2 = glm::dot(p, p) + kLightHeight * kLightHeight;
+            return kAlbedo / std::numbers::pi * kLightHeight / (d2 * std::sqrt(d2));
+        });
+    });
+}
+
+TEST_F(PunctualLightTest, SpotLightFallsOffBetweenItsCones) {
+    const double inner = 0.35, outer = 0.7;
+    TestGltf g = litPlane();
+    g.lights = {light("spot", "spot", kColor, kIntensity)};
+    g.lights[0]["spot"] = {{"innerConeAngle", inner}, {"outerConeAngle", outer}};
+    g.lightNodes = {{0, glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight), glm::vec3(0.0f, 0.0f, 1.0f)}};
+    Image image = renderFile(g.write(tempDir(), "spot"), {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 3});
+    expectPixelsMatch(image, kSpp, kFloatTolerance, [&](int x, int y) {
+        return overPixel(x, y, glm::dvec3(kColor) * double(kIntensity), [&](glm::dvec2 p) {
+            double d2 = glm::dot(p, p) + kLightHeight * kLightHeight;
+            double cosAngle = kLightHeight / std::sqrt(d2);
+            return kAlbedo / std::numbers::pi * spotFalloff(cosAngle, inner, outer) * cosAngle / d2;
+        });
+    });
+}
+
+// A directional light at angle alpha to the plane's normal; shading normals tilted by
+// beta towards it, or none (flat). The plane's radiance is albedo / pi E cos(alpha - beta).
+void expectDirectionalLight(const std::filesystem::path& dir, double alpha, std::optional<double> beta) {
+    TestGltf g = litPlane();
+    if (beta) {
+        // The plane faces -z; tilt its normals about the y axis, towards the light.
+        g.meshes[0].normals.assign(g.meshes[0].positions.size(),
+                                   glm::vec3(float(-std::sin(*beta)), 0.0f, float(-std::cos(*beta))));
+    }
+    g.lights = {light("sun", "directional", kColor, kIntensity)};
+    // Shining along +z, tilted: wi = -direction = (-sin alpha, 0, -cos alpha).
+    g.lightNodes = {{0, glm::vec3(0.0f), glm::vec3(float(std::sin(alpha)), 0.0f, float(std::cos(alpha)))}};
+    Image image = renderFile(g.write(dir, "sun"), {.width = kSide, .height = kSide, .spp = 16, .maxDepth = 3});
+    const double cosine = std::cos(alpha - beta.value_or(0.0));
+    expectPixelsMatch(image, 16, kFloatTolerance, [&](int, int) {
+        return PixelExpectation{glm::dvec3(kColor) * (double(kIntensity) * kAlbedo / std::numbers::pi * cosine),
+                                glm::dvec3(0.0)};
+    });
+}
+
+TEST_F(PunctualLightTest, DirectionalLightGivesCosineOfItsAngle) {
+    expectDirectionalLight(tempDir(), 0.0, std::nullopt);
+    expectDirectionalLight(tempDir(), 0.8, std::nullopt);
+}
+
+TEST_F(PunctualLightTest, ShadingNormalsSetTheCosine) {
+    expectDirectionalLight(tempDir(), 0.8, 0.5);
+    expectDirectionalLight(tempDir(), 0.3, -0.6);  // tilted away from the light
+}
+
+TEST_F(PunctualLightTest, LightsBehindTheSurfaceGiveNothingEvenWhereShadingNormalsFaceThem) {
+    // The light grazes the plane from behind it (alpha > pi/2); normals tilted towards
+    // it would see it, but the geometric surface hides it.
+    TestGltf g = litPlane();
+    g.meshes[0].normals.assign(g.meshes[0].positions.size(), glm::normalize(glm::vec3(-1.0f, 0.0f, -0.2f)));
+    g.lights = {light("sun", "directional", kColor, kIntensity)};
+    g.lightNodes = {{0, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, -0.1f)}};
+    Image image = renderFile(g.write(tempDir(), "behind"), {.width = 4, .height = 4, .spp = 16, .maxDepth = 3});
+    for (float value : image.rgb) {
+        EXPECT_EQ(value, 0.0f);
+    }
+}
+
+TEST_F(PunctualLightTest, DirectionalLightIsExtinguishedByAMediumFillingSpace) {
+    TestGltf g = litPlane();
+    g.lights = {light("sun", "directional", kColor, kIntensity)};
+    g.lightNodes = {{0, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f)}};
+    g.extensions["VKDR_participating_media"] = {{"sigma_a", {0.01, 0.01, 0.01}}};
+    Image image = renderFile(g.write(tempDir(), "fog"), {.width = 4, .height = 4, .spp = 16, .maxDepth = 3});
+    for (float value : image.rgb) {
+        EXPECT_EQ(value, 0.0f);
+    }
+}
+
+// The image is linear in each light's intensity, so the L2 loss's gradient with respect
+// to light k's channel c is (2 / 3P) sum over pixels of (E[I] - T) E[I_k] / intensity_k,
+// with E[I_k] the pixel's expectation from light k alone (quadrature, as above). A point
+// light and a directional light together also check that each gradient reaches its own light.
+TEST_F(PunctualLightTest, IntensityGradientsMatchTheClosedForm) {
+    constexpr int kPixels = 4;
+    constexpr double kSunAngle = 0.5;
+    constexpr float kSunIrradiance = 0.8f;
+    const glm::vec3 kSunColor(0.3f, 1.0f, 0.6f);
+    TestGltf g = litPlane();
+    g.lights = {light("bulb", "point", kColor, kIntensity), light("sun", "directional", kSunColor, kSunIrradiance)};
+    g.lightNodes = {{0, glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight)},
+                    {1, glm::vec3(0.0f), glm::vec3(float(std::sin(kSunAngle)), 0.0f, float(std::cos(kSunAngle)))}};
+    Scene scene = loadScene(g.write(tempDir(), "two_lights")).scene;
+
+    // The pixels of a kPixels-wide image are kSide / kPixels of the test's usual ones.
+    constexpr int kScale = kSide / kPixels;
+    auto bulbAlone = [](int x, int y) {
+        glm::dvec3 sum(0.0);
+        for (int s = 0; s < kScale * kScale; ++s) {
+            sum += overPixel(kScale * x + s % kScale, kScale * y + s / kScale, glm::dvec3(kColor) * double(kIntensity),
+                             [](glm::dvec2 p) {
+                                 double d2 = glm::dot(p, p) + kLightHeight * kLightHeight;
+                                 return kAlbedo / std::numbers::pi * kLightHeight / (d2 * std::sqrt(d2));
+                             })
+                       .mean;
+        }
+        return sum / double(kScale * kScale);
+    };
+    const glm::dvec3 sunAlone =
+        glm::dvec3(kSunColor) * (double(kSunIrradiance) * kAlbedo / std::numbers::pi * std::cos(kSunAngle));
+    const glm::dvec3 target(0.05, 0.1, 0.02);
+    glm::dvec3 bulbGradient(0.0), sunGradient(0.0);
+    for (int y = 0; y < kPixels; ++y) {
+        for (int x = 0; x < kPixels; ++x) {
+            glm::dvec3 bulb = bulbAlone(x, y);
+            glm::dvec3 dLossDI = 2.0 * (bulb + sunAlone - target) / (3.0 * kPixels * kPixels);
+            bulbGradient += dLossDI * bulb / (glm::dvec3(kColor) * double(kIntensity));
+            sunGradient += dLossDI * sunAlone / (glm::dvec3(kSunColor) * double(kSunIrradiance));
+        }
+    }
+
+    Image targetImage{kPixels, kPixels, std::vector<float>(3 * kPixels * kPixels)};
+    for (size_t i = 0; i < targetImage.rgb.size(); ++i) {
+        targetImage.rgb[i] = float(target[int(i % 3)]);
+    }
+    const std::vector<std::string> names = {"lights/bulb/intensity", "lights/sun/intensity"};
+    RenderedLossGradient lossGradient(testContext(), scene, {{"", targetImage}}, names, {.spp = 64, .maxDepth = 3},
+                                      LossKind::L2);
+    const auto gradients = gradientOverSeeds(lossGradient, scene, 8);
+    const glm::dvec3 expected[] = {bulbGradient, sunGradient};
+    for (size_t p = 0; p < names.size(); ++p) {
+        for (int c = 0; c < 3; ++c) {
+            const MeanAndError& adjoint = gradients[p][size_t(c)];
+            EXPECT_NEAR(adjoint.mean, expected[p][c], 5.0 * adjoint.error + kFloatTolerance * std::abs(expected[p][c]))
+                << names[p] << "[" << c << "]: standard error " << adjoint.error;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace vkdr::test
