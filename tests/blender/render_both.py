@@ -1,0 +1,82 @@
+"""Run inside Blender: build test scenes, export each with the add-on, render it with
+Cycles and with vkdiffrender at several seeds, and store every render as a .npy array
+(linear RGB, rows from the top) in OUT/<scene>/. vkdiffrender's messages go to
+OUT/<scene>/vkdr_warnings.txt; a scene it refuses has no vkdr_*.npy.
+
+blender -b --factory-startup --python-exit-code 1 --python tests/blender/render_both.py --
+    --scenes box_area,principled_cube --out DIR --cli VKDIFFRENDER [--size 32]
+    [--cycles-spp 256] [--vkdr-spp 256] [--seeds 1,2] [--max-depth 4]
+"""
+import argparse
+import os
+import pathlib
+import subprocess
+import sys
+
+import bpy
+import numpy as np
+
+HERE = pathlib.Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parents[1] / "tools" / "blender")]
+import scenes  # noqa: E402
+import vkdiffrender_blender  # noqa: E402
+from vkdiffrender_blender import export_scene  # noqa: E402
+
+
+def load_exr(path):
+    image = bpy.data.images.load(str(path))
+    width, height = image.size
+    pixels = np.array(image.pixels[:], dtype=np.float32).reshape(height, width, 4)
+    bpy.data.images.remove(image)
+    return pixels[::-1, :, :3].copy()
+
+
+def render_cycles(scene, path):
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    return load_exr(path)
+
+
+def render_vkdiffrender(cli, gltf, path, args, seed):
+    """Renders with the command line; its warnings go to vkdr_warnings.txt beside the scene."""
+    result = subprocess.run([cli, "render", str(gltf), "-o", str(path), "--spp", str(args.vkdr_spp),
+                             "--seed", str(seed), "--width", str(args.size), "--height", str(args.size),
+                             "--max-depth", str(args.max_depth)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    (path.parent / "vkdr_warnings.txt").write_text(result.stderr)
+    return load_exr(path) if result.returncode == 0 else None
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--scenes", required=True)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--cli", required=True)
+    parser.add_argument("--size", type=int, default=32)
+    parser.add_argument("--cycles-spp", type=int, default=256)
+    parser.add_argument("--vkdr-spp", type=int, default=256)
+    parser.add_argument("--seeds", default="1,2")
+    parser.add_argument("--max-depth", type=int, default=4)
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    seeds = [int(s) for s in args.seeds.split(",")]
+    for name in args.scenes.split(","):
+        out = pathlib.Path(args.out) / name
+        out.mkdir(parents=True, exist_ok=True)
+        scene = scenes.build(name)
+        vkdiffrender_blender.register()
+        scenes.configure_cycles(scene, args.size, args.cycles_spp, args.max_depth, seeds[0])
+        bpy.ops.wm.save_as_mainfile(filepath=str(out / "scene.blend"))
+        warnings = export_scene.export_scene(bpy.context, str(out / "scene.gltf"))
+        (out / "warnings.txt").write_text("".join(w + "\n" for w in warnings))
+        for seed in seeds:
+            scene.cycles.seed = seed
+            np.save(out / f"cycles_{seed}.npy", render_cycles(scene, out / f"cycles_{seed}.exr"))
+            image = render_vkdiffrender(args.cli, out / "scene.gltf", out / f"vkdr_{seed}.exr", args, seed)
+            if image is None:
+                break  # vkdr_warnings.txt says why; the test reports it
+            np.save(out / f"vkdr_{seed}.npy", image)
+        vkdiffrender_blender.unregister()
+
+
+if __name__ == "__main__":
+    main()

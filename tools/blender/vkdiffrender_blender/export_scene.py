@@ -1,0 +1,222 @@
+"""File > Export > vkdiffrender (.gltf): Blender's glTF exporter, then the exported JSON
+completed with what that exporter leaves out or converts differently from Cycles.
+
+Post-processing the written JSON, rather than the exporter's user-extension hooks, because
+three of the four additions are things the exporter never visits (the World, area lights,
+which it drops, and a root-level extension), and the light intensities it does write must
+be replaced as a whole; the JSON is the one interface that stays the same across exporter
+versions."""
+import json
+import math
+import os
+
+import bpy
+import mathutils
+from bpy.props import StringProperty
+from bpy_extras.io_utils import ExportHelper
+
+from . import gltf_json, mappings, node_graph
+
+EXTENSION = "VKDR_participating_media"
+
+
+def blender_to_gltf(v):
+    """Blender's Z-up to glTF's Y-up, as the exporter's export_yup does."""
+    return (v[0], v[2], -v[1])
+
+
+def run_gltf_exporter(filepath):
+    bpy.ops.export_scene.gltf(filepath=filepath, export_format="GLTF_SEPARATE", export_cameras=True,
+                              export_lights=True, export_apply=True, export_yup=True,
+                              export_normals=True, export_materials="EXPORT", export_extras=False,
+                              use_selection=False, use_visible=False, use_renderable=True)
+
+
+def medium_json(medium):
+    return {"sigma_a": list(medium.sigma_a), "sigma_s": list(medium.sigma_s), "g": medium.g}
+
+
+def add_material_media(doc, warnings):
+    """Volumes of materials: the glTF material of the same name becomes a medium boundary."""
+    for material in doc.get("materials", []):
+        blender_material = bpy.data.materials.get(material.get("name", ""))
+        medium = node_graph.medium_of(blender_material, warnings, f"material '{material.get('name')}'")
+        if medium is None:
+            continue
+        if node_graph.surface_node(blender_material) is not None:
+            warnings.append(f"material '{blender_material.name}': has a Surface shader besides its volume; "
+                            f"vkdiffrender renders the boundary clear (as Cycles does with no Surface)")
+        extensions = material.setdefault("extensions", {})
+        # Our extension takes precedence, but a refracting transmission would still be refused.
+        for name in ("KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"):
+            extensions.pop(name, None)
+        extensions[EXTENSION] = medium_json(medium)
+
+
+def set_surfaces(doc, warnings):
+    """Surfaces as Cycles shades them where the exporter reads only Principled BSDF: a
+    Diffuse BSDF is Lambertian with its Color; an Emission shader emits Color x Strength
+    and reflects nothing."""
+    for material in doc.get("materials", []):
+        blender_material = bpy.data.materials.get(material.get("name", ""))
+        node = node_graph.surface_node(blender_material)
+        if node is None:
+            continue
+        what = f"material '{blender_material.name}'"
+        pbr = material.setdefault("pbrMetallicRoughness", {})
+        if node.bl_idname == "ShaderNodeBsdfDiffuse":
+            albedo = mappings.base_color_to_albedo(node_graph.constant(node, "Color", warnings, what))
+            pbr["baseColorFactor"] = [*albedo, 1.0]
+            if node.inputs["Roughness"].default_value > 0.0 or node.inputs["Roughness"].is_linked:
+                warnings.append(f"{what}: Diffuse BSDF roughness (Oren-Nayar) is exported as Lambertian")
+        elif node.bl_idname == "ShaderNodeEmission":
+            radiance = mappings.emission_to_radiance(node_graph.constant(node, "Color", warnings, what),
+                                                     node_graph.constant(node, "Strength", warnings, what))
+            emission = mappings.radiance_to_emission(radiance)
+            pbr["baseColorFactor"] = [0.0, 0.0, 0.0, 1.0]
+            material["emissiveFactor"] = list(emission["color"])
+            material.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {
+                "emissiveStrength": emission["strength"]}
+            gltf_json.use_extension(doc, "KHR_materials_emissive_strength")
+        elif node.bl_idname == "ShaderNodeBsdfPrincipled":
+            warnings.append(f"{what}: Principled BSDF is exported as a Lambertian of its Base Color; Cycles adds "
+                            f"its specular lobe (Specular {node.inputs['Specular'].default_value:g}) and a "
+                            f"retro-reflective diffuse")
+        else:
+            warnings.append(f"{what}: surface shader {node.bl_idname} is exported as the glTF exporter reads it")
+
+
+def add_world(doc, scene, warnings):
+    """The World's volume fills the scene; its constant Background is the radiance of
+    escaping rays."""
+    world = scene.world
+    if world is None or not world.use_nodes:
+        return
+    medium = node_graph.medium_of(world, warnings, f"world '{world.name}'")
+    if medium is not None:
+        doc.setdefault("extensions", {})[EXTENSION] = {"name": world.name, **medium_json(medium)}
+    out = node_graph.output_node(world.node_tree, "OUTPUT_WORLD")
+    background = node_graph.linked_node(out.inputs["Surface"]) if out else None
+    if background is not None and background.bl_idname == "ShaderNodeBackground":
+        radiance = mappings.emission_to_radiance(
+            node_graph.constant(background, "Color", warnings, f"world '{world.name}'"),
+            node_graph.constant(background, "Strength", warnings, f"world '{world.name}'"))
+        if max(radiance) > 0.0:
+            doc.setdefault("extensions", {})["VKDR_background"] = {"radiance": list(radiance)}
+
+
+def set_punctual_lights(doc, scene, warnings):
+    """Replace the exporter's photometric intensities by Cycles' radiometric ones."""
+    lights = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    for node in doc.get("nodes", []):
+        index = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
+        obj = scene.objects.get(node.get("name", ""))
+        if index is None or obj is None or obj.type != "LIGHT":
+            continue
+        light, entry = obj.data, lights[index]
+        entry["color"] = list(light.color)
+        if light.type == "SUN":
+            entry["intensity"] = light.energy
+            if light.angle > 0.0:
+                warnings.append(f"light '{obj.name}': a sun of angle {math.degrees(light.angle):.2f} deg "
+                                f"is exported as a directional light (angle 0)")
+            continue
+        entry["intensity"] = light.energy / (4.0 * math.pi)
+        if light.shadow_soft_size > 0.0:
+            warnings.append(f"light '{obj.name}': radius {light.shadow_soft_size:g} is exported as a point "
+                            f"(same intensity, hard shadows)")
+        if light.type == "SPOT":
+            outer, inner = mappings.spot_cone_angles(light.spot_size, light.spot_blend)
+            entry["spot"] = {"outerConeAngle": outer, "innerConeAngle": inner}
+            warnings.append(f"light '{obj.name}': Cycles' spot falloff (a smoothstep times the cosine to "
+                            f"the axis) differs from glTF's; exported with the same cone angles")
+
+
+def area_light_polygon(obj):
+    """World-space corners of an area light, ordered counter-clockwise seen from below
+    (its emitting side, local -Z)."""
+    light = obj.data
+    sx = light.size
+    sy = light.size_y if light.shape in {"RECTANGLE", "ELLIPSE"} else light.size
+    if light.shape in {"DISK", "ELLIPSE"}:
+        n = 64
+        local = [(0.5 * sx * math.cos(-2 * math.pi * i / n), 0.5 * sy * math.sin(-2 * math.pi * i / n), 0.0)
+                 for i in range(n)]
+    else:
+        local = [(-0.5 * sx, -0.5 * sy, 0.0), (-0.5 * sx, 0.5 * sy, 0.0), (0.5 * sx, 0.5 * sy, 0.0),
+                 (0.5 * sx, -0.5 * sy, 0.0)]
+    return [tuple(obj.matrix_world @ mathutils.Vector(p)) for p in local]
+
+
+def polygon_area(points):
+    a = [0.0, 0.0, 0.0]
+    for p, q in zip(points, points[1:] + points[:1]):
+        a[0] += p[1] * q[2] - p[2] * q[1]
+        a[1] += p[2] * q[0] - p[0] * q[2]
+        a[2] += p[0] * q[1] - p[1] * q[0]
+    return 0.5 * math.sqrt(sum(c * c for c in a))
+
+
+def area_light_material_name(obj):
+    return f"{obj.name}.area"
+
+
+def add_area_lights(doc, scene, warnings):
+    """Area lights, which the glTF exporter drops, become one-sided emissive polygons of
+    Cycles' radiance Power / (4 area), black so that they reflect nothing."""
+    for obj in scene.objects:
+        if obj.type != "LIGHT" or obj.data.type != "AREA" or obj.hide_render:
+            continue
+        light = obj.data
+        if light.spread < math.pi - 1e-6:
+            warnings.append(f"light '{obj.name}': spread {math.degrees(light.spread):.0f} deg is exported as 180")
+        corners = [blender_to_gltf(p) for p in area_light_polygon(obj)]
+        area = polygon_area(corners)
+        radiance = mappings.area_light_radiance(light.color, light.energy, area)
+        emission = mappings.radiance_to_emission(radiance)
+        material = {"name": area_light_material_name(obj), "doubleSided": False,
+                    "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]},
+                    "emissiveFactor": list(emission["color"]),
+                    "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": emission["strength"]}}}
+        triangles = [(0, i, i + 1) for i in range(1, len(corners) - 1)]
+        gltf_json.add_mesh_node(doc, obj.name + ".area", corners, triangles, material)
+        gltf_json.use_extension(doc, "KHR_materials_emissive_strength")
+
+
+def export_scene(context, filepath):
+    """Writes FILEPATH (.gltf, with its .bin beside it) for vkdiffrender; returns the warnings."""
+    scene = context.scene
+    run_gltf_exporter(filepath)
+    with open(filepath, encoding="utf-8") as f:
+        doc = json.load(f)
+    warnings = []
+    set_surfaces(doc, warnings)
+    add_material_media(doc, warnings)
+    add_world(doc, scene, warnings)
+    set_punctual_lights(doc, scene, warnings)
+    add_area_lights(doc, scene, warnings)
+    if EXTENSION in json.dumps(doc):
+        gltf_json.use_extension(doc, EXTENSION)
+    if "VKDR_background" in doc.get("extensions", {}):
+        gltf_json.use_extension(doc, "VKDR_background")
+    gltf_json.drop_unused_extensions(doc)
+    gltf_json.write_atomically(filepath, doc)
+    return warnings
+
+
+class EXPORT_OT_vkdiffrender(bpy.types.Operator, ExportHelper):
+    """Export the scene for vkdiffrender: glTF with media, lights in Cycles' units, area lights as emitters"""
+    bl_idname = "export_scene.vkdiffrender"
+    bl_label = "Export vkdiffrender"
+    filename_ext = ".gltf"
+    filter_glob: StringProperty(default="*.gltf", options={"HIDDEN"})
+
+    def execute(self, context):
+        for warning in export_scene(context, self.filepath):
+            self.report({"WARNING"}, warning)
+        self.report({"INFO"}, f"wrote {os.path.basename(self.filepath)}")
+        return {"FINISHED"}
+
+
+def menu_entry(self, context):
+    self.layout.operator(EXPORT_OT_vkdiffrender.bl_idname, text="vkdiffrender (.gltf)")

@@ -1,0 +1,177 @@
+"""File > Import > vkdiffrender (.gltf/.glb): Blender's glTF importer, then the media,
+background and light values it does not know restored as Cycles nodes."""
+import contextlib
+import json
+import math
+import struct
+
+import bpy
+from bpy.props import StringProperty
+from bpy_extras.io_utils import ImportHelper
+
+from . import mappings, node_graph
+
+EXTENSION = "VKDR_participating_media"
+
+
+@contextlib.contextmanager
+def numpy_bool_alias():
+    """Blender 3.4's glTF importer uses numpy.bool, which numpy 1.24 (Debian 12) removed;
+    it meant the builtin bool, so the alias is set for the importer's run only."""
+    import numpy
+    added = not hasattr(numpy, "bool")
+    if added:
+        numpy.bool = bool
+    try:
+        yield
+    finally:
+        if added:
+            del numpy.bool
+
+
+def read_gltf_json(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:4] == b"glTF":
+        length, kind = struct.unpack_from("<II", data, 12)
+        if kind != 0x4E4F534A:
+            raise ValueError(f"{path}: the first GLB chunk is not JSON")
+        return json.loads(data[20:20 + length])
+    return json.loads(data)
+
+
+def medium_from_json(entry, where):
+    """A medium as vkdiffrender reads it: VKDR_participating_media (scalars broadcast), or
+    KHR_materials_volume's attenuation (sigma_a = -ln(colour) / distance)."""
+    def rgb(key):
+        value = entry.get(key, 0.0)
+        return (float(value),) * 3 if isinstance(value, (int, float)) else tuple(float(v) for v in value[:3])
+    if "attenuationColor" in entry or "attenuationDistance" in entry:
+        distance = float(entry.get("attenuationDistance", math.inf))
+        colour = entry.get("attenuationColor", [1.0, 1.0, 1.0])
+        if any(c <= 0.0 for c in colour):
+            raise ValueError(f"{where}.attenuationColor: must be > 0, got {colour}")
+        sigma_a = tuple(-math.log(c) / distance for c in colour)
+        return mappings.Medium(sigma_a, (0.0, 0.0, 0.0), 0.0)
+    return mappings.Medium(rgb("sigma_a"), rgb("sigma_s"), float(entry.get("g", 0.0)))
+
+
+def set_volume(owner, medium, output_kind):
+    """Make OWNER's Volume output a Principled Volume of this medium and, for a material,
+    leave its Surface empty: a clear boundary, as in vkdiffrender."""
+    owner.use_nodes = True
+    tree = owner.node_tree
+    out = node_graph.output_node(tree, output_kind)
+    if out is None:
+        out = tree.nodes.new("ShaderNodeOutputWorld" if output_kind == "OUTPUT_WORLD" else "ShaderNodeOutputMaterial")
+    if output_kind == "OUTPUT_MATERIAL":
+        for link in list(out.inputs["Surface"].links):
+            tree.links.remove(link)
+    node = node_graph.material_volume_node(owner)
+    if node is None or node.bl_idname != "ShaderNodeVolumePrincipled":
+        node = tree.nodes.new("ShaderNodeVolumePrincipled")
+        node.location = (out.location[0] - 300, out.location[1] - 200)
+        tree.links.new(node.outputs[0], out.inputs["Volume"])
+    node_graph.write_medium(node, medium)
+    return node
+
+
+def new_ids(collection, before):
+    return [item for item in collection if item.name not in before]
+
+
+def match(items, gltf_name):
+    """The importer names data after glTF names, with Blender's .001 suffix on a clash."""
+    for item in items:
+        if item.name == gltf_name or item.name.startswith(gltf_name + "."):
+            return item
+    return None
+
+
+def restore_media(doc, materials, warnings):
+    for index, material in enumerate(doc.get("materials", [])):
+        extensions = material.get("extensions", {})
+        entry = extensions.get(EXTENSION) or extensions.get("KHR_materials_volume")
+        if entry is None:
+            continue
+        name = material.get("name", str(index))
+        blender_material = match(materials, name)
+        if blender_material is None:
+            warnings.append(f"material '{name}': not created by the importer (unused?); its medium is skipped")
+            continue
+        set_volume(blender_material, medium_from_json(entry, f"materials[{index}]"), "OUTPUT_MATERIAL")
+
+
+def restore_world(doc, scene):
+    extensions = doc.get("extensions", {})
+    medium_entry, background = extensions.get(EXTENSION), extensions.get("VKDR_background")
+    if medium_entry is None and background is None:
+        return
+    if scene.world is None:
+        scene.world = bpy.data.worlds.new(medium_entry.get("name", "World") if medium_entry else "World")
+    world = scene.world
+    world.use_nodes = True
+    if medium_entry is not None:
+        set_volume(world, medium_from_json(medium_entry, "extensions." + EXTENSION), "OUTPUT_WORLD")
+    out = node_graph.output_node(world.node_tree, "OUTPUT_WORLD")
+    node = node_graph.linked_node(out.inputs["Surface"])
+    if node is None or node.bl_idname != "ShaderNodeBackground":
+        node = world.node_tree.nodes.new("ShaderNodeBackground")
+        world.node_tree.links.new(node.outputs[0], out.inputs["Surface"])
+    emission = mappings.radiance_to_emission(background["radiance"] if background else 0.0)
+    node.inputs["Color"].default_value = (*emission["color"], 1.0)
+    node.inputs["Strength"].default_value = emission["strength"]
+
+
+def restore_lights(doc, objects):
+    """KHR_lights_punctual in Cycles' units (the importer converts with its own factors)."""
+    lights = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    for node in doc.get("nodes", []):
+        index = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
+        obj = match([o for o in objects if o.type == "LIGHT"], node.get("name", ""))
+        if index is None or obj is None:
+            continue
+        entry = lights[index]
+        value = tuple(c * float(entry.get("intensity", 1.0)) for c in entry.get("color", [1.0, 1.0, 1.0]))
+        if obj.data.type == "SUN":
+            sun = mappings.irradiance_to_sun(value)
+            obj.data.color, obj.data.energy = sun["color"], sun["strength"]
+        else:
+            point = mappings.intensity_to_point_light(value)
+            obj.data.color, obj.data.energy = point["color"], point["power"]
+            obj.data.shadow_soft_size = 0.0
+
+
+def import_scene(context, filepath):
+    """Imports FILEPATH into the current scene; returns the warnings."""
+    materials_before = {m.name for m in bpy.data.materials}
+    objects_before = {o.name for o in bpy.data.objects}
+    with numpy_bool_alias():
+        bpy.ops.import_scene.gltf(filepath=filepath)
+    doc = read_gltf_json(filepath)
+    warnings = []
+    restore_media(doc, new_ids(bpy.data.materials, materials_before), warnings)
+    restore_world(doc, context.scene)
+    restore_lights(doc, new_ids(bpy.data.objects, objects_before))
+    return warnings
+
+
+class IMPORT_OT_vkdiffrender(bpy.types.Operator, ImportHelper):
+    """Import a vkdiffrender scene or fitted scene.gltf, with its media as Principled Volume nodes"""
+    bl_idname = "import_scene.vkdiffrender"
+    bl_label = "Import vkdiffrender"
+    filter_glob: StringProperty(default="*.gltf;*.glb", options={"HIDDEN"})
+
+    def execute(self, context):
+        try:
+            warnings = import_scene(context, self.filepath)
+        except (OSError, ValueError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        for warning in warnings:
+            self.report({"WARNING"}, warning)
+        return {"FINISHED"}
+
+
+def menu_entry(self, context):
+    self.layout.operator(IMPORT_OT_vkdiffrender.bl_idname, text="vkdiffrender (.gltf/.glb)")

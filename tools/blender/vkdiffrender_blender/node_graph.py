@@ -1,0 +1,129 @@
+"""Reading Blender shader node trees into vkdiffrender values, and writing fitted values
+back into the same nodes. Only attribute access on bpy objects; the formulas are in
+mappings.py."""
+from . import mappings
+
+VOLUME_NODES = {"ShaderNodeVolumePrincipled", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumeScatter"}
+
+
+def output_node(tree, kind):
+    """The active Material Output (kind 'OUTPUT_MATERIAL') or World Output that Cycles uses."""
+    candidates = [n for n in tree.nodes if n.type == kind and n.target in {"ALL", "CYCLES"}]
+    active = [n for n in candidates if n.is_active_output]
+    return (active or candidates or [None])[0]
+
+
+def linked_node(socket):
+    return socket.links[0].from_node if socket.is_linked and socket.links else None
+
+
+def constant(node, name, warnings, what):
+    """A node input's value; a linked input (texture, attribute) varies in space and cannot
+    be expressed, so its unlinked value is used with a warning."""
+    socket = node.inputs[name]
+    if socket.is_linked:
+        warnings.append(f"{what}: '{node.name}' input '{name}' is linked (a texture or attribute); "
+                        f"vkdiffrender media are homogeneous, its unlinked value is used")
+    value = socket.default_value
+    return tuple(value) if hasattr(value, "__len__") else float(value)
+
+
+def volume_medium(node, warnings, what):
+    """The medium of the closure tree under a Volume socket: Principled Volume, Volume
+    Absorption, Volume Scatter, summed by Add Shader and weighted by Mix Shader."""
+    if node is None:
+        return None
+    if node.bl_idname == "ShaderNodeVolumePrincipled":
+        for name in ("Emission Strength", "Blackbody Intensity"):
+            if node.inputs[name].is_linked or node.inputs[name].default_value > 0.0:
+                warnings.append(f"{what}: '{node.name}' {name}: volume emission is not supported by "
+                                f"vkdiffrender and is dropped")
+        return mappings.principled_volume_to_medium(
+            constant(node, "Color", warnings, what), constant(node, "Density", warnings, what),
+            constant(node, "Absorption Color", warnings, what), constant(node, "Anisotropy", warnings, what))
+    if node.bl_idname == "ShaderNodeVolumeAbsorption":
+        return mappings.volume_absorption_to_medium(constant(node, "Color", warnings, what),
+                                                    constant(node, "Density", warnings, what))
+    if node.bl_idname == "ShaderNodeVolumeScatter":
+        return mappings.volume_scatter_to_medium(constant(node, "Color", warnings, what),
+                                                 constant(node, "Density", warnings, what),
+                                                 constant(node, "Anisotropy", warnings, what))
+    if node.bl_idname == "ShaderNodeAddShader":
+        parts = [volume_medium(linked_node(s), warnings, what) for s in node.inputs]
+        medium, exact = mappings.add_media([p for p in parts if p is not None])
+        if not exact:
+            warnings.append(f"{what}: '{node.name}' adds scattering of different anisotropies; "
+                            f"exported as one lobe with their scattering-weighted mean g")
+        return medium
+    if node.bl_idname == "ShaderNodeMixShader":
+        fac = min(max(constant(node, "Fac", warnings, what), 0.0), 1.0)
+        parts = [volume_medium(linked_node(node.inputs[i]), warnings, what) for i in (1, 2)]
+        weighted = [mappings.scale_medium(p, w) for p, w in zip(parts, (1.0 - fac, fac)) if p is not None]
+        medium, exact = mappings.add_media(weighted)
+        if not exact:
+            warnings.append(f"{what}: '{node.name}' mixes scattering of different anisotropies; "
+                            f"exported as one lobe with their scattering-weighted mean g")
+        return medium
+    warnings.append(f"{what}: volume node '{node.name}' ({node.bl_idname}) is not supported; ignored")
+    return None
+
+
+def material_volume_node(material):
+    """The single volume node of a material or world whose Volume output it feeds directly
+    (the node the Fit operator writes back into), else None."""
+    if material is None or not material.use_nodes:
+        return None
+    kind = "OUTPUT_WORLD" if material.bl_rna.identifier == "World" else "OUTPUT_MATERIAL"
+    out = output_node(material.node_tree, kind)
+    node = linked_node(out.inputs["Volume"]) if out else None
+    return node if node is not None and node.bl_idname in VOLUME_NODES else None
+
+
+def medium_of(owner, warnings, what):
+    """The medium of a material's or world's Volume output, or None."""
+    if owner is None or not owner.use_nodes:
+        return None
+    kind = "OUTPUT_WORLD" if owner.bl_rna.identifier == "World" else "OUTPUT_MATERIAL"
+    out = output_node(owner.node_tree, kind)
+    if out is None:
+        return None
+    medium = volume_medium(linked_node(out.inputs["Volume"]), warnings, what)
+    if medium is None:
+        return None
+    g, clamped = mappings.clamp_g(medium.g)
+    if clamped:
+        warnings.append(f"{what}: anisotropy {medium.g:g} is outside vkdiffrender's [-0.99, 0.99]; clamped")
+    return mappings.Medium(medium.sigma_a, medium.sigma_s, g)
+
+
+def surface_node(material):
+    if material is None or not material.use_nodes:
+        return None
+    out = output_node(material.node_tree, "OUTPUT_MATERIAL")
+    return linked_node(out.inputs["Surface"]) if out else None
+
+
+def write_medium(node, medium):
+    """Write a fitted medium into the node it came from, with the inverse mapping of that
+    node's type. Returns a warning when the node cannot hold the medium exactly."""
+    if node.bl_idname == "ShaderNodeVolumePrincipled":
+        values = mappings.medium_to_principled_volume(medium)
+        node.inputs["Density"].default_value = values["density"]
+        node.inputs["Color"].default_value = (*values["color"], 1.0)
+        node.inputs["Absorption Color"].default_value = (*values["absorption_color"], 1.0)
+        node.inputs["Anisotropy"].default_value = values["anisotropy"]
+        return None
+    if node.bl_idname == "ShaderNodeVolumeAbsorption":
+        values = mappings.medium_to_volume_absorption(medium.sigma_a)
+        node.inputs["Density"].default_value = values["density"]
+        node.inputs["Color"].default_value = (*values["color"], 1.0)
+        if max(medium.sigma_s) > 0.0:
+            return f"'{node.name}' is a Volume Absorption node: the fitted scattering is dropped"
+        return None
+    values = mappings.medium_to_volume_scatter(medium.sigma_s, medium.g)
+    node.inputs["Density"].default_value = values["density"]
+    node.inputs["Color"].default_value = (*values["color"], 1.0)
+    node.inputs["Anisotropy"].default_value = values["anisotropy"]
+    if max(medium.sigma_a) > 0.0:
+        return f"'{node.name}' is a Volume Scatter node: the fitted absorption is dropped"
+    return None

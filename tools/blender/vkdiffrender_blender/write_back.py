@@ -1,0 +1,100 @@
+"""Fitted values (params.json of `vkdiffrender optimize`) written back into the Blender
+nodes and lights they were exported from, with the inverse mappings, and the list of
+parameters a scene offers for fitting. Names are those export_scene gives: a medium is
+named after its material (or the World), an area light's emitter is '<object>.area'."""
+import json
+
+import bpy
+
+from . import export_scene, mappings, node_graph
+
+SURFACE_COLOR_INPUTS = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffuse": "Color"}
+
+
+def volume_owners(scene):
+    """(name, material or world, its volume node) for every volume the Fit can write into."""
+    owners = [(m.name, m, node_graph.material_volume_node(m)) for m in bpy.data.materials if m.users]
+    if scene.world is not None:
+        owners.append((scene.world.name, scene.world, node_graph.material_volume_node(scene.world)))
+    return [(name, owner, node) for name, owner, node in owners if node is not None]
+
+
+def fittable_parameters(scene):
+    """Parameter names in vkdiffrender's spelling, each with a label for the UI."""
+    names = []
+    for name, _, node in volume_owners(scene):
+        kinds = {"ShaderNodeVolumePrincipled": ("sigma_a", "sigma_s", "g"),
+                 "ShaderNodeVolumeAbsorption": ("sigma_a",),
+                 "ShaderNodeVolumeScatter": ("sigma_s", "g")}[node.bl_idname]
+        names += [f"media/{name}/{kind}" for kind in kinds]
+    for material in bpy.data.materials:
+        surface = node_graph.surface_node(material) if material.users else None
+        if surface is not None and surface.bl_idname in SURFACE_COLOR_INPUTS:
+            names.append(f"materials/{material.name}/base_color")
+    for obj in scene.objects:
+        if obj.type == "LIGHT" and obj.data.type == "AREA":
+            names.append(f"lights/{export_scene.area_light_material_name(obj)}/emission")
+    return names
+
+
+def write_medium_values(owner_node, fitted, name):
+    """Complete a fitted medium with the exported values of what was not fitted."""
+    warnings = []
+    current = node_graph.volume_medium(owner_node, warnings, name)
+    medium = mappings.Medium(tuple(fitted.get("sigma_a", current.sigma_a)),
+                             tuple(fitted.get("sigma_s", current.sigma_s)),
+                             float(fitted.get("g", [current.g])[0]))
+    warning = node_graph.write_medium(owner_node, medium)
+    return [warning] if warning else []
+
+
+def apply_fitted_values(scene, params):
+    """Write PARAMS ({name: [values]}) into the scene; returns warnings for names that have
+    no Blender counterpart or cannot be held exactly."""
+    warnings = []
+    media = {}
+    for name, value in params.items():
+        parts = name.split("/")
+        if parts[0] == "media" and len(parts) == 3:
+            media.setdefault(parts[1], {})[parts[2]] = value
+        elif parts[0] == "materials" and parts[-1] == "base_color":
+            material = bpy.data.materials.get(parts[1])
+            surface = node_graph.surface_node(material)
+            if surface is None or surface.bl_idname not in SURFACE_COLOR_INPUTS:
+                warnings.append(f"{name}: no Principled or Diffuse BSDF to write into")
+                continue
+            surface.inputs[SURFACE_COLOR_INPUTS[surface.bl_idname]].default_value = (*value[:3], 1.0)
+        elif parts[0] == "lights" and parts[-1] == "emission" and parts[1].endswith(".area"):
+            obj = scene.objects.get(parts[1][:-len(".area")])
+            if obj is None:
+                warnings.append(f"{name}: no area light '{parts[1][:-len('.area')]}'")
+                continue
+            corners = [export_scene.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj)]
+            light = mappings.radiance_to_area_light(value, export_scene.polygon_area(corners))
+            obj.data.color, obj.data.energy = light["color"], light["power"]
+        elif parts[0] == "lights" and parts[-1] == "intensity":
+            obj = scene.objects.get(parts[1]) or next(
+                (o for o in scene.objects if o.type == "LIGHT" and o.data.name == parts[1]), None)
+            if obj is None or obj.type != "LIGHT":
+                warnings.append(f"{name}: no light '{parts[1]}'")
+                continue
+            if obj.data.type == "SUN":
+                sun = mappings.irradiance_to_sun(value)
+                obj.data.color, obj.data.energy = sun["color"], sun["strength"]
+            else:
+                point = mappings.intensity_to_point_light(value)
+                obj.data.color, obj.data.energy = point["color"], point["power"]
+        else:
+            warnings.append(f"{name}: not written back (no Blender counterpart)")
+    owners = {name: node for name, _, node in volume_owners(scene)}
+    for medium_name, fitted in media.items():
+        if medium_name not in owners:
+            warnings.append(f"media/{medium_name}: no material or world with a single volume node of that name")
+            continue
+        warnings += write_medium_values(owners[medium_name], fitted, f"medium '{medium_name}'")
+    return warnings
+
+
+def apply_params_file(scene, path):
+    with open(path, encoding="utf-8") as f:
+        return apply_fitted_values(scene, json.load(f))
