@@ -5,6 +5,7 @@
 #include "bench/host_memory.h"
 #include "bench/scene_benchmark.h"
 #include "cli/commands.h"
+#include "cli/install_layout.h"
 #include "image/output_paths.h"
 #include "cli/progress_bar.h"
 #include "cli/number_options.h"
@@ -24,7 +25,7 @@ struct BenchOptions {
     std::vector<std::string> scenes;
     BenchSettings settings;
     std::string json;
-    std::string scenesDirectory = VKDR_SCENES_DIR;
+    std::string scenesDirectory = shippedScenesDirectory();
     std::string device;
 };
 
@@ -100,7 +101,7 @@ CommandAction addBenchCommand(CLI::App& app) {
                      "Timed runs of each measurement after one warm-up; the figures are their median")
         ->default_val(options->settings.iterations)
         ->transform(integerIn(1, 1000));
-    command->add_option("--json", options->json, "Also write the results as JSON (docs/performance.md)");
+    command->add_option("--json", options->json, "Also write the results as JSON (see " + docReference("Performance guide", "performance.md") + ")");
     command->add_option("--scenes-dir", options->scenesDirectory, "Where the shipped scenes are")
         ->default_val(options->scenesDirectory);
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");

@@ -1,4 +1,6 @@
 #pragma once
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 namespace vkdr {
@@ -10,7 +12,8 @@ using CommandAction = std::function<int()>;
 CommandAction addRenderCommand(CLI::App& app);
 CommandAction addInfoCommand(CLI::App& app);
 CommandAction addGradCommand(CLI::App& app);
-CommandAction addOptimizeCommand(CLI::App& app);
+// commandLine: the whole command as typed, recorded in the run's report.html.
+CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine);
 CommandAction addBenchCommand(CLI::App& app);
 // `help [COMMAND]`: the same text as COMMAND --help.
 CommandAction addHelpCommand(CLI::App& app);

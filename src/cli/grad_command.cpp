@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/install_layout.h"
 #include "cli/number_options.h"
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
@@ -156,8 +157,9 @@ CommandAction addGradCommand(CLI::App& app) {
         ->transform(integerIn(1, kMaxImageSide));
     command->add_flag("--json", options->json, "Print exactly one JSON object: {\"loss\": x, \"gradients\": {...}}");
     command->add_flag("--check", options->check,
-                      "Also compute central finite differences with common random numbers (step in "
-                      "docs/gradients.md) and print both with their standard errors over --check-seeds seeds");
+                      "Also compute central finite differences with common random numbers (the step is in " +
+                          docReference("Gradients guide", "gradients.md") +
+                          ") and print both with their standard errors over --check-seeds seeds");
     command->add_option("--check-seeds", options->checkSeeds, "Seeds the check averages over")
         ->default_val(options->checkSeeds)->transform(integerIn(2, 1000));
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");

@@ -3,6 +3,7 @@
 #include <exception>
 #include <new>
 
+#include "cli/command_line_text.h"
 #include "cli/commands.h"
 #include "cli/help_formatter.h"
 #include "core/error.h"
@@ -14,7 +15,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("vkdiffrender ") + VKDR_VERSION);
     app.formatter(std::make_shared<vkdr::HelpFormatter>());  // before the subcommands, which inherit it
     std::vector<vkdr::CommandAction> actions = {vkdr::addRenderCommand(app), vkdr::addGradCommand(app),
-                                                vkdr::addOptimizeCommand(app), vkdr::addBenchCommand(app),
+                                                vkdr::addOptimizeCommand(app, vkdr::commandLineText(argc, argv)), vkdr::addBenchCommand(app),
                                                 vkdr::addInfoCommand(app), vkdr::addHelpCommand(app)};
     try {
         app.parse(argc, argv);

@@ -4,6 +4,7 @@
 
 #include "bvh/bvh.h"
 #include "cli/commands.h"
+#include "cli/install_layout.h"
 #include "cli/number_options.h"
 #include "image/output_paths.h"
 #include "cli/progress_bar.h"
@@ -19,6 +20,7 @@
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/optimization_run.h"
+#include "optimize/parameter_table.h"
 #include "optimize/parameter_vector.h"
 #include "optimize/run_directory.h"
 #include "render/renderer.h"
@@ -43,6 +45,7 @@ struct OptimizeCommandOptions {
     std::string resume;  // a previous run's --out directory to continue in
     bool overwrite = false;  // replace the run that --out holds
     std::string device;
+    std::string commandLine;  // as typed, for report.html
 };
 
 // The options an experiment file also sets; given on the command line, they win.
@@ -116,12 +119,14 @@ void clearOldRun(const OptimizeCommandOptions& options, bool experiment) {
 
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
     const OptimizeResult& result = report.result;
+    std::printf("%s", parameterTable(report.parameters).c_str());
     double iterations = double(result.losses.size());
     std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint\n",
                 result.losses.back(), result.losses.size(), result.forwardMs / iterations,
                 result.adjointMs / iterations);
     std::printf("diff.png: white is an absolute difference of %.4g\n", double(report.largestDifference));
-    std::printf("wrote log.jsonl, params.json, scene.gltf, final.exr, final.png, diff.png, loss.svg to %s\n",
+    std::printf("wrote log.jsonl, params.json, scene.gltf, final.exr, final.png, diff.png, loss.svg, report.html "
+                "to %s\n",
                 directory.string().c_str());
 }
 
@@ -170,7 +175,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     requireOptimisableParameters(scene, options.optimize.parameters);
     LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
     std::vector<TargetView> views = readTargets(options.targets, scene);
-    OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views[0].target};
+    OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views};
     job.inputs = {{}, options.targets, options.scene.assignments, options.settings.spp, options.settings.maxDepth};
     job.resume = !options.resume.empty();
 
@@ -180,6 +185,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
                  options.scene.file.c_str(), scene.triangles.size(), views.size(), options.settings.spp,
                  options.settings.maxDepth, options.optimize.iterations, options.optimizer.c_str(),
                  context.description().name.c_str());
+    job.description = {options.commandLine, context.description().name};
     RenderedLossGradient lossGradient(context, scene, std::move(views), options.optimize.parameters,
                                       options.settings, loss);
     clearOldRun(options, false);
@@ -249,21 +255,22 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
 
     clearOldRun(options, true);
     ProgressBar bar("optimize");
-    ExperimentResult result = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
-                                            progressOn(bar, experiment.optimize.iterations));
+    OptimizationReport report = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
+                                              progressOn(bar, experiment.optimize.iterations),
+                                              {options.commandLine, context.description().name});
     bar.finish();
     requireNoValidationMessages(context);
-    std::printf("%s", recoveryTable(result.recoveries).c_str());
-    printOutputs(options.out, result.report);
+    printOutputs(options.out, report);
     return 0;
 }
 
 }  // namespace
 
-CommandAction addOptimizeCommand(CLI::App& app) {
+CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
     CLI::App* command = app.add_subcommand(
         "optimize", "Fit scene parameters to target images by gradient descent (or run an --experiment file)");
     auto options = std::make_shared<OptimizeCommandOptions>();
+    options->commandLine = std::move(commandLine);
     addSceneOptions(*command, options->scene);
     command->get_option("scene")->required(false);
     command->add_option("--target", options->targets,
@@ -271,7 +278,8 @@ CommandAction addOptimizeCommand(CLI::App& app) {
                         "view); each view renders at its target's size");
     command->add_option("--param", options->parameters, "Parameter to optimise, e.g. media/fog/sigma_a (repeatable)");
     command->add_option("--experiment", options->experiment,
-                        "Run a self-contained experiment file (docs/optimisation.md) instead of SCENE");
+                        "Run a self-contained experiment file (see " +
+                            docReference("Optimisation guide", "optimisation.md") + ") instead of SCENE");
     ExperimentOverrides overrides;
     overrides.iterations = command->add_option("--iters", options->optimize.iterations, "Iterations")
                                ->default_val(options->optimize.iterations)->transform(integerIn(1, 1000000));

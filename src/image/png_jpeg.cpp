@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "image/atomic_write.h"
 #include "image/image_formats.h"
+#include "image/png_encode.h"
 #include "image/encoded_image_checks.h"
 #include "image/srgb.h"
 
@@ -51,18 +52,35 @@ struct StbFree {
 
 }  // namespace
 
+std::vector<unsigned char> encodePngRgb8(int width, int height, std::span<const uint8_t> rgb) {
+    if (width <= 0 || height <= 0 || rgb.size() != size_t(width) * height * 3)
+        throw Error("cannot encode PNG: the image has no pixels or the wrong number of values");
+    std::vector<unsigned char> png;
+    auto append = [](void* out, void* data, int size) {
+        auto* bytes = static_cast<const unsigned char*>(data);
+        auto* encoded = static_cast<std::vector<unsigned char>*>(out);
+        encoded->insert(encoded->end(), bytes, bytes + size);
+    };
+    if (!stbi_write_png_to_func(append, &png, width, height, 3, rgb.data(), width * 3))
+        throw Error("cannot encode PNG: encoding failed");
+    return png;
+}
+
+std::vector<unsigned char> encodePng(const Image& image) {
+    if (image.width <= 0 || image.height <= 0 || image.rgb.size() != size_t(image.width) * image.height * 3)
+        throw Error("cannot encode PNG: the image has no pixels or the wrong number of values");
+    std::vector<uint8_t> encoded(image.rgb.size());
+    for (size_t i = 0; i < encoded.size(); ++i)
+        encoded[i] = static_cast<uint8_t>(std::lround(255.0f * srgbFromLinear(image.rgb[i])));
+    return encodePngRgb8(image.width, image.height, encoded);
+}
+
 void writePng(const std::filesystem::path& file, const Image& image) {
     if (image.width <= 0 || image.height <= 0 || image.rgb.size() != size_t(image.width) * image.height * 3)
         throw Error("cannot write PNG '" + file.string() + "': the image has no pixels or the wrong number of values");
-    std::vector<unsigned char> encoded(image.rgb.size());
-    for (size_t i = 0; i < encoded.size(); ++i)
-        encoded[i] = static_cast<unsigned char>(std::lround(255.0f * srgbFromLinear(image.rgb[i])));
+    std::vector<unsigned char> png = encodePng(image);
     writeAtomically(file, [&](std::ofstream& out) {
-        auto append = [](void* stream, void* data, int size) {
-            static_cast<std::ofstream*>(stream)->write(static_cast<const char*>(data), size);
-        };
-        if (!stbi_write_png_to_func(append, &out, image.width, image.height, 3, encoded.data(), image.width * 3))
-            throw Error("cannot write PNG '" + file.string() + "': encoding failed");
+        out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
     });
 }
 

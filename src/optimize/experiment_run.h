@@ -24,33 +24,20 @@ struct ExperimentBackend {
         makeLossGradient;
 };
 
-struct ParameterRecovery {
-    std::string name;
-    std::vector<float> truth;
-    std::vector<float> start;
-    std::vector<float> recovered;
-};
-
-struct ExperimentResult {
-    OptimizationReport report;
-    std::vector<ParameterRecovery> recoveries;  // one per optimised parameter
-};
-
 // The targets render with the experiment's seed plus this, so that their noise is
 // independent of every optimisation iteration's (seed + iteration).
 inline constexpr uint32_t kTargetSeedOffset = 0x80000000u;
 
 // Checks `experiment` against `scene` (loaded from experiment.scene), renders the targets
 // from the true values, resets to the start values and optimises, writing the outputs of
-// runOptimization into `outputDirectory` plus target.exr/.png (the first view's target).
+// runOptimization into `outputDirectory` (report.html with the true values) plus
+// target.exr/.png (the first view's target).
 // With `resume` the optimisation continues from the directory's checkpoint, which must
 // come from the same experiment file, scene and settings.
-ExperimentResult runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
-                               const std::filesystem::path& outputDirectory, bool resume = false,
-                               const std::function<void(uint32_t iteration, double loss)>& progress = {});
-
-// One line per parameter: true, start and recovered values, and the error of each
-// recovered value relative to the true one (absolute where the true value is 0).
-std::string recoveryTable(const std::vector<ParameterRecovery>& recoveries);
+// The report's parameters carry their true values.
+OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
+                                 const std::filesystem::path& outputDirectory, bool resume = false,
+                                 const std::function<void(uint32_t iteration, double loss)>& progress = {},
+                                 const RunDescription& description = {});
 
 }  // namespace vkdr

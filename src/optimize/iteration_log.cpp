@@ -29,6 +29,35 @@ std::string iterationJsonLine(const IterationRecord& record) {
     return line.dump();
 }
 
+std::vector<ParameterTrajectory> readTrajectories(const std::filesystem::path& file,
+                                                  const std::vector<std::string>& names) {
+    std::vector<ParameterTrajectory> trajectories;
+    for (const std::string& name : names) trajectories.push_back({name, {}});
+    std::istringstream in(readRegularFile(file));
+    uint64_t lineNumber = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lineNumber;
+        nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
+        const nlohmann::json* values = record.is_object() && record.contains("parameters") ? &record["parameters"] : nullptr;
+        for (ParameterTrajectory& trajectory : trajectories) {
+            if (!values || !values->contains(trajectory.name) || !(*values)[trajectory.name].is_array()) {
+                throw Error(file.string() + ": line " + std::to_string(lineNumber) + " has no values of " +
+                            trajectory.name);
+            }
+            std::vector<float> value;
+            for (const nlohmann::json& number : (*values)[trajectory.name]) {
+                if (!number.is_number()) {
+                    throw Error(file.string() + ": line " + std::to_string(lineNumber) + ": " + trajectory.name +
+                                " holds something other than numbers");
+                }
+                value.push_back(number.get<float>());
+            }
+            trajectory.values.push_back(std::move(value));
+        }
+    }
+    return trajectories;
+}
+
 IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>& losses) : file_(std::move(file)) {
     const std::string name = file_.string();
     auto fail = [&](const std::string& problem) {

@@ -15,6 +15,18 @@ std::string iterationJsonLine(const IterationRecord& record);
 // log.jsonl, one line per iteration. The whole file is rewritten (atomically) after
 // each iteration, so that a run stopped at any point leaves a complete, parseable log
 // of the iterations done; a few hundred short lines cost nothing next to a render.
+// One parameter's values through a run, as log.jsonl holds them.
+struct ParameterTrajectory {
+    std::string name;
+    std::vector<std::vector<float>> values;  // per iteration: the value it was evaluated at, before its step
+};
+
+// The trajectories of `names` in the log `file`, one value per logged iteration. Throws
+// vkdr::Error naming the file and line when a line is not an iteration's record or lacks
+// one of the parameters.
+std::vector<ParameterTrajectory> readTrajectories(const std::filesystem::path& file,
+                                                  const std::vector<std::string>& names);
+
 class IterationLog {
 public:
     // Starts a new log; the file is written at the first append.

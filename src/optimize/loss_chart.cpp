@@ -2,20 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
+
+#include "optimize/svg_chart.h"
 
 namespace vkdr {
 namespace {
 
 constexpr double kWidth = 480, kHeight = 300;
 constexpr double kLeft = 64, kRight = 16, kTop = 16, kBottom = 44;  // margins around the plot area
-
-std::string format(const char* pattern, auto... values) {
-    char text[256];
-    std::snprintf(text, sizeof(text), pattern, values...);
-    return text;
-}
 
 // Whole decades around the positive losses, at least one decade tall.
 std::pair<int, int> decadeRange(std::span<const double> losses) {
@@ -32,16 +27,6 @@ std::pair<int, int> decadeRange(std::span<const double> losses) {
     return {lowDecade, highDecade};
 }
 
-// About five round iteration numbers (1, 2 or 5 times a power of ten apart).
-double iterationTickStep(size_t count) {
-    double raw = std::max(1.0, double(count) / 5.0);
-    double power = std::pow(10.0, std::floor(std::log10(raw)));
-    for (double multiple : {1.0, 2.0, 5.0}) {
-        if (multiple * power >= raw) return multiple * power;
-    }
-    return 10.0 * power;
-}
-
 }  // namespace
 
 std::string lossChartSvg(std::span<const double> losses, std::string_view lossName) {
@@ -53,33 +38,30 @@ std::string lossChartSvg(std::span<const double> losses, std::string_view lossNa
         return kTop + plotHeight * (highDecade - std::log10(loss)) / double(highDecade - lowDecade);
     };
 
-    std::string svg = format(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\" "
-        "font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
-        kWidth, kHeight, kWidth, kHeight);
+    std::string svg = svgHeader(kWidth, kHeight);
     for (int decade = lowDecade; decade <= highDecade; ++decade) {
         double at = y(std::pow(10.0, decade));
-        svg += format("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", kLeft, at,
+        svg += svgFormat("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", kLeft, at,
                       kWidth - kRight, at);
-        svg += format("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">1e%d</text>\n",
+        svg += svgFormat("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">1e%d</text>\n",
                       kLeft - 6, at, decade);
     }
     double step = iterationTickStep(losses.size());
     for (double iteration = 0.0; iteration <= lastIteration; iteration += step) {
-        svg += format("<text x=\"%.2f\" y=\"%g\" text-anchor=\"middle\">%g</text>\n", x(iteration),
+        svg += svgFormat("<text x=\"%.2f\" y=\"%g\" text-anchor=\"middle\">%g</text>\n", x(iteration),
                       kHeight - kBottom + 16, iteration);
     }
-    svg += format("<path d=\"M%g %g V%g H%g\" fill=\"none\" stroke=\"black\"/>\n", kLeft, kTop, kHeight - kBottom,
+    svg += svgFormat("<path d=\"M%g %g V%g H%g\" fill=\"none\" stroke=\"black\"/>\n", kLeft, kTop, kHeight - kBottom,
                   kWidth - kRight);
-    svg += format("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">iteration</text>\n", kLeft + plotWidth / 2,
+    svg += svgFormat("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">iteration</text>\n", kLeft + plotWidth / 2,
                   kHeight - 8);
-    svg += format("<text transform=\"translate(14 %g) rotate(-90)\" text-anchor=\"middle\">%s loss (log scale)</text>\n",
+    svg += svgFormat("<text transform=\"translate(14 %g) rotate(-90)\" text-anchor=\"middle\">%s loss (log scale)</text>\n",
                   kTop + plotHeight / 2, std::string(lossName).c_str());
 
     svg += "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"";
     for (size_t i = 0; i < losses.size(); ++i) {
         if (losses[i] > 0.0 && std::isfinite(losses[i])) {
-            svg += format("%s%.2f,%.2f", i == 0 ? "" : " ", x(double(i)), y(losses[i]));
+            svg += svgFormat("%s%.2f,%.2f", i == 0 ? "" : " ", x(double(i)), y(losses[i]));
         }
     }
     svg += "\"/>\n</svg>\n";

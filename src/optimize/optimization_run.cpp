@@ -1,5 +1,6 @@
 #include "optimize/optimization_run.h"
 
+#include <chrono>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -15,7 +16,9 @@
 #include "optimize/loss_chart.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
+#include "optimize/report_html.h"
 #include "optimize/run_directory.h"
+#include "optimize/run_report.h"
 #include "scene/parameters.h"
 #include "scene/write_scene.h"
 
@@ -87,11 +90,39 @@ std::optional<LoopState> resumeState(const OptimizationJob& job, const Scene& sc
     return checkpoint.state;
 }
 
+std::vector<std::vector<float>> currentValues(const Scene& scene, const std::vector<std::string>& names) {
+    std::vector<std::vector<float>> values;
+    for (const std::string& name : names) values.push_back(getParameter(scene, name));
+    return values;
+}
+
+void setValues(Scene& scene, const std::vector<std::string>& names, const std::vector<std::vector<float>>& values) {
+    for (size_t i = 0; i < names.size(); ++i) setParameter(scene, names[i], values[i]);
+}
+
+// The renders at the start values that iteration 0 made; a resumed run did not keep
+// them, and renders them again with iteration 0's seed, which gives the same images.
+std::vector<Image> startImages(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
+                               const OptimizationReport& report) {
+    if (!report.result.firstImages.empty()) return report.result.firstImages;
+    std::vector<std::vector<float>> start, fitted;
+    for (const ParameterFit& fit : report.parameters) {
+        start.push_back(fit.start);
+        fitted.push_back(fit.fitted);
+    }
+    setValues(scene, job.options.parameters, start);
+    std::vector<Image> images = lossGradient.evaluate(scene, job.options.seed).images;
+    setValues(scene, job.options.parameters, fitted);
+    return images;
+}
+
 }  // namespace
 
 OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(uint32_t iteration, double loss)>& progress) {
+    const auto startTime = std::chrono::steady_clock::now();
     const std::filesystem::path& directory = job.outputDirectory;
+    const std::vector<std::string>& names = job.options.parameters;
     RunIdentity identity = runIdentity(job.sceneFile, job.options, job.loss, job.inputs);
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
@@ -104,10 +135,18 @@ OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, con
                                 }};
 
     OptimizationReport report;
+    // The scene holds the start values until optimize() writes a resumed run's into it.
+    std::vector<std::vector<float>> start = currentValues(scene, names);
     report.result = optimize(lossGradient, scene, job.options, callbacks, resume ? &*resume : nullptr);
+    std::vector<std::vector<float>> fitted = currentValues(scene, names);
+    for (size_t i = 0; i < names.size(); ++i) {
+        report.parameters.push_back({names[i], start[i], fitted[i], i < job.trueValues.size() ? job.trueValues[i]
+                                                                                              : std::vector<float>{}});
+    }
     const Image& finalImage = report.result.lastImages.at(0);
-    DifferenceImage difference = scaledDifference(finalImage, job.firstTarget);
+    DifferenceImage difference = scaledDifference(finalImage, job.targets.at(0).target);
     report.largestDifference = difference.largestDifference;
+    std::vector<Image> startRenders = startImages(lossGradient, scene, job, report);
 
     writeText(directory / "params.json", parametersJson(scene, job.options.parameters));
     writeSceneWithParameters(job.sceneFile, scene, directory / "scene.gltf");
@@ -115,6 +154,8 @@ OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, con
     writePng(directory / "final.png", finalImage);
     writePng(directory / "diff.png", difference.image);
     writeText(directory / "loss.svg", lossChartSvg(report.result.losses, lossKindName(job.loss)));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+    writeText(directory / "report.html", reportHtml(runReportPage(job, report, std::move(startRenders), seconds)));
     return report;
 }
 

@@ -5,24 +5,36 @@
 #include "diff/loss_gradient.h"
 #include "image/image.h"
 #include "optimize/optimize_loop.h"
+#include "optimize/parameter_table.h"
 #include "optimize/run_identity.h"
 #include "scene/scene.h"
 
 namespace vkdr {
+
+// How a run was started, for report.html.
+struct RunDescription {
+    std::string commandLine;  // as typed
+    std::string device;       // the device's name
+};
 
 struct OptimizationJob {
     std::filesystem::path sceneFile;        // the glTF the scene came from; scene.gltf is a copy of it
     std::filesystem::path outputDirectory;  // created if missing
     OptimizeOptions options;
     LossKind loss = LossKind::L2;           // what the LossGradient computes; labels loss.svg
-    Image firstTarget;                      // the first view's target, for diff.png
+    std::vector<TargetView> targets;        // the LossGradient's views, in its order; diff.png shows the first
     RunInputs inputs;                       // what else decides the result, for the checkpoint's run identity
     bool resume = false;                    // continue from outputDirectory's checkpoint
+    // The true value of each parameter, in options.parameters order, where known (an
+    // experiment); empty otherwise. Shown in report.html.
+    std::vector<std::vector<float>> trueValues;
+    RunDescription description;
 };
 
 struct OptimizationReport {
     OptimizeResult result;
-    float largestDifference = 0.0f;  // the |render - target| that diff.png shows as white
+    float largestDifference = 0.0f;         // the |render - target| that diff.png shows as white
+    std::vector<ParameterFit> parameters;   // start and fitted values (and true ones), in options.parameters order
 };
 
 // Optimises `scene` in place and writes into job.outputDirectory, every file atomically:
@@ -30,7 +42,11 @@ struct OptimizationReport {
 //   checkpoint.json every options.checkpointEvery iterations (optimize/checkpoint.h)
 //   params.json the fitted values by name, scene.gltf the input scene with them written
 //               back, final.exr/.png the last render of the first view, diff.png its
-//               scaled difference to the target, loss.svg the loss curve.
+//               scaled difference to the target, loss.svg the loss curve, and
+//   report.html a page of all of it (optimize/report_html.h) for every view, with the
+//               renders at the start values (for a resumed run, which did not render
+//               them, one more evaluation at the start values with iteration 0's seed
+//               gives the same images) and every parameter's trajectory from log.jsonl.
 // When the loop fails (optimize/optimize_loop.h) only log.jsonl, up to the last good
 // iteration, and the last checkpoint are left: nothing that holds fitted values is written.
 // Without job.resume it refuses a directory that holds another run's files

@@ -216,6 +216,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         if (callbacks.progress) {
             callbacks.progress(iteration, evaluation.loss);
         }
+        if (iteration == 0) result.firstImages = evaluation.images;
         result.lastImages = std::move(evaluation.images);
         uint32_t done = iteration + 1;
         if (callbacks.checkpoint && options.checkpointEvery > 0 && done % options.checkpointEvery == 0 &&

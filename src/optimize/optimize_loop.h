@@ -71,6 +71,7 @@ struct OptimizeCallbacks {
 struct OptimizeResult {
     std::vector<double> losses;     // per iteration
     std::vector<Image> lastImages;  // the last iteration's render of each view
+    std::vector<Image> firstImages; // iteration 0's render of each view; empty when resumed past it
     double forwardMs = 0.0;         // all iterations together
     double adjointMs = 0.0;
 };

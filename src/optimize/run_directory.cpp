@@ -12,8 +12,9 @@ namespace vkdr {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr std::array<const char*, 8> kRunFiles = {"log.jsonl", "checkpoint.json", "params.json", "scene.gltf",
-                                                  "final.exr", "final.png",       "diff.png",    "loss.svg"};
+constexpr std::array<const char*, 9> kRunFiles = {"log.jsonl", "checkpoint.json", "params.json",
+                                                  "scene.gltf", "final.exr",      "final.png",
+                                                  "diff.png",  "loss.svg",        "report.html"};
 constexpr std::array<const char*, 2> kExperimentFiles = {"target.exr", "target.png"};
 // What scene.gltf refers to beside it (scene/write_scene.h): a .glb's binary chunk,
 // base colour textures, and copies of external files from outside the directory.

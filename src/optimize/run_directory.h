@@ -9,7 +9,7 @@ namespace vkdr {
 
 // Whether a run writes a file of this name into its directory (optimize/optimization_run.h:
 // log.jsonl, checkpoint.json, params.json, scene.gltf with what it refers to beside it,
-// final.exr, final.png, diff.png, loss.svg), or, for an experiment, besides
+// final.exr, final.png, diff.png, loss.svg, report.html), or, for an experiment, besides
 // (optimize/experiment_run.h: target.exr, target.png). A directory holding any of them
 // holds a run.
 bool isRunFileName(const std::string& name, bool experiment);

@@ -12,7 +12,8 @@ constexpr int kDefaultWidth = 512;
 
 const Camera& findCamera(const Scene& scene, const std::string& name) {
     if (scene.cameras.empty()) {
-        throw Error("the scene has no perspective camera");
+        throw Error("the scene has no perspective camera; for a scene exported from Blender, tick Include > Cameras "
+                    "in the glTF exporter, or export it with the vkdiffrender Blender add-on");
     }
     if (name.empty()) {
         return scene.cameras.front();

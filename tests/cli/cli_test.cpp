@@ -95,6 +95,19 @@ TEST_F(CliTest, MalformedJson) {
     expectCleanFailure("render " + bad.string(), "broken.gltf");
 }
 
+// A scene exported from Blender without its camera is the usual case: the message says
+// how to export one.
+TEST_F(CliTest, ASceneWithoutACameraSaysHowToGetOne) {
+    nlohmann::json gltf = nlohmann::json::parse(slurp(scene("cornell_box.gltf")));
+    gltf.erase("cameras");
+    for (nlohmann::json& node : gltf["nodes"]) node.erase("camera");
+    fs::path noCamera = dir_ / "no_camera.gltf";
+    std::ofstream(noCamera) << gltf.dump();
+    expectCleanFailure("render " + noCamera.string(), "no perspective camera");
+    expectCleanFailure("render " + noCamera.string(), "tick Include > Cameras in the glTF exporter");
+    expectCleanFailure("render " + noCamera.string(), "vkdiffrender Blender add-on");
+}
+
 TEST_F(CliTest, UnknownParameterListsTheValidNames) {
     expectCleanFailure("render " + scene("cornell_fog.gltf") + " --set media/smog/sigma_a=1", "media/fog/sigma_a");
 }

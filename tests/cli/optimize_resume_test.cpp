@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli_run.h"
+#include "report_html_reader.h"
 
 namespace vkdr::test {
 namespace {
@@ -79,6 +80,15 @@ TEST_F(OptimizeResume, ADeviceLostMidRunLeavesTheCheckpointAndResumeFinishesTheR
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
     expectSameValues(nlohmann::json::parse(slurp(cut / "params.json")),
                      nlohmann::json::parse(slurp(whole / "params.json")));
+    // The report covers the whole run: the start images, which the resumed process renders
+    // again with iteration 0's seed, and the last ones are those of the run never stopped.
+    std::string resumedReport = slurp(cut / "report.html"), wholeReport = slurp(whole / "report.html");
+    for (const char* image : {"<img class=\"start\"", "<img class=\"current\"", "<img class=\"difference\""}) {
+        std::vector<std::string> resumedImage = between(resumedReport, image, ">");
+        ASSERT_EQ(resumedImage.size(), 1u) << image;
+        EXPECT_EQ(resumedImage, between(wholeReport, image, ">")) << image;
+    }
+    EXPECT_EQ(between(resumedReport, "<polyline", "/>"), between(wholeReport, "<polyline", "/>"));
     std::istringstream log(slurp(cut / "log.jsonl"));
     int expected = 0;
     for (std::string line; std::getline(log, line); ++expected) {

@@ -130,7 +130,8 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
     // Any one of a run's files marks the directory as a run's, what scene.gltf refers to
     // beside it included.
     for (const char* name : {"log.jsonl", "checkpoint.json", "params.json", "scene.gltf", "final.exr", "final.png",
-                             "diff.png", "loss.svg", "scene.bin", "scene.image0.png", "scene.buffers2.bin"}) {
+                             "diff.png", "loss.svg", "report.html", "scene.bin", "scene.image0.png",
+                             "scene.buffers2.bin"}) {
         fs::path other = dir_ / "other";
         fs::create_directories(other);
         std::ofstream(other / name) << "another run";

@@ -35,7 +35,7 @@ OptimizationJob fogJob(const std::filesystem::path& directory, uint32_t iteratio
     job.options.seed = 7;
     job.options.checkpointEvery = 10;
     job.inputs.spp = 4;
-    job.firstTarget = Image{4, 3, std::vector<float>(4 * 3 * 3, 0.05f)};
+    job.targets = {{"", Image{4, 3, std::vector<float>(4 * 3 * 3, 0.05f)}}};
     return job;
 }
 
@@ -63,7 +63,10 @@ TEST(Checkpoint, AResumedRunEndsExactlyWhereTheUninterruptedRunEnds) {
     QuadraticLossGradient resumedLoss(fogMinima());
     OptimizationReport report = runOptimization(resumedLoss, resumed, job);
     EXPECT_EQ(resumedLoss.seeds().front(), 7u + 20u);  // iteration i still renders with seed + i
-    EXPECT_EQ(resumedLoss.seeds().size(), 20u);
+    // The 20 iterations left, and once more at the start values with iteration 0's seed:
+    // the report's start images, which the stopped process rendered and did not keep.
+    ASSERT_EQ(resumedLoss.seeds().size(), 21u);
+    EXPECT_EQ(resumedLoss.seeds().back(), 7u);
     EXPECT_EQ(report.result.losses.size(), 40u);
 
     for (const char* name : {"media/fog/sigma_a", "media/fog/g"}) {

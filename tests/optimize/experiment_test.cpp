@@ -221,22 +221,22 @@ TEST(Experiment, RecoversTheTrueValuesWithAnAnalyticBackend) {
         loss->setImageSize(target.width, target.height);
         return loss;
     };
-    ExperimentResult result = runExperiment(experiment, scene, backend, scratch / "out");
+    OptimizationReport report = runExperiment(experiment, scene, backend, scratch / "out");
 
     ASSERT_EQ(targetRenders.size(), 1u);
     EXPECT_EQ(targetRenders[0].spp, 8u);
     EXPECT_EQ(targetRenders[0].seed, kTargetSeedOffset);
-    ASSERT_EQ(result.recoveries.size(), 2u);
-    EXPECT_EQ(result.recoveries[0].truth, std::vector<float>(3, 0.05f));
-    EXPECT_EQ(result.recoveries[0].start, std::vector<float>(3, 0.3f));
-    EXPECT_NEAR(result.recoveries[0].recovered[0], 0.05f, 1e-3f);
+    ASSERT_EQ(report.parameters.size(), 2u);
+    EXPECT_EQ(report.parameters[0].truth, std::vector<float>(3, 0.05f));
+    EXPECT_EQ(report.parameters[0].start, std::vector<float>(3, 0.3f));
+    EXPECT_NEAR(report.parameters[0].fitted[0], 0.05f, 1e-3f);
     EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), std::vector<float>(3, 0.0f));  // "true" values stay
 
-    std::string table = recoveryTable(result.recoveries);
+    std::string table = parameterTable(report.parameters);
     EXPECT_NE(table.find("media/fog/sigma_a"), std::string::npos);
     EXPECT_NE(table.find("%"), std::string::npos);
     EXPECT_NE(table.find("abs"), std::string::npos);  // g's true value is 0
-    for (const char* file : {"log.jsonl", "params.json", "scene.gltf", "target.exr", "diff.png"}) {
+    for (const char* file : {"log.jsonl", "params.json", "scene.gltf", "target.exr", "diff.png", "report.html"}) {
         EXPECT_TRUE(std::filesystem::is_regular_file(scratch / "out" / file)) << file;
     }
 }

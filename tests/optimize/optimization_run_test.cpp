@@ -29,7 +29,7 @@ OptimizationJob fogJob(const std::filesystem::path& directory, uint32_t iteratio
     job.options.parameters = {"media/fog/sigma_a", "media/fog/g"};
     job.options.learningRate = 0.01;
     job.options.iterations = iterations;
-    job.firstTarget = Image{4, 3, std::vector<float>(4 * 3 * 3, 0.05f)};
+    job.targets = {{"", Image{4, 3, std::vector<float>(4 * 3 * 3, 0.05f)}}};
     return job;
 }
 
@@ -76,6 +76,9 @@ TEST(OptimizationRun, WritesEveryOutputFile) {
     EXPECT_EQ(final.width, 4);
     EXPECT_EQ(final.rgb[0], report.result.lastImages[0].rgb[0]);
     EXPECT_TRUE(std::filesystem::is_regular_file(directory / "final.png"));
+    EXPECT_EQ(readBytes(directory / "report.html").rfind("<!DOCTYPE html>", 0), 0u);
+    EXPECT_EQ(report.parameters.size(), 2u);
+    EXPECT_EQ(report.parameters[1].fitted, getParameter(scene, "media/fog/g"));
     Image difference = readImage(directory / "diff.png");
     EXPECT_EQ(difference.width, 4);
     EXPECT_EQ(difference.height, 3);
@@ -90,7 +93,8 @@ TEST(OptimizationRun, LeavesOnlyTheLogOfGoodIterationsWhenAGradientIsNaN) {
     loss.failFrom(2, "media/fog/g");
     EXPECT_THROW(runOptimization(loss, scene, fogJob(scratch.path(), 5)), Error);
     EXPECT_EQ(lines(scratch / "log.jsonl").size(), 2u);
-    for (const char* file : {"scene.gltf", "params.json", "final.exr", "final.png", "diff.png", "loss.svg"}) {
+    for (const char* file :
+         {"scene.gltf", "params.json", "final.exr", "final.png", "diff.png", "loss.svg", "report.html"}) {
         EXPECT_FALSE(std::filesystem::exists(scratch / file)) << file;
     }
     EXPECT_EQ(scratch.fileCount(), 1u);  // no temporary files either

@@ -1,0 +1,24 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace vkdr {
+
+// Where one optimised parameter started and ended (one value, or three for RGB).
+struct ParameterFit {
+    std::string name;
+    std::vector<float> start;
+    std::vector<float> fitted;
+    std::vector<float> truth;  // the true value, known for experiments; empty otherwise
+};
+
+// The error of each fitted value relative to the true one, e.g. "+0.42%", or absolute
+// ("+0.003 abs") where the true value is 0; "" without a true value.
+std::string fitErrors(const ParameterFit& fit);
+
+// What `optimize` prints at the end of a run: an aligned table, one line per parameter,
+// of its start and fitted values, and, when any parameter's true value is known (an
+// experiment), that value and the error of the fitted one.
+std::string parameterTable(const std::vector<ParameterFit>& fits);
+
+}  // namespace vkdr

@@ -1,0 +1,73 @@
+#include "optimize/run_report.h"
+
+#include <cstdio>
+
+#include "optimize/iteration_log.h"
+#include "optimize/loss_kind_text.h"
+
+namespace vkdr {
+namespace {
+
+std::string formatted(const char* pattern, auto... values) {
+    char text[128];
+    std::snprintf(text, sizeof(text), pattern, values...);
+    return text;
+}
+
+std::string listed(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+}
+
+std::vector<std::pair<std::string, std::string>> settings(const OptimizationJob& job, const OptimizeResult& result,
+                                                          double seconds) {
+    const OptimizeOptions& options = job.options;
+    std::vector<std::string> cameras;
+    for (const TargetView& view : job.targets) cameras.push_back(view.camera.empty() ? "(first camera)" : view.camera);
+    std::vector<std::pair<std::string, std::string>> rows = {
+        {"views", listed(cameras)},
+        {"parameters", listed(options.parameters)},
+        {"iterations", std::to_string(options.iterations)},
+        {"optimizer", optimizerKindName(options.optimizer)},
+        {"learning rate", formatted("%g", options.learningRate)},
+    };
+    if (!job.inputs.experiment.empty()) rows.insert(rows.begin(), {"experiment", job.inputs.experiment.string()});
+    if (options.learningRateDecay != 1.0) {
+        rows.push_back({"learning rate decay", formatted("to %g of the rate, starting %g of the way through",
+                                                         options.learningRateDecay, options.learningRateDecayStart)});
+    }
+    if (!options.logParameters.empty()) rows.push_back({"stepped in log space", listed(options.logParameters)});
+    rows.push_back({"samples per pixel", std::to_string(job.inputs.spp)});
+    rows.push_back({"max depth", std::to_string(job.inputs.maxDepth)});
+    rows.push_back({"loss", lossKindName(job.loss)});
+    rows.push_back({"seed", std::to_string(options.seed) + " (iteration i renders with seed + i)"});
+    if (!job.description.device.empty()) rows.push_back({"device", job.description.device});
+    rows.push_back({"render time", formatted("%.1f s forward, %.1f s adjoint over all %zu iterations",
+                                             result.forwardMs / 1000.0, result.adjointMs / 1000.0,
+                                             result.losses.size())});
+    rows.push_back({"time taken", formatted(job.resume ? "%.1f s (this resumed part of the run)" : "%.1f s",
+                                            seconds)});
+    return rows;
+}
+
+}  // namespace
+
+ReportPage runReportPage(const OptimizationJob& job, const OptimizationReport& report,
+                         std::vector<Image> startImages, double seconds) {
+    ReportPage page;
+    page.commandLine = job.description.commandLine;
+    page.scene = job.sceneFile.string();
+    page.settings = settings(job, report.result, seconds);
+    for (size_t i = 0; i < job.targets.size(); ++i) {
+        page.views.push_back({job.targets[i].camera, job.targets[i].target, std::move(startImages.at(i)),
+                              report.result.lastImages.at(i)});
+    }
+    page.losses = report.result.losses;
+    page.lossName = lossKindName(job.loss);
+    page.fits = report.parameters;
+    page.trajectories = readTrajectories(job.outputDirectory / "log.jsonl", job.options.parameters);
+    return page;
+}
+
+}  // namespace vkdr

@@ -1,0 +1,152 @@
+// The parts of report.html that carry numbers: the percentile that scales the
+// difference images, the colour map and its bar, base64, the parameter table and the
+// trajectory chart.
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "optimize/base64.h"
+#include "optimize/difference_colour_map.h"
+#include "optimize/parameter_table.h"
+#include "optimize/trajectory_chart.h"
+
+namespace vkdr::test {
+namespace {
+
+using Colour = std::array<uint8_t, 3>;
+
+size_t occurrences(const std::string& text, const std::string& part) {
+    size_t count = 0;
+    for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
+    return count;
+}
+
+TEST(NearestRankPercentile, IsTheSmallestValueWithThatFractionAtOrBelowIt) {
+    std::vector<float> values(100);
+    std::iota(values.begin(), values.end(), 1.0f);  // 1, 2, ..., 100
+    std::shuffle(values.begin(), values.end(), std::mt19937(5));
+    EXPECT_EQ(nearestRankPercentile(values, 0.99), 99.0f);
+    EXPECT_EQ(nearestRankPercentile(values, 0.5), 50.0f);
+    EXPECT_EQ(nearestRankPercentile(values, 0.505), 51.0f);  // 50.5 values must be at or below: rank 51
+    EXPECT_EQ(nearestRankPercentile(values, 1.0), 100.0f);
+    EXPECT_EQ(nearestRankPercentile(values, 0.001), 1.0f);
+    EXPECT_EQ(nearestRankPercentile({}, 0.99), 0.0f);
+}
+
+TEST(DifferenceColour, RunsThroughItsStopsAndClampsOutsideThem) {
+    EXPECT_EQ(differenceColour(0.0f), (Colour{0, 0, 4}));
+    EXPECT_EQ(differenceColour(0.5f), (Colour{188, 55, 84}));
+    EXPECT_EQ(differenceColour(1.0f), (Colour{252, 255, 164}));
+    EXPECT_EQ(differenceColour(7.0f), differenceColour(1.0f));
+    EXPECT_EQ(differenceColour(-1.0f), differenceColour(0.0f));
+    EXPECT_EQ(differenceColour(0.125f), (Colour{44, 8, 57}));  // halfway between the first two stops, rounded
+}
+
+// 99 pixels differ by 1/128, 2/128, ..., 99/128 in one channel (exact in float) and one
+// firefly by 1000: the 99th percentile of the 100 differences is 99/128, where the
+// largest is 1000.
+TEST(ColourMappedDifference, ScalesByThePercentileNotTheBrightestPixel) {
+    Image target{10, 10, std::vector<float>(300, 0.5f)};
+    Image current = target;
+    for (int p = 0; p < 99; ++p) current.rgb[3 * p + (p % 3)] += float(p + 1) / 128.0f;
+    current.rgb[3 * 99 + 1] -= 1000.0f;
+    ColourMappedDifference mapped = colourMappedDifference(current, target, 0.99);
+    EXPECT_EQ(mapped.scale, 99.0f / 128.0f);
+    auto colourAt = [&](int p) { return Colour{mapped.rgb[3 * p], mapped.rgb[3 * p + 1], mapped.rgb[3 * p + 2]}; };
+    EXPECT_EQ(colourAt(99), differenceColour(1.0f));  // the firefly is clamped to the top colour
+    EXPECT_EQ(colourAt(98), differenceColour(1.0f));  // 99/128: the top of the scale
+    EXPECT_EQ(colourAt(49), differenceColour(50.0f / 99.0f));
+    EXPECT_NE(colourAt(49), differenceColour(1.0f));  // scaled by 1000 it would be black
+
+    EXPECT_EQ(colourMappedDifference(target, target, 0.99).scale, 0.0f);
+    EXPECT_THROW(colourMappedDifference(Image{2, 1, std::vector<float>(6)}, target, 0.99), Error);
+}
+
+// When under 1 % of the pixels differ the percentile is 0, and the largest difference
+// sets the scale instead, so the few that differ still show.
+TEST(ColourMappedDifference, FallsBackToTheLargestWhenThePercentileIsZero) {
+    Image target{10, 10, std::vector<float>(300, 0.0f)};
+    Image current = target;
+    current.rgb[0] = 0.25f;
+    ColourMappedDifference mapped = colourMappedDifference(current, target, 0.99);
+    EXPECT_EQ(mapped.scale, 0.25f);
+    EXPECT_EQ((Colour{mapped.rgb[0], mapped.rgb[1], mapped.rgb[2]}), differenceColour(1.0f));
+}
+
+TEST(ColourBar, TicksGiveTheDifferencesItsEndsAndQuartersStandFor) {
+    ColourBar bar = colourBar(0.8f, 101, 3);
+    ASSERT_EQ(bar.ticks.size(), 5u);
+    const float positions[] = {0.0f, 0.25f, 0.5f, 0.75f, 1.0f};
+    for (size_t i = 0; i < 5; ++i) {
+        EXPECT_EQ(bar.ticks[i].position, positions[i]);
+        EXPECT_FLOAT_EQ(bar.ticks[i].value, 0.8f * positions[i]);
+    }
+    ASSERT_EQ(bar.rgb.size(), 101u * 3u * 3u);
+    auto column = [&](int x, int y) {
+        const uint8_t* at = &bar.rgb[3 * (size_t(y) * 101 + x)];
+        return Colour{at[0], at[1], at[2]};
+    };
+    // Column x shows the colour of x / 100 of the scale, in every row: the tick at 1/4
+    // (0.2) sits over the colour of a difference of 0.2.
+    EXPECT_EQ(column(0, 0), differenceColour(0.0f));
+    EXPECT_EQ(column(25, 2), differenceColour(0.25f));
+    EXPECT_EQ(column(100, 1), differenceColour(1.0f));
+}
+
+TEST(Base64, MatchesTheRfc4648TestVectors) {
+    auto encoded = [](const std::string& text) {
+        return base64(std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
+    };
+    EXPECT_EQ(encoded(""), "");
+    EXPECT_EQ(encoded("f"), "Zg==");
+    EXPECT_EQ(encoded("fo"), "Zm8=");
+    EXPECT_EQ(encoded("foo"), "Zm9v");
+    EXPECT_EQ(encoded("foob"), "Zm9vYg==");
+    EXPECT_EQ(encoded("fooba"), "Zm9vYmE=");
+    EXPECT_EQ(encoded("foobar"), "Zm9vYmFy");
+    const unsigned char high[] = {0xfb, 0xff};
+    EXPECT_EQ(base64(high), "+/8=");
+}
+
+TEST(ParameterTable, ShowsStartAndFittedAndTheTruthOnlyWhereKnown) {
+    std::vector<ParameterFit> fits = {{"media/fog/sigma_a", {0.3f, 0.3f, 0.3f}, {0.05f, 0.06f, 0.07f}, {}},
+                                      {"media/fog/g", {0.5f}, {0.1f}, {}}};
+    std::string table = parameterTable(fits);
+    // Columns as wide as their widest cell, two spaces apart.
+    EXPECT_EQ(table, "parameter          start        fitted\n"
+                     "media/fog/sigma_a  0.3 0.3 0.3  0.05 0.06 0.07\n"
+                     "media/fog/g        0.5          0.1\n");
+
+    fits[0].truth = {0.05f, 0.05f, 0.05f};
+    fits[1].truth = {0.0f};
+    table = parameterTable(fits);
+    EXPECT_NE(table.find("true"), std::string::npos) << table;
+    EXPECT_NE(table.find("+0.00% +20.00% +40.00%"), std::string::npos) << table;
+    EXPECT_NE(table.find("+0.1 abs"), std::string::npos) << table;
+}
+
+TEST(TrajectoryChart, DrawsALinePerChannelWithStartFittedAndTrueMarks) {
+    ParameterTrajectory trajectory{"media/fog/sigma_a", {{0.3f, 0.3f, 0.3f}, {0.2f, 0.25f, 0.28f}}};
+    ParameterFit fit{"media/fog/sigma_a", {0.3f, 0.3f, 0.3f}, {0.1f, 0.2f, 0.26f}, {0.05f, 0.05f, 0.05f}};
+    std::string svg = trajectoryChartSvg(trajectory, fit);
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+    EXPECT_EQ(occurrences(svg, "<polyline"), 3u);
+    EXPECT_EQ(occurrences(svg, "class=\"truth\""), 3u);
+    EXPECT_EQ(occurrences(svg, "class=\"start\""), 3u);
+    EXPECT_EQ(occurrences(svg, "class=\"fitted\""), 3u);
+    // Each line has the two logged iterations and the fitted value after them.
+    size_t points = svg.find("points=\"");
+    std::string list = svg.substr(points + 8, svg.find('"', points + 8) - points - 8);
+    EXPECT_EQ(std::count(list.begin(), list.end(), ','), 3) << list;
+
+    fit.truth.clear();
+    EXPECT_EQ(occurrences(trajectoryChartSvg(trajectory, fit), "class=\"truth\""), 0u);
+}
+
+}  // namespace
+}  // namespace vkdr::test
