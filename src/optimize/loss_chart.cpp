@@ -46,15 +46,7 @@ std::string lossChartSvg(std::span<const double> losses, std::string_view lossNa
         svg += svgFormat("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">1e%d</text>\n",
                       kLeft - 6, at, decade);
     }
-    double step = iterationTickStep(losses.size());
-    for (double iteration = 0.0; iteration <= lastIteration; iteration += step) {
-        svg += svgFormat("<text x=\"%.2f\" y=\"%g\" text-anchor=\"middle\">%g</text>\n", x(iteration),
-                      kHeight - kBottom + 16, iteration);
-    }
-    svg += svgFormat("<path d=\"M%g %g V%g H%g\" fill=\"none\" stroke=\"black\"/>\n", kLeft, kTop, kHeight - kBottom,
-                  kWidth - kRight);
-    svg += svgFormat("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">iteration</text>\n", kLeft + plotWidth / 2,
-                  kHeight - 8);
+    svg += iterationAxisSvg(kLeft, kTop, kWidth - kRight, kHeight - kBottom, lastIteration, x);
     svg += svgFormat("<text transform=\"translate(14 %g) rotate(-90)\" text-anchor=\"middle\">%s loss (log scale)</text>\n",
                   kTop + plotHeight / 2, std::string(lossName).c_str());
 

@@ -53,15 +53,7 @@ std::string trajectoryChartSvg(const ParameterTrajectory& trajectory, const Para
         svg += svgFormat("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%.4g</text>\n",
                          kLeft - 6, y(value), value);
     }
-    double step = iterationTickStep(steps + 1);
-    for (double iteration = 0.0; iteration <= double(steps); iteration += step) {
-        svg += svgFormat("<text x=\"%.2f\" y=\"%g\" text-anchor=\"middle\">%g</text>\n", x(iteration),
-                         kHeight - kBottom + 16, iteration);
-    }
-    svg += svgFormat("<path d=\"M%g %g V%g H%g\" fill=\"none\" stroke=\"black\"/>\n", kLeft, kTop, kHeight - kBottom,
-                     kWidth - kRight);
-    svg += svgFormat("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">iteration</text>\n", kLeft + plotWidth / 2,
-                     kHeight - 6);
+    svg += iterationAxisSvg(kLeft, kTop, kWidth - kRight, kHeight - kBottom, double(steps), x);
     svg += svgFormat("<text x=\"%g\" y=\"14\">line: value per iteration; dots: start and fitted%s</text>\n", kLeft,
                      fit.truth.empty() ? "" : "; dashed: true value");
 
