@@ -11,13 +11,21 @@
 #include "lib/medium.glsl"
 #include "lib/adjoint.glsl"
 
+// Whether a ray through the medium can go straight to the surface, weighted by its
+// transmittance: nothing scatters, and no path needs a collision to find the gradient of
+// sigma_s at 0 (derivative mode). Sampling a collision there would only end the path.
+bool passesThroughAbsorbing(GpuMedium m) {
+    return m.sigma_s == vec3(0.0f) && (P.derivativeTargets & (1u << kTargetMediumScattering)) == 0u;
+}
+
 // Samples a free-flight distance in `medium` along the segment and multiplies beta by
 // its weight; returns the kind of the segment's vertex. The adjoint pass adds
 // delta * L_rem * d log(weight) to the medium's sigma gradients.
 uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, inout vec3 beta) {
     GpuMedium m = P.media.v[medium];
     vec3 sigma_t = sigmaT(m);
-    float t = sampleFreeFlight(sigma_t, segmentRandom(loadPathInfo(slot), kDimFreeFlight).xy);
+    bool absorbing = passesThroughAbsorbing(m);
+    float t = absorbing ? kFar : sampleFreeFlight(sigma_t, segmentRandom(loadPathInfo(slot), kDimFreeFlight).xy);
     if (t < tHit) {
         // Medium vertex: weight sigma_s T(t) / p(t), with the pdf p held fixed.
         float pdf = freeFlightPdf(sigma_t, t);
@@ -30,8 +38,9 @@ uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, in
         P.hit.v[slot].x = t;
         return kVertexMedium;
     }
-    // Surface vertex (or escape): weight T(t_hit) / P(t > t_hit).
-    float survival = freeFlightSurvival(sigma_t, tHit);
+    // Surface vertex (or escape): weight T(t_hit) / P(t > t_hit), where P is 1 when
+    // nothing was sampled.
+    float survival = absorbing ? 1.0f : freeFlightSurvival(sigma_t, tHit);
     beta *= survival > 0.0f ? transmittance(sigma_t, tHit) / survival : vec3(0.0f);
     // An escaped ray's L_rem is zero wherever T(infinity) is; where sigma_t = 0 the
     // derivative is undefined and left out.

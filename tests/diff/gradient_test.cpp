@@ -19,6 +19,7 @@
 
 #include "bvh/bvh.h"
 #include "diff/gradient_check.h"
+#include "diff/gradient_over_seeds.h"
 #include "gradient_scenes.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
@@ -124,10 +125,11 @@ INSTANTIATE_TEST_SUITE_P(
 
 // A path that meets sigma_s = 0 or a black wall goes on in derivative mode only for a
 // gradient that was asked for; the gradients of the other parameters are the same
-// either way, bit for bit.
+// either way, bit for bit. (The fog scatters in red and blue: a fog that scatters in no
+// channel is passed through, which the next test covers.)
 TEST_F(RenderTest, UnwantedZeroFactorsLeaveTheOtherGradientsAlone) {
     Scene scene = loadScene(foggyRoom().write(tempDir(), "scene")).scene;
-    applyAssignment(scene, "media/fog/sigma_s=0");
+    applyAssignment(scene, "media/fog/sigma_s=0.3,0,0.3");
     applyAssignment(scene, "materials/walls/base_color=0.6,0,0.4");
     // Grey, so that dLoss/dI is not zero where the image is black (green everywhere).
     Image grey{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.5f)};
@@ -145,8 +147,36 @@ TEST_F(RenderTest, UnwantedZeroFactorsLeaveTheOtherGradientsAlone) {
             EXPECT_EQ(a, b) << alone.parameters[p].name << "[" << c << "]";
         }
     }
-    EXPECT_NE(all.parameters[2].gradient[0], 0.0);  // derivative mode found sigma_s's gradient
+    EXPECT_NE(all.parameters[2].gradient[1], 0.0);  // derivative mode found green sigma_s's gradient
     EXPECT_NE(all.parameters[3].gradient[1], 0.0);  // and the green base colour's
+}
+
+// A fog that scatters in no channel is passed through, weighted by its transmittance,
+// unless the gradient of sigma_s is wanted: only sampled collisions find that gradient
+// (derivative mode), so then the fog is sampled as any other. Both estimate the same
+// gradients of the other parameters: their means over seeds agree within 5 combined
+// standard errors, and the sigma_s gradient is found.
+TEST_F(RenderTest, AFogThatDoesNotScatterIsPassedThroughUnlessItsScatteringGradientIsWanted) {
+    Scene scene = loadScene(foggyRoom().write(tempDir(), "scene")).scene;
+    applyAssignment(scene, "media/fog/sigma_s=0");
+    Image grey{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.5f)};
+    auto overSeeds = [&](const std::vector<std::string>& names) {
+        RenderedLossGradient lg(testContext(), scene, {{"", grey}}, names, {.spp = 8, .maxDepth = 6}, LossKind::L2);
+        return gradientOverSeeds(lg, scene, 12);
+    };
+    const auto passedThrough = overSeeds({"media/fog/sigma_a", "lights/lamp/emission"});
+    const auto sampled = overSeeds({"media/fog/sigma_a", "lights/lamp/emission", "media/fog/sigma_s"});
+    for (size_t p = 0; p < 2; ++p) {
+        for (size_t c = 0; c < 3; ++c) {
+            const MeanAndError& a = passedThrough[p][c];
+            const MeanAndError& b = sampled[p][c];
+            EXPECT_NEAR(a.mean, b.mean, 5.0 * std::hypot(a.error, b.error)) << "parameter " << p << "[" << c << "]";
+            EXPECT_GT(std::abs(a.mean), 3.0 * a.error) << "parameter " << p << "[" << c << "]";
+        }
+    }
+    for (size_t c = 0; c < 3; ++c) {
+        EXPECT_GT(std::abs(sampled[2][c].mean), 3.0 * sampled[2][c].error) << "sigma_s[" << c << "]";
+    }
 }
 
 }  // namespace

@@ -67,14 +67,14 @@ bool allFinite(const Image& image) {
 
 PixelExpectation absorbedEmitter(glm::dvec3 le, glm::dvec3 sigmaA, const std::vector<double>& distances) {
     PixelExpectation e;
+    glm::dvec3 sumSquares(0.0);
     for (double d : distances) {
-        glm::dvec3 tr = glm::exp(-sigmaA * d);
-        double meanTr = (tr.x + tr.y + tr.z) / 3.0;
-        e.mean += le * tr;
-        e.sampleVariance += le * le * tr * tr * (1.0 / meanTr - 1.0);
+        glm::dvec3 value = le * glm::exp(-sigmaA * d);
+        e.mean += value;
+        sumSquares += value * value;
     }
     e.mean /= double(distances.size());
-    e.sampleVariance /= double(distances.size());
+    e.sampleVariance = glm::max(sumSquares / double(distances.size()) - e.mean * e.mean, glm::dvec3(0.0));
     return e;
 }
 

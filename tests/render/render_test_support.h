@@ -47,9 +47,9 @@ struct PixelExpectation {
 };
 
 // A pixel seeing an emitter of radiance `le` through an absorbing medium, averaged over
-// the distances its sub-pixel positions travel in the medium. Per sample, channel c is
-// Le T_c / mean(T) with probability mean(T) (spectral-MIS free flight; an absorption
-// event ends the path with 0), so its variance is Le^2 T_c^2 (1 / mean(T) - 1).
+// the distances its sub-pixel positions travel in the medium. A ray passes a medium that
+// does not scatter weighted by its transmittance, so a sample is Le T(d) at the distance
+// d of its sub-pixel position: the variance is that of Le T(d) over the pixel.
 PixelExpectation absorbedEmitter(glm::dvec3 le, glm::dvec3 sigmaA, const std::vector<double>& distances);
 
 // Every pixel within 6 standard errors of its expectation (plus a relative float
