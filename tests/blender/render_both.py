@@ -6,9 +6,16 @@ OUT/<scene>/vkdr_warnings.txt; a scene it refuses has no vkdr_*.npy.
 blender -b --factory-startup --python-exit-code 1 --python tests/blender/render_both.py --
     --scenes box_area,principled_cube --out DIR --cli VKDIFFRENDER [--size 32]
     [--cycles-spp 256] [--vkdr-spp 256] [--seeds 1,2] [--max-depth 4]
+    [--cycles-area-lights lights|meshes] [--clip-start 1e-4] [--cycles-volume-bounces N]
+
+--cycles-area-lights meshes renders Cycles with each area light replaced, after the
+export, by the exported emitter as a mesh (scenes.area_lights_to_emissive_meshes), so that
+both renderers see the same geometry; `lights` keeps Cycles' area lights. --clip-start
+sets the camera's Clip Start (the scenes' own: 1e-4; Blender's default: 0.1);
+--cycles-volume-bounces overrides Cycles' Volume bounces (otherwise max depth - 1).
+compare_renders.py prints the ratios and z-scores of the stored renders.
 """
 import argparse
-import os
 import pathlib
 import subprocess
 import sys
@@ -20,7 +27,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parents[1] / "tools" / "blender")]
 import scenes  # noqa: E402
 import vkdiffrender_blender  # noqa: E402
-from vkdiffrender_blender import export_scene  # noqa: E402
+from vkdiffrender_blender import export_scene, mappings  # noqa: E402
 
 
 def load_exr(path):
@@ -47,6 +54,11 @@ def render_vkdiffrender(cli, gltf, path, args, seed):
     return load_exr(path) if result.returncode == 0 else None
 
 
+def exported_radiance(obj):
+    corners = [export_scene.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj)]
+    return mappings.area_light_radiance(obj.data.color, obj.data.energy, export_scene.polygon_area(corners))
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--scenes", required=True)
@@ -57,17 +69,26 @@ def main():
     parser.add_argument("--vkdr-spp", type=int, default=256)
     parser.add_argument("--seeds", default="1,2")
     parser.add_argument("--max-depth", type=int, default=4)
+    parser.add_argument("--cycles-area-lights", choices=("lights", "meshes"), default="lights")
+    parser.add_argument("--clip-start", type=float)
+    parser.add_argument("--cycles-volume-bounces", type=int)
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     seeds = [int(s) for s in args.seeds.split(",")]
     for name in args.scenes.split(","):
         out = pathlib.Path(args.out) / name
         out.mkdir(parents=True, exist_ok=True)
         scene = scenes.build(name)
+        if args.clip_start is not None:
+            scene.camera.data.clip_start = args.clip_start
         vkdiffrender_blender.register()
         scenes.configure_cycles(scene, args.size, args.cycles_spp, args.max_depth, seeds[0])
+        if args.cycles_volume_bounces is not None:
+            scene.cycles.volume_bounces = args.cycles_volume_bounces
         bpy.ops.wm.save_as_mainfile(filepath=str(out / "scene.blend"))
         warnings = export_scene.export_scene(bpy.context, str(out / "scene.gltf"))
         (out / "warnings.txt").write_text("".join(w + "\n" for w in warnings))
+        if args.cycles_area_lights == "meshes":
+            scenes.area_lights_to_emissive_meshes(scene, exported_radiance, export_scene.area_light_polygon)
         for seed in seeds:
             scene.cycles.seed = seed
             np.save(out / f"cycles_{seed}.npy", render_cycles(scene, out / f"cycles_{seed}.exr"))

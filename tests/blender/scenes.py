@@ -1,7 +1,8 @@
 """Test scenes built with bpy (run inside Blender): a diffuse box lit by an area light,
-seen from its open front, and variants with a volume cube, a world fog, a point light
-and a smooth sphere. Also the Cycles settings that make a render comparable with
-vkdiffrender's."""
+seen from its open front, and variants with a volume cube, a world fog, a point light,
+a smooth sphere and Principled BSDF walls. Also the Cycles settings that make a render
+comparable with vkdiffrender's, and the emissive mesh that stands in for an area light
+where Cycles' area lights and the exported emitter differ (docs/blender.md)."""
 import bpy
 
 # The values the tests check against; the closed loop fits PRINCIPLED back from a wrong start.
@@ -10,7 +11,8 @@ PRINCIPLED = {"Color": (0.7, 0.5, 0.3, 1.0), "Density": 2.0, "Absorption Color":
 ABSORPTION = {"Color": (0.35, 0.6, 0.85, 1.0), "Density": 2.5}
 FOG = {"Color": (0.9, 0.9, 0.9, 1.0), "Density": 0.12, "Absorption Color": (0.0, 0.0, 0.0, 1.0),
        "Anisotropy": 0.2}
-SCENES = ("box_area", "principled_cube", "absorption_cube", "world_fog", "point_light", "smooth_sphere")
+SCENES = ("box_area", "principled_cube", "absorption_cube", "world_fog", "point_light", "smooth_sphere",
+          "principled_walls", "principled_walls_specular")
 
 
 def reset():
@@ -100,6 +102,9 @@ def add_box_walls(scene):
     # Cycles 3.4 does not show area lights to camera rays; the emitter exported for one is
     # visible, so the view keeps the lamp out of frame.
     camera.data.angle = 0.5
+    # Cycles starts camera rays at Clip Start (default 0.1 m), skipping the medium in front
+    # of the lens; vkdiffrender starts them at the camera.
+    camera.data.clip_start = 1e-4
     camera.location = (0, -3.2, -0.2)
     camera.rotation_euler = (1.5707963, 0, 0)
     scene.collection.objects.link(camera)
@@ -115,6 +120,54 @@ def add_area_light(scene):
     obj = bpy.data.objects.new("lamp", light)
     obj.location = (0, 0, 0.995)  # emits down its local -Z
     scene.collection.objects.link(obj)
+
+
+def principled_walls(specular):
+    """The box's Diffuse BSDFs replaced by Principled BSDFs of the same Base Color
+    (Roughness 0.5, the default), to measure what Cycles adds to the Lambertian export."""
+    for name in ("white", "red", "green"):
+        material = bpy.data.materials[name]
+        nodes = material.node_tree.nodes
+        diffuse = nodes["Diffuse BSDF"]
+        color = tuple(diffuse.inputs["Color"].default_value)
+        nodes.remove(diffuse)
+        bsdf = nodes.new("ShaderNodeBsdfPrincipled")
+        bsdf.inputs["Base Color"].default_value = color
+        bsdf.inputs["Specular"].default_value = specular
+        out = next(n for n in nodes if n.bl_idname == "ShaderNodeOutputMaterial")
+        material.node_tree.links.new(bsdf.outputs[0], out.inputs["Surface"])
+
+
+def area_lights_to_emissive_meshes(scene, radiance_of, polygon_of):
+    """Replace every area light by the emitter the export writes for it: a polygon of the
+    same corners and radiance, emitting from its front only and black behind. Cycles'
+    area lights let rays through (what lies behind the lamp is lit and seen), the
+    exported polygon stops them; with this mesh both renderers render one geometry.
+    RADIANCE_OF(light object) and POLYGON_OF(light object) are the export's own."""
+    for obj in [o for o in scene.objects if o.type == "LIGHT" and o.data.type == "AREA"]:
+        radiance, corners = radiance_of(obj), polygon_of(obj)
+        material = bpy.data.materials.new(obj.name + ".mesh")
+        material.use_nodes = True
+        nodes, links = material.node_tree.nodes, material.node_tree.links
+        nodes.clear()
+        emission = nodes.new("ShaderNodeEmission")
+        strength = max(radiance)
+        emission.inputs["Color"].default_value = (*(c / strength for c in radiance), 1.0)
+        emission.inputs["Strength"].default_value = strength
+        black = nodes.new("ShaderNodeBsdfDiffuse")
+        black.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+        facing = nodes.new("ShaderNodeNewGeometry")
+        mix = nodes.new("ShaderNodeMixShader")
+        links.new(facing.outputs["Backfacing"], mix.inputs["Fac"])
+        links.new(emission.outputs[0], mix.inputs[1])
+        links.new(black.outputs[0], mix.inputs[2])
+        links.new(mix.outputs[0], nodes.new("ShaderNodeOutputMaterial").inputs["Surface"])
+        mesh = bpy.data.meshes.new(obj.name + ".mesh")
+        mesh.from_pydata([tuple(c) for c in corners], [], [list(range(len(corners)))])
+        mesh.materials.append(material)
+        name = obj.name
+        bpy.data.objects.remove(obj)
+        scene.collection.objects.link(bpy.data.objects.new(name + ".mesh", mesh))
 
 
 def add_cube(name, material, location=(0, 0.1, -0.35), size=0.9):
@@ -158,6 +211,8 @@ def build(name):
         # against terminator artefacts); vkdiffrender does not.
         sphere.cycles.shadow_terminator_geometry_offset = 0.0
         sphere.data.materials.append(diffuse_material("sphere", (0.8, 0.8, 0.8)))
+    elif name in ("principled_walls", "principled_walls_specular"):
+        principled_walls(0.5 if name == "principled_walls_specular" else 0.0)
     elif name != "box_area":
         raise ValueError(f"unknown test scene {name!r}; known: {', '.join(SCENES)}")
     return scene

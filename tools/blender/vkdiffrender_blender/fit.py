@@ -1,15 +1,14 @@
 """The Fit panel (Properties > Render > vkdiffrender Fit): choose parameters and a target
 image per camera, run `vkdiffrender optimize` as a subprocess with progress and loss in
-the status bar (Esc stops it, keeping its checkpoint), and write the fitted values back."""
-import json
+the status bar (Esc stops it, keeping its checkpoint), and write the fitted values back.
+The run itself (command, progress, cancel, write-back) is fit_run.py, which has no bpy;
+this file is the panel, the settings and the modal operator's event handling."""
 import os
-import signal
-import subprocess
 
 import bpy
 from bpy.props import BoolProperty, CollectionProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
-from . import export_scene, write_back
+from . import export_scene, fit_run, write_back
 
 
 class VKDR_Preferences(bpy.types.AddonPreferences):
@@ -45,21 +44,15 @@ def cli_path(context):
     return addon.preferences.cli_path if addon else "vkdiffrender"
 
 
-def optimize_command(cli, scene_file, settings, max_depth, out_dir):
-    """The optimize command line: every positive parameter is stepped in log units, so
-    that one learning rate suits coefficients of any scale."""
-    command = [cli, "optimize", scene_file, "--iters", str(settings.iterations), "--spp", str(settings.spp),
-               "--lr", repr(settings.learning_rate), "--max-depth", str(max_depth), "--out", out_dir,
-               "--overwrite", "--checkpoint-every", "10"]
-    for target in settings.targets:
-        if target.image:
-            command += ["--target", f"{target.name}={bpy.path.abspath(target.image)}"]
-    for parameter in settings.parameters:
-        if parameter.enabled:
-            command += ["--param", parameter.name]
-            if not parameter.name.endswith("/g"):
-                command += ["--log-param", parameter.name]
-    return command
+def fit_request(context, scene_file):
+    """The panel's settings as a fit_run.FitRequest, paths made absolute."""
+    settings = context.scene.vkdr_fit
+    return fit_run.FitRequest(
+        cli=cli_path(context), scene_file=scene_file,
+        targets={t.name: bpy.path.abspath(t.image) for t in settings.targets if t.image},
+        parameters=tuple(p.name for p in settings.parameters if p.enabled),
+        iterations=settings.iterations, spp=settings.spp, learning_rate=settings.learning_rate,
+        max_depth=context.scene.cycles.max_bounces + 1, run_directory=bpy.path.abspath(settings.run_directory))
 
 
 class VKDR_OT_fit_refresh(bpy.types.Operator):
@@ -94,69 +87,45 @@ class VKDR_OT_fit(bpy.types.Operator):
         return any(p.enabled for p in settings.parameters) and any(t.image for t in settings.targets)
 
     def invoke(self, context, event):
-        settings = context.scene.vkdr_fit
-        self.run_dir = bpy.path.abspath(settings.run_directory)
-        os.makedirs(self.run_dir, exist_ok=True)
-        scene_file = os.path.join(self.run_dir, "exported.gltf")
+        run_directory = bpy.path.abspath(context.scene.vkdr_fit.run_directory)
+        os.makedirs(run_directory, exist_ok=True)
+        scene_file = os.path.join(run_directory, "exported.gltf")
         for warning in export_scene.export_scene(context, scene_file):
             self.report({"WARNING"}, warning)
-        self.out_dir = os.path.join(self.run_dir, "run")
-        command = optimize_command(cli_path(context), scene_file, settings,
-                                   context.scene.cycles.max_bounces + 1, self.out_dir)
-        self.console = open(os.path.join(self.run_dir, "optimize.log"), "w", encoding="utf-8")
+        request = fit_request(context, scene_file)
         try:
-            self.process = subprocess.Popen(command, stdout=self.console, stderr=subprocess.STDOUT)
+            self.run = fit_run.FitRun(request)
         except OSError as error:
-            self.console.close()
-            self.report({"ERROR"}, f"cannot run {command[0]}: {error} (set the binary in the add-on's preferences)")
+            self.report({"ERROR"}, f"cannot run {request.cli}: {error} (set the binary in the add-on's preferences)")
             return {"CANCELLED"}
-        self.iterations = settings.iterations
         self.timer = context.window_manager.event_timer_add(0.5, window=context.window)
         context.window_manager.modal_handler_add(self)
-        context.window_manager.progress_begin(0, self.iterations)
+        context.window_manager.progress_begin(0, request.iterations)
         return {"RUNNING_MODAL"}
-
-    def progress(self):
-        """(iterations done, last loss) from the run's log.jsonl, rewritten every iteration."""
-        try:
-            with open(os.path.join(self.out_dir, "log.jsonl"), encoding="utf-8") as f:
-                lines = [line for line in f.read().splitlines() if line.strip()]
-        except OSError:
-            return 0, None
-        try:
-            return len(lines), json.loads(lines[-1])["loss"] if lines else None
-        except (ValueError, KeyError):
-            return len(lines), None
 
     def finish(self, context):
         context.window_manager.event_timer_remove(self.timer)
         context.window_manager.progress_end()
         context.workspace.status_text_set(None)
-        self.console.close()
 
     def modal(self, context, event):
         if event.type == "ESC":
-            self.process.send_signal(signal.SIGINT)  # optimize keeps a checkpoint and exits 130
-            self.process.wait()
+            self.run.cancel()
             self.finish(context)
-            self.report({"WARNING"}, f"fit cancelled; continue it with --resume {self.out_dir}")
+            self.report({"WARNING"}, f"fit cancelled; {self.run.resume_hint()}")
             return {"CANCELLED"}
         if event.type != "TIMER":
             return {"PASS_THROUGH"}
-        done, loss = self.progress()
+        done, loss = self.run.progress()
         context.window_manager.progress_update(done)
-        loss_text = f", loss {loss:.4g}" if loss is not None else ""
-        context.workspace.status_text_set(f"vkdiffrender fit: iteration {done}/{self.iterations}{loss_text}"
-                                          f"  (Esc to cancel)")
-        if self.process.poll() is None:
+        context.workspace.status_text_set(fit_run.status_text(done, self.run.request.iterations, loss))
+        if self.run.poll() is None:
             return {"RUNNING_MODAL"}
         self.finish(context)
-        if self.process.returncode != 0:
-            with open(os.path.join(self.run_dir, "optimize.log"), encoding="utf-8") as f:
-                last = [line for line in f.read().splitlines() if line.strip()][-1:]
-            self.report({"ERROR"}, f"vkdiffrender optimize failed: {' '.join(last)}")
+        if not self.run.succeeded:
+            self.report({"ERROR"}, self.run.failure_message())
             return {"CANCELLED"}
-        for warning in write_back.apply_params_file(context.scene, os.path.join(self.out_dir, "params.json")):
+        for warning in self.run.write_back(lambda params: write_back.apply_fitted_values(context.scene, params)):
             self.report({"WARNING"}, warning)
         self.report({"INFO"}, f"fitted values written back (loss {loss:.4g})" if loss is not None else "fitted")
         return {"FINISHED"}

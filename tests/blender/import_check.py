@@ -1,0 +1,98 @@
+"""Run inside Blender, in two steps, for test_import.py.
+
+  --step export --out DIR: build the Principled Volume cube in the box, add a World fog
+      and a point light 'bulb', and export DIR/scene.gltf with the add-on; then set the
+      camera's Clip Start and Cycles' bounce limits to Blender's defaults and export
+      DIR/defaults.gltf. The warnings of both go to DIR/export_warnings.json.
+  --step import --gltf FILE --out DIR: in an empty file, run Blender's own glTF importer
+      on FILE and record whether it fails on numpy.bool; then, in another empty file,
+      import FILE with the add-on's operator and write DIR/imported.json: the medium each
+      material's and the World's nodes now give, each light's radiant intensity or
+      irradiance as the add-on's mappings read its Blender values, and whether numpy.bool
+      exists before and after."""
+import argparse
+import json
+import pathlib
+import sys
+
+import bpy
+import numpy
+
+HERE = pathlib.Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parents[1] / "tools" / "blender")]
+import scenes  # noqa: E402
+import vkdiffrender_blender  # noqa: E402
+from vkdiffrender_blender import export_scene, mappings, node_graph  # noqa: E402
+
+
+def build_and_export(out):
+    scene = scenes.build("principled_cube")
+    nodes = scene.world.node_tree.nodes
+    fog = nodes.new("ShaderNodeVolumePrincipled")
+    for key, value in scenes.FOG.items():
+        fog.inputs[key].default_value = value
+    scene.world.node_tree.links.new(fog.outputs[0], nodes["World Output"].inputs["Volume"])
+    light = bpy.data.lights.new("bulb", "POINT")
+    light.energy, light.color, light.shadow_soft_size = 40.0, (1.0, 0.85, 0.7), 0.0
+    obj = bpy.data.objects.new("bulb", light)
+    obj.location = (0.2, -0.3, 0.6)
+    scene.collection.objects.link(obj)
+    vkdiffrender_blender.register()
+    scenes.configure_cycles(scene, 16, 1, 4, 1)
+    warnings = {"scene": export_scene.export_scene(bpy.context, str(out / "scene.gltf"))}
+    scene.camera.data.clip_start = 0.1
+    scene.cycles.diffuse_bounces, scene.cycles.glossy_bounces, scene.cycles.volume_bounces = 4, 4, 0
+    scene.cycles.max_bounces = 12
+    warnings["defaults"] = export_scene.export_scene(bpy.context, str(out / "defaults.gltf"))
+    (out / "export_warnings.json").write_text(json.dumps(warnings, indent=1))
+
+
+def plain_importer_error(gltf):
+    """The message of Blender's own importer's failure on FILE, or None."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    try:
+        bpy.ops.import_scene.gltf(filepath=str(gltf))
+    except (AttributeError, RuntimeError) as error:
+        return str(error)
+    return None
+
+
+def medium_values(owner):
+    medium = node_graph.medium_of(owner, [], owner.name)
+    return None if medium is None else {"sigma_a": medium.sigma_a, "sigma_s": medium.sigma_s, "g": medium.g}
+
+
+def import_and_read(gltf, out):
+    result = {"plain_importer_error": plain_importer_error(gltf)}
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    vkdiffrender_blender.register()
+    result["numpy_bool_before"] = hasattr(numpy, "bool")
+    bpy.ops.import_scene.vkdiffrender(filepath=str(gltf))
+    result["numpy_bool_after"] = hasattr(numpy, "bool")
+    result["media"] = {m.name: medium_values(m) for m in bpy.data.materials if medium_values(m) is not None}
+    world = bpy.context.scene.world
+    result["world"] = {"name": world.name, **medium_values(world)} if world and medium_values(world) else None
+    result["lights"] = {}
+    for obj in bpy.context.scene.objects:
+        if obj.type == "LIGHT":
+            light = obj.data
+            value = (mappings.sun_irradiance(light.color, light.energy) if light.type == "SUN"
+                     else mappings.point_light_intensity(light.color, light.energy))
+            result["lights"][obj.name] = list(value)
+    (out / "imported.json").write_text(json.dumps(result, indent=1))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--step", choices=("export", "import"), required=True)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--gltf")
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    if args.step == "export":
+        build_and_export(pathlib.Path(args.out))
+    else:
+        import_and_read(pathlib.Path(args.gltf), pathlib.Path(args.out))
+
+
+if __name__ == "__main__":
+    main()
