@@ -15,7 +15,7 @@
 // transmittance: nothing scatters, and no path needs a collision to find the gradient of
 // sigma_s at 0 (derivative mode). Sampling a collision there would only end the path.
 bool passesThroughAbsorbing(GpuMedium m) {
-    return m.sigma_s == vec3(0.0f) && (P.derivativeTargets & (1u << kTargetMediumScattering)) == 0u;
+    return m.sigma_s == vec3(0.0f) && P.sampleNonScatteringMedia == 0u;
 }
 
 // Samples a free-flight distance in `medium` along the segment and multiplies beta by

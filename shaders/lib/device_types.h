@@ -288,6 +288,8 @@ struct RenderParams {
     uint texelGradientsWanted;                      // 1: texelGradients has room for every texel; 0: none wanted
     uint splitSample;                               // > 0: film and loss keep the samples below it apart
     uint imagePixels;                               // width * height
+    uint sampleNonScatteringMedia;                  // 1: a gradient pass that wants sigma_s's gradient, which
+                                                    // samples collisions in media that do not scatter
     // Fixed-point sums from one copy of each gradient accumulator to the next (0: one copy).
 #define VKDR_DECLARE_COPY_STRIDE(name, field, floats, copies, items) uint name##CopyStride;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_COPY_STRIDE)

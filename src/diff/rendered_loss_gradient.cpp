@@ -52,7 +52,6 @@ double RenderedLossGradient::loss(const Scene& scene, uint32_t seed) {
         Renderer& renderer = *impl_->views[v];
         renderer.setParameters(scene);
         renderer.setSeed(viewSeed(seed, v));
-        renderer.render();
         total += renderer.loss();
     }
     return total / double(impl_->views.size());

@@ -130,6 +130,8 @@ void Renderer::uploadParams() {
         p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));
         p.splitSample = splitSample_;
         p.imagePixels = camera_.width * camera_.height;
+        p.sampleNonScatteringMedia =
+            inGradientPass_ && (derivativeTargets_ & (1u << gpu::kTargetMediumScattering)) != 0u ? 1u : 0u;
     }
     overwriteBuffer(context_, params_, std::as_bytes(std::span(&p, 1)), "render params");
 }

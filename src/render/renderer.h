@@ -86,9 +86,11 @@ public:
     // and "loss" (vk/dispatch_timer.h); null, the default, times nothing.
     void setDispatchTimer(DispatchTimer* timer) { timer_ = timer; }
 
-    // Gradient support. enableGradients() allocates the adjoint state. loss() compares
-    // the last render() with the target. renderWithGradients() renders at the current
-    // seed and back-propagates the loss of that image to the parameters.
+    // Gradient support. enableGradients() allocates the adjoint state.
+    // renderWithGradients() renders at the current seed and back-propagates the loss of
+    // that image to the parameters. loss() renders the image renderWithGradients() would
+    // at the current seed (the same random numbers and decisions) and returns its loss
+    // against the target: finite differences over it share their noise.
     void enableGradients(const Image& target, LossKind loss, const DerivativeTargets& derivativeTargets = {});
     // A new target for the enabled loss, of the render's size.
     void setTarget(const Image& target);
@@ -166,6 +168,13 @@ private:
     gpu::QueueCountersData recordSegmentsUntilNoRayIsLeft(CommandRecorder& recorder, const PathStages& stages,
                                                           const gpu::PassConstants& constants);
     void uploadParams();
+    SceneGradients backpropagateImageAdjoint(const Image& imageAdjoint);
+    GradientEvaluation renderAndBackpropagateLoss();
+    // Runs `pass`, a gradient pass (renderWithGradients, backpropagate), with
+    // RenderParams.sampleNonScatteringMedia set as its derivative targets need; render()
+    // never sets it, so an image does not depend on what the renderer was set up for.
+    template <typename Pass>
+    auto asGradientPass(Pass&& pass);
 
     const VulkanContext& context_;
     RenderSettings settings_;
@@ -184,6 +193,7 @@ private:
     LossKind lossKind_;
     uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
     bool texelGradientsWanted_ = false;  // RenderParams.texelGradientsWanted
+    bool inGradientPass_ = false;     // RenderParams.sampleNonScatteringMedia when the targets want it
     uint32_t splitSample_ = 0;        // RenderParams.splitSample: > 0 when backpropagateInOnePass serves
     Buffer params_;
     RenderStats stats_;

@@ -80,7 +80,27 @@ void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint6
     uploadParams();
 }
 
+template <typename Pass>
+auto Renderer::asGradientPass(Pass&& pass) {
+    inGradientPass_ = true;
+    uploadParams();
+    try {
+        auto result = pass();
+        inGradientPass_ = false;
+        uploadParams();
+        return result;
+    } catch (...) {
+        inGradientPass_ = false;
+        uploadParams();
+        throw;
+    }
+}
+
 SceneGradients Renderer::backpropagate(const Image& imageAdjoint) {
+    return asGradientPass([&] { return backpropagateImageAdjoint(imageAdjoint); });
+}
+
+SceneGradients Renderer::backpropagateImageAdjoint(const Image& imageAdjoint) {
     requireAdjointUse(AdjointUse::ImageAdjoint, "backpropagate()");
     requireRenderSize(imageAdjoint, "the image adjoint");
     // Each path carries its pixel's dLoss/dI divided by the samples per pixel (adjoint.glsl).
@@ -134,6 +154,7 @@ SceneGradients Renderer::downloadGradients(std::vector<Download> alsoDownload) {
 
 double Renderer::loss() {
     requireAdjointUse(AdjointUse::Loss, "loss()");
+    asGradientPass([&] { return render(); });
     submitLoss(settings_.spp, gpu::kLossImageFilm);
     int64_t words[gpu::kFixedPointWordsPerSum];
     downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(words)));
@@ -172,6 +193,10 @@ void Renderer::copyKeptRadiance(const PassRange& range, bool keep) {
 }
 
 GradientEvaluation Renderer::renderWithGradients() {
+    return asGradientPass([&] { return renderAndBackpropagateLoss(); });
+}
+
+GradientEvaluation Renderer::renderAndBackpropagateLoss() {
     requireAdjointUse(AdjointUse::Loss, "renderWithGradients()");
     stats_ = {};
     {
