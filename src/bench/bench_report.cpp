@@ -59,15 +59,17 @@ std::string markdownTable(const BenchReport& report) {
     std::string out = "Device: " + report.device + " (" + report.driver + "), median of " +
                       std::to_string(report.iterations) + " after a warm-up\n\n";
     out += "| scene | triangles | image | spp | depth | BVH ms | BVH Mtri/s | forward ms | gradient ms | "
-           "gradient/forward | Mpaths/s | Mrays/s | device MiB | host MiB |\n";
-    out += "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+           "gradient/forward | Mpaths/s | Mrays/s | noise | efficiency | device MiB | host MiB |\n";
+    out += "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const SceneBenchmark& s : report.scenes) {
         out += "| " + s.name + " | " + std::to_string(s.triangles) + " | " + std::to_string(s.width) + "x" +
                std::to_string(s.height) + " | " + std::to_string(s.spp) + " | " + std::to_string(s.maxDepth) +
                " | " + format("%.2f", s.bvhBuildMs) + " | " + format("%.2f", s.trianglesPerSecond() * 1e-6) +
                " | " + format("%.1f", s.forwardMs) + " | " + format("%.1f", s.gradientMs) + " | " +
                format("%.2f", s.gradientToForward()) + " | " + format("%.3f", s.pathsPerSecond() * 1e-6) + " | " +
-               format("%.3f", s.raysPerSecond() * 1e-6) + " | " + format("%.1f", double(peakDeviceBytes(s)) / kMiB) +
+               format("%.3f", s.raysPerSecond() * 1e-6) + " | " +
+               (s.relativeNoise ? format("%.4f", *s.relativeNoise) + " | " + format("%.3g", s.efficiency()) : "- | -") +
+               " | " + format("%.1f", double(peakDeviceBytes(s)) / kMiB) +
                " | " + format("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
     }
     out += stageTable(report,
@@ -112,6 +114,8 @@ nlohmann::ordered_json reportJson(const BenchReport& report) {
             {"rays", s.rays},
             {"paths_per_s", s.pathsPerSecond()},
             {"rays_per_s", s.raysPerSecond()},
+            {"relative_noise", s.relativeNoise ? ordered_json(*s.relativeNoise) : ordered_json(nullptr)},
+            {"efficiency", s.efficiency()},
             {"peak_device_bytes", peakDeviceBytes(s)},
             {"peak_device_source", s.peakDriverDeviceBytes ? "VK_EXT_memory_budget" : "allocations"},
             {"peak_allocated_device_bytes", s.peakAllocatedDeviceBytes},

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "bench/host_memory.h"
+#include "bench/image_noise.h"
 #include "bench/median.h"
 #include "bvh/bvh.h"
 #include "core/milliseconds_of.h"
@@ -14,9 +15,11 @@
 namespace vkdr {
 namespace {
 
-// The target is rendered with one seed, forward passes and gradient iterations with another.
+// The target is rendered with one seed, forward passes and gradient iterations with
+// another; forward passes alternate with a third, for the noise of a render.
 constexpr uint32_t kTargetSeed = 1;
 constexpr uint32_t kImageSeed = 2;
+constexpr uint32_t kSecondImageSeed = 3;
 
 double sum(const std::map<std::string, double>& times) {
     double total = 0.0;
@@ -83,6 +86,10 @@ private:
 
 }  // namespace
 
+double SceneBenchmark::efficiency() const {
+    return relativeNoise ? renderEfficiency(*relativeNoise, forwardMs * 1e-3) : 0.0;
+}
+
 SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
                               const BenchSettings& settings, const std::function<void(double)>& progress) {
     const uint32_t iterations = std::max(1u, settings.iterations);
@@ -124,10 +131,14 @@ SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& n
     steps.step();
 
     std::vector<double> forwardMs, gradientMs;
+    Image images[2];
     for (uint32_t i = 0; i < iterations; ++i) {
-        forwardMs.push_back(millisecondsOf([&] { renderer.render(); }));
+        renderer.setSeed(i % 2 == 0 ? kImageSeed : kSecondImageSeed);
+        forwardMs.push_back(millisecondsOf([&] { images[i % 2] = renderer.render(); }));
         steps.step();
     }
+    renderer.setSeed(kImageSeed);
+    result.relativeNoise = relativeNoise(images[0], images[1]);
     result.paths = renderer.stats().paths;
     result.rays = renderer.stats().rays;
     for (uint32_t i = 0; i < iterations; ++i) {

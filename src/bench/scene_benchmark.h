@@ -28,6 +28,9 @@ struct SceneBenchmark {
     double gradientMs = 0.0;  // Renderer::renderWithGradients(), wall clock
     uint64_t paths = 0;       // of one forward pass
     uint64_t rays = 0;        // closest-hit and shadow rays of one forward pass
+    // The forward passes' per-pixel relative noise (bench/image_noise.h), from the last
+    // two, which differ only in the seed; nullopt for a black image.
+    std::optional<double> relativeNoise;
     // GPU milliseconds by stage (DispatchTimer) in a gradient iteration: its rendering
     // passes' generate, intersect, medium_sample, shade, shadow, queue_prepare and film;
     // then loss; replay, primal passes rendered again for the adjoint (none when the
@@ -42,10 +45,13 @@ struct SceneBenchmark {
     double pathsPerSecond() const { return forwardMs > 0.0 ? double(paths) / (forwardMs * 1e-3) : 0.0; }
     double raysPerSecond() const { return forwardMs > 0.0 ? double(rays) / (forwardMs * 1e-3) : 0.0; }
     double gradientToForward() const { return forwardMs > 0.0 ? gradientMs / forwardMs : 0.0; }
+    // 1 / (noise^2 x forward seconds); 0 without a noise figure.
+    double efficiency() const;
 };
 
 // Times the BVH build, then renders: a warm-up render that becomes the target image,
-// one warm-up gradient iteration, and then `iterations` each of forward passes,
+// one warm-up gradient iteration, and then `iterations` (at least 2) each of forward
+// passes (alternating between two seeds, for the noise figure),
 // gradient iterations (as RenderedLossGradient runs them), and gradient iterations
 // with a DispatchTimer attached for the stage times, so that the timestamps do not
 // slow the wall-clock figures. `progress` gets the fraction done.

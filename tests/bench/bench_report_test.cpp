@@ -19,6 +19,7 @@ BenchReport exampleReport() {
     scene.gradientMs = 250.0;
     scene.paths = 384;
     scene.rays = 1000;
+    scene.relativeNoise = 0.5;
     scene.stagesMs = {{"generate", 1.0}, {"intersect", 2.0}, {"adjoint", 3.0}};
     scene.adjointStagesMs = {{"shade", 1.5}};
     scene.peakAllocatedDeviceBytes = 1 << 20;
@@ -35,7 +36,7 @@ TEST(BenchReport, JsonHasEveryFieldOfTheIssue) {
     const auto& scene = json["scenes"][0];
     for (const char* key : {"name", "triangles", "width", "height", "spp", "max_depth", "bvh_build_ms", "stages_ms",
                             "forward_ms", "gradient_ms", "gradient_to_forward", "paths_per_s", "rays_per_s",
-                            "peak_device_bytes", "peak_host_bytes"}) {
+                            "relative_noise", "efficiency", "peak_device_bytes", "peak_host_bytes"}) {
         EXPECT_TRUE(scene.contains(key)) << key;
     }
     for (const char* stage : {"generate", "intersect", "medium_sample", "shade", "shadow", "loss", "adjoint"}) {
@@ -46,6 +47,7 @@ TEST(BenchReport, JsonHasEveryFieldOfTheIssue) {
     EXPECT_EQ(scene["stages_ms"]["shadow"], 0.0);  // not measured: 0, never missing
     EXPECT_DOUBLE_EQ(scene["gradient_to_forward"].get<double>(), 2.5);
     EXPECT_DOUBLE_EQ(scene["paths_per_s"].get<double>(), 3840.0);
+    EXPECT_DOUBLE_EQ(scene["efficiency"].get<double>(), 1.0 / (0.25 * 0.1));
     EXPECT_DOUBLE_EQ(scene["bvh_triangles_per_s"].get<double>(), 10012.0 / 0.005);
     EXPECT_EQ(scene["peak_device_bytes"], 1 << 20);
     EXPECT_EQ(scene["peak_device_source"], "allocations");

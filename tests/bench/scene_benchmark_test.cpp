@@ -18,7 +18,7 @@ TEST(SceneBenchmark, ReportsEveryStageOfATinyRender) {
     settings.render.height = 6;
     settings.render.spp = 2;
     settings.render.maxDepth = 3;
-    settings.iterations = 1;
+    settings.iterations = 2;  // two forward passes at two seeds: the noise figure
     double lastProgress = 0.0;
     SceneBenchmark result = benchmarkScene(context, "cornell_fog", scene, settings, [&](double fraction) {
         EXPECT_GE(fraction, lastProgress);
@@ -33,6 +33,9 @@ TEST(SceneBenchmark, ReportsEveryStageOfATinyRender) {
     EXPECT_GT(result.rays, result.paths);
     EXPECT_GT(result.forwardMs, 0.0);
     EXPECT_GT(result.gradientMs, 0.0);
+    ASSERT_TRUE(result.relativeNoise.has_value());
+    EXPECT_GT(*result.relativeNoise, 0.0);
+    EXPECT_GT(result.efficiency(), 0.0);
     for (const char* stage : {"generate", "intersect", "medium_sample", "shade", "shadow", "queue_prepare", "film",
                               "loss", "replay", "adjoint"}) {
         ASSERT_TRUE(result.stagesMs.contains(stage)) << stage;
