@@ -50,6 +50,13 @@ set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 # (lavapipe is in mesa-vulkan-drivers), and the Python and numpy the module is built for.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libvulkan1, mesa-vulkan-drivers | vulkan-icd, python3 (>= 3.11), python3 (<< 3.12), python3-numpy")
+    "libvulkan1, mesa-vulkan-drivers | vulkan-icd, python3-numpy")
+# The module is built for one Python minor version: the one found at configure time.
+if(VKDR_PYTHON)
+  math(EXPR vkdr_next_python_minor "${Python_VERSION_MINOR} + 1")
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS
+         ", python3 (>= ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}),"
+         " python3 (<< ${Python_VERSION_MAJOR}.${vkdr_next_python_minor})")
+endif()
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "python3-torch, blender")
 include(CPack)

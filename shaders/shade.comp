@@ -69,7 +69,7 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
         return;
     }
     float weight = (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
-    P.shadowOrigin.v[slot] = vec4(query.position, light.distance - 2.0f * P.rayEpsilon);
+    P.shadowOrigin.v[slot] = vec4(query.position, max(light.distance - 2.0f * P.rayEpsilon, 0.0f));
     P.shadowDirection.v[slot] = vec4(light.wi, uintBitsToFloat(query.medium));
     P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, 0.0f);
     if (kAdjoint) {

@@ -52,10 +52,14 @@ void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
 // Transmittance from the shadow ray's origin to its end, zero when something opaque
 // is in the way. In the adjoint pass it also records the length in each medium, and
 // with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
-// segment's length) to its medium's sigma_t gradient.
+// segment's length) to its medium's sigma_t gradient. A ray to a directional light
+// (distance kFar) ends in an unbounded segment, whose transmittance is 0 wherever
+// sigma_t > 0; where sigma_t = 0 its derivative is unbounded and left out, as for a
+// camera ray that escapes.
 vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight,
                          inout MediumLengths lengths) {
     vec3 tr = vec3(1.0f);
+    bool toInfinity = distance >= kFar;
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
         TraceHit hit = traceClosest(origin, direction, distance, true);
         if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
@@ -64,7 +68,8 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
         float segment = min(hit.t, distance);
         if (medium != kNoMediumIndex) {
             tr *= transmittance(sigmaT(P.media.v[medium]), segment);
-            if (kAdjoint) {
+            bool unbounded = toInfinity && hit.triangle == kNoHit;
+            if (kAdjoint && !unbounded) {
                 addMediumLength(lengths, medium, segment);
                 if (maxComponent(abs(gradientWeight)) > 0.0f) {
                     addSigmaTGradient(medium, -segment * gradientWeight);

@@ -43,8 +43,9 @@ double punctualPower(const PunctualLight& light, double radius) {
     return 0.0;
 }
 
-// A share of the choices every punctual light keeps however dim it is, so that one
-// whose intensity is 0 is still sampled and gets a gradient to grow from.
+// The share of the choices the punctual lights keep between them however dim they are
+// (each at least this over their number, of the other lights' power), so that one whose
+// intensity is 0 is still sampled and gets a gradient to grow from.
 constexpr double kPunctualPowerFloor = 0.01;
 
 }  // namespace
@@ -68,7 +69,15 @@ LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm
     LightDistribution lights;
     lights.trianglePmf.assign(scene.triangles.size(), 0.0f);
     lights.placementPmf.assign(scene.lightPlacements.size(), 0.0f);
+    // Punctual lights come first, where the CDF's floats are finest: a light whose share
+    // is tiny beside a million emissive triangles keeps an interval of its own.
     std::vector<double> power;
+    const double radius = sceneRadius(scene);
+    for (size_t i = 0; i < scene.lightPlacements.size(); ++i) {
+        lights.sources.push_back(gpu::kPunctualEmitter | static_cast<uint32_t>(i));
+        power.push_back(punctualPower(scene.punctualLights[scene.lightPlacements[i].light], radius));
+    }
+    const size_t punctualCount = power.size();
     for (size_t t = 0; t < scene.triangles.size(); ++t) {
         double p = materialPower[scene.triangleMaterial[t]];
         if (p <= 0.0) {
@@ -83,18 +92,12 @@ LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm
             power.push_back(p * area);
         }
     }
-    const size_t firstPunctual = power.size();
-    const double radius = sceneRadius(scene);
-    for (size_t i = 0; i < scene.lightPlacements.size(); ++i) {
-        lights.sources.push_back(gpu::kPunctualEmitter | static_cast<uint32_t>(i));
-        power.push_back(punctualPower(scene.punctualLights[scene.lightPlacements[i].light], radius));
-    }
     double total = 0.0;
     for (double p : power) {
         total += p;
     }
-    const double floor = total > 0.0 ? kPunctualPowerFloor * total / double(power.size()) : 1.0;
-    for (size_t i = firstPunctual; i < power.size(); ++i) {
+    const double floor = total > 0.0 ? kPunctualPowerFloor * total / double(std::max<size_t>(punctualCount, 1)) : 1.0;
+    for (size_t i = 0; i < punctualCount; ++i) {
         total += std::max(power[i], floor) - power[i];
         power[i] = std::max(power[i], floor);
     }
@@ -104,10 +107,10 @@ LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm
         running += power[i];
         lights.cdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(running / total));
         const float pmf = static_cast<float>(power[i] / total);
-        if (i < firstPunctual) {
-            lights.trianglePmf[lights.sources[i]] = pmf;
+        if (i < punctualCount) {
+            lights.placementPmf[i] = pmf;
         } else {
-            lights.placementPmf[i - firstPunctual] = pmf;
+            lights.trianglePmf[lights.sources[i]] = pmf;
         }
     }
     return lights;

@@ -11,7 +11,7 @@ namespace vkdr {
 // flux / pi): emissive triangles (area x mean emitted radiance x sides that emit) and
 // placed punctual lights (Scene::lightPlacements).
 struct LightDistribution {
-    // Emissive triangles (scene order), then gpu::kPunctualEmitter | placement index.
+    // gpu::kPunctualEmitter | placement index, then emissive triangles (scene order).
     std::vector<uint32_t> sources;
     std::vector<float> cdf;             // sources.size() + 1 entries from 0 to 1
     std::vector<float> trianglePmf;     // per scene triangle; 0 for non-emitters

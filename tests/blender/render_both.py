@@ -25,23 +25,16 @@ import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parents[1] / "tools" / "blender")]
+import cycles_reference  # noqa: E402
 import scenes  # noqa: E402
 import vkdiffrender_blender  # noqa: E402
 from vkdiffrender_blender import export_scene, mappings  # noqa: E402
 
 
-def load_exr(path):
-    image = bpy.data.images.load(str(path))
-    width, height = image.size
-    pixels = np.array(image.pixels[:], dtype=np.float32).reshape(height, width, 4)
-    bpy.data.images.remove(image)
-    return pixels[::-1, :, :3].copy()
-
-
 def render_cycles(scene, path):
     scene.render.filepath = str(path)
     bpy.ops.render.render(write_still=True)
-    return load_exr(path)
+    return cycles_reference.load_exr(path)
 
 
 def render_vkdiffrender(cli, gltf, path, args, seed):
@@ -51,7 +44,7 @@ def render_vkdiffrender(cli, gltf, path, args, seed):
                              "--max-depth", str(args.max_depth)],
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     (path.parent / "vkdr_warnings.txt").write_text(result.stderr)
-    return load_exr(path) if result.returncode == 0 else None
+    return cycles_reference.load_exr(path) if result.returncode == 0 else None
 
 
 def exported_radiance(obj):
@@ -81,7 +74,7 @@ def main():
         if args.clip_start is not None:
             scene.camera.data.clip_start = args.clip_start
         vkdiffrender_blender.register()
-        scenes.configure_cycles(scene, args.size, args.cycles_spp, args.max_depth, seeds[0])
+        cycles_reference.configure_cycles(scene, args.size, args.cycles_spp, args.max_depth, seeds[0])
         if args.cycles_volume_bounces is not None:
             scene.cycles.volume_bounces = args.cycles_volume_bounces
         bpy.ops.wm.save_as_mainfile(filepath=str(out / "scene.blend"))

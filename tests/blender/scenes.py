@@ -1,9 +1,11 @@
 """Test scenes built with bpy (run inside Blender): a diffuse box lit by an area light,
 seen from its open front, and variants with a volume cube, a world fog, a point light,
-a smooth sphere and Principled BSDF walls. Also the Cycles settings that make a render
-comparable with vkdiffrender's, and the emissive mesh that stands in for an area light
-where Cycles' area lights and the exported emitter differ (docs/blender.md)."""
+a smooth sphere and Principled BSDF walls. Also the emissive mesh that stands in for an
+area light where Cycles' area lights and the exported emitter differ (docs/blender.md).
+The Cycles settings come from tools/blender/cycles_reference.py; the tests reach them as
+scenes.configure_cycles."""
 import bpy
+from cycles_reference import configure_cycles, front_only_emission  # noqa: F401
 
 # The values the tests check against; the closed loop fits PRINCIPLED back from a wrong start.
 PRINCIPLED = {"Color": (0.7, 0.5, 0.3, 1.0), "Density": 2.0, "Absorption Color": (0.2, 0.5, 0.8, 1.0),
@@ -22,38 +24,6 @@ def reset():
     scene.world.use_nodes = True
     scene.world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
     return scene
-
-
-def configure_cycles(scene, size, spp, max_depth, seed):
-    """Cycles as an unbiased reference: box pixel filter one pixel wide, no denoising,
-    adaptive sampling, clamping or light threshold; vkdiffrender's max depth D counts
-    scattering vertices, Cycles' bounces count the ones after the first, so D - 1."""
-    scene.render.engine = "CYCLES"
-    cycles = scene.cycles
-    cycles.device = "CPU"
-    cycles.samples = spp
-    cycles.seed = seed
-    cycles.use_denoising = False
-    cycles.use_adaptive_sampling = False
-    cycles.sample_clamp_direct = 0.0
-    cycles.sample_clamp_indirect = 0.0
-    cycles.light_sampling_threshold = 0.0
-    cycles.pixel_filter_type = "BOX"
-    cycles.filter_width = 1.0
-    cycles.caustics_reflective = True
-    cycles.caustics_refractive = True
-    cycles.blur_glossy = 0.0
-    for name in ("max_bounces", "diffuse_bounces", "volume_bounces", "glossy_bounces", "transmission_bounces"):
-        setattr(cycles, name, max_depth - 1)
-    cycles.transparent_max_bounces = 64
-    scene.render.resolution_x = scene.render.resolution_y = size
-    scene.render.resolution_percentage = 100
-    scene.render.threads_mode = "FIXED"
-    scene.render.threads = 2
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
 
 
 def diffuse_material(name, color):
@@ -148,20 +118,10 @@ def area_lights_to_emissive_meshes(scene, radiance_of, polygon_of):
         radiance, corners = radiance_of(obj), polygon_of(obj)
         material = bpy.data.materials.new(obj.name + ".mesh")
         material.use_nodes = True
-        nodes, links = material.node_tree.nodes, material.node_tree.links
+        nodes = material.node_tree.nodes
         nodes.clear()
-        emission = nodes.new("ShaderNodeEmission")
-        strength = max(radiance)
-        emission.inputs["Color"].default_value = (*(c / strength for c in radiance), 1.0)
-        emission.inputs["Strength"].default_value = strength
-        black = nodes.new("ShaderNodeBsdfDiffuse")
-        black.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-        facing = nodes.new("ShaderNodeNewGeometry")
-        mix = nodes.new("ShaderNodeMixShader")
-        links.new(facing.outputs["Backfacing"], mix.inputs["Fac"])
-        links.new(emission.outputs[0], mix.inputs[1])
-        links.new(black.outputs[0], mix.inputs[2])
-        links.new(mix.outputs[0], nodes.new("ShaderNodeOutputMaterial").inputs["Surface"])
+        material.node_tree.links.new(front_only_emission(material.node_tree, radiance),
+                                     nodes.new("ShaderNodeOutputMaterial").inputs["Surface"])
         mesh = bpy.data.meshes.new(obj.name + ".mesh")
         mesh.from_pydata([tuple(c) for c in corners], [], [list(range(len(corners)))])
         mesh.materials.append(material)

@@ -132,6 +132,10 @@ def test_lights_both_ways_on_random_values():
 def test_spot_cone_angles():
     outer, inner = mappings.spot_cone_angles(math.radians(90), 0.0)
     assert outer == pytest.approx(math.radians(45)) and inner == pytest.approx(outer)
+    # glTF (and vkdiffrender's loader) require inner < outer, also for a hard edge.
+    for degrees in range(1, 181):
+        outer, inner = mappings.spot_cone_angles(math.radians(degrees), 0.0)
+        assert 0.0 <= inner < outer <= math.pi / 2
     outer, inner = mappings.spot_cone_angles(math.radians(90), 1.0)
     assert inner == pytest.approx(0.0, abs=1e-6)
     _, inner = mappings.spot_cone_angles(math.radians(60), 0.5)

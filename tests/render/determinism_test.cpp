@@ -61,5 +61,29 @@ TEST_F(DeterminismTest, NewParameterValuesRenderAsAFreshRendererDoes) {
     expectSameAsFresh(scene);
 }
 
+// A medium that does not scatter is passed through by a render and sampled by a gradient
+// pass that wants sigma_s's gradient (medium_sample.comp): a render after such a pass, or
+// on a renderer set up for one, is the plain render, bit for bit.
+TEST_F(DeterminismTest, ARenderDoesNotDependOnWhatTheRendererDifferentiates) {
+    TestGltf g;
+    g.materials = {emissiveMaterial("walls", glm::vec3(1.0f, 0.8f, 0.6f), true),
+                   vkdrMediumMaterial("ink", glm::vec3(0.7f, 0.3f, 0.1f), glm::vec3(0.0f), 0.0f)};
+    g.materials[0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.6, 0.6, 0.6, 1.0};
+    g.meshes = {box(glm::vec3(-1.0f), glm::vec3(1.0f), 0), box(glm::vec3(-0.5f), glm::vec3(0.5f, 0.5f, 0.9f), 1)};
+    g.cameraPosition = glm::vec3(0.0f, 0.0f, -0.95f);
+    LoadedScene loaded = loadScene(g.write(tempDir(), "scene"));
+    Bvh bvh = buildBvh(loaded.scene.positions, loaded.scene.triangles);
+    RenderSettings settings{.width = 12, .height = 8, .spp = 4, .maxDepth = 4, .seed = 3};
+    Renderer plain(testContext(), loaded.scene, bvh, settings);
+    const Image expected = plain.render();
+
+    Renderer differentiating(testContext(), loaded.scene, bvh, settings);
+    differentiating.enableGradients(expected, LossKind::L2, DerivativeTargets{true, true, false});
+    EXPECT_EQ(differentiating.render().rgb, expected.rgb);
+    const GradientEvaluation evaluation = differentiating.renderWithGradients();
+    EXPECT_NE(evaluation.image.rgb, expected.rgb);  // the gradient pass sampled the ink
+    EXPECT_EQ(differentiating.render().rgb, expected.rgb);
+}
+
 }  // namespace
 }  // namespace vkdr::test

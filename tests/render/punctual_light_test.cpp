@@ -154,44 +154,45 @@ TEST_F(PunctualLightTest, DirectionalLightIsExtinguishedByAMediumFillingSpace) {
 }
 
 // The image is linear in each light's intensity, so the L2 loss's gradient with respect
-// to light k's channel c is (2 / 3P) sum over pixels of (E[I] - T) E[I_k] / intensity_k,
-// with E[I_k] the pixel's expectation from light k alone (quadrature, as above). A point
-// light and a directional light together also check that each gradient reaches its own light.
-TEST_F(PunctualLightTest, IntensityGradientsMatchTheClosedForm) {
+// to light k's channel c is (2 / 3P) sum over pixels of (E[I] - T) E[I_k per unit], with
+// E[I_k per unit] the pixel's expectation from light k alone at intensity 1 (quadrature,
+// as above). A point light and a directional light together, defined in the other order
+// than the nodes place them, check that each gradient reaches its own light's parameter;
+// at intensity 0 the point light must still get its gradient.
+void expectIntensityGradients(const std::filesystem::path& dir, float bulbIntensity) {
     constexpr int kPixels = 4;
     constexpr double kSunAngle = 0.5;
     constexpr float kSunIrradiance = 0.8f;
     const glm::vec3 kSunColor(0.3f, 1.0f, 0.6f);
     TestGltf g = litPlane();
-    g.lights = {light("bulb", "point", kColor, kIntensity), light("sun", "directional", kSunColor, kSunIrradiance)};
-    g.lightNodes = {{0, glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight)},
-                    {1, glm::vec3(0.0f), glm::vec3(float(std::sin(kSunAngle)), 0.0f, float(std::cos(kSunAngle)))}};
-    Scene scene = loadScene(g.write(tempDir(), "two_lights")).scene;
+    g.lights = {light("sun", "directional", kSunColor, kSunIrradiance), light("bulb", "point", kColor, bulbIntensity)};
+    g.lightNodes = {{1, glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight)},
+                    {0, glm::vec3(0.0f), glm::vec3(float(std::sin(kSunAngle)), 0.0f, float(std::cos(kSunAngle)))}};
+    Scene scene = loadScene(g.write(dir, "two_lights")).scene;
 
     // The pixels of a kPixels-wide image are kSide / kPixels of the test's usual ones.
     constexpr int kScale = kSide / kPixels;
-    auto bulbAlone = [](int x, int y) {
-        glm::dvec3 sum(0.0);
+    auto bulbPerUnit = [](int x, int y) {
+        double sum = 0.0;
         for (int s = 0; s < kScale * kScale; ++s) {
-            sum += overPixel(kScale * x + s % kScale, kScale * y + s / kScale, glm::dvec3(kColor) * double(kIntensity),
-                             [](glm::dvec2 p) {
-                                 double d2 = glm::dot(p, p) + kLightHeight * kLightHeight;
-                                 return kAlbedo / std::numbers::pi * kLightHeight / (d2 * std::sqrt(d2));
-                             })
-                       .mean;
+            sum += overPixel(kScale * x + s % kScale, kScale * y + s / kScale, glm::dvec3(1.0), [](glm::dvec2 p) {
+                       double d2 = glm::dot(p, p) + kLightHeight * kLightHeight;
+                       return kAlbedo / std::numbers::pi * kLightHeight / (d2 * std::sqrt(d2));
+                   }).mean.x;
         }
         return sum / double(kScale * kScale);
     };
-    const glm::dvec3 sunAlone =
-        glm::dvec3(kSunColor) * (double(kSunIrradiance) * kAlbedo / std::numbers::pi * std::cos(kSunAngle));
+    const double sunPerUnit = kAlbedo / std::numbers::pi * std::cos(kSunAngle);
+    const glm::dvec3 bulb = glm::dvec3(kColor) * double(bulbIntensity);
+    const glm::dvec3 sun = glm::dvec3(kSunColor) * double(kSunIrradiance);
     const glm::dvec3 target(0.05, 0.1, 0.02);
     glm::dvec3 bulbGradient(0.0), sunGradient(0.0);
     for (int y = 0; y < kPixels; ++y) {
         for (int x = 0; x < kPixels; ++x) {
-            glm::dvec3 bulb = bulbAlone(x, y);
-            glm::dvec3 dLossDI = 2.0 * (bulb + sunAlone - target) / (3.0 * kPixels * kPixels);
-            bulbGradient += dLossDI * bulb / (glm::dvec3(kColor) * double(kIntensity));
-            sunGradient += dLossDI * sunAlone / (glm::dvec3(kSunColor) * double(kSunIrradiance));
+            const double perUnit = bulbPerUnit(x, y);
+            glm::dvec3 dLossDI = 2.0 * (bulb * perUnit + sun * sunPerUnit - target) / (3.0 * kPixels * kPixels);
+            bulbGradient += dLossDI * perUnit;
+            sunGradient += dLossDI * sunPerUnit;
         }
     }
 
@@ -207,10 +208,20 @@ TEST_F(PunctualLightTest, IntensityGradientsMatchTheClosedForm) {
     for (size_t p = 0; p < names.size(); ++p) {
         for (int c = 0; c < 3; ++c) {
             const MeanAndError& adjoint = gradients[p][size_t(c)];
+            EXPECT_NE(expected[p][c], 0.0);
             EXPECT_NEAR(adjoint.mean, expected[p][c], 5.0 * adjoint.error + kFloatTolerance * std::abs(expected[p][c]))
-                << names[p] << "[" << c << "]: standard error " << adjoint.error;
+                << names[p] << "[" << c << "] at bulb intensity " << bulbIntensity << ": standard error "
+                << adjoint.error;
         }
     }
+}
+
+TEST_F(PunctualLightTest, IntensityGradientsMatchTheClosedForm) {
+    expectIntensityGradients(tempDir(), kIntensity);
+}
+
+TEST_F(PunctualLightTest, ALightOfIntensityZeroStillHasItsGradient) {
+    expectIntensityGradients(tempDir(), 0.0f);
 }
 
 }  // namespace

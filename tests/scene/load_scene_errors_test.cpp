@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "gltf_test_files.h"
 #include "scene/load_scene.h"
+#include "scene/scene_warnings.h"
 
 namespace vkdr::test {
 namespace {
@@ -204,6 +205,57 @@ TEST(LoadSceneErrors, UnsupportedRequiredExtension) {
     builder.document()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
     expectLoadError(builder.writeGltf(directory / "draco.gltf"),
                     {"extensionsRequired[0]", "KHR_draco_mesh_compression is not supported"});
+}
+
+// A floor and the KHR_lights_punctual definitions `lights`, light 0 placed by a node.
+GltfBuilder floorWithLights(json lights, json placement = {{"light", 0}}) {
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("floor", floorQuad(1.0f))}});
+    builder.document()["extensions"]["KHR_lights_punctual"]["lights"] = std::move(lights);
+    builder.addNode({{"extensions", {{"KHR_lights_punctual", std::move(placement)}}}});
+    return builder;
+}
+
+TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {
+    TemporaryDirectory directory;
+    const std::string lights = "extensions.KHR_lights_punctual.lights[0]";
+    expectLoadError(floorWithLights({{{"type", "area"}}}).writeGltf(directory / "type.gltf"),
+                    {lights + ".type", "expected \"point\", \"spot\" or \"directional\", got \"area\""});
+    expectLoadError(floorWithLights({{{"type", "point"}, {"intensity", -1.0}}}).writeGltf(directory / "negative.gltf"),
+                    {lights + ".intensity", "must be a finite number >= 0"});
+    expectLoadError(floorWithLights({{{"type", "point"}, {"color", {1.0, -0.5, 1.0}}}}).writeGltf(directory / "c.gltf"),
+                    {lights + ".color[1]", "must be >= 0"});
+    expectLoadError(floorWithLights({{{"type", "point"}, {"intensity", 1e13}}}).writeGltf(directory / "bright.gltf"),
+                    {lights, "color x intensity must be in [0, 1e+12]"});
+    expectLoadError(floorWithLights({{{"type", "spot"}, {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.5}}}}})
+                        .writeGltf(directory / "cones.gltf"),
+                    {lights + ".spot.innerConeAngle", "must be in [0, outerConeAngle"});
+    expectLoadError(floorWithLights({{{"type", "spot"}, {"spot", {{"outerConeAngle", 2.0}}}}})
+                        .writeGltf(directory / "wide.gltf"),
+                    {lights + ".spot.outerConeAngle", "must be in (0, pi/2]"});
+    expectLoadError(floorWithLights({{{"type", "point"}, {"name", "a"}}, {{"type", "point"}, {"name", "a"}}})
+                        .writeGltf(directory / "names.gltf"),
+                    {"extensions.KHR_lights_punctual.lights[1].name", "'a' already names", "must be unique"});
+    expectLoadError(floorWithLights({{{"type", "point"}}}, {{"light", 3}}).writeGltf(directory / "index.gltf"),
+                    {"nodes[1].extensions.KHR_lights_punctual.light", "one of the 1 lights, got 3"});
+}
+
+TEST(LoadSceneErrors, PunctualLightWarnings) {
+    TemporaryDirectory directory;
+    LoadedScene loaded =
+        loadScene(floorWithLights({{{"type", "point"}, {"range", 5.0}}, {{"type", "point"}, {"name", "unplaced"}}})
+                      .writeGltf(directory / "warnings.gltf"));
+    ASSERT_EQ(loaded.scene.punctualLights.size(), 2u);
+    EXPECT_EQ(loaded.scene.punctualLights[0].name, "lights[0]");  // unnamed
+    ASSERT_EQ(loaded.scene.lightPlacements.size(), 1u);
+    std::string all;
+    for (const std::string& warning : loaded.warnings) {
+        all += warning + "\n";
+    }
+    EXPECT_NE(all.find("lights[0].range: ignored"), std::string::npos) << all;
+    const std::vector<std::string> sceneChecks = sceneWarnings(loaded.scene);
+    ASSERT_EQ(sceneChecks.size(), 1u);
+    EXPECT_EQ(sceneChecks[0], "light 'unplaced' is placed by no node and lights nothing");
 }
 
 }  // namespace

@@ -198,8 +198,10 @@ def spot_cone_angles(spot_size, spot_blend):
     """glTF's outer and inner cone angles for a Blender spot: the outer cone is half of
     Spot Size; Cycles fades over cosines from cos(outer) to cos(outer) + (1 - cos(outer))
     * Blend, and the inner angle has that cosine. Cycles' fade is a smoothstep times the
-    cosine to the axis, glTF's a square of the linear ramp: an approximation."""
+    cosine to the axis, glTF's a square of the linear ramp: an approximation. glTF needs
+    the inner angle below the outer one: a Blend of 0 (a hard edge) gives an inner cone a
+    millionth narrower."""
     outer = 0.5 * float(spot_size)
     cos_outer = math.cos(outer)
     inner = math.acos(min(cos_outer + (1.0 - cos_outer) * float(spot_blend), 1.0))
-    return outer, inner
+    return outer, min(inner, outer * (1.0 - 1e-6))

@@ -73,9 +73,11 @@ def apply_fitted_values(scene, params):
             light = mappings.radiance_to_area_light(value, export_scene.polygon_area(corners))
             obj.data.color, obj.data.energy = light["color"], light["power"]
         elif parts[0] == "lights" and parts[-1] == "intensity":
-            obj = scene.objects.get(parts[1]) or next(
-                (o for o in scene.objects if o.type == "LIGHT" and o.data.name == parts[1]), None)
+            # The glTF light is named after the object or after its light data.
+            obj = scene.objects.get(parts[1])
             if obj is None or obj.type != "LIGHT":
+                obj = next((o for o in scene.objects if o.type == "LIGHT" and o.data.name == parts[1]), None)
+            if obj is None:
                 warnings.append(f"{name}: no light '{parts[1]}'")
                 continue
             if obj.data.type == "SUN":
