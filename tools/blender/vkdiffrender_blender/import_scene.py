@@ -133,12 +133,8 @@ def restore_lights(doc, objects):
             continue
         entry = lights[index]
         value = tuple(c * float(entry.get("intensity", 1.0)) for c in entry.get("color", [1.0, 1.0, 1.0]))
-        if obj.data.type == "SUN":
-            sun = mappings.irradiance_to_sun(value)
-            obj.data.color, obj.data.energy = sun["color"], sun["strength"]
-        else:
-            point = mappings.intensity_to_point_light(value)
-            obj.data.color, obj.data.energy = point["color"], point["power"]
+        node_graph.set_light_value(obj.data, value)
+        if obj.data.type != "SUN":
             obj.data.shadow_soft_size = 0.0
 
 

@@ -127,3 +127,14 @@ def write_medium(node, medium):
     if max(medium.sigma_a) > 0.0:
         return f"'{node.name}' is a Volume Scatter node: the fitted absorption is dropped"
     return None
+
+
+def set_light_value(light, value):
+    """Sets a Blender light (its data) to a KHR_lights_punctual color x intensity: a sun's
+    irradiance, or a point or spot light's radiant intensity, in Cycles' units."""
+    if light.type == "SUN":
+        sun = mappings.irradiance_to_sun(value)
+        light.color, light.energy = sun["color"], sun["strength"]
+    else:
+        point = mappings.intensity_to_point_light(value)
+        light.color, light.energy = point["color"], point["power"]

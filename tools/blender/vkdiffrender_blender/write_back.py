@@ -80,12 +80,7 @@ def apply_fitted_values(scene, params):
             if obj is None:
                 warnings.append(f"{name}: no light '{parts[1]}'")
                 continue
-            if obj.data.type == "SUN":
-                sun = mappings.irradiance_to_sun(value)
-                obj.data.color, obj.data.energy = sun["color"], sun["strength"]
-            else:
-                point = mappings.intensity_to_point_light(value)
-                obj.data.color, obj.data.energy = point["color"], point["power"]
+            node_graph.set_light_value(obj.data, value)
         else:
             warnings.append(f"{name}: not written back (no Blender counterpart)")
     owners = {name: node for name, _, node in volume_owners(scene)}
