@@ -1,9 +1,10 @@
 #include "bench/bench_report.h"
 
-#include <cstdio>
 #include <map>
 #include <span>
 #include <string>
+
+#include "core/format_text.h"
 
 namespace vkdr {
 namespace {
@@ -19,12 +20,6 @@ constexpr const char* kAdjointStages[] = {"generate", "intersect", "medium_sampl
 double valueOr0(const std::map<std::string, double>& values, const std::string& key) {
     auto it = values.find(key);
     return it == values.end() ? 0.0 : it->second;
-}
-
-std::string format(const char* pattern, double value) {
-    char text[64];
-    std::snprintf(text, sizeof(text), pattern, value);
-    return text;
 }
 
 uint64_t peakDeviceBytes(const SceneBenchmark& s) {
@@ -46,7 +41,7 @@ std::string stageTable(const BenchReport& report, const std::string& title, std:
     for (const SceneBenchmark& s : report.scenes) {
         out += "| " + s.name + " |";
         for (const char* stage : stages) {
-            out += " " + format("%.2f", valueOr0(s.*stagesMs, stage)) + " |";
+            out += " " + formatText("%.2f", valueOr0(s.*stagesMs, stage)) + " |";
         }
         out += "\n";
     }
@@ -64,13 +59,13 @@ std::string markdownTable(const BenchReport& report) {
     for (const SceneBenchmark& s : report.scenes) {
         out += "| " + s.name + " | " + std::to_string(s.triangles) + " | " + std::to_string(s.width) + "x" +
                std::to_string(s.height) + " | " + std::to_string(s.spp) + " | " + std::to_string(s.maxDepth) +
-               " | " + format("%.2f", s.bvhBuildMs) + " | " + format("%.2f", s.trianglesPerSecond() * 1e-6) +
-               " | " + format("%.1f", s.forwardMs) + " | " + format("%.1f", s.gradientMs) + " | " +
-               format("%.2f", s.gradientToForward()) + " | " + format("%.3f", s.pathsPerSecond() * 1e-6) + " | " +
-               format("%.3f", s.raysPerSecond() * 1e-6) + " | " +
-               (s.relativeNoise ? format("%.4f", *s.relativeNoise) + " | " + format("%.3g", s.efficiency()) : "- | -") +
-               " | " + format("%.1f", double(peakDeviceBytes(s)) / kMiB) +
-               " | " + format("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
+               " | " + formatText("%.2f", s.bvhBuildMs) + " | " + formatText("%.2f", s.trianglesPerSecond() * 1e-6) +
+               " | " + formatText("%.1f", s.forwardMs) + " | " + formatText("%.1f", s.gradientMs) + " | " +
+               formatText("%.2f", s.gradientToForward()) + " | " + formatText("%.3f", s.pathsPerSecond() * 1e-6) + " | " +
+               formatText("%.3f", s.raysPerSecond() * 1e-6) + " | " +
+               (s.relativeNoise ? formatText("%.4f", *s.relativeNoise) + " | " + formatText("%.3g", s.efficiency()) : "- | -") +
+               " | " + formatText("%.1f", double(peakDeviceBytes(s)) / kMiB) +
+               " | " + formatText("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
     }
     out += stageTable(report,
                       "GPU ms per stage (timestamp queries); adjoint is every adjoint-mode pass, replay the primal "

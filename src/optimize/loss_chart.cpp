@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/format_text.h"
 #include "optimize/svg_chart.h"
 
 namespace vkdr {
@@ -41,19 +42,19 @@ std::string lossChartSvg(std::span<const double> losses, std::string_view lossNa
     std::string svg = svgHeader(kWidth, kHeight);
     for (int decade = lowDecade; decade <= highDecade; ++decade) {
         double at = y(std::pow(10.0, decade));
-        svg += svgFormat("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", kLeft, at,
+        svg += formatText("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", kLeft, at,
                       kWidth - kRight, at);
-        svg += svgFormat("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">1e%d</text>\n",
+        svg += formatText("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">1e%d</text>\n",
                       kLeft - 6, at, decade);
     }
     svg += iterationAxisSvg(kLeft, kTop, kWidth - kRight, kHeight - kBottom, lastIteration, x);
-    svg += svgFormat("<text transform=\"translate(14 %g) rotate(-90)\" text-anchor=\"middle\">%s loss (log scale)</text>\n",
+    svg += formatText("<text transform=\"translate(14 %g) rotate(-90)\" text-anchor=\"middle\">%s loss (log scale)</text>\n",
                   kTop + plotHeight / 2, std::string(lossName).c_str());
 
     svg += "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"";
     for (size_t i = 0; i < losses.size(); ++i) {
         if (losses[i] > 0.0 && std::isfinite(losses[i])) {
-            svg += svgFormat("%s%.2f,%.2f", i == 0 ? "" : " ", x(double(i)), y(losses[i]));
+            svg += formatText("%s%.2f,%.2f", i == 0 ? "" : " ", x(double(i)), y(losses[i]));
         }
     }
     svg += "\"/>\n</svg>\n";

@@ -1,8 +1,8 @@
 #include "optimize/report_html.h"
 
 #include <charconv>
-#include <cstdio>
 
+#include "core/format_text.h"
 #include "image/png_encode.h"
 #include "optimize/base64.h"
 #include "optimize/difference_colour_map.h"
@@ -43,12 +43,6 @@ std::string escaped(const std::string& text) {
     return html;
 }
 
-std::string number(const char* pattern, double value) {
-    char text[64];
-    std::snprintf(text, sizeof(text), pattern, value);
-    return text;
-}
-
 // Each value as the shortest decimal that reads back as the same float: what params.json holds.
 std::string exactValues(const std::vector<float>& values) {
     std::string text;
@@ -76,8 +70,8 @@ std::string colourBarHtml(float scale) {
     for (size_t i = 0; i < bar.ticks.size(); ++i) {
         const ColourBarTick& tick = bar.ticks[i];
         const char* end = i == 0 ? " class=\"first\"" : i + 1 == bar.ticks.size() ? " class=\"last\"" : "";
-        html += "<span" + std::string(end) + " style=\"left: " + number("%g", 100.0 * tick.position) + "%\">" +
-                (i + 1 == bar.ticks.size() ? "&ge; " : "") + number("%.3g", tick.value) + "</span>";
+        html += "<span" + std::string(end) + " style=\"left: " + formatText("%g", 100.0 * tick.position) + "%\">" +
+                (i + 1 == bar.ticks.size() ? "&ge; " : "") + formatText("%.3g", tick.value) + "</span>";
     }
     return html + "</div>\n";
 }
@@ -150,7 +144,7 @@ std::string reportHtml(const ReportPage& page) {
             "linear RGB shown with the sRGB transfer function at exposure 0 EV (values as rendered, not scaled), "
             "clipped to [0, 1], 8 bits per channel, as the run's PNG files. The difference image shows each "
             "pixel's largest channel difference in false colour; the top of its colour bar is the " +
-            number("%g", 100.0 * kDifferencePercentile) +
+            formatText("%g", 100.0 * kDifferencePercentile) +
             "th percentile of those differences over the view's pixels, and larger ones show in the top colour."
             "</p>\n";
     for (const ReportView& view : page.views) html += viewSection(view);

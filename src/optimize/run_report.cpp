@@ -1,18 +1,11 @@
 #include "optimize/run_report.h"
 
-#include <cstdio>
-
+#include "core/format_text.h"
 #include "optimize/iteration_log.h"
 #include "optimize/loss_kind_text.h"
 
 namespace vkdr {
 namespace {
-
-std::string formatted(const char* pattern, auto... values) {
-    char text[128];
-    std::snprintf(text, sizeof(text), pattern, values...);
-    return text;
-}
 
 std::string listed(const std::vector<std::string>& names) {
     std::string text;
@@ -30,11 +23,11 @@ std::vector<std::pair<std::string, std::string>> settings(const OptimizationJob&
         {"parameters", listed(options.parameters)},
         {"iterations", std::to_string(options.iterations)},
         {"optimizer", optimizerKindName(options.optimizer)},
-        {"learning rate", formatted("%g", options.learningRate)},
+        {"learning rate", formatText("%g", options.learningRate)},
     };
     if (!job.inputs.experiment.empty()) rows.insert(rows.begin(), {"experiment", job.inputs.experiment.string()});
     if (options.learningRateDecay != 1.0) {
-        rows.push_back({"learning rate decay", formatted("to %g of the rate, starting %g of the way through",
+        rows.push_back({"learning rate decay", formatText("to %g of the rate, starting %g of the way through",
                                                          options.learningRateDecay, options.learningRateDecayStart)});
     }
     if (!options.logParameters.empty()) rows.push_back({"stepped in log space", listed(options.logParameters)});
@@ -43,10 +36,10 @@ std::vector<std::pair<std::string, std::string>> settings(const OptimizationJob&
     rows.push_back({"loss", lossKindName(job.loss)});
     rows.push_back({"seed", std::to_string(options.seed) + " (iteration i renders with seed + i)"});
     if (!job.description.device.empty()) rows.push_back({"device", job.description.device});
-    rows.push_back({"render time", formatted("%.1f s forward, %.1f s adjoint over all %zu iterations",
+    rows.push_back({"render time", formatText("%.1f s forward, %.1f s adjoint over all %zu iterations",
                                              result.forwardMs / 1000.0, result.adjointMs / 1000.0,
                                              result.losses.size())});
-    rows.push_back({"time taken", formatted(job.resume ? "%.1f s (this resumed part of the run)" : "%.1f s",
+    rows.push_back({"time taken", formatText(job.resume ? "%.1f s (this resumed part of the run)" : "%.1f s",
                                             seconds)});
     return rows;
 }

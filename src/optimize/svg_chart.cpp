@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/format_text.h"
+
 namespace vkdr {
 
 double iterationTickStep(size_t count) {
@@ -19,17 +21,17 @@ std::string iterationAxisSvg(double left, double top, double right, double botto
     std::string svg;
     double step = iterationTickStep(size_t(lastIteration) + 1);
     for (double iteration = 0.0; iteration <= lastIteration; iteration += step) {
-        svg += svgFormat("<text x=\"%.2f\" y=\"%g\" text-anchor=\"middle\">%g</text>\n", x(iteration), bottom + 16,
+        svg += formatText("<text x=\"%.2f\" y=\"%g\" text-anchor=\"middle\">%g</text>\n", x(iteration), bottom + 16,
                          iteration);
     }
-    svg += svgFormat("<path d=\"M%g %g V%g H%g\" fill=\"none\" stroke=\"black\"/>\n", left, top, bottom, right);
-    svg += svgFormat("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">iteration</text>\n", (left + right) / 2,
+    svg += formatText("<path d=\"M%g %g V%g H%g\" fill=\"none\" stroke=\"black\"/>\n", left, top, bottom, right);
+    svg += formatText("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">iteration</text>\n", (left + right) / 2,
                      bottom + 35);
     return svg;
 }
 
 std::string svgHeader(double width, double height) {
-    return svgFormat("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\" "
+    return formatText("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\" "
                      "font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%%\" height=\"100%%\" "
                      "fill=\"white\"/>\n",
                      width, height, width, height);

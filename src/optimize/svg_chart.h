@@ -1,19 +1,10 @@
 #pragma once
-#include <cstdio>
 #include <functional>
 #include <string>
 
 namespace vkdr {
 
 // What the report's SVG charts share (optimize/loss_chart.h, optimize/trajectory_chart.h).
-
-// printf into a string, for SVG elements.
-template <typename... Values>
-std::string svgFormat(const char* pattern, Values... values) {
-    char text[512];
-    std::snprintf(text, sizeof(text), pattern, values...);
-    return text;
-}
 
 // About five round iteration numbers (1, 2 or 5 times a power of ten apart) for an axis
 // of `count` iterations.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/format_text.h"
 #include "optimize/svg_chart.h"
 
 namespace vkdr {
@@ -48,35 +49,35 @@ std::string trajectoryChartSvg(const ParameterTrajectory& trajectory, const Para
     std::string svg = svgHeader(kWidth, kHeight);
     for (int tick = 0; tick <= 4; ++tick) {
         double value = low + (high - low) * tick / 4.0;
-        svg += svgFormat("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", kLeft, y(value),
+        svg += formatText("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", kLeft, y(value),
                          kWidth - kRight, y(value));
-        svg += svgFormat("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%.4g</text>\n",
+        svg += formatText("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%.4g</text>\n",
                          kLeft - 6, y(value), value);
     }
     svg += iterationAxisSvg(kLeft, kTop, kWidth - kRight, kHeight - kBottom, double(steps), x);
-    svg += svgFormat("<text x=\"%g\" y=\"14\">line: value per iteration; dots: start and fitted%s</text>\n", kLeft,
+    svg += formatText("<text x=\"%g\" y=\"14\">line: value per iteration; dots: start and fitted%s</text>\n", kLeft,
                      fit.truth.empty() ? "" : "; dashed: true value");
 
     const size_t channels = fit.fitted.size();
     for (size_t c = 0; c < channels; ++c) {
         const char* colour = channelColour(c, channels);
         if (c < fit.truth.size()) {
-            svg += svgFormat("<line class=\"truth\" x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"%s\" "
+            svg += formatText("<line class=\"truth\" x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"%s\" "
                              "stroke-dasharray=\"5 4\"/>\n",
                              kLeft, y(fit.truth[c]), kWidth - kRight, y(fit.truth[c]), colour);
         }
-        svg += svgFormat("<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" points=\"", colour);
+        svg += formatText("<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" points=\"", colour);
         for (size_t i = 0; i < steps; ++i) {
             if (c < trajectory.values[i].size() && std::isfinite(trajectory.values[i][c])) {
-                svg += svgFormat("%.2f,%.2f ", x(double(i)), y(trajectory.values[i][c]));
+                svg += formatText("%.2f,%.2f ", x(double(i)), y(trajectory.values[i][c]));
             }
         }
-        svg += svgFormat("%.2f,%.2f\"/>\n", x(double(steps)), y(fit.fitted[c]));
+        svg += formatText("%.2f,%.2f\"/>\n", x(double(steps)), y(fit.fitted[c]));
         if (c < fit.start.size()) {
-            svg += svgFormat("<circle class=\"start\" cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"white\" stroke=\"%s\"/>\n",
+            svg += formatText("<circle class=\"start\" cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"white\" stroke=\"%s\"/>\n",
                              x(0.0), y(fit.start[c]), colour);
         }
-        svg += svgFormat("<circle class=\"fitted\" cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"%s\"/>\n", x(double(steps)),
+        svg += formatText("<circle class=\"fitted\" cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"%s\"/>\n", x(double(steps)),
                          y(fit.fitted[c]), colour);
     }
     return svg + "</svg>\n";
