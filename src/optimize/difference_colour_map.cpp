@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 
-#include "core/error.h"
+#include "optimize/difference_image.h"
 
 namespace vkdr {
 
@@ -30,11 +29,7 @@ std::array<uint8_t, 3> differenceColour(float fraction) {
 }
 
 ColourMappedDifference colourMappedDifference(const Image& current, const Image& target, double percentile) {
-    if (current.width != target.width || current.height != target.height) {
-        throw Error("cannot compare a " + std::to_string(current.width) + "x" + std::to_string(current.height) +
-                    " render with a " + std::to_string(target.width) + "x" + std::to_string(target.height) +
-                    " target");
-    }
+    requireSameSize(current, target);
     const size_t pixels = size_t(current.width) * size_t(current.height);
     std::vector<float> differences(pixels);
     for (size_t p = 0; p < pixels; ++p) {

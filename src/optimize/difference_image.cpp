@@ -8,12 +8,16 @@
 
 namespace vkdr {
 
-DifferenceImage scaledDifference(const Image& render, const Image& target) {
+void requireSameSize(const Image& render, const Image& target) {
     if (render.width != target.width || render.height != target.height) {
         throw Error("cannot compare a " + std::to_string(render.width) + "x" + std::to_string(render.height) +
                     " render with a " + std::to_string(target.width) + "x" + std::to_string(target.height) +
                     " target");
     }
+}
+
+DifferenceImage scaledDifference(const Image& render, const Image& target) {
+    requireSameSize(render, target);
     DifferenceImage difference;
     difference.image = render;
     for (size_t i = 0; i < render.rgb.size(); ++i) {

@@ -10,6 +10,9 @@ struct DifferenceImage {
     float largestDifference = 0.0f;  // the difference that white stands for; 0: identical
 };
 
+// A render can be compared with a target of its own size only: vkdr::Error otherwise.
+void requireSameSize(const Image& render, const Image& target);
+
 // Throws vkdr::Error when the sizes differ.
 DifferenceImage scaledDifference(const Image& render, const Image& target);
 
