@@ -112,7 +112,8 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     gpu.triangleNormals = uploadVector<glm::vec4>(context, normals, "triangle normals");
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
-    gpu.rayEpsilon = kRayEpsilonPerExtent * sceneExtent(scene);
+    gpu.extent = sceneExtent(scene);
+    gpu.rayEpsilon = kRayEpsilonPerExtent * gpu.extent;
     uploadSceneParameters(context, scene, bvh.triangleOrder, gpu);
     return gpu;
 }
@@ -131,7 +132,7 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
         return;
     }
     std::vector<glm::vec3> emitted = meanEmittedRadiance(scene);
-    LightDistribution lights = buildLightDistribution(scene, emitted);
+    LightDistribution lights = buildLightDistribution(scene, emitted, 0.5 * double(gpu.extent));
     std::vector<gpu::GpuTriangleInfo> info(triangleOrder.size());
     std::vector<uint32_t> bvhPosition(scene.triangles.size());
     for (size_t i = 0; i < triangleOrder.size(); ++i) {

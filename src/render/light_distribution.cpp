@@ -19,18 +19,6 @@ double meanChannel(glm::vec3 rgb) {
     return (double(rgb.r) + double(rgb.g) + double(rgb.b)) / 3.0;
 }
 
-// Radius of a sphere around every vertex: a directional light's flux is what crosses a
-// disc of this radius.
-double sceneRadius(const Scene& scene) {
-    glm::dvec3 lo(std::numeric_limits<double>::max());
-    glm::dvec3 hi(-std::numeric_limits<double>::max());
-    for (const glm::vec3& p : scene.positions) {
-        lo = glm::min(lo, glm::dvec3(p));
-        hi = glm::max(hi, glm::dvec3(p));
-    }
-    return scene.positions.empty() ? 1.0 : std::max(0.5 * glm::length(hi - lo), 1e-3);
-}
-
 // Emitted flux / pi: a point light's 4 pi I, a spot light's at most 2 pi (1 - cos outer) I,
 // a directional light's pi R^2 E.
 double punctualPower(const PunctualLight& light, double radius) {
@@ -60,7 +48,8 @@ std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene) {
     return radiance;
 }
 
-LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm::vec3> radiance) {
+LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm::vec3> radiance,
+                                         double sceneRadius) {
     std::vector<double> materialPower(scene.materials.size(), 0.0);
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         materialPower[m] = meanChannel(radiance[m]) * (scene.materials[m].doubleSided ? 2.0 : 1.0);
@@ -72,10 +61,9 @@ LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm
     // Punctual lights come first, where the CDF's floats are finest: a light whose share
     // is tiny beside a million emissive triangles keeps an interval of its own.
     std::vector<double> power;
-    const double radius = sceneRadius(scene);
     for (size_t i = 0; i < scene.lightPlacements.size(); ++i) {
         lights.sources.push_back(gpu::kPunctualEmitter | static_cast<uint32_t>(i));
-        power.push_back(punctualPower(scene.punctualLights[scene.lightPlacements[i].light], radius));
+        power.push_back(punctualPower(scene.punctualLights[scene.lightPlacements[i].light], sceneRadius));
     }
     const size_t punctualCount = power.size();
     for (size_t t = 0; t < scene.triangles.size(); ++t) {

@@ -23,7 +23,9 @@ struct LightDistribution {
 // the punctual lights' intensities.
 std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene);
 
-// `radiance`: meanEmittedRadiance(scene).
-LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm::vec3> radiance);
+// `radiance`: meanEmittedRadiance(scene); `sceneRadius`: of a sphere around the scene,
+// across which a directional light's flux is counted.
+LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm::vec3> radiance,
+                                         double sceneRadius);
 
 }  // namespace vkdr
