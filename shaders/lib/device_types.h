@@ -290,6 +290,9 @@ struct RenderParams {
     uint imagePixels;                               // width * height
     uint sampleNonScatteringMedia;                  // 1: a gradient pass that wants sigma_s's gradient, which
                                                     // samples collisions in media that do not scatter
+    uint secondStreamFrom;                          // > 0: samples from this index on draw their points
+                                                    // from a second, independent stream (rng.glsl), as the
+                                                    // halves of a split gradient estimate must
     // Fixed-point sums from one copy of each gradient accumulator to the next (0: one copy).
 #define VKDR_DECLARE_COPY_STRIDE(name, field, floats, copies, items) uint name##CopyStride;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_COPY_STRIDE)

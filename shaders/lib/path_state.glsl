@@ -1,4 +1,4 @@
-// The per-slot path state (structure of arrays, device_types.h) and the random numbers
+// The per-slot path state (structure of arrays, device_types.h) and the sample points
 // of the path's current segment.
 #ifndef VKDR_PATH_STATE_GLSL
 #define VKDR_PATH_STATE_GLSL
@@ -21,7 +21,9 @@ void storePathInfo(uint slot, PathInfo info) {
 }
 
 vec4 segmentRandom(PathInfo info, uint group) {
-    return uniform4(info.pixel, info.sampleIndex, info.segment, group, P.seed);
+    bool secondStream = P.secondStreamFrom > 0u && info.sampleIndex >= P.secondStreamFrom;
+    uint index = secondStream ? info.sampleIndex - P.secondStreamFrom : info.sampleIndex;
+    return sample4(info.pixel, index, secondStream ? 1u : 0u, info.segment * kDimGroupsPerSegment + group, P.seed);
 }
 
 void storeRay(uint slot, vec3 origin, vec3 direction) {

@@ -119,6 +119,9 @@ void Renderer::uploadParams() {
     p.lightCount = scene_.lightCount;
     p.maxDepth = settings_.maxDepth;
     p.seed = settings_.seed;
+    // The halves of a split gradient estimate must be independent (docs/gradients.md);
+    // render() keeps all samples in one stratified stream.
+    p.secondStreamFrom = inGradientPass_ ? settings_.spp / 2 : 0u;
     p.segmentLimit = segmentLimit(settings_.maxDepth);
     p.rayEpsilon = scene_.rayEpsilon;
     p.filmScale = 1.0f / float(settings_.spp);

@@ -57,7 +57,7 @@ struct DerivativeTargets {
 
 // One render with its loss and the loss's gradient (Renderer::renderWithGradients).
 struct GradientEvaluation {
-    Image image;  // as render() gives it at the same seed
+    Image image;  // as loss() renders it at the same seed (render() but for the sample streams)
     double loss = 0.0;
     SceneGradients gradients;
     double forwardMs = 0.0;  // wall time of the passes that render the image
@@ -170,9 +170,11 @@ private:
     void uploadParams();
     SceneGradients backpropagateImageAdjoint(const Image& imageAdjoint);
     GradientEvaluation renderAndBackpropagateLoss();
-    // Runs `pass`, a gradient pass (renderWithGradients, backpropagate), with
-    // RenderParams.sampleNonScatteringMedia set as its derivative targets need; render()
-    // never sets it, so an image does not depend on what the renderer was set up for.
+    // Runs `pass`, a gradient pass (renderWithGradients, backpropagate, loss), with
+    // RenderParams.sampleNonScatteringMedia set as its derivative targets need and the
+    // halves of the samples in independent streams (RenderParams.secondStreamFrom);
+    // render() does neither, so an image does not depend on what the renderer was set
+    // up for, and all its samples stratify together.
     template <typename Pass>
     auto asGradientPass(Pass&& pass);
 
@@ -193,7 +195,7 @@ private:
     LossKind lossKind_;
     uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
     bool texelGradientsWanted_ = false;  // RenderParams.texelGradientsWanted
-    bool inGradientPass_ = false;     // RenderParams.sampleNonScatteringMedia when the targets want it
+    bool inGradientPass_ = false;     // asGradientPass() is running
     uint32_t splitSample_ = 0;        // RenderParams.splitSample: > 0 when backpropagateInOnePass serves
     Buffer params_;
     RenderStats stats_;

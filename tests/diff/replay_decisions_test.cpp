@@ -35,7 +35,7 @@ TEST_F(RenderTest, TheReplayTakesThePrimalPassesDecisions) {
     Renderer renderer(testContext(), scene, bvh, {.width = kSide, .height = kSide, .spp = 8, .maxDepth = kMaxDepth, .seed = 5});
     renderer.enableGradients(Image{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.5f)}, LossKind::L2);
     ASSERT_EQ(renderer.width(), kSide);
-    renderer.render();
+    renderer.loss();  // renders the paths exactly as the gradient pass's primal pass does
     const std::vector<glm::vec4> gathered = renderer.pathRadiance();
     renderer.renderWithGradients();
     const std::vector<glm::vec4> left = renderer.pathRadiance();

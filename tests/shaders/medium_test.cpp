@@ -19,7 +19,7 @@ TEST(MediumTest, SampledDistancesFollowTheMixturePdf) {
     constexpr uint kSamples = 1u << 19;
     std::vector<double> counts(kBins + 1, 0.0), expected(kBins + 1, 0.0);
     for (uint i = 0; i < kSamples; ++i) {
-        vec4 u = uniform4(i, 1u, 2u, kDimFreeFlight, 0u);
+        vec4 u = sample4(i, 1u, 0u, 2u * kDimGroupsPerSegment + kDimFreeFlight, 0u);
         float t = sampleFreeFlight(kSigmaT, vec2(u.x, u.y));
         counts[t >= kMaxT ? kBins : int(t / kMaxT * kBins)] += 1.0;
     }
@@ -51,7 +51,7 @@ TEST(MediumTest, TransmittanceIsBeerLambert) {
 TEST(MediumTest, EmptyChannelNeverStopsTheRay) {
     const vec3 sigma(0.0f, 2.0f, 0.0f);
     for (uint i = 0; i < 1000; ++i) {
-        vec4 u = uniform4(i, 0u, 0u, kDimFreeFlight, 0u);
+        vec4 u = sample4(i, 0u, 0u, kDimFreeFlight, 0u);
         float t = sampleFreeFlight(sigma, vec2(u.x, u.y));
         if (int(u.x * 3.0f) != 1) {
             EXPECT_EQ(t, kFar);

@@ -122,7 +122,7 @@ TEST_P(HgTest, SampledCosinesFollowThePdf) {
     double sum = 0.0, sumSquares = 0.0, sumP2 = 0.0, sumP2Squares = 0.0;
     const vec3 incoming = normalize(vec3(0.3f, -0.5f, 0.8f));
     for (uint i = 0; i < kSamples; ++i) {
-        vec4 u = uniform4(i, 0u, 0u, kDimScatter, 3u);
+        vec4 u = sample4(i, 0u, 0u, kDimScatter, 3u);
         vec3 w = sampleHg(incoming, g, vec2(u.x, u.y));
         ASSERT_TRUE(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z));
         ASSERT_NEAR(length(w), 1.0f, 1e-5f);
