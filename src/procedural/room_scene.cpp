@@ -172,7 +172,9 @@ json document(const RoomSceneOptions& options, const RoomGeometry& room, const S
 uint64_t writeRoomScene(const RoomSceneOptions& options) {
     RoomGeometry room = roomGeometry();
     uint64_t roomTriangles = room.indices.size() / 3;
-    SphereGrid spheres(options.triangles > roomTriangles ? options.triangles - roomTriangles : 0, 4.0f);
+    // Spheres at most 0.3 of the room's height in radius stay well below the light.
+    SphereGrid spheres(options.triangles > roomTriangles ? options.triangles - roomTriangles : 0, 4.0f,
+                       0.3f * kHeight);
 
     // Reserve the JSON chunk for the document with the widest possible bounds.
     Bounds roomBounds, sphereBounds;

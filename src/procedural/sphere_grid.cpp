@@ -15,7 +15,8 @@ constexpr float kBumpFrequency = 7.0f;
 
 }  // namespace
 
-SphereGrid::SphereGrid(uint64_t triangleBudget, float floorHalfSize) : floorHalfSize_(floorHalfSize) {
+SphereGrid::SphereGrid(uint64_t triangleBudget, float floorHalfSize, float maxRadius)
+    : floorHalfSize_(floorHalfSize) {
     double budget = double(std::max<uint64_t>(triangleBudget, 8));
     spheresPerSide_ = uint32_t(std::max(1.0, std::round(std::sqrt(budget / kTrianglesPerSphere))));
     double perSphere = budget / double(sphereCount());
@@ -24,7 +25,7 @@ SphereGrid::SphereGrid(uint64_t triangleBudget, float floorHalfSize) : floorHalf
     bands_ = innerBands + 1;
     segments_ = uint32_t(std::max(3.0, std::round(perSphere / (2.0 * innerBands))));
     spacing_ = 2.0f * floorHalfSize / float(spheresPerSide_);
-    radius_ = 0.4f * spacing_;
+    radius_ = std::min(0.4f * spacing_, maxRadius);
 }
 
 void SphereGrid::sphereVertices(uint64_t sphere, std::vector<Vertex>& out) const {

@@ -19,7 +19,9 @@ static_assert(sizeof(Vertex) == 20);
 class SphereGrid {
 public:
     // `floorHalfSize`: the grid covers [-floorHalfSize, floorHalfSize] in x and z at y = 0.
-    SphereGrid(uint64_t triangleBudget, float floorHalfSize);
+    // A sphere's radius is at most `maxRadius`, so that few large spheres stay clear of
+    // what hangs above them (the room's light).
+    SphereGrid(uint64_t triangleBudget, float floorHalfSize, float maxRadius);
 
     uint64_t sphereCount() const { return uint64_t(spheresPerSide_) * spheresPerSide_; }
     uint32_t verticesPerSphere() const { return (bands_ + 1) * (segments_ + 1); }

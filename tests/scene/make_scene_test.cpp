@@ -58,6 +58,37 @@ TEST(MakeScene, ScalesTheRoomAndTheCamera) {
     EXPECT_NE(unitCamera, glm::vec3(0.0f));
 }
 
+// However few the spheres, the light hangs above all of them (a sphere around it would
+// leave the room black) and the camera is outside them.
+TEST(MakeScene, SpheresStayBelowTheLightAndAwayFromTheCamera) {
+    TemporaryDirectory directory;
+    for (size_t requested : {50u, 3000u, 12000u, 30000u}) {
+        const Scene scene = makeAndLoad(directory, "--triangles " + std::to_string(requested)).scene;
+        const uint32_t spheres = scene.triangleMaterial.back();
+        float lightY = 1e9f, sphereTop = -1e9f;
+        for (size_t t = 0; t < scene.triangles.size(); ++t) {
+            const uint32_t material = scene.triangleMaterial[t];
+            for (int c = 0; c < 3; ++c) {
+                const float y = scene.positions[scene.triangles[t][c]].y;
+                if (scene.materials[material].isEmissive()) {
+                    lightY = std::min(lightY, y);
+                } else if (material == spheres) {
+                    sphereTop = std::max(sphereTop, y);
+                }
+            }
+        }
+        EXPECT_LT(sphereTop, lightY) << requested << " triangles";
+        const glm::vec3 camera = scene.cameras[0].cameraToWorld[3];
+        float nearest = 1e9f;
+        for (size_t t = 0; t < scene.triangles.size(); ++t) {
+            if (scene.triangleMaterial[t] == spheres) {
+                nearest = std::min(nearest, glm::distance(camera, scene.positions[scene.triangles[t].x]));
+            }
+        }
+        EXPECT_GT(nearest, 0.5f) << requested << " triangles";
+    }
+}
+
 TEST(MakeScene, SpheresFaceOutwards) {
     TemporaryDirectory directory;
     Scene scene = makeAndLoad(directory, "--triangles 3000").scene;
