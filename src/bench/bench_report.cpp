@@ -1,6 +1,7 @@
 #include "bench/bench_report.h"
 
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -28,6 +29,47 @@ uint64_t peakDeviceBytes(const SceneBenchmark& s) {
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
+// The gradient's relative noise and efficiency, where there is a relative noise.
+std::optional<double> gradientRelativeNoise(const SceneBenchmark& s) {
+    return s.gradient && s.gradient->noise ? s.gradient->noise->relativeNoise : std::nullopt;
+}
+
+std::optional<double> gradientEfficiency(const SceneBenchmark& s) {
+    return gradientRelativeNoise(s) ? std::optional(s.gradient->efficiency()) : std::nullopt;
+}
+
+// The number, or "-" for none.
+std::string cell(const char* pattern, std::optional<double> value) {
+    return value ? formatText(pattern, *value) : "-";
+}
+
+// The number, or null for none.
+nlohmann::ordered_json jsonValue(std::optional<double> value) {
+    return value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
+}
+
+// One row per scene: the parameter, its gradient's mean and standard error over the
+// seeds, and the time of one evaluation.
+std::string gradientTable(const BenchReport& report) {
+    std::string out = "\nGradient of one medium parameter over seeds, at " +
+                      formatText("%g", double(kGradientParameterScale)) +
+                      " times its value, against a target rendered at it\n\n"
+                      "| scene | parameter | seeds | mean | standard error | evaluation ms |\n"
+                      "|---|---|--:|--:|--:|--:|\n";
+    for (const SceneBenchmark& s : report.scenes) {
+        if (!s.gradient) {
+            out += "| " + s.name + " | - | - | - | - | - |\n";
+            continue;
+        }
+        const std::optional<GradientNoise>& noise = s.gradient->noise;
+        out += "| " + s.name + " | " + s.gradient->parameter + " | " + std::to_string(s.gradient->seeds) + " | " +
+               (noise ? formatText("%.4g", noise->mean) + " | " + formatText("%.2g", noise->standardError)
+                      : std::string("- | -")) +
+               " | " + formatText("%.1f", s.gradient->evaluationMs) + " |\n";
+    }
+    return out;
+}
+
 // A table of GPU ms per stage, a row per scene, from the breakdown `stagesMs` names.
 std::string stageTable(const BenchReport& report, const std::string& title, std::span<const char* const> stages,
                        std::map<std::string, double> SceneBenchmark::*stagesMs) {
@@ -54,8 +96,9 @@ std::string markdownTable(const BenchReport& report) {
     std::string out = "Device: " + report.device + " (" + report.driver + "), median of " +
                       std::to_string(report.iterations) + " after a warm-up\n\n";
     out += "| scene | triangles | image | spp | depth | BVH ms | BVH Mtri/s | forward ms | gradient ms | "
-           "gradient/forward | Mpaths/s | Mrays/s | noise | efficiency | device MiB | host MiB |\n";
-    out += "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+           "gradient/forward | Mpaths/s | Mrays/s | noise | efficiency | gradient noise | gradient efficiency | "
+           "device MiB | host MiB |\n";
+    out += "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const SceneBenchmark& s : report.scenes) {
         out += "| " + s.name + " | " + std::to_string(s.triangles) + " | " + std::to_string(s.width) + "x" +
                std::to_string(s.height) + " | " + std::to_string(s.spp) + " | " + std::to_string(s.maxDepth) +
@@ -64,6 +107,7 @@ std::string markdownTable(const BenchReport& report) {
                formatText("%.2f", s.gradientToForward()) + " | " + formatText("%.3f", s.pathsPerSecond() * 1e-6) + " | " +
                formatText("%.3f", s.raysPerSecond() * 1e-6) + " | " +
                (s.relativeNoise ? formatText("%.4f", *s.relativeNoise) + " | " + formatText("%.3g", s.efficiency()) : "- | -") +
+               " | " + cell("%.4f", gradientRelativeNoise(s)) + " | " + cell("%.3g", gradientEfficiency(s)) +
                " | " + formatText("%.1f", double(peakDeviceBytes(s)) / kMiB) +
                " | " + formatText("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
     }
@@ -73,6 +117,7 @@ std::string markdownTable(const BenchReport& report) {
                       kStages, &SceneBenchmark::stagesMs);
     out += stageTable(report, "GPU ms per stage of the adjoint-mode passes (the adjoint column above, broken down)",
                       kAdjointStages, &SceneBenchmark::adjointStagesMs);
+    out += gradientTable(report);
     for (const SkippedScene& skipped : report.skipped) {
         out += "\nskipped " + skipped.name + ": " + skipped.reason + "\n";
     }
@@ -91,6 +136,7 @@ nlohmann::ordered_json reportJson(const BenchReport& report) {
         for (const char* stage : kAdjointStages) {
             adjointStages[stage] = valueOr0(s.adjointStagesMs, stage);
         }
+        const GradientNoise* noise = s.gradient && s.gradient->noise ? &*s.gradient->noise : nullptr;
         scenes.push_back({
             {"name", s.name},
             {"triangles", s.triangles},
@@ -109,8 +155,15 @@ nlohmann::ordered_json reportJson(const BenchReport& report) {
             {"rays", s.rays},
             {"paths_per_s", s.pathsPerSecond()},
             {"rays_per_s", s.raysPerSecond()},
-            {"relative_noise", s.relativeNoise ? ordered_json(*s.relativeNoise) : ordered_json(nullptr)},
+            {"relative_noise", jsonValue(s.relativeNoise)},
             {"efficiency", s.efficiency()},
+            {"gradient_parameter", s.gradient ? ordered_json(s.gradient->parameter) : ordered_json(nullptr)},
+            {"gradient_seeds", s.gradient ? ordered_json(s.gradient->seeds) : ordered_json(nullptr)},
+            {"gradient_mean", jsonValue(noise ? std::optional(noise->mean) : std::nullopt)},
+            {"gradient_standard_error", jsonValue(noise ? std::optional(noise->standardError) : std::nullopt)},
+            {"gradient_relative_noise", jsonValue(gradientRelativeNoise(s))},
+            {"gradient_evaluation_ms", jsonValue(s.gradient ? std::optional(s.gradient->evaluationMs) : std::nullopt)},
+            {"gradient_efficiency", jsonValue(gradientEfficiency(s))},
             {"peak_device_bytes", peakDeviceBytes(s)},
             {"peak_device_source", s.peakDriverDeviceBytes ? "VK_EXT_memory_budget" : "allocations"},
             {"peak_allocated_device_bytes", s.peakAllocatedDeviceBytes},

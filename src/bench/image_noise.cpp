@@ -34,9 +34,4 @@ std::optional<double> relativeNoise(const Image& a, const Image& b) {
     return std::sqrt(sumSquares / double(lit));
 }
 
-double renderEfficiency(double relativeNoise, double secondsPerRender) {
-    const double cost = relativeNoise * relativeNoise * secondsPerRender;
-    return cost > 0.0 ? 1.0 / cost : 0.0;
-}
-
 }  // namespace vkdr

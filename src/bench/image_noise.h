@@ -11,9 +11,4 @@ namespace vkdr {
 // those pixels. nullopt when no pixel has light, or the images differ in size.
 std::optional<double> relativeNoise(const Image& a, const Image& b);
 
-// Images of that noise per second: 1 / (noise^2 x seconds per render). Quadrupling the
-// samples halves the noise and quadruples the time, so the figure does not depend on
-// the samples per pixel, only on how well each sample and each second is spent.
-double renderEfficiency(double relativeNoise, double secondsPerRender);
-
 }  // namespace vkdr

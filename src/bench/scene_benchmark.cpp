@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "bench/efficiency.h"
 #include "bench/host_memory.h"
 #include "bench/image_noise.h"
 #include "bench/median.h"
@@ -70,8 +71,7 @@ std::map<std::string, double> medians(const std::vector<std::map<std::string, do
 
 class Progress {
 public:
-    Progress(const std::function<void(double)>& report, uint32_t iterations)
-        : report_(report), total_(double(4 * iterations + 3)) {}
+    Progress(const std::function<void(double)>& report, uint32_t steps) : report_(report), total_(double(steps)) {}
     void step() {
         if (report_) {
             report_(++done_ / total_);
@@ -84,31 +84,10 @@ private:
     double done_ = 0.0;
 };
 
-}  // namespace
-
-double SceneBenchmark::efficiency() const {
-    return relativeNoise ? renderEfficiency(*relativeNoise, forwardMs * 1e-3) : 0.0;
-}
-
-SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
-                              const BenchSettings& settings, const std::function<void(double)>& progress) {
-    const uint32_t iterations = std::max(1u, settings.iterations);
-    Progress steps(progress, iterations);
-    SceneBenchmark result;
-    result.name = name;
-    result.triangles = scene.triangles.size();
-    result.spp = settings.render.spp;
-    result.maxDepth = settings.render.maxDepth;
-
-    Bvh bvh = buildBvh(scene.positions, scene.triangles);  // warm-up: starts the thread pool
-    steps.step();
-    std::vector<double> bvhMs;
-    for (uint32_t i = 0; i < iterations; ++i) {
-        bvhMs.push_back(millisecondsOf([&] { bvh = buildBvh(scene.positions, scene.triangles); }));
-        steps.step();
-    }
-    result.bvhBuildMs = median(bvhMs);
-
+// The forward, gradient, stage and memory figures of `result`, from one renderer;
+// returns the target image its gradient iterations used.
+Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bvh& bvh, const BenchSettings& settings,
+                      uint32_t iterations, Progress& steps, SceneBenchmark& result) {
     context.allocations().resetPeak();
     std::optional<uint64_t> driverPeak;
     auto sampleDriverMemory = [&] {
@@ -121,7 +100,8 @@ SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& n
     Renderer renderer(context, scene, bvh, renderSettings);
     result.width = renderer.width();
     result.height = renderer.height();
-    renderer.enableGradients(renderer.render(), LossKind::L2);
+    Image target = renderer.render();
+    renderer.enableGradients(target, LossKind::L2);
     renderer.setSeed(kImageSeed);
     steps.step();
 
@@ -167,6 +147,38 @@ SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& n
     result.peakAllocatedDeviceBytes = context.allocations().peak();
     result.peakDriverDeviceBytes = driverPeak;
     result.peakHostBytes = peakHostResidentBytes();
+    return target;
+}
+
+}  // namespace
+
+double SceneBenchmark::efficiency() const {
+    return relativeNoise ? efficiencyOf(*relativeNoise, forwardMs * 1e-3) : 0.0;
+}
+
+SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
+                              const BenchSettings& settings, const std::function<void(double)>& progress) {
+    const uint32_t iterations = std::max(1u, settings.iterations);
+    const uint32_t gradientSeeds = benchGradientParameter(scene) ? settings.gradientSeeds : 0;
+    Progress steps(progress, 4 * iterations + 3 + gradientSeeds);
+    SceneBenchmark result;
+    result.name = name;
+    result.triangles = scene.triangles.size();
+    result.spp = settings.render.spp;
+    result.maxDepth = settings.render.maxDepth;
+
+    Bvh bvh = buildBvh(scene.positions, scene.triangles);  // warm-up: starts the thread pool
+    steps.step();
+    std::vector<double> bvhMs;
+    for (uint32_t i = 0; i < iterations; ++i) {
+        bvhMs.push_back(millisecondsOf([&] { bvh = buildBvh(scene.positions, scene.triangles); }));
+        steps.step();
+    }
+    result.bvhBuildMs = median(bvhMs);
+
+    const Image target = measureRenderer(context, scene, bvh, settings, iterations, steps, result);
+    result.gradient =
+        benchmarkGradient(context, scene, bvh, target, settings.render, gradientSeeds, [&] { steps.step(); });
     return result;
 }
 

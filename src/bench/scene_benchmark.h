@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "bench/gradient_benchmark.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
 
@@ -15,6 +16,9 @@ class VulkanContext;
 struct BenchSettings {
     RenderSettings render;    // size, spp and max depth; the seed is the benchmark's own
     uint32_t iterations = 3;  // timed repetitions of each measurement, after one warm-up
+    // Seeds of the gradient noise measurement (bench/gradient_benchmark.h); 0 skips it.
+    // Eight give its standard deviation to about 1 / sqrt(2 x 7) = 27 %.
+    uint32_t gradientSeeds = 8;
 };
 
 // What one scene costs: medians over the timed iterations.
@@ -40,6 +44,9 @@ struct SceneBenchmark {
     uint64_t peakAllocatedDeviceBytes = 0;          // the most held at once by our buffers
     std::optional<uint64_t> peakDriverDeviceBytes;  // device-local heap use, VK_EXT_memory_budget
     uint64_t peakHostBytes = 0;                     // peak resident set since the caller's reset
+    // A medium parameter's gradient over seeds, its noise and cost; nullopt for a scene
+    // without one (benchGradientParameter) or with 0 gradient seeds.
+    std::optional<GradientBenchmark> gradient;
 
     double trianglesPerSecond() const { return bvhBuildMs > 0.0 ? double(triangles) / (bvhBuildMs * 1e-3) : 0.0; }
     double pathsPerSecond() const { return forwardMs > 0.0 ? double(paths) / (forwardMs * 1e-3) : 0.0; }
@@ -54,7 +61,9 @@ struct SceneBenchmark {
 // passes (alternating between two seeds, for the noise figure),
 // gradient iterations (as RenderedLossGradient runs them), and gradient iterations
 // with a DispatchTimer attached for the stage times, so that the timestamps do not
-// slow the wall-clock figures. `progress` gets the fraction done.
+// slow the wall-clock figures. The memory figures end there; with that renderer gone,
+// benchmarkGradient measures the gradient noise against the same target.
+// `progress` gets the fraction done.
 SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
                               const BenchSettings& settings, const std::function<void(double)>& progress);
 

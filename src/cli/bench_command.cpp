@@ -81,7 +81,8 @@ int runBench(BenchOptions options) {
 
 CommandAction addBenchCommand(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
-        "bench", "Time scenes: BVH build, GPU time per stage, forward pass and gradient iteration, memory");
+        "bench", "Time scenes: BVH build, GPU time per stage, forward pass and gradient iteration, memory, "
+                 "and the noise per unit time of an image and of a medium parameter's gradient");
     auto options = std::make_shared<BenchOptions>();
     options->settings.render.spp = kDefaultSpp;
     command->add_option("scenes", options->scenes,
@@ -101,6 +102,12 @@ CommandAction addBenchCommand(CLI::App& app) {
                      "Timed runs of each measurement after one warm-up; the figures are their median")
         ->default_val(options->settings.iterations)
         ->transform(integerIn(1, 1000));
+    command
+        ->add_option("--gradient-seeds", options->settings.gradientSeeds,
+                     "Gradient evaluations, at as many seeds, for the gradient noise of a medium parameter; 0 "
+                     "skips them")
+        ->default_val(options->settings.gradientSeeds)
+        ->transform(integerIn(0, 1000));
     command->add_option("--json", options->json, "Also write the results as JSON (see " + docReference("Performance guide", "performance.md") + ")");
     command->add_option("--scenes-dir", options->scenesDirectory, "Where the shipped scenes are")
         ->default_val(options->scenesDirectory);

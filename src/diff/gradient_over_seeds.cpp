@@ -2,9 +2,10 @@
 
 namespace vkdr {
 
-std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradient, const Scene& scene,
-                                                         uint32_t seeds, uint32_t firstSeed) {
-    std::vector<std::vector<std::vector<double>>> samples;  // [parameter][component][seed]
+std::vector<std::vector<std::vector<double>>> gradientSamplesOverSeeds(LossGradient& lossGradient,
+                                                                       const Scene& scene, uint32_t seeds,
+                                                                       uint32_t firstSeed) {
+    std::vector<std::vector<std::vector<double>>> samples;
     for (uint32_t seed = firstSeed; seed < firstSeed + seeds; ++seed) {
         GradientResult result = lossGradient.evaluate(scene, seed);
         samples.resize(result.parameters.size());
@@ -15,6 +16,13 @@ std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradi
             }
         }
     }
+    return samples;
+}
+
+std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradient, const Scene& scene,
+                                                         uint32_t seeds, uint32_t firstSeed) {
+    const std::vector<std::vector<std::vector<double>>> samples =
+        gradientSamplesOverSeeds(lossGradient, scene, seeds, firstSeed);
     std::vector<std::vector<MeanAndError>> gradients(samples.size());
     for (size_t p = 0; p < samples.size(); ++p) {
         for (const std::vector<double>& component : samples[p]) {

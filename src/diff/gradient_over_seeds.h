@@ -7,6 +7,12 @@
 
 namespace vkdr {
 
+// Every parameter component's gradient from evaluations with seeds firstSeed ..
+// firstSeed + seeds - 1: [parameter][component][seed].
+std::vector<std::vector<std::vector<double>>> gradientSamplesOverSeeds(LossGradient& lossGradient,
+                                                                       const Scene& scene, uint32_t seeds,
+                                                                       uint32_t firstSeed = 0);
+
 // The gradient of every parameter component as a mean and standard error over
 // evaluations with seeds firstSeed .. firstSeed + seeds - 1: [parameter][component].
 std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradient, const Scene& scene,

@@ -12,6 +12,28 @@ namespace vkdr {
 struct RenderedLossGradient::Impl {
     std::vector<std::unique_ptr<Renderer>> views;  // one per target view
     std::vector<GradientSlot> slots;
+
+    // Checks the views and the parameter names before anything is built.
+    Impl(const Scene& scene, const std::vector<TargetView>& targets, const std::vector<std::string>& parameters) {
+        if (targets.empty()) {
+            throw Error("no target image given");
+        }
+        slots = resolveGradientSlots(scene, parameters);
+    }
+
+    void addViews(const VulkanContext& context, const Scene& scene, const Bvh& bvh,
+                  const std::vector<TargetView>& targets, const RenderSettings& settings, LossKind loss) {
+        const DerivativeTargets derivativeTargets = derivativeTargetsOf(slots);
+        for (const TargetView& view : targets) {
+            RenderSettings viewSettings = settings;
+            viewSettings.camera = view.camera;
+            viewSettings.width = view.target.width;
+            viewSettings.height = view.target.height;
+            auto renderer = std::make_unique<Renderer>(context, scene, bvh, viewSettings);
+            renderer->enableGradients(view.target, loss, derivativeTargets);
+            views.push_back(std::move(renderer));
+        }
+    }
 };
 
 namespace {
@@ -26,22 +48,15 @@ uint32_t viewSeed(uint32_t seed, size_t view) {
 RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const Scene& scene,
                                            std::vector<TargetView> views, std::vector<std::string> parameters,
                                            const RenderSettings& settings, LossKind loss)
-    : impl_(std::make_unique<Impl>()) {
-    if (views.empty()) {
-        throw Error("no target image given");
-    }
-    impl_->slots = resolveGradientSlots(scene, parameters);
-    const DerivativeTargets derivativeTargets = derivativeTargetsOf(impl_->slots);
-    Bvh bvh = buildBvh(scene.positions, scene.triangles);
-    for (const TargetView& view : views) {
-        RenderSettings viewSettings = settings;
-        viewSettings.camera = view.camera;
-        viewSettings.width = view.target.width;
-        viewSettings.height = view.target.height;
-        auto renderer = std::make_unique<Renderer>(context, scene, bvh, viewSettings);
-        renderer->enableGradients(view.target, loss, derivativeTargets);
-        impl_->views.push_back(std::move(renderer));
-    }
+    : impl_(std::make_unique<Impl>(scene, views, parameters)) {
+    impl_->addViews(context, scene, buildBvh(scene.positions, scene.triangles), views, settings, loss);
+}
+
+RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const Scene& scene, const Bvh& bvh,
+                                           std::vector<TargetView> views, std::vector<std::string> parameters,
+                                           const RenderSettings& settings, LossKind loss)
+    : impl_(std::make_unique<Impl>(scene, views, parameters)) {
+    impl_->addViews(context, scene, bvh, views, settings, loss);
 }
 
 RenderedLossGradient::~RenderedLossGradient() = default;

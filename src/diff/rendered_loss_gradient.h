@@ -9,6 +9,7 @@
 namespace vkdr {
 
 class VulkanContext;
+struct Bvh;
 
 // LossGradient by path replay on the GPU: each view is rendered, and its paths are
 // replayed in adjoint mode, accumulating parameter gradients with atomic adds
@@ -19,6 +20,11 @@ public:
     // settings: spp, max depth and paths per pass; each view's size is its target's.
     RenderedLossGradient(const VulkanContext& context, const Scene& scene, std::vector<TargetView> views,
                          std::vector<std::string> parameters, const RenderSettings& settings, LossKind loss);
+    // The same with the scene's BVH at hand (buildBvh of its positions and triangles),
+    // for a caller that has built it already.
+    RenderedLossGradient(const VulkanContext& context, const Scene& scene, const Bvh& bvh,
+                         std::vector<TargetView> views, std::vector<std::string> parameters,
+                         const RenderSettings& settings, LossKind loss);
     ~RenderedLossGradient() override;
 
     GradientResult evaluate(const Scene& scene, uint32_t seed) override;

@@ -24,6 +24,7 @@ BenchReport exampleReport() {
     scene.adjointStagesMs = {{"shade", 1.5}};
     scene.peakAllocatedDeviceBytes = 1 << 20;
     scene.peakHostBytes = 1 << 24;
+    scene.gradient = GradientBenchmark{"media/fog/sigma_s", 8, 200.0, GradientNoise{-2.0, 0.25, 0.5}};
     BenchReport report{"llvmpipe", "Mesa", 3, {scene}, {{"room_10m", "needs about 5 GiB of host memory"}}};
     return report;
 }
@@ -36,7 +37,9 @@ TEST(BenchReport, JsonHasEveryFieldOfTheIssue) {
     const auto& scene = json["scenes"][0];
     for (const char* key : {"name", "triangles", "width", "height", "spp", "max_depth", "bvh_build_ms", "stages_ms",
                             "forward_ms", "gradient_ms", "gradient_to_forward", "paths_per_s", "rays_per_s",
-                            "relative_noise", "efficiency", "peak_device_bytes", "peak_host_bytes"}) {
+                            "relative_noise", "efficiency", "gradient_parameter", "gradient_seeds", "gradient_mean",
+                            "gradient_standard_error", "gradient_relative_noise", "gradient_evaluation_ms",
+                            "gradient_efficiency", "peak_device_bytes", "peak_host_bytes"}) {
         EXPECT_TRUE(scene.contains(key)) << key;
     }
     for (const char* stage : {"generate", "intersect", "medium_sample", "shade", "shadow", "loss", "adjoint"}) {
@@ -52,6 +55,35 @@ TEST(BenchReport, JsonHasEveryFieldOfTheIssue) {
     EXPECT_EQ(scene["peak_device_bytes"], 1 << 20);
     EXPECT_EQ(scene["peak_device_source"], "allocations");
     EXPECT_EQ(json["skipped"][0]["name"], "room_10m");
+    EXPECT_EQ(scene["gradient_parameter"], "media/fog/sigma_s");
+    EXPECT_EQ(scene["gradient_seeds"], 8);
+    EXPECT_EQ(scene["gradient_mean"], -2.0);
+    EXPECT_EQ(scene["gradient_standard_error"], 0.25);
+    EXPECT_EQ(scene["gradient_relative_noise"], 0.5);
+    EXPECT_EQ(scene["gradient_evaluation_ms"], 200.0);
+    EXPECT_DOUBLE_EQ(scene["gradient_efficiency"].get<double>(), 1.0 / (0.25 * 0.2));
+}
+
+TEST(BenchReport, GradientFiguresAreNullWhereThereAreNone) {
+    BenchReport report = exampleReport();
+    report.scenes.push_back(report.scenes[0]);
+    report.scenes[0].gradient.reset();                            // no medium
+    report.scenes[1].gradient->noise.reset();                     // one seed
+    nlohmann::ordered_json json = reportJson(report);
+    for (const char* key : {"gradient_parameter", "gradient_seeds", "gradient_mean", "gradient_standard_error",
+                            "gradient_relative_noise", "gradient_evaluation_ms", "gradient_efficiency"}) {
+        EXPECT_TRUE(json["scenes"][0][key].is_null()) << key;
+    }
+    EXPECT_EQ(json["scenes"][1]["gradient_parameter"], "media/fog/sigma_s");
+    EXPECT_EQ(json["scenes"][1]["gradient_evaluation_ms"], 200.0);
+    for (const char* key : {"gradient_mean", "gradient_standard_error", "gradient_relative_noise",
+                            "gradient_efficiency"}) {
+        EXPECT_TRUE(json["scenes"][1][key].is_null()) << key;
+    }
+    std::string table = markdownTable(report);
+    EXPECT_NE(table.find("| 0.5000 | 40 | - | - | 1.0 | 16.0 |\n"), std::string::npos) << table;
+    EXPECT_NE(table.find("| room_10k | - | - | - | - | - |\n"), std::string::npos) << table;
+    EXPECT_NE(table.find("| room_10k | media/fog/sigma_s | 8 | - | - | 200.0 |\n"), std::string::npos) << table;
 }
 
 TEST(BenchReport, DriverMemoryCountTakesPrecedence) {
@@ -67,6 +99,9 @@ TEST(BenchReport, DriverMemoryCountTakesPrecedence) {
 TEST(BenchReport, TableHasARowPerSceneAndNamesSkippedOnes) {
     std::string table = markdownTable(exampleReport());
     EXPECT_NE(table.find("| room_10k | 10012 | 16x12 | 2 | 4 |"), std::string::npos) << table;
+    // Image noise and efficiency, then the gradient's, then memory.
+    EXPECT_NE(table.find("| 0.5000 | 40 | 0.5000 | 20 | 1.0 | 16.0 |\n"), std::string::npos) << table;
+    EXPECT_NE(table.find("| room_10k | media/fog/sigma_s | 8 | -2 | 0.25 | 200.0 |\n"), std::string::npos) << table;
     EXPECT_NE(table.find("skipped room_10m: needs about 5 GiB"), std::string::npos) << table;
 }
 

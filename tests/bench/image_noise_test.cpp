@@ -1,5 +1,5 @@
 // The benchmark's noise figure: the per-pixel relative noise from two renders that differ
-// only in the seed, and the efficiency 1 / (noise^2 x time).
+// only in the seed.
 #include <cmath>
 #include <random>
 
@@ -47,13 +47,6 @@ TEST(ImageNoise, BlackPixelsAreLeftOutAndABlackImageHasNone) {
     }
     EXPECT_NEAR(*relativeNoise(a, b), 0.1, 0.003);
     EXPECT_FALSE(relativeNoise(a, Image{100, 100, std::vector<float>(100 * 100 * 3, 1.0f)}).has_value());
-}
-
-TEST(ImageNoise, EfficiencyIsImagesOfThatNoisePerSecond) {
-    EXPECT_DOUBLE_EQ(renderEfficiency(0.1, 2.0), 50.0);
-    // Four times the samples: half the noise, four times the time, the same efficiency.
-    EXPECT_DOUBLE_EQ(renderEfficiency(0.05, 8.0), 50.0);
-    EXPECT_EQ(renderEfficiency(0.0, 1.0), 0.0);
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
-// One scene benchmarked at a tiny size: every figure is there, and the stage times
-// come from the timestamps of every stage (their values are not judged: this is a
-// benchmark, not a test of speed).
+// One scene benchmarked at a tiny size: every figure is there, the stage times come
+// from the timestamps of every stage, and the gradient noise is there exactly where the
+// scene has a medium parameter and seeds are asked for (the values are not judged: this
+// is a benchmark, not a test of speed).
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "bench/bench_scene.h"
@@ -10,21 +13,32 @@
 namespace vkdr::test {
 namespace {
 
-TEST(SceneBenchmark, ReportsEveryStageOfATinyRender) {
-    VulkanContext context(ContextOptions{});
-    Scene scene = loadBenchScene(resolveBenchScene("cornell_fog", VKDR_TEST_SCENES_DIR));
+BenchSettings tinySettings() {
     BenchSettings settings;
     settings.render.width = 8;
     settings.render.height = 6;
     settings.render.spp = 2;
     settings.render.maxDepth = 3;
-    settings.iterations = 2;  // two forward passes at two seeds: the noise figure
+    settings.iterations = 2;     // two forward passes at two seeds: the noise figure
+    settings.gradientSeeds = 3;  // the fewest that give a spread, and one more
+    return settings;
+}
+
+SceneBenchmark benchmarkShippedScene(const VulkanContext& context, const char* name, const BenchSettings& settings) {
+    Scene scene = loadBenchScene(resolveBenchScene(name, VKDR_TEST_SCENES_DIR));
     double lastProgress = 0.0;
-    SceneBenchmark result = benchmarkScene(context, "cornell_fog", scene, settings, [&](double fraction) {
+    SceneBenchmark result = benchmarkScene(context, name, scene, settings, [&](double fraction) {
         EXPECT_GE(fraction, lastProgress);
         lastProgress = fraction;
     });
     EXPECT_DOUBLE_EQ(lastProgress, 1.0);
+    return result;
+}
+
+TEST(SceneBenchmark, ReportsEveryStageOfATinyRender) {
+    VulkanContext context(ContextOptions{});
+    Scene scene = loadBenchScene(resolveBenchScene("cornell_fog", VKDR_TEST_SCENES_DIR));
+    SceneBenchmark result = benchmarkShippedScene(context, "cornell_fog", tinySettings());
 
     EXPECT_EQ(result.triangles, scene.triangles.size());
     EXPECT_EQ(result.width, 8);
@@ -46,6 +60,26 @@ TEST(SceneBenchmark, ReportsEveryStageOfATinyRender) {
     }
     EXPECT_GT(result.peakAllocatedDeviceBytes, 0u);
     EXPECT_GT(result.peakHostBytes, 0u);
+
+    ASSERT_TRUE(result.gradient.has_value());
+    EXPECT_EQ(result.gradient->parameter, "media/fog/sigma_s");
+    EXPECT_EQ(result.gradient->seeds, 3u);
+    EXPECT_GT(result.gradient->evaluationMs, 0.0);
+    ASSERT_TRUE(result.gradient->noise.has_value());
+    EXPECT_TRUE(std::isfinite(result.gradient->noise->mean));
+    EXPECT_GT(result.gradient->noise->standardError, 0.0);
+    ASSERT_TRUE(result.gradient->noise->relativeNoise.has_value());
+    EXPECT_GT(*result.gradient->noise->relativeNoise, 0.0);
+    EXPECT_GT(result.gradient->efficiency(), 0.0);
+    requireNoValidationMessages(context);
+}
+
+TEST(SceneBenchmark, NoGradientNoiseWithoutAMediumOrSeeds) {
+    VulkanContext context(ContextOptions{});
+    EXPECT_FALSE(benchmarkShippedScene(context, "cornell_box", tinySettings()).gradient.has_value());
+    BenchSettings noSeeds = tinySettings();
+    noSeeds.gradientSeeds = 0;
+    EXPECT_FALSE(benchmarkShippedScene(context, "cornell_fog", noSeeds).gradient.has_value());
     requireNoValidationMessages(context);
 }
 

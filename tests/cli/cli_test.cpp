@@ -51,7 +51,8 @@ TEST_F(CliTest, HelpDescribesEverySubcommand) {
     EXPECT_EQ(run("info --help").exitCode, 0);
     RunResult bench = run("bench --help");
     EXPECT_EQ(bench.exitCode, 0);
-    for (const char* option : {"--spp", "--max-depth", "--width", "--height", "--iters", "--json", "--device"}) {
+    for (const char* option :
+         {"--spp", "--max-depth", "--width", "--height", "--iters", "--gradient-seeds", "--json", "--device"}) {
         EXPECT_NE(bench.out.find(option), std::string::npos) << option;
     }
     EXPECT_EQ(bench.out.find("--seed"), std::string::npos);
@@ -206,8 +207,8 @@ TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
 
 TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {
     fs::path json = dir_ / "bench.json";
-    RunResult r = run("bench cornell_fog room_2k --width 16 --height 16 --spp 1 --max-depth 3 --iters 1 --json " +
-                      json.string());
+    RunResult r = run("bench cornell_fog room_2k --width 16 --height 16 --spp 1 --max-depth 3 --iters 1 "
+                      "--gradient-seeds 2 --json " + json.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("| cornell_fog |"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("| room_2k |"), std::string::npos) << r.out;
@@ -227,7 +228,19 @@ TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {
         EXPECT_EQ(scene["width"], 16);
         EXPECT_EQ(scene["spp"], 1);
         EXPECT_EQ(scene["max_depth"], 3);
+        // Both scenes have a fog: its gradient over two seeds.
+        EXPECT_EQ(scene["gradient_parameter"], "media/fog/sigma_s");
+        EXPECT_EQ(scene["gradient_seeds"], 2);
+        for (const char* key : {"gradient_mean", "gradient_standard_error", "gradient_relative_noise",
+                                "gradient_evaluation_ms", "gradient_efficiency"}) {
+            EXPECT_TRUE(scene.contains(key)) << key;
+        }
     }
+    for (const char* key : {"gradient_mean", "gradient_standard_error", "gradient_relative_noise",
+                            "gradient_evaluation_ms", "gradient_efficiency"}) {
+        EXPECT_TRUE(out["scenes"][0][key].is_number()) << key;
+    }
+    EXPECT_NE(r.out.find("| cornell_fog | media/fog/sigma_s | 2 |"), std::string::npos) << r.out;
     EXPECT_EQ(out["scenes"][0]["name"], "cornell_fog");
 }
 

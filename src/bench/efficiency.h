@@ -1,0 +1,16 @@
+#pragma once
+#include <cmath>
+
+namespace vkdr {
+
+// Estimates of that relative noise per second: 1 / (relativeNoise^2 x seconds per
+// estimate), for a render or a gradient. Quadrupling the samples halves the noise and
+// quadruples the time, so the figure does not depend on the samples per pixel, only on
+// how well each sample and each second is spent. 0 where it is not a finite positive number.
+inline double efficiencyOf(double relativeNoise, double secondsPerEstimate) {
+    const double cost = relativeNoise * relativeNoise * secondsPerEstimate;
+    const double efficiency = 1.0 / cost;
+    return cost > 0.0 && std::isfinite(efficiency) ? efficiency : 0.0;
+}
+
+}  // namespace vkdr
