@@ -81,23 +81,25 @@ MeanSquaredError meanSquaredError(const Image& image, glm::dvec3 expected) {
     return {mean, std::sqrt(variance / double(pixels))};
 }
 
-TEST_F(FurnaceTest, ErrorFallsAsInverseSquareRootOfSamples) {
+TEST_F(FurnaceTest, ErrorFallsAtLeastAsInverseSquareRootOfSamples) {
     const glm::vec3 rho(0.5f, 0.3f, 0.7f);
     auto file = furnace(rho).write(tempDir(), "furnace");
     glm::dvec3 expected = glm::dvec3(kLe) / (1.0 - glm::dvec3(rho));
     auto error = [&](uint32_t spp) {
         return meanSquaredError(renderFile(file, {.width = 32, .height = 32, .spp = spp, .maxDepth = 400}), expected);
     };
-    // Samples are independent, so the expected squared error is the per-sample variance
-    // over spp: 16x the samples give 1/16 of it and a quarter of the RMS error. The ratio
-    // of RMS errors is known to half the relative standard error of the ratio of mean
-    // squares; 5 of those (one comparison) bound it, heavy tails included, as the
-    // standard errors come from the pixels' own spread.
+    // With independent samples the expected squared error is the per-sample variance
+    // over spp: 16x the samples give 1/16 of it and a quarter of the RMS error.
+    // Stratified sample points (docs/design.md, "Sample points") do at least as well, so
+    // the RMS error must fall at least 4 times. The ratio of RMS errors is known to half
+    // the relative standard error of the ratio of mean squares; 5 of those (one
+    // comparison) bound it, heavy tails included, as the standard errors come from the
+    // pixels' own spread.
     const MeanSquaredError few = error(16), many = error(256);
     const double ratio = std::sqrt(few.mean / many.mean);
     const double relativeError =
         0.5 * std::hypot(few.standardError / few.mean, many.standardError / many.mean);
-    EXPECT_NEAR(ratio, 4.0, 5.0 * 4.0 * relativeError);
+    EXPECT_GT(ratio, 4.0 - 5.0 * 4.0 * relativeError);
 }
 
 }  // namespace
