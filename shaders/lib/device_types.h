@@ -37,6 +37,12 @@ const uint kNoMediumIndex = 0xffffffffu;
 const uint kVertexSurface = 0u;
 const uint kVertexMedium = 1u;
 
+// Sample streams (RenderParams.firstStream, rng.glsl): images draw from streams 0 and 1
+// (the halves of a split gradient estimate), paths replayed independently of any image
+// from kReplayStream and the one after it.
+const uint kImageStream = 0u;
+const uint kReplayStream = 2u;
+
 // Loss kinds (RenderParams.lossKind).
 const uint kLossL2 = 0u;
 const uint kLossL1 = 1u;
@@ -291,8 +297,10 @@ struct RenderParams {
     uint sampleNonScatteringMedia;                  // 1: a gradient pass that wants sigma_s's gradient, which
                                                     // samples collisions in media that do not scatter
     uint secondStreamFrom;                          // > 0: samples from this index on draw their points
-                                                    // from a second, independent stream (rng.glsl), as the
+                                                    // from the next stream (rng.glsl), independent, as the
                                                     // halves of a split gradient estimate must
+    uint firstStream;                               // the stream of the samples below secondStreamFrom:
+                                                    // kReplayStream for paths independent of any image
     // Fixed-point sums from one copy of each gradient accumulator to the next (0: one copy).
 #define VKDR_DECLARE_COPY_STRIDE(name, field, floats, copies, items) uint name##CopyStride;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_COPY_STRIDE)

@@ -23,7 +23,8 @@ void storePathInfo(uint slot, PathInfo info) {
 vec4 segmentRandom(PathInfo info, uint group) {
     bool secondStream = P.secondStreamFrom > 0u && info.sampleIndex >= P.secondStreamFrom;
     uint index = secondStream ? info.sampleIndex - P.secondStreamFrom : info.sampleIndex;
-    return sample4(info.pixel, index, secondStream ? 1u : 0u, info.segment * kDimGroupsPerSegment + group, P.seed);
+    return sample4(info.pixel, index, P.firstStream + (secondStream ? 1u : 0u),
+                   info.segment * kDimGroupsPerSegment + group, P.seed);
 }
 
 void storeRay(uint slot, vec3 origin, vec3 direction) {

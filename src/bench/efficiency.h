@@ -4,9 +4,11 @@
 namespace vkdr {
 
 // Estimates of that relative noise per second: 1 / (relativeNoise^2 x seconds per
-// estimate), for a render or a gradient. Quadrupling the samples halves the noise and
-// quadruples the time, so the figure does not depend on the samples per pixel, only on
-// how well each sample and each second is spent. 0 where it is not a finite positive number.
+// estimate), for a render or a gradient. Where quadrupling the samples halves the noise
+// and quadruples the time (independent samples), the figure does not depend on the
+// samples per pixel, only on how well each sample and each second is spent; stratified
+// samples, and a gradient's products of two noises, make it grow with them, so compare
+// figures at equal samples per pixel. 0 where it is not a finite positive number.
 inline double efficiencyOf(double relativeNoise, double secondsPerEstimate) {
     const double cost = relativeNoise * relativeNoise * secondsPerEstimate;
     const double efficiency = 1.0 / cost;

@@ -76,6 +76,7 @@ std::optional<GradientBenchmark> benchmarkGradient(const VulkanContext& context,
 
     RenderedLossGradient lossGradient(context, perturbed, bvh, {{settings.camera, target}}, {*parameter}, settings,
                                       LossKind::L2);
+    lossGradient.evaluate(perturbed, seeds);  // warm-up, at a seed the figures do not use
     TimedLossGradient timed(lossGradient, afterEach);
     const std::vector<std::vector<double>> channels = gradientSamplesOverSeeds(timed, perturbed, seeds).front();
     std::vector<double> estimates(seeds, 0.0);

@@ -43,7 +43,8 @@ struct GradientBenchmark {
 // scene's own values: the sum of its channels' gradients, the derivative with respect to
 // one value that sets every channel. `bvh` is the scene's; `settings` give the spp, depth,
 // camera and paths per pass, the target the size; `afterEach` runs after every
-// evaluation. nullopt for a scene without the parameter, or for 0 seeds.
+// timed evaluation, which follow one warm-up evaluation at seed `seeds`. nullopt for a
+// scene without the parameter, or for 0 seeds.
 std::optional<GradientBenchmark> benchmarkGradient(const VulkanContext& context, const Scene& scene, const Bvh& bvh,
                                                    const Image& target, const RenderSettings& settings, uint32_t seeds,
                                                    const std::function<void()>& afterEach);

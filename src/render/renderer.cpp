@@ -121,7 +121,8 @@ void Renderer::uploadParams() {
     p.seed = settings_.seed;
     // The halves of a split gradient estimate must be independent (docs/gradients.md);
     // render() keeps all samples in one stratified stream.
-    p.secondStreamFrom = inGradientPass_ ? settings_.spp / 2 : 0u;
+    p.secondStreamFrom = splitHalves_ ? settings_.spp / 2 : 0u;
+    p.firstStream = replayingIndependently_ ? gpu::kReplayStream : gpu::kImageStream;
     p.segmentLimit = segmentLimit(settings_.maxDepth);
     p.rayEpsilon = scene_.rayEpsilon;
     p.filmScale = 1.0f / float(settings_.spp);

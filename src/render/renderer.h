@@ -57,7 +57,7 @@ struct DerivativeTargets {
 
 // One render with its loss and the loss's gradient (Renderer::renderWithGradients).
 struct GradientEvaluation {
-    Image image;  // as loss() renders it at the same seed (render() but for the sample streams)
+    Image image;  // as loss() renders it at the same seed (docs/gradients.md: not render()'s bits)
     double loss = 0.0;
     SceneGradients gradients;
     double forwardMs = 0.0;  // wall time of the passes that render the image
@@ -147,8 +147,9 @@ private:
     void requireRenderSize(const Image& image, const std::string& what) const;
     // Allocates the adjoint state; keptPaths as for AdjointBuffers.
     void allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths);
-    // Replays every sample and runs its adjoint pass, at random numbers independent of
-    // render()'s at the current seed; imageAdjoint must hold dLoss/dI.
+    // Replays every sample and runs its adjoint pass, with sample points from
+    // kReplayStream: independent of every image's at any seed; imageAdjoint must hold
+    // dLoss/dI.
     void replayIndependentlyAndBackpropagate();
     void recordClearAccumulators(CommandRecorder& recorder);
     // A host-visible buffer of the image's pixels times `scale`, as the per-pixel vec4s
@@ -170,13 +171,16 @@ private:
     void uploadParams();
     SceneGradients backpropagateImageAdjoint(const Image& imageAdjoint);
     GradientEvaluation renderAndBackpropagateLoss();
+    // Whether a gradient pass draws the two halves of each pixel's samples from
+    // independent streams (RenderParams.secondStreamFrom), as the split estimator of
+    // renderWithGradients() and loss() needs, or stratifies them together.
+    enum class SampleHalves { Independent, Together };
     // Runs `pass`, a gradient pass (renderWithGradients, backpropagate, loss), with
     // RenderParams.sampleNonScatteringMedia set as its derivative targets need and the
-    // halves of the samples in independent streams (RenderParams.secondStreamFrom);
-    // render() does neither, so an image does not depend on what the renderer was set
-    // up for, and all its samples stratify together.
+    // sample halves as given; render() does neither, so an image does not depend on what
+    // the renderer was set up for, and all its samples stratify together.
     template <typename Pass>
-    auto asGradientPass(Pass&& pass);
+    auto asGradientPass(SampleHalves halves, Pass&& pass);
 
     const VulkanContext& context_;
     RenderSettings settings_;
@@ -196,6 +200,8 @@ private:
     uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
     bool texelGradientsWanted_ = false;  // RenderParams.texelGradientsWanted
     bool inGradientPass_ = false;     // asGradientPass() is running
+    bool splitHalves_ = false;        // ... with SampleHalves::Independent
+    bool replayingIndependently_ = false;  // replayIndependentlyAndBackpropagate() is running
     uint32_t splitSample_ = 0;        // RenderParams.splitSample: > 0 when backpropagateInOnePass serves
     Buffer params_;
     RenderStats stats_;

@@ -11,15 +11,6 @@
 #include "vk/dispatch_timer.h"
 
 namespace vkdr {
-namespace {
-
-// Flipped in the seed of the paths replayed for an image they must be independent of:
-// when the image cannot lend them its samples (one sample per pixel), and for a loss
-// the caller computes (backpropagate).
-constexpr uint32_t kIndependentSeedBit = 1u << 31;
-
-}  // namespace
-
 void Renderer::enableGradients(const Image& target, LossKind loss, const DerivativeTargets& derivativeTargets) {
     requireRenderSize(target, "the target");
     const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
@@ -81,23 +72,24 @@ void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint6
 }
 
 template <typename Pass>
-auto Renderer::asGradientPass(Pass&& pass) {
+auto Renderer::asGradientPass(SampleHalves halves, Pass&& pass) {
     inGradientPass_ = true;
+    splitHalves_ = halves == SampleHalves::Independent;
     uploadParams();
     try {
         auto result = pass();
-        inGradientPass_ = false;
+        inGradientPass_ = splitHalves_ = false;
         uploadParams();
         return result;
     } catch (...) {
-        inGradientPass_ = false;
+        inGradientPass_ = splitHalves_ = false;
         uploadParams();
         throw;
     }
 }
 
 SceneGradients Renderer::backpropagate(const Image& imageAdjoint) {
-    return asGradientPass([&] { return backpropagateImageAdjoint(imageAdjoint); });
+    return asGradientPass(SampleHalves::Together, [&] { return backpropagateImageAdjoint(imageAdjoint); });
 }
 
 SceneGradients Renderer::backpropagateImageAdjoint(const Image& imageAdjoint) {
@@ -154,7 +146,7 @@ SceneGradients Renderer::downloadGradients(std::vector<Download> alsoDownload) {
 
 double Renderer::loss() {
     requireAdjointUse(AdjointUse::Loss, "loss()");
-    asGradientPass([&] { return render(); });
+    asGradientPass(SampleHalves::Independent, [&] { return render(); });
     submitLoss(settings_.spp, gpu::kLossImageFilm);
     int64_t words[gpu::kFixedPointWordsPerSum];
     downloadBuffer(context_, adjoint_->lossSum, std::as_writable_bytes(std::span(words)));
@@ -193,7 +185,7 @@ void Renderer::copyKeptRadiance(const PassRange& range, bool keep) {
 }
 
 GradientEvaluation Renderer::renderWithGradients() {
-    return asGradientPass([&] { return renderAndBackpropagateLoss(); });
+    return asGradientPass(SampleHalves::Independent, [&] { return renderAndBackpropagateLoss(); });
 }
 
 GradientEvaluation Renderer::renderAndBackpropagateLoss() {
@@ -295,18 +287,20 @@ void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
 }
 
 void Renderer::replayIndependentlyAndBackpropagate() {
-    const uint32_t seed = settings_.seed;
-    setSeed(seed ^ kIndependentSeedBit);
+    replayingIndependently_ = true;
+    uploadParams();
     try {
         forEachPass({0, settings_.spp}, [this](const PassRange& range) {
             runPass(range, PassMode::Replay);
             runPass(range, PassMode::Adjoint);
         }, {});
     } catch (...) {
-        setSeed(seed);  // an interrupted replay leaves the renderer as it found it
+        replayingIndependently_ = false;  // an interrupted replay leaves the renderer as it found it
+        uploadParams();
         throw;
     }
-    setSeed(seed);
+    replayingIndependently_ = false;
+    uploadParams();
 }
 
 }  // namespace vkdr

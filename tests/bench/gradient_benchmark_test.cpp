@@ -52,8 +52,8 @@ TEST(BenchmarkGradient, PointsFromHalfTheValueBackToTheTargets) {
     // Where each pixel's expected value is monotonic in sigma_s between half its value and
     // its value, every pixel's part of the expected L2 gradient at half the value,
     // (E[I] - T) dE[I]/dsigma_s, is negative. 32x32 at 16 spp: one estimate's relative
-    // noise is about 0.5 (docs/performance.md's 64x64 at 16 spp gave 0.26), so the mean
-    // of 6 is about 5 standard errors from 0; asked for: more than 2.
+    // noise is at most about 0.5 (docs/performance.md's 64x64 at 16 spp gave 0.08), so
+    // the mean of 6 is at least about 5 standard errors from 0; asked for: more than 2.
     VulkanContext context(ContextOptions{});
     Scene scene = loadBenchScene(resolveBenchScene("cornell_fog", VKDR_TEST_SCENES_DIR));
     Bvh bvh = buildBvh(scene.positions, scene.triangles);
