@@ -96,31 +96,59 @@ void addMediumGradient(uint medium, uint firstComponent, uint alsoAt, vec3 g, ui
                 alsoAt, g, channels);
 }
 
+// Whether the pipelines add gradients of this kind (kGradientKind* in device_types.h).
+// A constant: the additions of the other kinds, and what only they read, are compiled out.
+bool gradientWanted(uint kind) {
+    return (kGradientKinds & (1u << kind)) != 0u;
+}
+
+void addSigmaSGradient(uint medium, vec3 dSigmaS) {
+    if (gradientWanted(kGradientKindSigmaS)) {
+        addMediumGradient(medium, kMediumGradientSigmaS, 0u, dSigmaS, 3u);
+    }
+}
+
 void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
-    addMediumGradient(medium, kMediumGradientSigmaA, 0u, dSigmaA, 3u);
-    addMediumGradient(medium, kMediumGradientSigmaS, 0u, dSigmaS, 3u);
+    if (gradientWanted(kGradientKindSigmaA)) {
+        addMediumGradient(medium, kMediumGradientSigmaA, 0u, dSigmaA, 3u);
+    }
+    addSigmaSGradient(medium, dSigmaS);
 }
 
 // A gradient with respect to sigma_t = sigma_a + sigma_s, which both share: summed once,
-// added to both.
+// added to each of the two that is wanted.
 void addSigmaTGradient(uint medium, vec3 dSigmaT) {
-    addMediumGradient(medium, kMediumGradientSigmaA, kMediumGradientSigmaS - kMediumGradientSigmaA, dSigmaT, 3u);
+    if (gradientWanted(kGradientKindSigmaA)) {
+        uint alsoAt = gradientWanted(kGradientKindSigmaS) ? kMediumGradientSigmaS - kMediumGradientSigmaA : 0u;
+        addMediumGradient(medium, kMediumGradientSigmaA, alsoAt, dSigmaT, 3u);
+    } else {
+        addSigmaSGradient(medium, dSigmaT);
+    }
 }
 
 void addPhaseGGradient(uint medium, float g) {
-    addMediumGradient(medium, kMediumGradientG, 0u, vec3(g, 0.0f, 0.0f), 1u);
+    if (gradientWanted(kGradientKindG)) {
+        addMediumGradient(medium, kMediumGradientG, 0u, vec3(g, 0.0f, 0.0f), 1u);
+    }
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
-    addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * kColorGradientStride, 0u, g, 3u);
+    if (gradientWanted(kGradientKindBaseColor)) {
+        addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * kColorGradientStride, 0u, g,
+                    3u);
+    }
 }
 
 void addEmissionGradient(uint material, vec3 g) {
-    addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * kColorGradientStride, 0u, g, 3u);
+    if (gradientWanted(kGradientKindEmission)) {
+        addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * kColorGradientStride, 0u, g, 3u);
+    }
 }
 
 void addLightIntensityGradient(uint light, vec3 g) {
-    addGradient(P.lightGradients, P.lightGradientsCopyStride, light * kColorGradientStride, 0u, g, 3u);
+    if (gradientWanted(kGradientKindLightIntensity)) {
+        addGradient(P.lightGradients, P.lightGradientsCopyStride, light * kColorGradientStride, 0u, g, 3u);
+    }
 }
 
 // The gradient of an emitter's parameter: a material's emission or a punctual light's
@@ -147,7 +175,7 @@ void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
 void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
     GpuMaterial m = P.materials.v[material];
     addBaseColorGradient(material, g * baseColorTexture(m, uv));
-    if (m.baseColorTexture >= 0 && P.texelGradientsWanted != 0u) {
+    if (gradientWanted(kGradientKindBaseColorTexture) && m.baseColorTexture >= 0) {
         addTexelGradients(m.baseColorTexture, uv, g * m.baseColor.rgb);
     }
 }
@@ -155,7 +183,7 @@ void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
 // g = the gradient gathered by a path's derivative channels, for the parameter they follow.
 void addTargetGradient(vec3 g) {
     if (adjoint.targetKind == kTargetMediumScattering) {
-        addMediumGradient(adjoint.targetIndex, kMediumGradientSigmaS, 0u, g, 3u);
+        addSigmaSGradient(adjoint.targetIndex, g);
     } else if (adjoint.targetKind == kTargetBaseColor) {
         addBaseColorGradient(adjoint.targetIndex, g);
     }
@@ -189,7 +217,10 @@ vec3 logDerivativeOfLinear(vec3 f) {
 // derivative mode for (kind, index), carrying `derivative` (the factor's derivative,
 // times the throughput before it) instead of zero. Returns the new throughput.
 vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index) {
-    if ((P.derivativeTargets & (1u << kind)) == 0u) {
+    bool wanted = kind == kTargetMediumScattering
+                      ? gradientWanted(kGradientKindSigmaS)
+                      : gradientWanted(kGradientKindBaseColor) || gradientWanted(kGradientKindBaseColorTexture);
+    if (!wanted) {
         return betaAfter;  // no gradient of this kind is wanted: the path ends as in the primal pass
     }
     bool sameTarget = adjoint.targetKind == kTargetNone ||

@@ -55,9 +55,20 @@ const uint kLossImageFilm = 0u;
 const uint kLossImageFilmMinusBaseline = 1u;
 const uint kLossImageHalves = 2u;
 
+// The kinds of parameter whose gradients the adjoint stages add, by bit (1 << kind), in
+// the order of ParameterKind (src/scene/parameter_kinds.h); the adjoint pipelines are
+// compiled for a set of them (kGradientKinds, shaders/lib/stage_common.glsl).
+const uint kGradientKindSigmaA = 0u;
+const uint kGradientKindSigmaS = 1u;
+const uint kGradientKindG = 2u;
+const uint kGradientKindBaseColor = 3u;
+const uint kGradientKindBaseColorTexture = 4u;
+const uint kGradientKindEmission = 5u;
+const uint kGradientKindLightIntensity = 6u;
+const uint kEveryGradientKind = 0x7fu;
+
 // Derivative-mode targets of the adjoint pass (shaders/lib/adjoint.glsl): the kinds of
-// parameter whose zero-valued factors it follows. RenderParams.derivativeTargets has
-// bit (1 << kind) set for each kind whose gradient is wanted.
+// parameter whose zero-valued factors it follows, where their gradients are wanted.
 const uint kTargetNone = 0u;
 const uint kTargetMediumScattering = 1u;  // sigma_s of a medium
 const uint kTargetBaseColor = 2u;         // base colour of a material (factor or texels)
@@ -290,8 +301,6 @@ struct RenderParams {
     uint lossKind;                                  // kLossL2 or kLossL1
     float filmScale;                                // 1 / spp: film sum to pixel value
     float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels
-    uint derivativeTargets;                         // bit (1 << kTarget...): follow zero factors of that kind
-    uint texelGradientsWanted;                      // 1: texelGradients has room for every texel; 0: none wanted
     uint splitSample;                               // > 0: film and loss keep the samples below it apart
     uint imagePixels;                               // width * height
     uint sampleNonScatteringMedia;                  // 1: a gradient pass that wants sigma_s's gradient, which

@@ -26,6 +26,10 @@ layout(local_size_x = kWorkgroupSize) in;
 // One source, two pipelines per stage: the primal pass renders, the adjoint pass
 // replays the same paths and accumulates parameter gradients.
 layout(constant_id = 0) const bool kAdjoint = false;
+// The kinds of parameter whose gradients the adjoint pipelines add: bit (1 << kind),
+// kGradientKind* in device_types.h. The other kinds' code is compiled out rather than
+// skipped, since a CPU device runs every branch of a shader, taken or not.
+layout(constant_id = 1) const uint kGradientKinds = 0xffffffffu;
 
 #define P params.p
 

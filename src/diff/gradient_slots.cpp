@@ -82,11 +82,9 @@ std::vector<double> gatherGradient(const GradientSlot& slot, const SceneGradient
 }
 
 DerivativeTargets derivativeTargetsOf(const std::vector<GradientSlot>& slots) {
-    DerivativeTargets targets{false, false, false};
+    DerivativeTargets targets = DerivativeTargets::of({});
     for (const GradientSlot& slot : slots) {
-        targets.mediumScattering |= slot.kind == ParameterKind::SigmaS;
-        targets.baseColor |= slot.kind == ParameterKind::BaseColor || slot.kind == ParameterKind::BaseColorTexture;
-        targets.texels |= slot.kind == ParameterKind::BaseColorTexture;
+        targets.kinds |= 1u << uint32_t(slot.kind);
     }
     return targets;
 }

@@ -24,8 +24,8 @@ struct GradientSlot {
 // valid ones (scene/parameters.h).
 std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::vector<std::string>& names);
 
-// What the adjoint pass must follow to find these gradients (render/renderer.h,
-// DerivativeTargets): only the kinds of parameter among the slots.
+// The kinds of gradient these slots need (render/renderer.h, DerivativeTargets): only
+// the kinds of parameter among them.
 DerivativeTargets derivativeTargetsOf(const std::vector<GradientSlot>& slots);
 
 // The parameter's gradient, one value per float of the parameter (scene/parameters.h).

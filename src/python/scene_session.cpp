@@ -22,11 +22,6 @@ bool sameView(const RenderSettings& a, const RenderSettings& b) {
            a.maxDepth == b.maxDepth && a.pathsPerPass == b.pathsPerPass;
 }
 
-bool covers(const DerivativeTargets& have, const DerivativeTargets& want) {
-    return (have.mediumScattering || !want.mediumScattering) && (have.baseColor || !want.baseColor) &&
-           (have.texels || !want.texels);
-}
-
 }  // namespace
 
 // How a renderer's adjoint state was last set up: for a caller's image adjoint (no loss)
@@ -162,7 +157,7 @@ std::vector<ParameterGradient> SceneSession::backpropagate(const RenderSettings&
     }
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     const SceneGradients gradients = withRenderer(settings, [&](CachedRenderer& cached) {
-        if (!cached.adjoint || cached.adjoint->loss || !covers(cached.adjoint->targets, wanted)) {
+        if (!cached.adjoint || cached.adjoint->loss || !cached.adjoint->targets.covers(wanted)) {
             cached.renderer->enableImageAdjoint(wanted);
             cached.adjoint = AdjointSetUp{std::nullopt, wanted};
         }
@@ -180,7 +175,7 @@ SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& sett
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     GradientEvaluation evaluation = withRenderer(settings, [&](CachedRenderer& cached) {
-        if (!cached.adjoint || cached.adjoint->loss != loss || !covers(cached.adjoint->targets, wanted)) {
+        if (!cached.adjoint || cached.adjoint->loss != loss || !cached.adjoint->targets.covers(wanted)) {
             cached.renderer->enableGradients(target, loss, wanted);
             cached.adjoint = AdjointSetUp{loss, wanted};
         } else {

@@ -129,13 +129,11 @@ void Renderer::uploadParams() {
     if (adjoint_) {
         adjoint_->setAddresses(p);
         p.lossKind = lossKind_ == LossKind::L1 ? gpu::kLossL1 : gpu::kLossL2;
-        p.derivativeTargets = derivativeTargets_;
-        p.texelGradientsWanted = texelGradientsWanted_ ? 1u : 0u;
         p.lossScale = 1.0f / (3.0f * float(camera_.width * camera_.height));
         p.splitSample = splitSample_;
         p.imagePixels = camera_.width * camera_.height;
         p.sampleNonScatteringMedia =
-            inGradientPass_ && (derivativeTargets_ & (1u << gpu::kTargetMediumScattering)) != 0u ? 1u : 0u;
+            inGradientPass_ && derivativeTargets_.wants(ParameterKind::SigmaS) ? 1u : 0u;
     }
     overwriteBuffer(context_, params_, std::as_bytes(std::span(&p, 1)), "render params");
 }

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <span>
 #include <string>
@@ -13,6 +14,7 @@
 #include "render/path_buffers.h"
 #include "render/render_settings.h"
 #include "render/stage_pipelines.h"
+#include "scene/parameter_kinds.h"
 #include "scene/scene.h"
 
 namespace vkdr {
@@ -42,17 +44,25 @@ struct SceneGradients {
 #undef VKDR_SCENE_GRADIENTS_FIELD
 };
 
-// The kinds of parameter whose gradient is wanted, as far as the adjoint's cost depends
-// on them. A path that meets a zero-valued factor (sigma_s = 0, a base colour of 0) goes
-// on in derivative mode to find that factor's gradient (docs/gradients.md), which costs
-// as much as the rest of a path; where that gradient is not wanted the path ends there,
-// as in the primal pass, and the other gradients are the same.
+// The kinds of parameter whose gradients are wanted; the others come back as zeros. The
+// adjoint pipelines are compiled for these kinds alone: a CPU device runs every branch
+// of a shader whether or not a lane takes it, so adding gradients nobody reads would
+// cost as much as if they were read (docs/performance.md). A path that meets a
+// zero-valued factor (sigma_s = 0, a base colour of 0) goes on in derivative mode to find
+// that factor's gradient (docs/gradients.md), which costs as much as the rest of a path;
+// where that gradient is not wanted the path ends there, as in the primal pass. A wanted
+// gradient has the bits it has when every kind is wanted, unless the scene has a medium
+// that does not scatter, which a gradient pass samples only when sigma_s is wanted
+// (RenderParams.sampleNonScatteringMedia).
 // Texel gradients take 216 bytes per texel of every texture: they are held only when
 // wanted.
 struct DerivativeTargets {
-    bool mediumScattering = true;
-    bool baseColor = true;
-    bool texels = true;
+    uint32_t kinds = gpu::kEveryGradientKind;  // bit (1 << ParameterKind)
+
+    static DerivativeTargets of(std::initializer_list<ParameterKind> wanted);
+    bool wants(ParameterKind kind) const { return ((kinds >> uint32_t(kind)) & 1u) != 0; }
+    // Whether every kind `other` wants is wanted here too.
+    bool covers(const DerivativeTargets& other) const { return (other.kinds & ~kinds) == 0; }
 };
 
 // One render with its loss and the loss's gradient (Renderer::renderWithGradients).
@@ -197,8 +207,7 @@ private:
     std::unique_ptr<AdjointBuffers> adjoint_;
     AdjointUse adjointUse_ = AdjointUse::None;
     LossKind lossKind_;
-    uint32_t derivativeTargets_ = 0;  // RenderParams.derivativeTargets
-    bool texelGradientsWanted_ = false;  // RenderParams.texelGradientsWanted
+    DerivativeTargets derivativeTargets_;  // what the adjoint state and pipelines were set up for
     bool inGradientPass_ = false;     // asGradientPass() is running
     bool splitHalves_ = false;        // ... with SampleHalves::Independent
     bool replayingIndependently_ = false;  // replayIndependentlyAndBackpropagate() is running

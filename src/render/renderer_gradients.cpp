@@ -11,6 +11,15 @@
 #include "vk/dispatch_timer.h"
 
 namespace vkdr {
+
+DerivativeTargets DerivativeTargets::of(std::initializer_list<ParameterKind> wanted) {
+    DerivativeTargets targets{0};
+    for (ParameterKind kind : wanted) {
+        targets.kinds |= 1u << uint32_t(kind);
+    }
+    return targets;
+}
+
 void Renderer::enableGradients(const Image& target, LossKind loss, const DerivativeTargets& derivativeTargets) {
     requireRenderSize(target, "the target");
     const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
@@ -58,16 +67,15 @@ void Renderer::enableImageAdjoint(const DerivativeTargets& derivativeTargets) {
 }
 
 void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths) {
-    if (!pipelines_.gradient) {
-        pipelines_.gradient = std::make_unique<GradientPipelines>(context_);
+    if (!pipelines_.gradient || pipelines_.gradient->kinds != derivativeTargets.kinds) {
+        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, derivativeTargets.kinds);
     }
     adjoint_.reset();  // the old state's memory is free before the new one takes its own
+    const bool texels = derivativeTargets.wants(ParameterKind::BaseColorTexture);
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
                                                 mediumCount_, materialCount_, punctualLightCount_,
-                                                derivativeTargets.texels ? texelCount_ : 0, keptPaths);
-    derivativeTargets_ = (derivativeTargets.mediumScattering ? 1u << gpu::kTargetMediumScattering : 0u) |
-                         (derivativeTargets.baseColor ? 1u << gpu::kTargetBaseColor : 0u);
-    texelGradientsWanted_ = derivativeTargets.texels;
+                                                texels ? texelCount_ : 0, keptPaths);
+    derivativeTargets_ = derivativeTargets;
     uploadParams();
 }
 

@@ -25,31 +25,33 @@ std::span<const uint32_t> stageSpirv(Stage stage) {
 namespace {
 
 // The pipeline of a stage; of a stage with an adjoint variant, the primal or the adjoint one
-// (specialization constant 0 of shaders/lib/stage_common.glsl). The dispatch timer's
-// scope, not the name, tells the variants apart.
-ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false) {
+// for the gradients of `gradientKinds` (specialization constants 0 and 1 of
+// shaders/lib/stage_common.glsl). The dispatch timer's scope, not the name, tells the
+// variants apart.
+ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false,
+                              uint32_t gradientKinds = 0) {
     const StageInfo& info = stageInfo(stage);
     assert(info.hasAdjointVariant || !adjoint);
     std::vector<uint32_t> specialization;
     if (info.hasAdjointVariant) {
-        specialization.push_back(adjoint ? 1u : 0u);
+        specialization = {adjoint ? 1u : 0u, gradientKinds};
     }
     return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);
 }
 
 }  // namespace
 
-PathStages::PathStages(const VulkanContext& context, bool adjoint)
-    : generate(stagePipeline(context, Stage::Generate, adjoint)),
-      mediumSample(stagePipeline(context, Stage::MediumSample, adjoint)),
-      shade(stagePipeline(context, Stage::Shade, adjoint)),
-      shadow(stagePipeline(context, Stage::Shadow, adjoint)) {}
+PathStages::PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds)
+    : generate(stagePipeline(context, Stage::Generate, adjoint, gradientKinds)),
+      mediumSample(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds)),
+      shade(stagePipeline(context, Stage::Shade, adjoint, gradientKinds)),
+      shadow(stagePipeline(context, Stage::Shadow, adjoint, gradientKinds)) {}
 
-GradientPipelines::GradientPipelines(const VulkanContext& context)
-    : adjoint(context, true), loss(stagePipeline(context, Stage::Loss)) {}
+GradientPipelines::GradientPipelines(const VulkanContext& context, uint32_t gradientKinds)
+    : kinds(gradientKinds), adjoint(context, true, gradientKinds), loss(stagePipeline(context, Stage::Loss)) {}
 
 StagePipelines::StagePipelines(const VulkanContext& context)
-    : primal(context, false),
+    : primal(context, false, 0),
       intersect(stagePipeline(context, Stage::Intersect)),
       queuePrepare(stagePipeline(context, Stage::QueuePrepare)),
       film(stagePipeline(context, Stage::Film)) {}

@@ -9,9 +9,10 @@ namespace vkdr {
 class VulkanContext;
 
 // The stages that follow a path (render/stages.h), compiled once as primal and once as
-// adjoint pipelines.
+// adjoint pipelines; the adjoint ones add the gradients of `gradientKinds` (bit
+// 1 << ParameterKind) alone.
 struct PathStages {
-    PathStages(const VulkanContext& context, bool adjoint);
+    PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds);
 
     ComputePipeline generate;
     ComputePipeline mediumSample;
@@ -20,10 +21,11 @@ struct PathStages {
 };
 
 // What only differentiation needs; compiled on first use, since a plain render
-// should not pay for it.
+// should not pay for it, and again for other kinds of gradient.
 struct GradientPipelines {
-    explicit GradientPipelines(const VulkanContext& context);
+    GradientPipelines(const VulkanContext& context, uint32_t gradientKinds);
 
+    uint32_t kinds;  // the kinds of parameter whose gradients the adjoint stages add
     PathStages adjoint;
     ComputePipeline loss;
 };

@@ -78,6 +78,8 @@ static_assert([] {
     }
     return true;
 }());
+// Every kind has its bit among the adjoint pipelines' kinds of gradient.
+static_assert(gpu::kEveryGradientKind == (1u << kDescriptions.size()) - 1u);
 
 // The shortest text that reads back as the same value: a float prints as the user typed it.
 template <typename Number>

@@ -12,15 +12,17 @@ namespace vkdr {
 
 // Every kind of named scene parameter (scene/parameters.h), described once: setting
 // values, the optimiser's bounds, grad --check's steps and the gradient read-back all
-// follow from this table.
-enum class ParameterKind {
-    SigmaA,            // media/<medium>/sigma_a: absorption, RGB, per scene unit
-    SigmaS,            // media/<medium>/sigma_s: scattering, RGB, per scene unit
-    G,                 // media/<medium>/g: Henyey-Greenstein anisotropy
-    BaseColor,         // materials/<material>/base_color: RGB albedo
-    BaseColorTexture,  // materials/<material>/base_color_texture: the same, per texel
-    Emission,          // lights/<material>/emission: RGB radiance, at most kMaxRadiance
-    LightIntensity,    // lights/<light>/intensity: a punctual light's RGB color x intensity
+// follow from this table. The shaders know the kinds by the same numbers.
+enum class ParameterKind : uint32_t {
+    SigmaA = gpu::kGradientKindSigmaA,  // media/<medium>/sigma_a: absorption, RGB, per scene unit
+    SigmaS = gpu::kGradientKindSigmaS,  // media/<medium>/sigma_s: scattering, RGB, per scene unit
+    G = gpu::kGradientKindG,            // media/<medium>/g: Henyey-Greenstein anisotropy
+    BaseColor = gpu::kGradientKindBaseColor,  // materials/<material>/base_color: RGB albedo
+    // materials/<material>/base_color_texture: the same, per texel
+    BaseColorTexture = gpu::kGradientKindBaseColorTexture,
+    Emission = gpu::kGradientKindEmission,  // lights/<material>/emission: RGB radiance, at most kMaxRadiance
+    // lights/<light>/intensity: a punctual light's RGB color x intensity
+    LightIntensity = gpu::kGradientKindLightIntensity,
 };
 
 // The largest radiance, per channel, an emitter (emissiveFactor x emissiveStrength, or

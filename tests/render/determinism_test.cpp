@@ -78,14 +78,15 @@ TEST_F(DeterminismTest, ARenderDoesNotDependOnWhatTheRendererDifferentiates) {
     const Image expected = plain.render();
 
     Renderer differentiating(testContext(), loaded.scene, bvh, settings);
-    differentiating.enableGradients(expected, LossKind::L2, DerivativeTargets{true, true, false});
+    differentiating.enableGradients(expected, LossKind::L2,
+                                    DerivativeTargets::of({ParameterKind::SigmaS, ParameterKind::BaseColor}));
     EXPECT_EQ(differentiating.render().rgb, expected.rgb);
     const GradientEvaluation evaluation = differentiating.renderWithGradients();
     EXPECT_EQ(differentiating.render().rgb, expected.rgb);
     // The gradient pass sampled the ink: a gradient pass that does not want sigma_s's
     // gradient, with the same sample points, passes through it and gives another image.
     Renderer notScattering(testContext(), loaded.scene, bvh, settings);
-    notScattering.enableGradients(expected, LossKind::L2, DerivativeTargets{false, true, false});
+    notScattering.enableGradients(expected, LossKind::L2, DerivativeTargets::of({ParameterKind::BaseColor}));
     EXPECT_NE(evaluation.image.rgb, notScattering.renderWithGradients().image.rgb);
 }
 
