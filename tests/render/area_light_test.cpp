@@ -1,0 +1,119 @@
+// Direct light from an area light at oblique angles, against Lambert's closed form for
+// the irradiance of a polygon of constant radiance: the Cornell box's side wall, lit
+// from the ceiling lamp at grazing angles, where next-event estimation and BSDF sampling
+// share the work through MIS.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <numbers>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "render_test_support.h"
+#include "scene/load_scene.h"
+
+namespace vkdr::test {
+namespace {
+
+// Lambert's formula: the irradiance at p (normal n) from a convex polygon of radiance 1,
+// 1/2 sum over its edges of the angle the edge subtends times the cosine of the edge
+// plane's normal with n.
+double polygonIrradiance(const std::vector<glm::dvec3>& polygon, glm::dvec3 p, glm::dvec3 n) {
+    double sum = 0.0;
+    for (size_t i = 0; i < polygon.size(); ++i) {
+        glm::dvec3 a = glm::normalize(polygon[i] - p);
+        glm::dvec3 b = glm::normalize(polygon[(i + 1) % polygon.size()] - p);
+        glm::dvec3 c = glm::cross(a, b);
+        sum += std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(n, c) / glm::length(c);
+    }
+    return std::abs(sum) / 2.0;
+}
+
+// The corners of the lamp: the emissive triangles' vertices, in order around their
+// bounding rectangle (the lamp is an axis-aligned quad in the plane y = const).
+std::vector<glm::dvec3> lampPolygon(const Scene& scene, glm::dvec3* radiance) {
+    glm::dvec3 low(1e30), high(-1e30);
+    for (size_t t = 0; t < scene.triangles.size(); ++t) {
+        const Material& material = scene.materials[scene.triangleMaterial[t]];
+        if (material.isEmissive()) {
+            *radiance = glm::dvec3(material.emission);
+            for (int c = 0; c < 3; ++c) {
+                low = glm::min(low, glm::dvec3(scene.positions[scene.triangles[t][c]]));
+                high = glm::max(high, glm::dvec3(scene.positions[scene.triangles[t][c]]));
+            }
+        }
+    }
+    return {{low.x, low.y, low.z}, {high.x, low.y, low.z}, {high.x, low.y, high.z}, {low.x, low.y, high.z}};
+}
+
+TEST_F(RenderTest, AWallLitAtGrazingAnglesMatchesLambertsFormula) {
+    const LoadedScene loaded = loadScene(std::filesystem::path(VKDR_TEST_SCENES_DIR) / "cornell_box.gltf");
+    const Scene& scene = loaded.scene;
+    glm::dvec3 radiance(0.0);
+    const std::vector<glm::dvec3> lamp = lampPolygon(scene, &radiance);
+    // The green wall: the plane x = 0 of the box, facing +x.
+    uint32_t green = 0;
+    while (scene.materials[green].name != "green") {
+        ++green;
+    }
+    const glm::dvec3 albedo(scene.materials[green].baseColor);
+    const double wallX = scene.positions[scene.triangles[std::distance(
+        scene.triangleMaterial.begin(),
+        std::find(scene.triangleMaterial.begin(), scene.triangleMaterial.end(), green))][0]].x;
+    const double ceiling = lamp[0].y;
+
+    constexpr int kSide = 64;
+    constexpr uint32_t kSpp = 512;
+    std::vector<Image> renders;
+    for (uint32_t seed : {1u, 2u}) {
+        renders.push_back(renderFile(std::filesystem::path(VKDR_TEST_SCENES_DIR) / "cornell_box.gltf",
+                                     {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 1, .seed = seed}));
+    }
+
+    // Pixels whose whole footprint lies on the wall's upper part, above the blocks, so
+    // that nothing stands between it and the lamp; the expectation averages the closed
+    // form over an 8x8 grid in the pixel (the box filter).
+    const Camera& camera = scene.cameras[0];
+    const glm::dvec3 origin(camera.cameraToWorld[3]);
+    const double tanHalf = std::tan(0.5 * camera.yfov);
+    glm::dvec3 expectedSum(0.0), renderedSum(0.0), variance(0.0);
+    int pixels = 0;
+    for (int y = 0; y < kSide; ++y) {
+        for (int x = 0; x < kSide; ++x) {
+            glm::dvec3 irradiance(0.0);
+            bool onWall = true;
+            for (int s = 0; s < 64 && onWall; ++s) {
+                glm::dvec2 ndc = (glm::dvec2(x, y) + (glm::dvec2(s % 8, s / 8) + 0.5) / 8.0) / double(kSide) * 2.0 - 1.0;
+                glm::dvec3 local(ndc.x * tanHalf, -ndc.y * tanHalf, -1.0);
+                glm::dvec3 direction = glm::dmat3(camera.cameraToWorld) * local;
+                double t = (wallX - origin.x) / direction.x;
+                glm::dvec3 p = origin + t * direction;
+                onWall = t > 0.0 && p.y > 0.7 * ceiling && p.y < 0.97 * ceiling && p.z > 0.05 * ceiling &&
+                         p.z < 0.95 * ceiling;
+                irradiance += polygonIrradiance(lamp, p, glm::dvec3(1.0, 0.0, 0.0)) / 64.0;
+            }
+            if (!onWall) {
+                continue;
+            }
+            ++pixels;
+            expectedSum += albedo * std::numbers::inv_pi * radiance * irradiance;
+            for (int c = 0; c < 3; ++c) {
+                const double a = renders[0].pixel(x, y)[c], b = renders[1].pixel(x, y)[c];
+                renderedSum[c] += 0.5 * (a + b);
+                variance[c] += 0.25 * (a - b) * (a - b);  // of the mean of the two renders
+            }
+        }
+    }
+    ASSERT_GT(pixels, 40);
+    // The pixels are independent estimates; the variance of their sum comes from the two
+    // seeds' differences. 5 standard errors, plus float rounding.
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(renderedSum[c], expectedSum[c], 5.0 * std::sqrt(variance[c]) + 1e-5 * expectedSum[c])
+            << "channel " << c << " over " << pixels << " pixels";
+    }
+}
+
+}  // namespace
+}  // namespace vkdr::test
