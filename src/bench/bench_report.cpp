@@ -106,8 +106,9 @@ std::string markdownTable(const BenchReport& report) {
                " | " + formatText("%.1f", s.forwardMs) + " | " + formatText("%.1f", s.gradientMs) + " | " +
                formatText("%.2f", s.gradientToForward()) + " | " + formatText("%.3f", s.pathsPerSecond() * 1e-6) + " | " +
                formatText("%.3f", s.raysPerSecond() * 1e-6) + " | " +
-               (s.relativeNoise ? formatText("%.4f", *s.relativeNoise) + " | " + formatText("%.3g", s.efficiency()) : "- | -") +
-               " | " + cell("%.4f", gradientRelativeNoise(s)) + " | " + cell("%.3g", gradientEfficiency(s)) +
+               cell("%.4f", s.relativeNoise) + " | " +
+               cell("%.3g", s.relativeNoise ? std::optional(s.efficiency()) : std::nullopt) + " | " +
+               cell("%.4f", gradientRelativeNoise(s)) + " | " + cell("%.3g", gradientEfficiency(s)) +
                " | " + formatText("%.1f", double(peakDeviceBytes(s)) / kMiB) +
                " | " + formatText("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
     }

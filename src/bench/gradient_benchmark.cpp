@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "bench/efficiency.h"
 #include "bench/median.h"
 #include "core/milliseconds_of.h"
@@ -36,10 +38,6 @@ private:
     std::vector<double> milliseconds_;
 };
 
-bool anyPositive(const glm::vec3& v) {
-    return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
-}
-
 }  // namespace
 
 std::optional<std::string> benchGradientParameter(const Scene& scene) {
@@ -47,10 +45,10 @@ std::optional<std::string> benchGradientParameter(const Scene& scene) {
         return std::nullopt;
     }
     const Medium& medium = scene.media.front();
-    if (anyPositive(medium.sigma_s)) {
+    if (glm::any(glm::greaterThan(medium.sigma_s, glm::vec3(0.0f)))) {
         return parameterName(ParameterKind::SigmaS, medium.name);
     }
-    if (anyPositive(medium.sigma_a)) {
+    if (glm::any(glm::greaterThan(medium.sigma_a, glm::vec3(0.0f)))) {
         return parameterName(ParameterKind::SigmaA, medium.name);
     }
     return std::nullopt;

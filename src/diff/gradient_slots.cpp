@@ -84,7 +84,7 @@ std::vector<double> gatherGradient(const GradientSlot& slot, const SceneGradient
 DerivativeTargets derivativeTargetsOf(const std::vector<GradientSlot>& slots) {
     DerivativeTargets targets = DerivativeTargets::of({});
     for (const GradientSlot& slot : slots) {
-        targets.kinds |= 1u << uint32_t(slot.kind);
+        targets.want(slot.kind);
     }
     return targets;
 }

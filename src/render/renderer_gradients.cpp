@@ -15,7 +15,7 @@ namespace vkdr {
 DerivativeTargets DerivativeTargets::of(std::initializer_list<ParameterKind> wanted) {
     DerivativeTargets targets{0};
     for (ParameterKind kind : wanted) {
-        targets.kinds |= 1u << uint32_t(kind);
+        targets.want(kind);
     }
     return targets;
 }
