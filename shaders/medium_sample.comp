@@ -9,6 +9,7 @@
 #include "lib/path_state.glsl"
 #include "lib/scene_access.glsl"
 #include "lib/medium.glsl"
+#include "lib/grid_tracking.glsl"
 #include "lib/adjoint.glsl"
 
 // Whether a ray through the medium can go straight to the surface, weighted by its
@@ -18,11 +19,47 @@ bool passesThroughAbsorbing(GpuMedium m) {
     return m.sigma_s == vec3(0.0f) && P.sampleNonScatteringMedia == 0u;
 }
 
+// Free flight through a density grid medium along [0, tHit) (grid_tracking.glsl): the
+// medium vertex of a real collision, a pause where tracking reached its step bound, or
+// the surface. A medium that scatters nowhere is passed with its ratio-tracked
+// transmittance.
+uint sampleGridFreeFlightVertex(uint slot, GpuMedium m, float tHit, inout vec3 beta) {
+    GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
+    PathInfo info = loadPathInfo(slot);
+    TrackingRandom random = segmentTrackingRandom(info, kTrackingFreeFlight);
+    vec3 origin = P.rayOrigin.v[slot].xyz;
+    vec3 direction = P.rayDirection.v[slot].xyz;
+    vec3 sigma_t = sigmaT(m);
+    if (m.sigma_s == vec3(0.0f)) {
+        bool truncated = false;
+        beta *= ratioTrackTransmittance(grid, origin, direction, tHit, sigma_t, random, truncated);
+        if (truncated) {
+            atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
+        }
+        return kVertexSurface;
+    }
+    vec4 u = segmentRandom(info, kDimFreeFlight);
+    int hero = min(int(u.x * 3.0f), 2);
+    GridFreeFlight flight = trackFreeFlight(grid, origin, direction, tHit, sigma_t[hero], u.yz, random);
+    beta *= heroMisWeight(sigma_t, flight.tentative, flight.majorantIntegral);
+    if (flight.collided) {
+        beta *= m.sigma_s * logDerivativeOfLinear(sigma_t);
+    }
+    if (!(flight.collided || flight.paused)) {
+        return kVertexSurface;
+    }
+    P.hit.v[slot].x = flight.t;
+    return flight.collided ? kVertexMedium : kVertexPause;
+}
+
 // Samples a free-flight distance in `medium` along the segment and multiplies beta by
 // its weight; returns the kind of the segment's vertex. The adjoint pass adds
 // delta * L_rem * d log(weight) to the medium's sigma gradients.
 uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, inout vec3 beta) {
     GpuMedium m = P.media.v[medium];
+    if (m.densityGrid != kNoDensityGrid) {
+        return sampleGridFreeFlightVertex(slot, m, tHit, beta);
+    }
     vec3 sigma_t = sigmaT(m);
     bool absorbing = passesThroughAbsorbing(m);
     float t = absorbing ? kFar : sampleFreeFlight(sigma_t, segmentRandom(loadPathInfo(slot), kDimFreeFlight).xy);

@@ -3,6 +3,7 @@
 // Stage 4: one vertex per path. Surfaces: pass through medium boundaries, add emission
 // (MIS against the BSDF pdf), next-event estimation, cosine sampling of the Lambertian
 // BSDF. Medium vertices: next-event estimation, exact Henyey-Greenstein sampling.
+// Pauses of tracking through a density grid: the same ray again from where it stopped.
 // Then Russian roulette and the next ray. The adjoint pass replays the same decisions,
 // passes each contribution, and records the continuation factor's log-derivative for
 // the next segment (adjoint.glsl).
@@ -71,7 +72,8 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
     float weight = (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
     P.shadowOrigin.v[slot] = vec4(query.position, max(light.distance - 2.0f * P.rayEpsilon, 0.0f));
     P.shadowDirection.v[slot] = vec4(light.wi, uintBitsToFloat(query.medium));
-    P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, 0.0f);
+    // The segment keys the random numbers of ratio tracking through density grids.
+    P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, uintBitsToFloat(P.pathInfo.v[slot].w));
     if (kAdjoint) {
         P.shadowScatterGradient.v[slot] = vec4(query.beta * dScatter * le * weight, dLogPhase);
         P.shadowEmissionGradient.v[slot] =
@@ -188,7 +190,9 @@ void main() {
     vec4 hit = P.hit.v[slot];
     uvec4 vertex = P.vertexInfo.v[slot];
     beginReplay(slot);
-    if (vertex.y == kVertexMedium) {
+    if (vertex.y == kVertexPause) {
+        continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, vertex.x);
+    } else if (vertex.y == kVertexMedium) {
         shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
     } else {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);

@@ -7,8 +7,10 @@
 // transmittance, scattering (albedo or phase) and emission.
 #include "lib/stage_common.glsl"
 #include "lib/queues.glsl"
+#include "lib/path_state.glsl"
 #include "lib/bvh_traverse.glsl"
 #include "lib/medium.glsl"
+#include "lib/grid_tracking.glsl"
 #include "lib/adjoint.glsl"
 
 // A shadow ray crossing more boundaries than this is treated as blocked.
@@ -57,7 +59,7 @@ void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
 // sigma_t > 0; where sigma_t = 0 its derivative is unbounded and left out, as for a
 // camera ray that escapes.
 vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight,
-                         inout MediumLengths lengths) {
+                         inout MediumLengths lengths, inout TrackingRandom random) {
     vec3 tr = vec3(1.0f);
     bool toInfinity = distance >= kFar;
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
@@ -66,7 +68,15 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             return vec3(0.0f);
         }
         float segment = min(hit.t, distance);
-        if (medium != kNoMediumIndex) {
+        if (medium != kNoMediumIndex && P.media.v[medium].densityGrid != kNoDensityGrid) {
+            GpuMedium m = P.media.v[medium];
+            bool truncated = false;
+            tr *= ratioTrackTransmittance(P.densityGrids.v[m.densityGrid], origin, direction, segment, sigmaT(m),
+                                          random, truncated);
+            if (truncated) {
+                atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
+            }
+        } else if (medium != kNoMediumIndex) {
             tr *= transmittance(sigmaT(P.media.v[medium]), segment);
             bool unbounded = toInfinity && hit.triangle == kNoHit;
             if (kAdjoint && !unbounded) {
@@ -95,6 +105,14 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
     return vec3(0.0f);
 }
 
+// The random numbers of ratio tracking along the shadow ray in `slot`, keyed by the
+// segment that queued it.
+TrackingRandom shadowRandom(uint slot) {
+    PathInfo info = loadPathInfo(slot);
+    info.segment = floatBitsToUint(P.shadowContribution.v[slot].w);
+    return segmentTrackingRandom(info, kTrackingShadow);
+}
+
 // The adjoint of a next-event contribution C = T * scatter * Le * w / pdf that reached
 // the light with transmittance `tr`: dC/dsigma_t of every medium on the way, and the
 // scattering and emission factors recorded by the shade stage.
@@ -111,7 +129,9 @@ void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr, MediumLengths
             vec4 origin = P.shadowOrigin.v[slot];
             vec4 direction = P.shadowDirection.v[slot];
             MediumLengths retraced = noMediumLengths();
-            shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), weight, retraced);
+            TrackingRandom random = shadowRandom(slot);
+            shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), weight, retraced,
+                                random);
         }
     }
     vec4 scatterGradient = P.shadowScatterGradient.v[slot];
@@ -133,8 +153,9 @@ void main() {
     vec4 origin = P.shadowOrigin.v[slot];
     vec4 direction = P.shadowDirection.v[slot];
     MediumLengths lengths = noMediumLengths();
+    TrackingRandom random = shadowRandom(slot);
     vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), vec3(0.0f),
-                                  lengths);
+                                  lengths, random);
     vec3 contribution = tr * P.shadowContribution.v[slot].rgb;
     beginReplay(slot);
     if (kAdjoint) {

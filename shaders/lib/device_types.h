@@ -12,6 +12,7 @@ namespace vkdr::gpu {
 using vec4 = glm::vec4;
 using vec3 = glm::vec3;
 using uvec4 = glm::uvec4;
+using ivec4 = glm::ivec4;
 using uint = uint32_t;
 #define VKDR_BUFFER(Type) uint64_t
 // The host's stand-ins for the GLSL buffer reference types below: the bytes of one
@@ -36,6 +37,9 @@ const uint kNoMediumIndex = 0xffffffffu;
 // Kinds of vertex a medium_sample stage hands to shade.
 const uint kVertexSurface = 0u;
 const uint kVertexMedium = 1u;
+// Tracking through a density grid reached its step bound at this point, which the path
+// passes through without scattering to continue in the next segment (grid_tracking.glsl).
+const uint kVertexPause = 2u;
 
 // Sample streams (RenderParams.firstStream, rng.glsl): images draw from streams 0 and 1
 // (the halves of a split gradient estimate), paths replayed independently of any image
@@ -119,7 +123,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(vertexInfo, UVec4Buffer)        /* x: current medium, y: vertex kind */ \
     X(shadowOrigin, Vec4Buffer)       /* xyz; w: distance to the light point */ \
     X(shadowDirection, Vec4Buffer)    /* xyz; w: medium at the origin (uint bits) */ \
-    X(shadowContribution, Vec4Buffer) /* rgb: unoccluded next-event contribution */
+    X(shadowContribution, Vec4Buffer) /* rgb: unoccluded next-event contribution; w: the segment (uint bits) */
 
 // Arrays of the adjoint pass only (AdjointBuffers), allocated when gradients are enabled.
 #define VKDR_ADJOINT_PATH_ARRAYS(X) \
@@ -196,10 +200,31 @@ struct GpuPunctualLight {
 const uint kPunctualEmitter = 0x80000000u;
 
 struct GpuMedium {
-    vec3 sigma_a;              // absorption, per unit length
+    vec3 sigma_a;              // absorption, per unit length (times the density, in a grid medium)
     float g;                   // Henyey-Greenstein anisotropy
-    vec3 sigma_s;              // scattering, per unit length
-    float pad;
+    vec3 sigma_s;              // scattering, per unit length (times the density, in a grid medium)
+    uint densityGrid;          // index into RenderParams.densityGrids, kNoDensityGrid: homogeneous
+};
+
+const uint kNoDensityGrid = 0xffffffffu;
+// Edge of a majorant cell, in voxels: each cell holds the largest density the trilinear
+// lookup takes anywhere inside it (src/render/majorant_grid.h).
+const int kMajorantCellVoxels = 8;
+// Tentative collisions and majorant cells one invocation walks at most, below lavapipe's
+// silent loop cap. Free flight that reaches its bound pauses (kVertexPause) and goes on in
+// the next segment; transmittance tracking that reaches its bound is counted
+// (QueueCountersData.truncatedTracking) and the render refused.
+const uint kMaxFreeFlightSteps = 1024u;
+const uint kMaxTransmittanceSteps = 8192u;
+
+// A density grid as placed in the scene: its voxels (a dense box, x fastest) in
+// RenderParams.gridValues and its majorant cells in RenderParams.gridMajorants.
+struct GpuDensityGrid {
+    vec4 worldToIndex[3];      // rows of the 3x4 matrix from world to index coordinates
+    ivec4 firstVoxel;          // xyz: index coordinates of the box's first voxel; w: its offset in gridValues
+    ivec4 size;                // xyz: voxels along each axis; w: offset of the first cell in gridMajorants
+    ivec4 majorantOrigin;      // xyz: index coordinates of the lower corner of cell (0, 0, 0)
+    ivec4 majorantCells;       // xyz: cells along each axis
 };
 
 struct GpuTexture {
@@ -239,6 +264,7 @@ struct QueueCountersData {
     uint truncatedPaths;   // paths ended by the segment limit rather than by the estimator
     uint raysTraced;       // closest-hit and shadow rays since the host last cleared it
     uint shadeSurfaces;    // kQueueShade's surface vertices; counts[kQueueShade] its medium ones
+    uint truncatedTracking;  // rays whose transmittance tracking through a density grid hit its step bound
 };
 
 #ifndef __cplusplus
@@ -249,6 +275,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatBuffer 
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Int64Buffer { int64_t v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer MaterialBuffer { GpuMaterial v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer MediumBuffer { GpuMedium v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer DensityGridBuffer { GpuDensityGrid v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer TextureBuffer { GpuTexture v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer PunctualLightBuffer { GpuPunctualLight v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer TriangleInfoBuffer { GpuTriangleInfo v[]; };
@@ -273,6 +300,9 @@ struct RenderParams {
                                                     // lights (kPunctualEmitter | index into punctualLights)
     VKDR_BUFFER(FloatBuffer) lightCdf;              // lightCount + 1 entries, 0 .. 1
     VKDR_BUFFER(PunctualLightBuffer) punctualLights;
+    VKDR_BUFFER(DensityGridBuffer) densityGrids;
+    VKDR_BUFFER(FloatBuffer) gridValues;            // every grid's voxels, one grid after another
+    VKDR_BUFFER(FloatBuffer) gridMajorants;         // every grid's majorant cells, one grid after another
     // Path state
 #define VKDR_DECLARE_PATH_ARRAY(name, Type) VKDR_BUFFER(Type) name;
     VKDR_PATH_ARRAYS(VKDR_DECLARE_PATH_ARRAY)

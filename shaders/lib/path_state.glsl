@@ -3,6 +3,7 @@
 #ifndef VKDR_PATH_STATE_GLSL
 #define VKDR_PATH_STATE_GLSL
 #include "rng.glsl"
+#include "tracking_random.glsl"
 
 struct PathInfo {
     uint pixel;
@@ -20,11 +21,21 @@ void storePathInfo(uint slot, PathInfo info) {
     P.pathInfo.v[slot] = uvec4(info.pixel, info.sampleIndex, info.depth, info.segment);
 }
 
+// The stream a sample draws its numbers from (x) and its index in that stream (y).
+uvec2 sampleStream(uint sampleIndex) {
+    bool secondStream = P.secondStreamFrom > 0u && sampleIndex >= P.secondStreamFrom;
+    return secondStream ? uvec2(P.firstStream + 1u, sampleIndex - P.secondStreamFrom)
+                        : uvec2(P.firstStream, sampleIndex);
+}
+
 vec4 segmentRandom(PathInfo info, uint group) {
-    bool secondStream = P.secondStreamFrom > 0u && info.sampleIndex >= P.secondStreamFrom;
-    uint index = secondStream ? info.sampleIndex - P.secondStreamFrom : info.sampleIndex;
-    return sample4(info.pixel, index, P.firstStream + (secondStream ? 1u : 0u),
-                   info.segment * kDimGroupsPerSegment + group, P.seed);
+    uvec2 stream = sampleStream(info.sampleIndex);
+    return sample4(info.pixel, stream.y, stream.x, info.segment * kDimGroupsPerSegment + group, P.seed);
+}
+
+TrackingRandom segmentTrackingRandom(PathInfo info, uint purpose) {
+    uvec2 stream = sampleStream(info.sampleIndex);
+    return trackingRandom(info.pixel, stream.y, stream.x, info.segment, purpose, P.seed);
 }
 
 void storeRay(uint slot, vec3 origin, vec3 direction) {

@@ -40,6 +40,11 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
     const size_t owner = description.owner == ParameterOwner::Medium     ? indexByName(scene.media, parsed.owner, name)
                          : description.owner == ParameterOwner::Material ? indexByName(scene.materials, parsed.owner, name)
                                                                          : indexByName(scene.punctualLights, parsed.owner, name);
+    if (description.owner == ParameterOwner::Medium && scene.media[owner].isHeterogeneous() &&
+        description.kind != ParameterKind::G) {
+        throw Error("parameter " + name + ": gradients of the coefficients of a density grid medium are not "
+                    "available yet; its g, and every other parameter of the scene, can be differentiated");
+    }
     const size_t sumsPerItem = gpu::layoutOf(description.accumulator).sumsPerItem;
     GradientSlot slot{name, description.kind, kSceneGradients[size_t(description.accumulator)]};
     if (description.accumulator == gpu::GradientAccumulator::texelGradients) {

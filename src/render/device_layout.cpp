@@ -9,6 +9,9 @@ static_assert(sizeof(GpuMaterial) == 48);
 static_assert(offsetof(GpuMaterial, baseColorTexture) == 32);
 static_assert(sizeof(GpuMedium) == 32);
 static_assert(offsetof(GpuMedium, g) == 12 && offsetof(GpuMedium, sigma_s) == 16);
+static_assert(offsetof(GpuMedium, densityGrid) == 28);
+static_assert(sizeof(GpuDensityGrid) == 112);
+static_assert(offsetof(GpuDensityGrid, firstVoxel) == 48 && offsetof(GpuDensityGrid, majorantCells) == 96);
 static_assert(sizeof(GpuTexture) == 16);
 static_assert(sizeof(GpuPunctualLight) == 64);
 static_assert(offsetof(GpuPunctualLight, direction) == 16 && offsetof(GpuPunctualLight, intensity) == 32 &&
@@ -18,12 +21,12 @@ static_assert(sizeof(GpuCamera) == 80);
 static_assert(offsetof(GpuCamera, tanHalfFovY) == 48);
 static_assert(sizeof(DispatchArgs) == 16);
 static_assert(offsetof(QueueCountersData, dispatch) == 16);
-static_assert(sizeof(QueueCountersData) == 96);
+static_assert(sizeof(QueueCountersData) == 100);
 static_assert(offsetof(RenderParams, background) == 80);
 static_assert(offsetof(RenderParams, triangleVertices) == 96);
 // Device addresses, 8 bytes each, then the scalars: no padding between them on either side.
 #define VKDR_COUNT(...) +1
-constexpr size_t kAddresses = 12 + 3 + 4 + 0 VKDR_PATH_ARRAYS(VKDR_COUNT) VKDR_ADJOINT_PATH_ARRAYS(VKDR_COUNT)
+constexpr size_t kAddresses = 15 + 3 + 4 + 0 VKDR_PATH_ARRAYS(VKDR_COUNT) VKDR_ADJOINT_PATH_ARRAYS(VKDR_COUNT)
     VKDR_GRADIENT_ACCUMULATORS(VKDR_COUNT);
 static_assert(offsetof(RenderParams, pathCapacity) == offsetof(RenderParams, triangleVertices) + kAddresses * 8);
 static_assert(sizeof(PassConstants) == 32);

@@ -40,7 +40,7 @@ std::vector<gpu::GpuMaterial> deviceMaterials(const Scene& scene) {
 std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
     std::vector<gpu::GpuMedium> out;
     for (const Medium& m : scene.media) {
-        out.push_back({m.sigma_a, m.g, m.sigma_s, 0.0f});
+        out.push_back({m.sigma_a, m.g, m.sigma_s, m.isHeterogeneous() ? uint32_t(m.densityGrid) : gpu::kNoDensityGrid});
     }
     return out;
 }
@@ -112,6 +112,7 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     gpu.triangleNormals = uploadVector<glm::vec4>(context, normals, "triangle normals");
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
+    gpu.densityGrids = uploadDensityGrids(context, scene);
     gpu.extent = sceneExtent(scene);
     gpu.rayEpsilon = kRayEpsilonPerExtent * gpu.extent;
     uploadSceneParameters(context, scene, bvh.triangleOrder, gpu);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "render/gpu_density_grids.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
 
@@ -13,7 +14,8 @@ namespace vkdr {
 class VulkanContext;
 
 // The scene as the stages read it: triangles and their attributes in BVH leaf order,
-// the BVH, materials, media, textures, the punctual lights and the emitter CDF.
+// the BVH, materials, media and their density grids, textures, the punctual lights and
+// the emitter CDF.
 struct GpuScene {
     Buffer triangleVertices;
     Buffer triangleUvs;
@@ -27,6 +29,7 @@ struct GpuScene {
     Buffer lightSources;
     Buffer lightCdf;
     Buffer punctualLights;
+    GpuDensityGrids densityGrids;
     uint32_t lightCount = 0;
     float extent = 0.0f;      // the diagonal of the scene's bounding box (at least 1e-3), scene units
     float rayEpsilon = 0.0f;  // scene units

@@ -115,6 +115,9 @@ void Renderer::uploadParams() {
     p.lightSources = scene_.lightSources.address();
     p.lightCdf = scene_.lightCdf.address();
     p.punctualLights = scene_.punctualLights.address();
+    p.densityGrids = scene_.densityGrids.grids.address();
+    p.gridValues = scene_.densityGrids.values.address();
+    p.gridMajorants = scene_.densityGrids.majorants.address();
     paths_->setAddresses(p);
     p.lightCount = scene_.lightCount;
     p.maxDepth = settings_.maxDepth;
@@ -279,6 +282,12 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
     recorder.submitAndWait();
     stats_.rays += counters.raysTraced;
     stats_.truncatedPaths = counters.truncatedPaths;
+    if (counters.truncatedTracking > 0) {
+        throw Error(std::to_string(counters.truncatedTracking) + " rays through a density grid medium needed more than " +
+                    std::to_string(gpu::kMaxTransmittanceSteps) +
+                    " tracking steps for their transmittance; the medium is too dense to render faithfully "
+                    "(lower its sigma_a and sigma_s)");
+    }
     if (counters.truncatedLoops > 0) {
         throw Error("internal: " + std::to_string(counters.truncatedLoops) +
                     " BVH traversals or shadow rays hit their iteration bound; the image would be wrong");

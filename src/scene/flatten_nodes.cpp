@@ -25,25 +25,6 @@ constexpr size_t kMaxSceneVertices = size_t(1) << 26;
 constexpr size_t kMaxNodeDepth = 1000;
 constexpr size_t kMaxNodeVisits = size_t(1) << 20;
 
-glm::mat4 localTransform(const tinygltf::Node& node) {
-    if (node.matrix.size() == 16) {
-        return glm::mat4(glm::make_mat4(node.matrix.data()));  // column-major, as glm
-    }
-    glm::mat4 transform(1.0f);
-    if (node.translation.size() == 3) {
-        transform = glm::translate(transform, glm::vec3(glm::make_vec3(node.translation.data())));
-    }
-    if (node.rotation.size() == 4) {
-        // glTF stores (x, y, z, w); glm's constructor takes w first.
-        glm::quat rotation(float(node.rotation[3]), float(node.rotation[0]),
-                           float(node.rotation[1]), float(node.rotation[2]));
-        transform *= glm::mat4_cast(rotation);
-    }
-    if (node.scale.size() == 3) {
-        transform = glm::scale(transform, glm::vec3(glm::make_vec3(node.scale.data())));
-    }
-    return transform;
-}
 
 // A usable unit normal, or (0, 0, 0) (the triangle's own normal) for a zero or
 // non-finite one, which some exporters write for degenerate vertices.
@@ -409,6 +390,26 @@ std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model,
 }
 
 }  // namespace
+
+glm::mat4 localTransform(const tinygltf::Node& node) {
+    if (node.matrix.size() == 16) {
+        return glm::mat4(glm::make_mat4(node.matrix.data()));  // column-major, as glm
+    }
+    glm::mat4 transform(1.0f);
+    if (node.translation.size() == 3) {
+        transform = glm::translate(transform, glm::vec3(glm::make_vec3(node.translation.data())));
+    }
+    if (node.rotation.size() == 4) {
+        // glTF stores (x, y, z, w); glm's constructor takes w first.
+        glm::quat rotation(float(node.rotation[3]), float(node.rotation[0]),
+                           float(node.rotation[1]), float(node.rotation[2]));
+        transform *= glm::mat4_cast(rotation);
+    }
+    if (node.scale.size() == 3) {
+        transform = glm::scale(transform, glm::vec3(glm::make_vec3(node.scale.data())));
+    }
+    return transform;
+}
 
 std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnostics& diagnostics,
                                        Scene& scene) {

@@ -17,6 +17,9 @@ struct MeshInstance {
     uint32_t triangleCount = 0;
 };
 
+// A node's transform relative to its parent: its matrix, or translation * rotation * scale.
+glm::mat4 localTransform(const tinygltf::Node& node);
+
 // Walks the glTF scene's node hierarchy (the default scene, else the first, else every
 // root node) and bakes each mesh instance into world space: appends to
 // Scene::positions, normals, uvs, triangles and triangleMaterial, and to Scene::cameras and

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "scene/flatten_nodes.h"
+#include "scene/gltf_density_grids.h"
 #include "scene/gltf_diagnostics.h"
 #include "scene/gltf_lights.h"
 #include "scene/gltf_materials.h"
@@ -62,6 +63,7 @@ LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& 
     scene.punctualLights = readPunctualLights(model, diagnostics);
     readMaterials(model, diagnostics, scene);
     addSceneMedium(model, diagnostics, scene);
+    readDensityGrids(model, SceneFiles(file, access), diagnostics, scene, externalFiles);
     scene.background = readBackground(model, diagnostics);
     std::vector<MeshInstance> instances = flattenNodes(model, diagnostics, scene);
     if (scene.triangles.empty()) {

@@ -1,9 +1,12 @@
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "volume/density_grid.h"
 
 namespace vkdr {
 
@@ -38,12 +41,22 @@ struct Material {
     bool isEmissive() const { return emission != glm::vec3(0.0f); }
 };
 
-// Homogeneous medium; sigma in inverse scene units.
+// A participating medium; sigma in inverse scene units. Homogeneous, or a density grid
+// medium whose coefficients at a point are sigma_a and sigma_s times the grid's value there.
 struct Medium {
     std::string name;  // parameter prefix is "media/<name>/"
     glm::vec3 sigma_a{0.0f};
     glm::vec3 sigma_s{0.0f};
     float g = 0.0f;    // Henyey-Greenstein anisotropy, in [-0.99, 0.99] (scene/parameter_kinds.h)
+    int32_t densityGrid = -1;  // index into Scene::densityGrids; -1: homogeneous
+    bool isHeterogeneous() const { return densityGrid >= 0; }
+};
+
+// A density grid as the scene places it.
+struct SceneDensityGrid {
+    std::filesystem::path file;     // the file it was read from
+    DensityGrid grid;
+    glm::dmat4 indexToWorld{1.0};   // the node's transform times the grid's own index-to-local one
 };
 
 // A KHR_lights_punctual light as the file defines it. `intensity` is the glTF light's
@@ -83,6 +96,7 @@ struct Scene {
     std::vector<int32_t> triangleOutsideMedium;
     std::vector<Material> materials;
     std::vector<Medium> media;
+    std::vector<SceneDensityGrid> densityGrids;
     std::vector<Texture> textures;
     std::vector<Camera> cameras;
     std::vector<PunctualLight> punctualLights;  // in the file's order

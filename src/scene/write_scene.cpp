@@ -219,36 +219,71 @@ void writePunctualLights(json& document, const Scene& scene, const std::filesyst
 
 // The written scene must load by the same rule as any other (scene_file_access.h): files
 // the original refers to stay where they are when they lie in the output's directory
-// tree, and are copied beside the output, as <stem>.<array><i><extension>, when not.
-void referToExternalFiles(json& document, const char* array, const std::filesystem::path& original,
-                          const std::filesystem::path& out) {
-    if (!document.contains(array) || !document[array].is_array()) {
-        return;
+// tree, and are copied beside the output, as <copyStem><extension>, when not.
+class ExternalFileReferences {
+public:
+    ExternalFileReferences(const std::filesystem::path& original, const std::filesystem::path& out)
+        // The original has been loaded by its own rule already; here its files only need finding.
+        : original_(original), from_(original, SceneFileAccess{true}) {
+        std::error_code ec;
+        toDirectory_ = std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
     }
-    // The original has been loaded by its own rule already; here its files only need finding.
-    SceneFiles from(original, SceneFileAccess{true});
-    std::error_code ec;
-    std::filesystem::path toDirectory =
-        std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
-    for (size_t i = 0; i < document[array].size(); ++i) {
-        json& entry = document[array][i];
+
+    // Rewrites entry["uri"] (a file, not a data URI) to refer to the file from the output.
+    void referTo(json& entry, const std::string& field, const std::string& copyStem) const {
         if (!entry.contains("uri") || !entry["uri"].is_string() || isDataUri(entry["uri"].get<std::string>())) {
-            continue;
+            return;
         }
-        ResolvedFile resolved = from.resolveUri(entry["uri"].get<std::string>());
+        ResolvedFile resolved = from_.resolveUri(entry["uri"].get<std::string>());
         if (!resolved.problem.empty()) {
-            failReading(original, std::string(array) + "[" + std::to_string(i) + "].uri: " + resolved.problem);
+            failReading(original_, field + ".uri: " + resolved.problem);
         }
-        std::filesystem::path relative = resolved.file.lexically_relative(toDirectory);
+        std::filesystem::path relative = resolved.file.lexically_relative(toDirectory_);
         if (relative.empty() || *relative.begin() == "..") {
-            relative = out.stem().string() + "." + array + std::to_string(i) + resolved.file.extension().string();
+            relative = copyStem + resolved.file.extension().string();
             std::string bytes = readRegularFile(resolved.file);
-            writeAtomically(toDirectory / relative, [&](std::ofstream& stream) {
+            writeAtomically(toDirectory_ / relative, [&](std::ofstream& stream) {
                 stream.write(bytes.data(), std::streamsize(bytes.size()));
             });
         }
         entry["uri"] = encodeUriPath(relative.generic_string());
     }
+
+private:
+    std::filesystem::path original_;
+    SceneFiles from_;
+    std::filesystem::path toDirectory_;
+};
+
+void referToExternalFiles(json& document, const char* array, const ExternalFileReferences& references,
+                          const std::filesystem::path& out) {
+    if (!document.contains(array) || !document[array].is_array()) {
+        return;
+    }
+    for (size_t i = 0; i < document[array].size(); ++i) {
+        references.referTo(document[array][i], std::string(array) + "[" + std::to_string(i) + "]",
+                           out.stem().string() + "." + array + std::to_string(i));
+    }
+}
+
+// The density grid files of media (VKDR_participating_media's "density"), on materials
+// and at the root.
+void referToDensityGrids(json& document, const ExternalFileReferences& references, const std::filesystem::path& out) {
+    auto referIn = [&](json& owner, const std::string& field, const std::string& copyStem) {
+        if (owner.contains("extensions") && owner["extensions"].contains(kMediumExtension) &&
+            owner["extensions"][kMediumExtension].contains("density")) {
+            references.referTo(owner["extensions"][kMediumExtension]["density"],
+                               field + (field.empty() ? "" : ".") + "extensions." + kMediumExtension + ".density",
+                               copyStem);
+        }
+    };
+    if (document.contains("materials") && document["materials"].is_array()) {
+        for (size_t i = 0; i < document["materials"].size(); ++i) {
+            referIn(document["materials"][i], "materials[" + std::to_string(i) + "]",
+                    out.stem().string() + ".materials" + std::to_string(i) + ".density");
+        }
+    }
+    referIn(document, "", out.stem().string() + ".density");
 }
 
 void writeBinaryChunkBeside(json& document, const GltfSource& source, const std::filesystem::path& original,
@@ -314,8 +349,10 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     writeSceneMedium(document, scene);
     writePunctualLights(document, scene, original);
 
-    referToExternalFiles(document, "buffers", original, out);
-    referToExternalFiles(document, "images", original, out);
+    const ExternalFileReferences references(original, out);
+    referToExternalFiles(document, "buffers", references, out);
+    referToExternalFiles(document, "images", references, out);
+    referToDensityGrids(document, references, out);
     writeBinaryChunkBeside(document, source, original, out);
     writeBaseColorTextures(document, scene, out);
 

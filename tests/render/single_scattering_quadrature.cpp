@@ -14,13 +14,14 @@ double hgDLogG(double mu, double g) {
     return -2.0 * g / (1.0 - g * g) + 3.0 * (mu - g) / (1.0 + g * g - 2.0 * g * mu);
 }
 
-// Length of the segment origin + [0, tMax] * direction inside `box` (slab method).
-double lengthInside(glm::dvec3 origin, glm::dvec3 direction, double tMax, const FogSetup::Box& box) {
+// The part of the segment origin + [0, tMax] * direction inside `box` (slab method), as
+// [enter, leave]; empty when leave <= enter.
+glm::dvec2 insideInterval(glm::dvec3 origin, glm::dvec3 direction, double tMax, const FogSetup::Box& box) {
     double enter = 0.0, leave = tMax;
     for (int axis = 0; axis < 3; ++axis) {
         if (direction[axis] == 0.0) {
             if (origin[axis] < box.lo[axis] || origin[axis] > box.hi[axis]) {
-                return 0.0;
+                return glm::dvec2(0.0);
             }
             continue;
         }
@@ -29,7 +30,17 @@ double lengthInside(glm::dvec3 origin, glm::dvec3 direction, double tMax, const 
         enter = std::max(enter, std::min(t0, t1));
         leave = std::min(leave, std::max(t0, t1));
     }
-    return std::max(0.0, leave - enter);
+    return glm::dvec2(enter, std::max(enter, leave));
+}
+
+// The integral of the density over the segment's part in the medium: its length times
+// the density at its middle, as the density is linear.
+double densityIntegral(const FogSetup& fog, glm::dvec3 origin, glm::dvec3 direction, double tMax) {
+    if (!fog.enclosure) {
+        return tMax;
+    }
+    glm::dvec2 inside = insideInterval(origin, direction, tMax, *fog.enclosure);
+    return (inside.y - inside.x) * fog.densityAt(origin + 0.5 * (inside.x + inside.y) * direction);
 }
 
 }  // namespace
@@ -44,6 +55,9 @@ TestGltf FogSetup::scene() const {
     gltf.meshes = {lamp};
     if (enclosure) {
         gltf.materials.push_back(vkdrMediumMaterial("fog", glm::vec3(sigmaA), glm::vec3(sigmaS), float(g)));
+        if (density) {
+            gltf.materials.back()["extensions"]["VKDR_participating_media"]["density"] = {{"uri", density->uri}};
+        }
         gltf.meshes.push_back(box(glm::vec3(enclosure->lo), glm::vec3(enclosure->hi), 1));
     } else {
         gltf.extensions["VKDR_participating_media"] = {{"name", "fog"},
@@ -73,17 +87,21 @@ SingleScattering singleScattering(const FogSetup& fog) {
                                    glm::all(glm::lessThan(x, fog.enclosure->hi)))) {
                 continue;  // vacuum: nothing scatters here
             }
-            double cameraPath = fog.enclosure ? lengthInside(glm::dvec3(0.0), direction, t, *fog.enclosure) : t;
+            double cameraPath = densityIntegral(fog, glm::dvec3(0.0), direction, t);
+            double density = fog.densityAt(x);
             for (int j = 0; j < kLightSteps * kLightSteps; ++j) {
                 glm::dvec3 y(fog.lightX, -fog.lightHalf + (j % kLightSteps + 0.5) * cell,
                              fog.lightZ - fog.lightHalf + (j / kLightSteps + 0.5) * cell);
                 glm::dvec3 toLight = y - x;
                 double r = glm::length(toLight);
                 double mu = glm::dot(direction, toLight / r);
-                // The optical path's length in the medium, along the ray and towards the light.
-                double d = cameraPath + (fog.enclosure ? lengthInside(x, toLight / r, r, *fog.enclosure) : r);
-                // Everything but sigma_s: attenuation over the ray and the light path.
-                glm::dvec3 base = fog.le * glm::exp(-sigmaT * d) * (hg(mu, fog.g) * (toLight.x / r) / (r * r));
+                // The density's integral along the ray and towards the light: sigma_t times
+                // it is the optical depth.
+                double d = cameraPath + densityIntegral(fog, x, toLight / r, r);
+                // Everything but sigma_s: attenuation over the ray and the light path, and
+                // the density where the light scatters.
+                glm::dvec3 base =
+                    fog.le * glm::exp(-sigmaT * d) * (density * hg(mu, fog.g) * (toLight.x / r) / (r * r));
                 glm::dvec3 f = fog.sigmaS * base;
                 out.radiance += f;
                 out.dSigmaA += -d * f;
@@ -98,6 +116,28 @@ SingleScattering singleScattering(const FogSetup& fog) {
     out.dSigmaS *= weight;
     out.dG *= weight;
     return out;
+}
+
+}  // namespace vkdr::test
+
+namespace vkdr::test {
+
+DensityGrid linearDensityGrid(const FogSetup& fog, double voxel) {
+    const glm::dvec3 lo = fog.enclosure->lo - 2.0 * voxel;
+    const glm::ivec3 size = glm::ivec3(glm::ceil((fog.enclosure->hi - fog.enclosure->lo) / voxel)) + 5;
+    DensityGrid grid;
+    grid.name = "density";
+    grid.size = size;
+    grid.indexToLocal = glm::dmat4(glm::dvec4(voxel, 0, 0, 0), glm::dvec4(0, voxel, 0, 0), glm::dvec4(0, 0, voxel, 0),
+                                   glm::dvec4(lo, 1.0));
+    for (int z = 0; z < size.z; ++z) {
+        for (int y = 0; y < size.y; ++y) {
+            for (int x = 0; x < size.x; ++x) {
+                grid.values.push_back(float(fog.densityAt(lo + voxel * glm::dvec3(x, y, z))));
+            }
+        }
+    }
+    return grid;
 }
 
 }  // namespace vkdr::test

@@ -1,13 +1,16 @@
 #pragma once
-// Single scattering of a camera ray through a homogeneous medium, lit by a small
-// one-sided square emitter beside the ray: the reference for the single-scattering
-// render test and for the analytic gradient tests. The medium fills all space (a
-// scene-wide fog) or an axis-aligned box (an enclosed medium, vacuum outside).
+// Single scattering of a camera ray through a medium, lit by a small one-sided square
+// emitter beside the ray: the reference for the single-scattering render tests and for
+// the analytic gradient tests. The medium fills all space (a scene-wide fog) or an
+// axis-aligned box (an enclosed medium, vacuum outside); an enclosed one may have a
+// density that varies linearly along z, given to the renderer as a density grid.
 #include <optional>
+#include <string>
 
 #include <glm/glm.hpp>
 
 #include "test_gltf.h"
+#include "volume/density_grid.h"
 
 namespace vkdr::test {
 
@@ -23,7 +26,15 @@ struct FogSetup {
         glm::dvec3 lo, hi;
     };
     std::optional<Box> enclosure;  // set: the medium fills this box only
+    // With an enclosure: the coefficients are sigma times density(x) = a + b x.z, from the
+    // grid file `uri` beside the scene (linearDensityGrid writes it).
+    struct LinearDensity {
+        double a = 1.0, b = 0.0;
+        std::string uri;
+    };
+    std::optional<LinearDensity> density;
 
+    double densityAt(glm::dvec3 x) const { return density ? density->a + density->b * x.z : 1.0; }
     TestGltf scene() const;
 };
 
@@ -36,5 +47,10 @@ struct SingleScattering {
     glm::dvec3 dG{0.0};       // d radiance_c / d g
 };
 SingleScattering singleScattering(const FogSetup& fog);
+
+// A density grid holding fog.density's a + b z at its voxel centres over the enclosure
+// grown by two voxels of edge `voxel` on each side, so that the trilinear density inside
+// the enclosure is exactly linear; placed in world space by its own transform.
+DensityGrid linearDensityGrid(const FogSetup& fog, double voxel);
 
 }  // namespace vkdr::test

@@ -1,0 +1,248 @@
+// Tracking through a density grid medium, whose coefficients are the medium's RGB
+// sigma_a and sigma_s times the trilinear density d(x) (docs/density-grids.md). Both
+// trackers sample tentative collisions against the majorant cells, walked with a DDA:
+// - free flight by delta tracking with the hero channel's rate sigma_t[hero] * m(x),
+//   accepting a tentative collision as real with probability d(x) / m(x);
+// - transmittance by ratio tracking at the rate max(sigma_t) * m(x).
+// Every channel's extinction is a multiple of the same density, so a tentative collision
+// is null with the same probability in every channel. The spectral MIS weight of a
+// tracked segment therefore depends only on the number of tentative collisions and the
+// majorant's integral along the way (heroMisWeight).
+#ifndef VKDR_GRID_TRACKING_GLSL
+#define VKDR_GRID_TRACKING_GLSL
+#include "constants.glsl"
+#include "density_grid.glsl"
+#include "tracking_random.glsl"
+
+// Below this transmittance ratio tracking plays Russian roulette, ending with probability
+// 3/4 and else carrying on four times stronger (as pbrt-v4 does), which bounds its
+// expected work in dense media.
+const float kRatioTrackingRouletteBelow = 0.05f;
+const float kRatioTrackingRouletteSurvival = 0.25f;
+
+// A ray in a grid's index coordinates, index(t) = origin + t direction, where t is the
+// world-space distance along the world ray.
+struct GridRay {
+    vec3 origin;
+    vec3 direction;
+};
+
+GridRay gridRay(GpuDensityGrid grid, vec3 origin, vec3 direction) {
+    GridRay ray;
+    for (int k = 0; k < 3; ++k) {
+        ray.origin[k] = dot(grid.worldToIndex[k].xyz, origin) + grid.worldToIndex[k].w;
+        ray.direction[k] = dot(grid.worldToIndex[k].xyz, direction);
+    }
+    return ray;
+}
+
+float gridDensity(GpuDensityGrid grid, vec3 index) {
+    vec3 base = floor(index);
+    vec3 w = index - base;
+    ivec3 v = ivec3(base);
+    float x00 = mix(gridVoxel(grid, v), gridVoxel(grid, v + ivec3(1, 0, 0)), w.x);
+    float x10 = mix(gridVoxel(grid, v + ivec3(0, 1, 0)), gridVoxel(grid, v + ivec3(1, 1, 0)), w.x);
+    float x01 = mix(gridVoxel(grid, v + ivec3(0, 0, 1)), gridVoxel(grid, v + ivec3(1, 0, 1)), w.x);
+    float x11 = mix(gridVoxel(grid, v + ivec3(0, 1, 1)), gridVoxel(grid, v + ivec3(1, 1, 1)), w.x);
+    return mix(mix(x00, x10, w.y), mix(x01, x11, w.y), w.z);
+}
+
+// A DDA walk over the majorant cells along a ray: the current cell and where the ray
+// leaves it through each axis's next face.
+struct MajorantWalk {
+    ivec3 cell;
+    ivec3 step;
+    vec3 tNext;   // distance at which the ray crosses the next face along each axis
+    vec3 tDelta;  // distance between faces along each axis
+    float t;      // where the walk is
+    float tEnd;   // where the ray leaves the cells, or its own end
+};
+
+// Starts a walk along [0, tMax); done at once when the ray misses the cells.
+MajorantWalk startMajorantWalk(GpuDensityGrid grid, GridRay ray, float tMax) {
+    MajorantWalk walk;
+    vec3 cellOrigin = (ray.origin - vec3(grid.majorantOrigin.xyz)) / float(kMajorantCellVoxels);
+    vec3 cellDirection = ray.direction / float(kMajorantCellVoxels);
+    vec3 cells = vec3(grid.majorantCells.xyz);
+    float enter = 0.0f;
+    float exit = tMax;
+    for (int k = 0; k < 3; ++k) {
+        if (cellDirection[k] == 0.0f) {
+            if (cellOrigin[k] < 0.0f || cellOrigin[k] >= cells[k]) {
+                exit = -1.0f;
+            }
+            continue;
+        }
+        float t0 = (0.0f - cellOrigin[k]) / cellDirection[k];
+        float t1 = (cells[k] - cellOrigin[k]) / cellDirection[k];
+        enter = max(enter, min(t0, t1));
+        exit = min(exit, max(t0, t1));
+    }
+    walk.t = enter;
+    walk.tEnd = exit;
+    if (!(enter < exit)) {
+        walk.tEnd = walk.t;
+        return walk;
+    }
+    vec3 start = cellOrigin + enter * cellDirection;
+    walk.cell = clamp(ivec3(floor(start)), ivec3(0), grid.majorantCells.xyz - 1);
+    for (int k = 0; k < 3; ++k) {
+        if (cellDirection[k] > 0.0f) {
+            walk.step[k] = 1;
+            walk.tDelta[k] = 1.0f / cellDirection[k];
+            walk.tNext[k] = enter + (float(walk.cell[k] + 1) - start[k]) / cellDirection[k];
+        } else if (cellDirection[k] < 0.0f) {
+            walk.step[k] = -1;
+            walk.tDelta[k] = -1.0f / cellDirection[k];
+            walk.tNext[k] = enter + (float(walk.cell[k]) - start[k]) / cellDirection[k];
+        } else {
+            walk.step[k] = 0;
+            walk.tDelta[k] = kFar;
+            walk.tNext[k] = kFar;
+        }
+    }
+    return walk;
+}
+
+bool walkDone(MajorantWalk walk) {
+    return !(walk.t < walk.tEnd);
+}
+
+// Where the walk leaves its current cell.
+float cellExit(MajorantWalk walk) {
+    return min(min(min(walk.tNext.x, walk.tNext.y), walk.tNext.z), walk.tEnd);
+}
+
+void advanceToNextCell(inout MajorantWalk walk, GpuDensityGrid grid) {
+    float exit = cellExit(walk);
+    int axis = walk.tNext.x <= walk.tNext.y ? (walk.tNext.x <= walk.tNext.z ? 0 : 2)
+                                            : (walk.tNext.y <= walk.tNext.z ? 1 : 2);
+    walk.t = exit;
+    walk.cell[axis] += walk.step[axis];
+    walk.tNext[axis] += walk.tDelta[axis];
+    if (walk.cell[axis] < 0 || walk.cell[axis] >= grid.majorantCells[axis]) {
+        walk.tEnd = walk.t;
+    }
+}
+
+// The outcome of delta tracking along [0, tMax).
+struct GridFreeFlight {
+    float t;                // the real collision, the pause, or tMax
+    bool collided;          // a real collision at t
+    bool paused;            // the step bound was reached at t, short of a decision
+    uint tentative;         // tentative collisions sampled, the real one included
+    float majorantIntegral; // integral of the majorant density over [0, t]
+};
+
+// Delta tracking in the hero channel, whose extinction per unit density is `rate`.
+// `first` supplies the first distance (x) and acceptance (y) numbers; later ones come
+// from `random`.
+GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, float rate, vec2 first,
+                               inout TrackingRandom random) {
+    GridFreeFlight flight;
+    flight.t = tMax;
+    flight.collided = false;
+    flight.paused = false;
+    flight.tentative = 0u;
+    flight.majorantIntegral = 0.0f;
+    GridRay ray = gridRay(grid, origin, direction);
+    MajorantWalk walk = startMajorantWalk(grid, ray, tMax);
+    float tau = -log(1.0f - first.x);  // optical depth to the next tentative collision
+    float accept = first.y;
+    for (uint steps = 0u; !walkDone(walk); ++steps) {
+        if (steps == kMaxFreeFlightSteps) {
+            flight.t = walk.t;
+            flight.paused = true;
+            return flight;
+        }
+        float exit = cellExit(walk);
+        float majorant = gridMajorant(grid, walk.cell);
+        float cellDepth = majorant * rate * (exit - walk.t);
+        if (tau < cellDepth) {
+            float dt = tau / (majorant * rate);
+            flight.majorantIntegral += majorant * dt;
+            walk.t += dt;
+            ++flight.tentative;
+            if (accept * majorant < gridDensity(grid, ray.origin + walk.t * ray.direction)) {
+                flight.t = walk.t;
+                flight.collided = true;
+                return flight;
+            }
+            vec4 u = nextTrackingRandom(random);
+            tau = -log(1.0f - u.x);
+            accept = u.y;
+            continue;
+        }
+        tau -= cellDepth;
+        flight.majorantIntegral += majorant * (exit - walk.t);
+        advanceToNextCell(walk, grid);
+    }
+    return flight;
+}
+
+// The one-sample MIS weight p_c / average_k p_k of each channel c over the choice of hero
+// channel, for a tracked segment with `tentative` tentative collisions and majorant
+// integral `integral`: sampled with hero k, its density is sigma_t[k]^tentative
+// exp(-sigma_t[k] integral) times factors common to all channels. A channel without
+// extinction has density 0 once there is a tentative collision, 1 before.
+vec3 heroMisWeight(vec3 sigma_t, uint tentative, float integral) {
+    vec3 logDensity;
+    bvec3 possible;
+    float largest = -kFar;
+    for (int c = 0; c < 3; ++c) {
+        possible[c] = sigma_t[c] > 0.0f || tentative == 0u;
+        logDensity[c] = sigma_t[c] > 0.0f ? float(tentative) * log(sigma_t[c]) - sigma_t[c] * integral : 0.0f;
+        if (possible[c]) {
+            largest = max(largest, logDensity[c]);
+        }
+    }
+    vec3 density;
+    for (int c = 0; c < 3; ++c) {
+        density[c] = possible[c] ? exp(logDensity[c] - largest) : 0.0f;
+    }
+    return density / average(density);
+}
+
+// Ratio tracking along [0, tMax): an unbiased estimate of each channel's transmittance
+// exp(-sigma_t integral of d). `truncated` is set where the step bound was reached.
+vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, vec3 sigma_t,
+                             inout TrackingRandom random, inout bool truncated) {
+    vec3 transmittance = vec3(1.0f);
+    float rate = maxComponent(sigma_t);
+    if (rate <= 0.0f) {
+        return transmittance;
+    }
+    GridRay ray = gridRay(grid, origin, direction);
+    MajorantWalk walk = startMajorantWalk(grid, ray, tMax);
+    float tau = -log(1.0f - nextTrackingRandom(random).x);
+    for (uint steps = 0u; !walkDone(walk); ++steps) {
+        if (steps == kMaxTransmittanceSteps) {
+            truncated = true;
+            return vec3(0.0f);
+        }
+        float exit = cellExit(walk);
+        float majorant = gridMajorant(grid, walk.cell);
+        float cellDepth = majorant * rate * (exit - walk.t);
+        if (tau < cellDepth) {
+            float rateHere = majorant * rate;
+            walk.t += tau / rateHere;
+            float density = gridDensity(grid, ray.origin + walk.t * ray.direction);
+            transmittance *= max(vec3(0.0f), vec3(1.0f) - sigma_t * (density / rateHere));
+            vec4 u = nextTrackingRandom(random);
+            float largest = maxComponent(transmittance);
+            if (largest < kRatioTrackingRouletteBelow) {
+                if (largest <= 0.0f || u.y >= kRatioTrackingRouletteSurvival) {
+                    return vec3(0.0f);
+                }
+                transmittance /= kRatioTrackingRouletteSurvival;
+            }
+            tau = -log(1.0f - u.x);
+            continue;
+        }
+        tau -= cellDepth;
+        advanceToNextCell(walk, grid);
+    }
+    return transmittance;
+}
+
+#endif

@@ -1,0 +1,27 @@
+#ifndef VKDR_TRACKING_RANDOM_GLSL
+#define VKDR_TRACKING_RANDOM_GLSL
+#include "rng.glsl"
+
+// Independent random numbers for loops that take as many as they need (tracking
+// through density grids): a counter hashed with the key of its path segment (pixel,
+// sample, stream, segment, purpose, seed), so replays draw the same ones.
+const uint kTrackingFreeFlight = 0u;
+const uint kTrackingShadow = 1u;
+struct TrackingRandom {
+    uvec4 key;
+    uint counter;
+};
+
+TrackingRandom trackingRandom(uint pixel, uint sampleIndex, uint stream, uint segment, uint purpose, uint seed) {
+    TrackingRandom r;
+    r.key = pcg4d(uvec4(pixel, sampleIndex, segment * 2u + purpose, seed ^ (stream << 28u)));
+    r.counter = 0u;
+    return r;
+}
+
+vec4 nextTrackingRandom(inout TrackingRandom r) {
+    ++r.counter;
+    return toUnitFloat(pcg4d(r.key + uvec4(0u, 0u, 0u, r.counter)));
+}
+
+#endif

@@ -1,0 +1,61 @@
+#include "render/gpu_density_grids.h"
+
+#include <limits>
+
+#include "core/error.h"
+#include "device_types.h"
+#include "render/majorant_grid.h"
+#include "vk/context.h"
+
+namespace vkdr {
+namespace {
+
+// Grids share the device with the path state, the BVH and the images.
+constexpr uint64_t kGridShareOfDeviceMemory = 2;
+
+void requireFits(const VulkanContext& context, const SceneDensityGrid& placed, uint64_t valuesBefore) {
+    const uint64_t budget = context.deviceLocalHeapBytes() / kGridShareOfDeviceMemory;
+    const uint64_t fittingVoxels = std::min<uint64_t>(budget / sizeof(float), std::numeric_limits<int32_t>::max());
+    const uint64_t voxels = valuesBefore + placed.grid.voxelCount();
+    if (voxels > fittingVoxels) {
+        throw Error(placed.file.string() + ": grid '" + placed.grid.name + "' needs " +
+                    std::to_string(voxels) + " voxels on the device (with the grids before it), more than the " +
+                    std::to_string(fittingVoxels) + " that fit in half of its " +
+                    std::to_string(context.deviceLocalHeapBytes() >> 20) + " MiB; crop or coarsen the grid");
+    }
+}
+
+gpu::GpuDensityGrid deviceGrid(const SceneDensityGrid& placed, const MajorantGrid& majorants, size_t firstValue,
+                               size_t firstMajorant) {
+    const glm::mat4 worldToIndex(glm::inverse(placed.indexToWorld));
+    gpu::GpuDensityGrid grid{};
+    for (int row = 0; row < 3; ++row) {
+        grid.worldToIndex[row] = glm::vec4(worldToIndex[0][row], worldToIndex[1][row], worldToIndex[2][row],
+                                           worldToIndex[3][row]);
+    }
+    grid.firstVoxel = glm::ivec4(placed.grid.firstVoxel, int32_t(firstValue));
+    grid.size = glm::ivec4(placed.grid.size, int32_t(firstMajorant));
+    grid.majorantOrigin = glm::ivec4(majorants.origin, 0);
+    grid.majorantCells = glm::ivec4(majorants.cells, 0);
+    return grid;
+}
+
+}  // namespace
+
+GpuDensityGrids uploadDensityGrids(const VulkanContext& context, const Scene& scene) {
+    std::vector<gpu::GpuDensityGrid> grids;
+    std::vector<float> values;
+    std::vector<float> maxima;
+    for (const SceneDensityGrid& placed : scene.densityGrids) {
+        requireFits(context, placed, values.size());
+        const MajorantGrid majorants = buildMajorantGrid(placed.grid);
+        grids.push_back(deviceGrid(placed, majorants, values.size(), maxima.size()));
+        values.insert(values.end(), placed.grid.values.begin(), placed.grid.values.end());
+        maxima.insert(maxima.end(), majorants.maxima.begin(), majorants.maxima.end());
+    }
+    return {uploadVector<gpu::GpuDensityGrid>(context, grids, "density grids"),
+            uploadVector<float>(context, values, "density grid values"),
+            uploadVector<float>(context, maxima, "density grid majorants")};
+}
+
+}  // namespace vkdr

@@ -1,0 +1,123 @@
+#include "scene/gltf_density_grids.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "scene/flatten_nodes.h"
+#include "scene/gltf_media.h"
+#include "scene/gltf_values.h"
+#include "volume/read_density_grid.h"
+
+namespace vkdr {
+namespace {
+
+// The world transform of node `index`, which must have at most one parent.
+glm::dmat4 nodeToWorld(const tinygltf::Model& model, int index, const std::string& field,
+                       const GltfDiagnostics& diagnostics) {
+    if (index < 0 || size_t(index) >= model.nodes.size()) {
+        diagnostics.fail(field, "node " + std::to_string(index) + " out of range (" +
+                                    std::to_string(model.nodes.size()) + " nodes)");
+    }
+    std::vector<int> parent(model.nodes.size(), -1);
+    std::vector<int> parents(model.nodes.size(), 0);
+    for (size_t n = 0; n < model.nodes.size(); ++n) {
+        for (int child : model.nodes[n].children) {
+            if (child >= 0 && size_t(child) < model.nodes.size()) {
+                parent[size_t(child)] = int(n);
+                ++parents[size_t(child)];
+            }
+        }
+    }
+    glm::dmat4 transform(1.0);
+    size_t depth = 0;
+    for (int n = index; n >= 0; n = parent[size_t(n)]) {
+        if (++depth > model.nodes.size()) {
+            diagnostics.fail(field, "node " + std::to_string(index) + " is its own ancestor");
+        }
+        if (parents[size_t(n)] > 1) {
+            diagnostics.fail(field, "node " + std::to_string(n) +
+                                        " has several parents, so the grid would be placed more than once");
+        }
+        transform = glm::dmat4(localTransform(model.nodes[size_t(n)])) * transform;
+    }
+    return transform;
+}
+
+void requireInvertible(const glm::dmat4& indexToWorld, const std::string& field, const GltfDiagnostics& diagnostics) {
+    const glm::dmat3 linear(indexToWorld);
+    const double determinant = glm::determinant(linear);
+    const double scale = glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2]);
+    if (!std::isfinite(determinant) || !(std::abs(determinant) > 1e-12 * scale)) {
+        diagnostics.fail(field, "the grid's placement (the node's transform times the grid's own) is singular");
+    }
+}
+
+// Reads the grid a medium's "density" object references and makes the medium use it.
+void readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& density, const std::string& field,
+                    const SceneFiles& files, GltfDiagnostics& diagnostics, Scene& scene, Medium& medium,
+                    std::vector<std::filesystem::path>& read) {
+    if (!density.IsObject()) {
+        diagnostics.fail(field, "expected an object {\"uri\", \"grid\", \"node\"}");
+    }
+    if (!density.Has("uri")) {
+        diagnostics.fail(field + ".uri", "missing: the grid file (.vdb or .nvdb) is required");
+    }
+    const std::string uri = readString(diagnostics, density, field, "uri", "");
+    if (isDataUri(uri)) {
+        diagnostics.fail(field + ".uri", "a grid must be a .vdb or .nvdb file, not a data: URI");
+    }
+    const ResolvedFile resolved = files.resolveUri(uri);
+    if (!resolved.problem.empty()) {
+        diagnostics.fail(field + ".uri", resolved.problem);
+    }
+    const std::string gridName = readString(diagnostics, density, field, "grid", "density");
+    glm::dmat4 placement(1.0);
+    if (density.Has("node")) {
+        const tinygltf::Value& node = density.Get("node");
+        if (!node.IsInt()) {
+            diagnostics.fail(field + ".node", "expected a node index");
+        }
+        placement = nodeToWorld(model, node.GetNumberAsInt(), field + ".node", diagnostics);
+    }
+    SceneDensityGrid placed;
+    placed.file = resolved.file;
+    try {
+        placed.grid = readDensityGrid(resolved.file, gridName);
+    } catch (const Error& e) {
+        diagnostics.fail(field, e.what());
+    }
+    placed.indexToWorld = placement * placed.grid.indexToLocal;
+    requireInvertible(placed.indexToWorld, field, diagnostics);
+    read.push_back(resolved.file);
+    medium.densityGrid = int32_t(scene.densityGrids.size());
+    scene.densityGrids.push_back(std::move(placed));
+}
+
+const tinygltf::Value* densityOf(const tinygltf::ExtensionMap& extensions) {
+    auto found = extensions.find(kMediumExtension);
+    if (found == extensions.end() || !found->second.IsObject() || !found->second.Has("density")) {
+        return nullptr;
+    }
+    return &found->second.Get("density");
+}
+
+}  // namespace
+
+void readDensityGrids(const tinygltf::Model& model, const SceneFiles& files, GltfDiagnostics& diagnostics,
+                      Scene& scene, std::vector<std::filesystem::path>& read) {
+    for (size_t m = 0; m < model.materials.size(); ++m) {
+        const tinygltf::Value* density = densityOf(model.materials[m].extensions);
+        if (density && scene.materials[m].isMediumBoundary()) {
+            std::string field = indexed("materials", m) + ".extensions." + kMediumExtension + ".density";
+            readMediumGrid(model, *density, field, files, diagnostics, scene,
+                           scene.media[size_t(scene.materials[m].interiorMedium)], read);
+        }
+    }
+    if (const tinygltf::Value* density = densityOf(model.extensions); density && scene.sceneMedium >= 0) {
+        std::string field = std::string("extensions.") + kMediumExtension + ".density";
+        readMediumGrid(model, *density, field, files, diagnostics, scene, scene.media[size_t(scene.sceneMedium)],
+                       read);
+    }
+}
+
+}  // namespace vkdr

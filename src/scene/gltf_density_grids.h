@@ -1,0 +1,20 @@
+#pragma once
+#include <filesystem>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "scene/gltf_diagnostics.h"
+#include "scene/scene.h"
+#include "scene/scene_file_access.h"
+
+namespace vkdr {
+
+// Reads the density grids that VKDR_participating_media objects reference, on materials
+// and at the root: "density": {"uri", "grid" (default "density"), "node" (optional)}.
+// Each becomes a Scene::densityGrids entry placed by the node's world transform times the
+// grid's own, and makes its medium heterogeneous. Appends the grid files to `read`.
+void readDensityGrids(const tinygltf::Model& model, const SceneFiles& files, GltfDiagnostics& diagnostics,
+                      Scene& scene, std::vector<std::filesystem::path>& read);
+
+}  // namespace vkdr

@@ -1,0 +1,180 @@
+#include "volume/read_density_grid.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>  // GridValidator.h uses std::cerr without including it
+#include <new>
+#include <vector>
+
+#include <nanovdb/util/GridValidator.h>
+#include <nanovdb/util/IO.h>
+#include <nanovdb/util/NanoToOpenVDB.h>
+
+#include "core/error.h"
+#include "core/format_text.h"
+#include "image/regular_file.h"
+#include "volume/grid_file_type.h"
+#include "volume/index_transform.h"
+#include "volume/openvdb_support.h"
+
+namespace vkdr {
+namespace {
+
+std::string noGridNamed(const std::string& gridName, const std::vector<std::string>& names) {
+    if (names.empty()) return "the file holds no grids";
+    std::string list;
+    for (const std::string& name : names) list += (list.empty() ? "'" : ", '") + name + "'";
+    return "no grid named '" + gridName + "'; the file has " + list;
+}
+
+void requireUsableTransform(const glm::dmat4& indexToLocal) {
+    const std::string problem = indexTransformProblem(indexToLocal);
+    if (!problem.empty()) throw Error(problem);
+}
+
+// A voxel's (or a tile's) value as a density: finite, >= 0 and within float's range.
+template <typename ValueT>
+float densityOf(ValueT value, const openvdb::Coord& voxel) {
+    const float density = float(value);
+    if (!(value >= ValueT(0)) || !std::isfinite(density)) {
+        throw Error(formatText("voxel (%d, %d, %d) holds %g; a density must be finite, >= 0 and within float's range",
+                               voxel.x(), voxel.y(), voxel.z(), double(value)));
+    }
+    return density;
+}
+
+// The dense box of `grid`'s active voxels, active tiles filled in voxel by voxel.
+template <typename GridT>
+DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dmat4& indexToLocal) {
+    DensityGrid dense;
+    dense.name = name;
+    dense.indexToLocal = indexToLocal;
+    const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+    if (box.empty()) return dense;
+    const glm::i64vec3 extent = glm::i64vec3(box.max().x(), box.max().y(), box.max().z()) -
+                                glm::i64vec3(box.min().x(), box.min().y(), box.min().z()) + int64_t(1);
+    const uint64_t count = uint64_t(extent.x) * uint64_t(extent.y) * uint64_t(extent.z);
+    if (count > kMaxDenseVoxels) {
+        throw Error(formatText("its active voxels span a box of %lld x %lld x %lld = %llu voxels, more than the "
+                               "%llu (2^31 - 1) a dense grid may hold",
+                               (long long)extent.x, (long long)extent.y, (long long)extent.z,
+                               (unsigned long long)count, (unsigned long long)kMaxDenseVoxels));
+    }
+    dense.firstVoxel = glm::ivec3(box.min().x(), box.min().y(), box.min().z());
+    dense.size = glm::ivec3(extent);
+    dense.values.assign(count, 0.0f);
+    const openvdb::Coord first = box.min();
+    const size_t sizeX = size_t(dense.size.x), sizeY = size_t(dense.size.y);
+    for (auto value = grid.cbeginValueOn(); value; ++value) {
+        const openvdb::CoordBBox cells = value.getBoundingBox();  // one voxel, or all of a tile's
+        const float density = densityOf(*value, cells.min());
+        if (density == 0.0f) continue;
+        for (int z = cells.min().z(); z <= cells.max().z(); ++z) {
+            for (int y = cells.min().y(); y <= cells.max().y(); ++y) {
+                const size_t row = (size_t(z - first.z()) * sizeY + size_t(y - first.y())) * sizeX;
+                std::fill_n(dense.values.begin() + ptrdiff_t(row + size_t(cells.min().x() - first.x())),
+                            cells.max().x() - cells.min().x() + 1, density);
+            }
+        }
+    }
+    return dense;
+}
+
+DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridName) {
+    initializeOpenVdb();
+    openvdb::io::File vdb(file.string());
+    vdb.open(false);
+    if (!vdb.hasGrid(gridName)) {
+        std::vector<std::string> names;
+        for (auto name = vdb.beginName(); name != vdb.endName(); ++name) names.push_back(*name);
+        throw Error(noGridNamed(gridName, names));
+    }
+    const openvdb::GridBase::Ptr grid = vdb.readGrid(gridName);
+    vdb.close();
+    const bool isFloat = grid->isType<openvdb::FloatGrid>(), isDouble = grid->isType<openvdb::DoubleGrid>();
+    if (!isFloat && !isDouble) {
+        throw Error("the grid holds " + grid->valueType() + " values, not scalar densities (float or double)");
+    }
+    const openvdb::math::Transform& transform = grid->transform();
+    if (!transform.isLinear()) throw Error("the transform is not affine (it is a " + transform.mapType() + ")");
+    const glm::dmat4 indexToLocal = toGlm(transform.baseMap()->getAffineMap()->getMat4());
+    requireUsableTransform(indexToLocal);
+    if (isFloat) return denseBoxOf(*openvdb::gridConstPtrCast<openvdb::FloatGrid>(grid), gridName, indexToLocal);
+    return denseBoxOf(*openvdb::gridConstPtrCast<openvdb::DoubleGrid>(grid), gridName, indexToLocal);
+}
+
+// NanoVDB keeps the 3x3 part of the map transposed against OpenVDB's (Map::set): it maps
+// column vectors, as glm does. NanoToOpenVDB copies it without transposing, so the
+// converted grid's own transform is not used.
+glm::dmat4 indexToLocalOf(const nanovdb::Map& map) {
+    if (map.mTaperD != 1.0) throw Error(formatText("the transform is not affine (a frustum of taper %g)", map.mTaperD));
+    glm::dmat4 indexToLocal(1.0);
+    for (int row = 0; row < 3; ++row) {
+        for (int column = 0; column < 3; ++column) indexToLocal[column][row] = map.mMatD[3 * row + column];
+        indexToLocal[3][row] = map.mVecD[row];
+    }
+    return indexToLocal;
+}
+
+template <typename ValueT>
+DensityGrid denseBoxOfNanoGrid(const nanovdb::NanoGrid<ValueT>* grid, const std::string& gridName) {
+    if (grid == nullptr) throw Error("the grid's header and its contents disagree on its value type");
+    const std::string damage = nanovdb::GridValidator<ValueT>::check(*grid, true);
+    if (!damage.empty()) throw Error("the grid is damaged (" + damage + ")");
+    const glm::dmat4 indexToLocal = indexToLocalOf(grid->map());
+    requireUsableTransform(indexToLocal);
+    return denseBoxOf(*nanovdb::nanoToOpenVDB(*grid), gridName, indexToLocal);
+}
+
+DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gridName) {
+    initializeOpenVdb();
+    const std::vector<nanovdb::io::GridMetaData> grids = nanovdb::io::readGridMetaData(file.string());
+    std::vector<std::string> names;
+    const nanovdb::io::GridMetaData* found = nullptr;
+    for (const nanovdb::io::GridMetaData& grid : grids) {
+        names.push_back(grid.gridName);
+        if (grid.gridName == gridName && found == nullptr) found = &grid;
+    }
+    if (found == nullptr) throw Error(noGridNamed(gridName, names));
+    const nanovdb::GridType type = found->gridType;
+    if (type != nanovdb::GridType::Float && type != nanovdb::GridType::Double) {
+        throw Error(std::string("the grid holds ") + nanovdb::toStr(type) +
+                    " values, not scalar densities (float or double)");
+    }
+    const nanovdb::GridHandle<nanovdb::HostBuffer> handle = nanovdb::io::readGrid(file.string(), gridName);
+    if (type == nanovdb::GridType::Float) return denseBoxOfNanoGrid(handle.grid<float>(), gridName);
+    return denseBoxOfNanoGrid(handle.grid<double>(), gridName);
+}
+
+void requireReadableFile(const std::filesystem::path& file) {
+    const std::string reason = notRegularFileReason(file);
+    if (!reason.empty()) throw Error(reason);
+    std::ifstream probe(file, std::ios::binary);
+    if (!probe) throw Error(std::strerror(errno));
+}
+
+}  // namespace
+
+DensityGrid readDensityGrid(const std::filesystem::path& file, const std::string& gridName) {
+    const std::string context = "cannot read density grid '" + gridName + "' from '" + file.string() + "': ";
+    const std::optional<GridFileType> type = gridFileTypeOf(file);
+    if (!type) {
+        throw Error(context + "unknown extension '" + file.extension().string() + "' (expected .vdb or .nvdb)");
+    }
+    try {
+        requireReadableFile(file);
+        return *type == GridFileType::Vdb ? readVdb(file, gridName) : readNanoVdb(file, gridName);
+    } catch (const std::bad_alloc&) {
+        throw;
+    } catch (const Error& error) {
+        throw Error(context + error.what());
+    } catch (const std::exception& error) {
+        // OpenVDB's and NanoVDB's own complaints about the file (not a VDB file, truncated, ...).
+        throw Error(context + error.what());
+    }
+}
+
+}  // namespace vkdr

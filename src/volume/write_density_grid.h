@@ -1,0 +1,22 @@
+#pragma once
+#include <filesystem>
+
+#include "volume/density_grid.h"
+
+namespace vkdr {
+
+// Writes `grid` as an OpenVDB FloatGrid of class fog volume named grid.name ("density"
+// when empty), background 0, its non-zero voxels active, with indexToLocal as an affine
+// map: readDensityGrid gives back the same box, values and matrix bit for bit. The file
+// is written atomically (complete or untouched). Throws vkdr::Error for a grid whose
+// values do not match its size, a negative or non-finite value, or a transform that
+// indexTransformProblem refuses.
+void writeDensityGridVdb(const std::filesystem::path& file, const DensityGrid& grid);
+
+// The same grid as a NanoVDB (.nvdb) file, uncompressed; read back bit for bit as well.
+void writeDensityGridNanoVdb(const std::filesystem::path& file, const DensityGrid& grid);
+
+// One of the two by the file's extension (gridFileTypeOf); vkdr::Error for any other.
+void writeDensityGrid(const std::filesystem::path& file, const DensityGrid& grid);
+
+}  // namespace vkdr

@@ -1,0 +1,197 @@
+// Each way a density grid file can be unusable gives one vkdr::Error naming the file
+// and saying what is wrong.
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include <nanovdb/util/GridChecksum.h>
+#include <nanovdb/util/IO.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
+
+#include "../image/scratch_directory.h"
+#include "expect_error.h"
+#include "grid_files.h"
+#include "volume/read_density_grid.h"
+#include "volume/write_density_grid.h"
+
+namespace vkdr::test {
+namespace {
+
+void expectReadError(const std::filesystem::path& file, const std::string& gridName,
+                     std::vector<std::string> parts) {
+    parts.push_back(file.string());
+    expectErrorMentioning([&] { readDensityGrid(file, gridName); }, parts);
+}
+
+openvdb::FloatGrid::Ptr gridWithVoxel(openvdb::Coord voxel, float value) {
+    openvdb::FloatGrid::Ptr vdb = openVdbGrid(DensityGrid{});
+    vdb->setName("density");
+    vdb->tree().setValueOn(openvdb::Coord(0, 0, 0), 0.5f);
+    vdb->tree().setValueOn(voxel, value);
+    return vdb;
+}
+
+TEST(DensityGridErrors, MissingFileAndDirectory) {
+    ScratchDirectory directory;
+    expectReadError(directory / "missing.vdb", "density", {"no such file"});
+    expectReadError(directory / "missing.nvdb", "density", {"no such file"});
+    std::filesystem::create_directory(directory / "folder.vdb");
+    expectReadError(directory / "folder.vdb", "density", {"is a directory"});
+}
+
+TEST(DensityGridErrors, UnknownExtension) {
+    ScratchDirectory directory;
+    writeBytes(directory / "grid.txt", "density");
+    expectReadError(directory / "grid.txt", "density", {"unknown extension '.txt'", ".vdb or .nvdb"});
+}
+
+TEST(DensityGridErrors, NotAGridFile) {
+    ScratchDirectory directory;
+    writeBytes(directory / "text.vdb", "these are not the bytes of a VDB file at all");
+    expectReadError(directory / "text.vdb", "density", {"not a VDB file"});
+    writeBytes(directory / "text.nvdb", "these are not the bytes of a NanoVDB file at all");
+    expectReadError(directory / "text.nvdb", "density", {"not a valid nvdb file"});
+    writeBytes(directory / "empty.vdb", "");
+    expectReadError(directory / "empty.vdb", "density", {"not a VDB file"});
+    writeBytes(directory / "empty.nvdb", "");
+    expectReadError(directory / "empty.nvdb", "density", {"holds no grids"});
+    // Cut short after its headers.
+    writeDensityGridNanoVdb(directory / "whole.nvdb", patternedGrid({0, 0, 0}, {4, 4, 4}, glm::dmat4(1.0)));
+    writeBytes(directory / "cut.nvdb", fileBytes(directory / "whole.nvdb").substr(0, 1000));
+    expectReadError(directory / "cut.nvdb", "density", {"Failed to read"});
+}
+
+TEST(DensityGridErrors, NoGridOfThatNameListsTheNames) {
+    ScratchDirectory directory;
+    DensityGrid smoke = patternedGrid({0, 0, 0}, {2, 2, 2}, glm::dmat4(1.0));
+    smoke.name = "smoke";
+    DensityGrid fire = smoke;
+    fire.name = "fire";
+    openvdb::io::File((directory / "two.vdb").string()).write(openvdb::GridPtrVec{openVdbGrid(smoke), openVdbGrid(fire)});
+    expectReadError(directory / "two.vdb", "density", {"no grid named 'density'", "'smoke'", "'fire'"});
+    writeDensityGridNanoVdb(directory / "smoke.nvdb", smoke);
+    expectReadError(directory / "smoke.nvdb", "density", {"no grid named 'density'", "'smoke'"});
+}
+
+TEST(DensityGridErrors, VectorAndOtherNonScalarGrids) {
+    ScratchDirectory directory;
+    openvdb::Vec3SGrid::Ptr velocity = openvdb::Vec3SGrid::create();
+    velocity->setName("density");
+    velocity->tree().setValueOn(openvdb::Coord(1, 2, 3), openvdb::Vec3s(1.0f, 0.0f, 0.0f));
+    writeOpenVdbGrid(directory / "vector.vdb", velocity);
+    expectReadError(directory / "vector.vdb", "density", {"vec3s", "not scalar densities"});
+
+    openvdb::Int32Grid::Ptr labels = openvdb::Int32Grid::create();
+    labels->setName("density");
+    labels->tree().setValueOn(openvdb::Coord(1, 2, 3), 7);
+    writeOpenVdbGrid(directory / "int.vdb", labels);
+    expectReadError(directory / "int.vdb", "density", {"int32"});
+
+    openvdb::BoolGrid::Ptr mask = openvdb::BoolGrid::create();
+    mask->setName("density");
+    mask->tree().setValueOn(openvdb::Coord(1, 2, 3), true);
+    writeOpenVdbGrid(directory / "mask.vdb", mask);
+    expectReadError(directory / "mask.vdb", "density", {"bool"});
+
+    nanovdb::io::writeGrid((directory / "vector.nvdb").string(), nanovdb::openToNanoVDB(*velocity));
+    expectReadError(directory / "vector.nvdb", "density", {"Vec3f", "not scalar densities"});
+}
+
+TEST(DensityGridErrors, NegativeAndNonFiniteVoxels) {
+    ScratchDirectory directory;
+    writeOpenVdbGrid(directory / "nan.vdb", gridWithVoxel({4, -2, 7}, std::numeric_limits<float>::quiet_NaN()));
+    expectReadError(directory / "nan.vdb", "density", {"voxel (4, -2, 7)", "nan", "finite, >= 0"});
+    writeOpenVdbGrid(directory / "inf.vdb", gridWithVoxel({-9, 0, 1}, std::numeric_limits<float>::infinity()));
+    expectReadError(directory / "inf.vdb", "density", {"voxel (-9, 0, 1)", "inf"});
+    writeOpenVdbGrid(directory / "negative.vdb", gridWithVoxel({3, 3, 3}, -0.25f));
+    expectReadError(directory / "negative.vdb", "density", {"voxel (3, 3, 3)", "-0.25"});
+    nanovdb::io::writeGrid((directory / "negative.nvdb").string(),
+                           nanovdb::openToNanoVDB(*gridWithVoxel({3, 3, -3}, -0.25f)));
+    expectReadError(directory / "negative.nvdb", "density", {"voxel (3, 3, -3)", "-0.25"});
+
+    // A negative tile is named by its first voxel.
+    openvdb::FloatGrid::Ptr tiled = gridWithVoxel({0, 0, 0}, 1.0f);
+    tiled->tree().addTile(1, openvdb::Coord(16, 8, 0), -1.0f, true);
+    writeOpenVdbGrid(directory / "tile.vdb", tiled);
+    expectReadError(directory / "tile.vdb", "density", {"voxel (16, 8, 0)", "-1"});
+
+    // A double beyond float's range.
+    openvdb::DoubleGrid::Ptr huge = openvdb::DoubleGrid::create(0.0);
+    huge->setName("density");
+    huge->tree().setValueOn(openvdb::Coord(1, 1, 1), 1e300);
+    writeOpenVdbGrid(directory / "huge.vdb", huge);
+    expectReadError(directory / "huge.vdb", "density", {"voxel (1, 1, 1)", "1e+300", "float's range"});
+}
+
+TEST(DensityGridErrors, TransformThatIsNotAffine) {
+    ScratchDirectory directory;
+    openvdb::FloatGrid::Ptr vdb = gridWithVoxel({1, 1, 1}, 1.0f);
+    vdb->setTransform(openvdb::math::Transform::createFrustumTransform(
+        openvdb::BBoxd(openvdb::Vec3d(0.0), openvdb::Vec3d(10.0)), 0.5, 2.0, 1.0));
+    writeOpenVdbGrid(directory / "frustum.vdb", vdb);
+    expectReadError(directory / "frustum.vdb", "density", {"not affine", "NonlinearFrustumMap"});
+
+    // NanoVDB keeps a frustum's taper in its map (OpenToNanoVDB refuses frustums).
+    nanovdb::GridHandle<> handle = nanovdb::openToNanoVDB(*gridWithVoxel({1, 1, 1}, 1.0f));
+    reinterpret_cast<nanovdb::GridData*>(handle.data())->mMap.mTaperD = 0.5;
+    nanovdb::updateChecksum(*handle.grid<float>());
+    nanovdb::io::writeGrid((directory / "taper.nvdb").string(), handle);
+    expectReadError(directory / "taper.nvdb", "density", {"not affine", "taper 0.5"});
+}
+
+// OpenVDB refuses to make or read an affine map of determinant below 3e-15; ours also
+// refuses a nearly flat voxel OpenVDB accepts, and a singular NanoVDB map.
+TEST(DensityGridErrors, SingularTransform) {
+    ScratchDirectory directory;
+    DensityGrid grid = patternedGrid({0, 0, 0}, {2, 2, 2}, glm::dmat4(1.0));
+    grid.indexToLocal[1] = glm::dvec4(1.0, 1e-9, 0.0, 0.0);  // the y axis nearly along x
+    writeOpenVdbGrid(directory / "flat.vdb", openVdbGrid(grid));
+    expectReadError(directory / "flat.vdb", "density", {"singular"});
+
+    // A map OpenVDB made, turned singular in the file: a distinctive entry set to 0.
+    grid.indexToLocal = glm::dmat4(1.0);
+    grid.indexToLocal[1][1] = 0.123456789;
+    writeOpenVdbGrid(directory / "singular.vdb", openVdbGrid(grid));
+    std::string bytes = fileBytes(directory / "singular.vdb");
+    const double entry = 0.123456789, zero = 0.0;
+    const size_t at = bytes.find(std::string(reinterpret_cast<const char*>(&entry), sizeof(double)));
+    ASSERT_NE(at, std::string::npos);
+    bytes.replace(at, sizeof(double), std::string(reinterpret_cast<const char*>(&zero), sizeof(double)));
+    writeBytes(directory / "singular.vdb", bytes);
+    expectReadError(directory / "singular.vdb", "density", {"singular"});
+
+    nanovdb::GridHandle<> handle = nanovdb::openToNanoVDB(*gridWithVoxel({1, 1, 1}, 1.0f));
+    nanovdb::Map& map = reinterpret_cast<nanovdb::GridData*>(handle.data())->mMap;
+    map.mMatD[8] = 0.0;  // z maps to nothing
+    nanovdb::updateChecksum(*handle.grid<float>());
+    nanovdb::io::writeGrid((directory / "singular.nvdb").string(), handle);
+    expectReadError(directory / "singular.nvdb", "density", {"singular"});
+
+    // Our writer refuses it too, before writing anything.
+    grid.indexToLocal[1][1] = 0.0;
+    expectErrorMentioning([&] { writeDensityGridVdb(directory / "refused.vdb", grid); }, {"refused.vdb", "singular"});
+    EXPECT_FALSE(std::filesystem::exists(directory / "refused.vdb"));
+}
+
+// A NanoVDB grid whose bytes do not match its checksum.
+TEST(DensityGridErrors, DamagedNanoVdbGrid) {
+    ScratchDirectory directory;
+    writeDensityGridNanoVdb(directory / "grid.nvdb", patternedGrid({0, 0, 0}, {4, 4, 4}, glm::dmat4(1.0)));
+    std::string bytes = fileBytes(directory / "grid.nvdb");
+    const nanovdb::GridHandle<> handle = nanovdb::io::readGrid((directory / "grid.nvdb").string());
+    const auto* grid = reinterpret_cast<const nanovdb::GridData*>(handle.data());
+    const size_t nameOffset = size_t(reinterpret_cast<const char*>(grid->mGridName) - reinterpret_cast<const char*>(grid));
+    bytes[bytes.size() - handle.size() + nameOffset + 1] ^= 0x20;  // the grid's own copy of its name
+    writeBytes(directory / "grid.nvdb", bytes);
+    expectReadError(directory / "grid.nvdb", "density", {"damaged", "checksum"});
+}
+
+TEST(DensityGridErrors, BoxTooLargeToHoldDensely) {
+    ScratchDirectory directory;
+    openvdb::FloatGrid::Ptr vdb = gridWithVoxel({2000, 2000, 2000}, 1.0f);
+    writeOpenVdbGrid(directory / "far.vdb", vdb);
+    expectReadError(directory / "far.vdb", "density", {"2001 x 2001 x 2001 = 8012006001 voxels", "2^31 - 1"});
+}
+
+}  // namespace
+}  // namespace vkdr::test
