@@ -22,28 +22,43 @@ bool passesThroughAbsorbing(GpuMedium m) {
 // Free flight through a density grid medium along [0, tHit) (grid_tracking.glsl): the
 // medium vertex of a real collision, a pause where tracking reached its step bound, or
 // the surface. A medium that scatters nowhere is passed with its ratio-tracked
-// transmittance.
-uint sampleGridFreeFlightVertex(uint slot, GpuMedium m, float tHit, inout vec3 beta) {
+// transmittance. The adjoint pass adds delta * L_rem * d log(segment factor) to the
+// medium's sigma gradients, also for a ray that leaves the scene (the grid ends).
+uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit, inout vec3 beta) {
     GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
     PathInfo info = loadPathInfo(slot);
     TrackingRandom random = segmentTrackingRandom(info, kTrackingFreeFlight);
     vec3 origin = P.rayOrigin.v[slot].xyz;
     vec3 direction = P.rayDirection.v[slot].xyz;
     vec3 sigma_t = sigmaT(m);
+    GridFreeFlight flight;
+    flight.t = tHit;
+    flight.collided = false;
+    flight.paused = false;
     if (m.sigma_s == vec3(0.0f)) {
         bool truncated = false;
         beta *= ratioTrackTransmittance(grid, origin, direction, tHit, sigma_t, random, truncated);
         if (truncated) {
             atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
         }
-        return kVertexSurface;
+    } else {
+        vec4 u = segmentRandom(info, kDimFreeFlight);
+        int hero = min(int(u.x * 3.0f), 2);
+        flight = trackFreeFlight(grid, origin, direction, tHit, sigma_t[hero], u.yz, random);
+        beta *= heroMisWeight(sigma_t, flight.tentative, flight.majorantIntegral);
+        if (flight.collided) {
+            beta *= m.sigma_s * logDerivativeOfLinear(sigma_t);
+        }
     }
-    vec4 u = segmentRandom(info, kDimFreeFlight);
-    int hero = min(int(u.x * 3.0f), 2);
-    GridFreeFlight flight = trackFreeFlight(grid, origin, direction, tHit, sigma_t[hero], u.yz, random);
-    beta *= heroMisWeight(sigma_t, flight.tentative, flight.majorantIntegral);
-    if (flight.collided) {
-        beta *= m.sigma_s * logDerivativeOfLinear(sigma_t);
+    if (kAdjoint && (gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS))) {
+        // The segment's factor is T(t) (sigma_s d(x_t) at a collision) with
+        // T = exp(-sigma_t D), D the density's integral up to t, which independent
+        // points estimate without bias.
+        TrackingRandom points = segmentTrackingRandom(info, kTrackingFreeFlightGradient);
+        float integral = estimateDensityIntegral(grid, origin, direction, flight.t, nextTrackingRandom(points).x);
+        vec3 dLogScattering = flight.collided ? logDerivativeOfLinear(m.sigma_s) : vec3(0.0f);
+        addSigmaGradient(medium, factorGradient(slot, vec3(-integral)),
+                         factorGradient(slot, dLogScattering - integral));
     }
     if (!(flight.collided || flight.paused)) {
         return kVertexSurface;
@@ -58,7 +73,7 @@ uint sampleGridFreeFlightVertex(uint slot, GpuMedium m, float tHit, inout vec3 b
 uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, inout vec3 beta) {
     GpuMedium m = P.media.v[medium];
     if (m.densityGrid != kNoDensityGrid) {
-        return sampleGridFreeFlightVertex(slot, m, tHit, beta);
+        return sampleGridFreeFlightVertex(slot, medium, m, tHit, beta);
     }
     vec3 sigma_t = sigmaT(m);
     bool absorbing = passesThroughAbsorbing(m);

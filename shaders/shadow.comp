@@ -54,12 +54,14 @@ void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
 // Transmittance from the shadow ray's origin to its end, zero when something opaque
 // is in the way. In the adjoint pass it also records the length in each medium, and
 // with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
-// segment's length) to its medium's sigma_t gradient. A ray to a directional light
+// segment's length, or in a density grid the density's integral along it, estimated at
+// points of its own) to its medium's sigma_t gradient. A ray to a directional light
 // (distance kFar) ends in an unbounded segment, whose transmittance is 0 wherever
 // sigma_t > 0; where sigma_t = 0 its derivative is unbounded and left out, as for a
 // camera ray that escapes.
 vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight,
-                         inout MediumLengths lengths, inout TrackingRandom random) {
+                         inout MediumLengths lengths, inout TrackingRandom random,
+                         inout TrackingRandom gradientPoints) {
     vec3 tr = vec3(1.0f);
     bool toInfinity = distance >= kFar;
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
@@ -68,21 +70,31 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             return vec3(0.0f);
         }
         float segment = min(hit.t, distance);
-        if (medium != kNoMediumIndex && P.media.v[medium].densityGrid != kNoDensityGrid) {
+        if (medium != kNoMediumIndex) {
             GpuMedium m = P.media.v[medium];
-            bool truncated = false;
-            tr *= ratioTrackTransmittance(P.densityGrids.v[m.densityGrid], origin, direction, segment, sigmaT(m),
-                                          random, truncated);
-            if (truncated) {
-                atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
-            }
-        } else if (medium != kNoMediumIndex) {
-            tr *= transmittance(sigmaT(P.media.v[medium]), segment);
+            // d log T / d sigma_t = -(the optical length per unit sigma_t): the segment's
+            // length, or in a grid the density's integral along it.
+            float opticalLength = segment;
             bool unbounded = toInfinity && hit.triangle == kNoHit;
+            if (m.densityGrid != kNoDensityGrid) {
+                GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
+                bool truncated = false;
+                tr *= ratioTrackTransmittance(grid, origin, direction, segment, sigmaT(m), random, truncated);
+                if (truncated) {
+                    atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
+                }
+                unbounded = false;  // the grid ends
+                if (kAdjoint) {
+                    opticalLength = estimateDensityIntegral(grid, origin, direction, segment,
+                                                            nextTrackingRandom(gradientPoints).x);
+                }
+            } else {
+                tr *= transmittance(sigmaT(m), segment);
+            }
             if (kAdjoint && !unbounded) {
-                addMediumLength(lengths, medium, segment);
+                addMediumLength(lengths, medium, opticalLength);
                 if (maxComponent(abs(gradientWeight)) > 0.0f) {
-                    addSigmaTGradient(medium, -segment * gradientWeight);
+                    addSigmaTGradient(medium, -opticalLength * gradientWeight);
                 }
             }
         }
@@ -105,12 +117,12 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
     return vec3(0.0f);
 }
 
-// The random numbers of ratio tracking along the shadow ray in `slot`, keyed by the
-// segment that queued it.
-TrackingRandom shadowRandom(uint slot) {
+// Random numbers for the shadow ray in `slot` (ratio tracking, or the adjoint's points),
+// keyed by the segment that queued it.
+TrackingRandom shadowRandom(uint slot, uint purpose) {
     PathInfo info = loadPathInfo(slot);
     info.segment = floatBitsToUint(P.shadowContribution.v[slot].w);
-    return segmentTrackingRandom(info, kTrackingShadow);
+    return segmentTrackingRandom(info, purpose);
 }
 
 // The adjoint of a next-event contribution C = T * scatter * Le * w / pdf that reached
@@ -129,9 +141,10 @@ void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr, MediumLengths
             vec4 origin = P.shadowOrigin.v[slot];
             vec4 direction = P.shadowDirection.v[slot];
             MediumLengths retraced = noMediumLengths();
-            TrackingRandom random = shadowRandom(slot);
+            TrackingRandom random = shadowRandom(slot, kTrackingShadow);
+            TrackingRandom gradientPoints = shadowRandom(slot, kTrackingShadowGradient);
             shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), weight, retraced,
-                                random);
+                                random, gradientPoints);
         }
     }
     vec4 scatterGradient = P.shadowScatterGradient.v[slot];
@@ -153,9 +166,10 @@ void main() {
     vec4 origin = P.shadowOrigin.v[slot];
     vec4 direction = P.shadowDirection.v[slot];
     MediumLengths lengths = noMediumLengths();
-    TrackingRandom random = shadowRandom(slot);
+    TrackingRandom random = shadowRandom(slot, kTrackingShadow);
+    TrackingRandom gradientPoints = shadowRandom(slot, kTrackingShadowGradient);
     vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), vec3(0.0f),
-                                  lengths, random);
+                                  lengths, random, gradientPoints);
     vec3 contribution = tr * P.shadowContribution.v[slot].rgb;
     beginReplay(slot);
     if (kAdjoint) {

@@ -58,26 +58,36 @@ struct MajorantWalk {
     float tEnd;   // where the ray leaves the cells, or its own end
 };
 
+// The part of [0, tMax) where the ray is inside the majorant cells, which hold all of the
+// density; empty (x >= y) when it misses them.
+vec2 cellsInterval(GpuDensityGrid grid, GridRay ray, float tMax) {
+    vec3 lower = vec3(grid.majorantOrigin.xyz);
+    vec3 upper = lower + vec3(grid.majorantCells.xyz * kMajorantCellVoxels);
+    float enter = 0.0f;
+    float exit = tMax;
+    for (int k = 0; k < 3; ++k) {
+        if (ray.direction[k] == 0.0f) {
+            if (ray.origin[k] < lower[k] || ray.origin[k] >= upper[k]) {
+                exit = -1.0f;
+            }
+            continue;
+        }
+        float t0 = (lower[k] - ray.origin[k]) / ray.direction[k];
+        float t1 = (upper[k] - ray.origin[k]) / ray.direction[k];
+        enter = max(enter, min(t0, t1));
+        exit = min(exit, max(t0, t1));
+    }
+    return vec2(enter, exit);
+}
+
 // Starts a walk along [0, tMax); done at once when the ray misses the cells.
 MajorantWalk startMajorantWalk(GpuDensityGrid grid, GridRay ray, float tMax) {
     MajorantWalk walk;
     vec3 cellOrigin = (ray.origin - vec3(grid.majorantOrigin.xyz)) / float(kMajorantCellVoxels);
     vec3 cellDirection = ray.direction / float(kMajorantCellVoxels);
-    vec3 cells = vec3(grid.majorantCells.xyz);
-    float enter = 0.0f;
-    float exit = tMax;
-    for (int k = 0; k < 3; ++k) {
-        if (cellDirection[k] == 0.0f) {
-            if (cellOrigin[k] < 0.0f || cellOrigin[k] >= cells[k]) {
-                exit = -1.0f;
-            }
-            continue;
-        }
-        float t0 = (0.0f - cellOrigin[k]) / cellDirection[k];
-        float t1 = (cells[k] - cellOrigin[k]) / cellDirection[k];
-        enter = max(enter, min(t0, t1));
-        exit = min(exit, max(t0, t1));
-    }
+    vec2 interval = cellsInterval(grid, ray, tMax);
+    float enter = interval.x;
+    float exit = interval.y;
     walk.t = enter;
     walk.tEnd = exit;
     if (!(enter < exit)) {
@@ -243,6 +253,31 @@ vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, f
         advanceToNextCell(walk, grid);
     }
     return transmittance;
+}
+
+// Stratified points along the ray's part in the grid, with which the adjoint estimates
+// integrals of the density (and of its derivatives) over [0, tMax), independently of the
+// tracking that chose the path.
+const uint kDensityIntegralPoints = 4u;
+
+// The grid's index coordinates of point `k` of the ray's kDensityIntegralPoints, offset
+// by `u` within its stratum, and (w) the length each point stands for.
+vec4 densityIntegralPoint(GpuDensityGrid grid, GridRay ray, float tMax, uint k, float u) {
+    vec2 interval = cellsInterval(grid, ray, tMax);
+    float length = max(interval.y - interval.x, 0.0f);
+    float t = interval.x + (float(k) + u) * (length / float(kDensityIntegralPoints));
+    return vec4(ray.origin + t * ray.direction, length / float(kDensityIntegralPoints));
+}
+
+// An unbiased estimate of the integral of the density over [0, tMax) of the ray.
+float estimateDensityIntegral(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, float u) {
+    GridRay ray = gridRay(grid, origin, direction);
+    float integral = 0.0f;
+    for (uint k = 0u; k < kDensityIntegralPoints; ++k) {
+        vec4 point = densityIntegralPoint(grid, ray, tMax, k, u);
+        integral += point.w * gridDensity(grid, point.xyz);
+    }
+    return integral;
 }
 
 #endif

@@ -7,6 +7,9 @@
 // sample, stream, segment, purpose, seed), so replays draw the same ones.
 const uint kTrackingFreeFlight = 0u;
 const uint kTrackingShadow = 1u;
+const uint kTrackingFreeFlightGradient = 2u;  // the adjoint's own points, independent of the tracking
+const uint kTrackingShadowGradient = 3u;
+const uint kTrackingPurposes = 4u;
 struct TrackingRandom {
     uvec4 key;
     uint counter;
@@ -14,7 +17,7 @@ struct TrackingRandom {
 
 TrackingRandom trackingRandom(uint pixel, uint sampleIndex, uint stream, uint segment, uint purpose, uint seed) {
     TrackingRandom r;
-    r.key = pcg4d(uvec4(pixel, sampleIndex, segment * 2u + purpose, seed ^ (stream << 28u)));
+    r.key = pcg4d(uvec4(pixel, sampleIndex, segment * kTrackingPurposes + purpose, seed ^ (stream << 28u)));
     r.counter = 0u;
     return r;
 }

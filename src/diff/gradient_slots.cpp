@@ -40,10 +40,10 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
     const size_t owner = description.owner == ParameterOwner::Medium     ? indexByName(scene.media, parsed.owner, name)
                          : description.owner == ParameterOwner::Material ? indexByName(scene.materials, parsed.owner, name)
                                                                          : indexByName(scene.punctualLights, parsed.owner, name);
-    if (description.owner == ParameterOwner::Medium && scene.media[owner].isHeterogeneous() &&
-        description.kind != ParameterKind::G) {
-        throw Error("parameter " + name + ": gradients of the coefficients of a density grid medium are not "
-                    "available yet; its g, and every other parameter of the scene, can be differentiated");
+    if (description.kind == ParameterKind::SigmaS && scene.media[owner].isHeterogeneous() &&
+        glm::any(glm::equal(scene.media[owner].sigma_s, glm::vec3(0.0f)))) {
+        throw Error("parameter " + name + ": the gradient of a density grid medium's sigma_s is not available "
+                    "where a channel of it is 0 (light it would scatter is not sampled); start it above 0");
     }
     const size_t sumsPerItem = gpu::layoutOf(description.accumulator).sumsPerItem;
     GradientSlot slot{name, description.kind, kSceneGradients[size_t(description.accumulator)]};

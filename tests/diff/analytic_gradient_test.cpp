@@ -3,7 +3,8 @@
 // sigma_a, sigma_s and g are 1D x 2D integrals. The adjoint's mean over seeds must match
 // within five of its standard errors. Also with sigma_s = 0 in every channel and in one,
 // where only the derivative mode of the replay can find the gradient, and with the
-// medium enclosed in a box that the camera ray enters and every shadow ray leaves.
+// medium enclosed in a box that the camera ray enters and every shadow ray leaves, and
+// with a density grid in that box.
 #include <cmath>
 
 #include "diff/rendered_loss_gradient.h"
@@ -11,6 +12,7 @@
 #include "render_test_support.h"
 #include "scene/load_scene.h"
 #include "single_scattering_quadrature.h"
+#include "volume/write_density_grid.h"
 
 namespace vkdr::test {
 namespace {
@@ -23,6 +25,7 @@ struct FogGradientCase {
     glm::dvec3 sigmaS;
     double g;
     std::optional<FogSetup::Box> enclosure = std::nullopt;
+    std::optional<FogSetup::LinearDensity> density = std::nullopt;  // a density grid medium
 };
 
 void PrintTo(const FogGradientCase& c, std::ostream* os) {
@@ -36,7 +39,12 @@ TEST_P(FogGradientTest, MatchesQuadrature) {
     fog.sigmaS = GetParam().sigmaS;
     fog.g = GetParam().g;
     fog.enclosure = GetParam().enclosure;
-    Scene scene = loadScene(fog.scene().write(tempDir(), "fog")).scene;
+    fog.density = GetParam().density;
+    const std::filesystem::path dir = tempDir();
+    if (fog.density) {
+        writeDensityGridVdb(dir / fog.density->uri, linearDensityGrid(fog, 0.25));
+    }
+    Scene scene = loadScene(fog.scene().write(dir, "fog")).scene;
     const SingleScattering reference = singleScattering(fog);
 
     // L2 over one pixel: loss = mean_c (I_c - T_c)^2, so dloss/dI_c = 2 (I_c - T_c) / 3.
@@ -66,7 +74,11 @@ INSTANTIATE_TEST_SUITE_P(
                       FogGradientCase{"NoScattering", {0.0, 0.0, 0.0}, 0.4},
                       FogGradientCase{"NoScatteringInGreen", {0.3, 0.0, 0.8}, 0.2},
                       // The light (x = 1.5) is outside the box: shadow rays cross its face x = 1.
-                      FogGradientCase{"Enclosed", {0.3, 0.5, 0.8}, 0.4, FogSetup::Box{{-1.0, -1.0, 1.0}, {1.0, 1.0, 4.0}}}),
+                      FogGradientCase{"Enclosed", {0.3, 0.5, 0.8}, 0.4, FogSetup::Box{{-1.0, -1.0, 1.0}, {1.0, 1.0, 4.0}}},
+                      // Density rising along the camera ray, from a grid: the factors are
+                      // estimated by delta and ratio tracking, their derivatives at points.
+                      FogGradientCase{"DensityGrid", {0.3, 0.5, 0.8}, 0.4, FogSetup::Box{{-1.0, -1.0, 1.0}, {1.0, 1.0, 4.0}},
+                                      FogSetup::LinearDensity{0.3, 0.5, "density.vdb"}}),
     [](const ::testing::TestParamInfo<FogGradientCase>& info) { return std::string(info.param.label); });
 
 }  // namespace
