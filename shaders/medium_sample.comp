@@ -9,8 +9,8 @@
 #include "lib/path_state.glsl"
 #include "lib/scene_access.glsl"
 #include "lib/medium.glsl"
-#include "lib/grid_tracking.glsl"
 #include "lib/adjoint.glsl"
+#include "lib/grid_adjoint.glsl"
 
 // Whether a ray through the medium can go straight to the surface, weighted by its
 // transmittance: nothing scatters, and no path needs a collision to find the gradient of
@@ -50,15 +50,21 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
             beta *= m.sigma_s * logDerivativeOfLinear(sigma_t);
         }
     }
-    if (kAdjoint && (gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS))) {
-        // The segment's factor is T(t) (sigma_s d(x_t) at a collision) with
-        // T = exp(-sigma_t D), D the density's integral up to t, which independent
-        // points estimate without bias.
+    if (kAdjoint && (gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS) ||
+                     gradientWanted(kGradientKindDensity))) {
+        // The segment's factor is T(t), times sigma_s d(x_t) at a collision
+        // (grid_adjoint.glsl).
+        vec3 weight = factorGradient(slot, vec3(1.0f));
         TrackingRandom points = segmentTrackingRandom(info, kTrackingFreeFlightGradient);
-        float integral = estimateDensityIntegral(grid, origin, direction, flight.t, nextTrackingRandom(points).x);
+        float integral = densityIntegralAdjoint(grid, origin, direction, flight.t, nextTrackingRandom(points).x,
+                                                dot(weight, sigma_t));
         vec3 dLogScattering = flight.collided ? logDerivativeOfLinear(m.sigma_s) : vec3(0.0f);
-        addSigmaGradient(medium, factorGradient(slot, vec3(-integral)),
-                         factorGradient(slot, dLogScattering - integral));
+        addSigmaGradient(medium, -integral * weight, (dLogScattering - integral) * weight);
+        if (flight.collided) {
+            GridRay ray = gridRay(grid, origin, direction);
+            addTrilinearDensityGradient(grid, ray.origin + flight.t * ray.direction,
+                                        (weight.x + weight.y + weight.z) / flight.density);
+        }
     }
     if (!(flight.collided || flight.paused)) {
         return kVertexSurface;

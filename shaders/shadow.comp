@@ -10,8 +10,8 @@
 #include "lib/path_state.glsl"
 #include "lib/bvh_traverse.glsl"
 #include "lib/medium.glsl"
-#include "lib/grid_tracking.glsl"
 #include "lib/adjoint.glsl"
+#include "lib/grid_adjoint.glsl"
 
 // A shadow ray crossing more boundaries than this is treated as blocked.
 const uint kMaxBoundaryCrossings = 64u;
@@ -25,7 +25,7 @@ struct MediumLengths {
     uint medium[kRecordedMedia];
     float inMedium[kRecordedMedia];  // length of the ray in medium[i]
     uint count;
-    bool complete;  // false: the ray passed through more media than were kept
+    bool complete;  // false: through more media than were kept, or a grid whose voxel gradients are wanted
 };
 
 MediumLengths noMediumLengths() {
@@ -85,8 +85,14 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                 }
                 unbounded = false;  // the grid ends
                 if (kAdjoint) {
-                    opticalLength = estimateDensityIntegral(grid, origin, direction, segment,
-                                                            nextTrackingRandom(gradientPoints).x);
+                    opticalLength = densityIntegralAdjoint(grid, origin, direction, segment,
+                                                           nextTrackingRandom(gradientPoints).x,
+                                                           dot(gradientWeight, sigmaT(m)));
+                    // Voxel gradients need the contribution's weight, known once the whole
+                    // ray is: backpropagateNextEvent traces it again with the weight.
+                    if (gradientWanted(kGradientKindDensity)) {
+                        lengths.complete = false;
+                    }
                 }
             } else {
                 tr *= transmittance(sigmaT(m), segment);

@@ -69,7 +69,8 @@ const uint kGradientKindBaseColor = 3u;
 const uint kGradientKindBaseColorTexture = 4u;
 const uint kGradientKindEmission = 5u;
 const uint kGradientKindLightIntensity = 6u;
-const uint kEveryGradientKind = 0x7fu;
+const uint kGradientKindDensity = 7u;
+const uint kEveryGradientKind = 0xffu;
 
 // Derivative-mode targets of the adjoint pass (shaders/lib/adjoint.glsl): the kinds of
 // parameter whose zero-valued factors it follows, where their gradients are wanted.
@@ -143,7 +144,8 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(baseColorGradients, baseColors, kColorGradientStride, kGradientCopies, materialCount) \
     X(emissionGradients, emissions, kColorGradientStride, kGradientCopies, materialCount) \
     X(lightGradients, lights, kColorGradientStride, kGradientCopies, punctualLightCount) \
-    X(texelGradients, texels, kColorGradientStride, 1u, texelCount) /* in the order of RenderParams.texels */
+    X(texelGradients, texels, kColorGradientStride, 1u, texelCount) /* in the order of RenderParams.texels */ \
+    X(densityGradients, densities, 1u, 1u, voxelCount) /* in the order of RenderParams.gridValues */
 
 #ifdef __cplusplus
 // The host's names for the accumulators, in the order of the list, and their layouts.

@@ -139,6 +139,7 @@ void advanceToNextCell(inout MajorantWalk walk, GpuDensityGrid grid) {
 struct GridFreeFlight {
     float t;                // the real collision, the pause, or tMax
     bool collided;          // a real collision at t
+    float density;          // the density there
     bool paused;            // the step bound was reached at t, short of a decision
     uint tentative;         // tentative collisions sampled, the real one included
     float majorantIntegral; // integral of the majorant density over [0, t]
@@ -152,6 +153,7 @@ GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction,
     GridFreeFlight flight;
     flight.t = tMax;
     flight.collided = false;
+    flight.density = 0.0f;
     flight.paused = false;
     flight.tentative = 0u;
     flight.majorantIntegral = 0.0f;
@@ -173,9 +175,11 @@ GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction,
             flight.majorantIntegral += majorant * dt;
             walk.t += dt;
             ++flight.tentative;
-            if (accept * majorant < gridDensity(grid, ray.origin + walk.t * ray.direction)) {
+            float density = gridDensity(grid, ray.origin + walk.t * ray.direction);
+            if (accept * majorant < density) {
                 flight.t = walk.t;
                 flight.collided = true;
+                flight.density = density;
                 return flight;
             }
             vec4 u = nextTrackingRandom(random);
@@ -267,17 +271,6 @@ vec4 densityIntegralPoint(GpuDensityGrid grid, GridRay ray, float tMax, uint k, 
     float length = max(interval.y - interval.x, 0.0f);
     float t = interval.x + (float(k) + u) * (length / float(kDensityIntegralPoints));
     return vec4(ray.origin + t * ray.direction, length / float(kDensityIntegralPoints));
-}
-
-// An unbiased estimate of the integral of the density over [0, tMax) of the ray.
-float estimateDensityIntegral(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, float u) {
-    GridRay ray = gridRay(grid, origin, direction);
-    float integral = 0.0f;
-    for (uint k = 0u; k < kDensityIntegralPoints; ++k) {
-        vec4 point = densityIntegralPoint(grid, ray, tMax, k, u);
-        integral += point.w * gridDensity(grid, point.xyz);
-    }
-    return integral;
 }
 
 #endif

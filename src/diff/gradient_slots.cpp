@@ -53,6 +53,14 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
         slot.first = firstTexel(scene, texture) * sumsPerItem + description.firstFloat;
         slot.groups = scene.textures[texture].texels.size();
         slot.stride = sumsPerItem;
+    } else if (description.accumulator == gpu::GradientAccumulator::densityGradients) {
+        // A grid's parameter is every voxel of it, after the voxels of the grids before it.
+        const size_t grid = size_t(scene.media[owner].densityGrid);
+        for (size_t i = 0; i < grid; ++i) {
+            slot.first += scene.densityGrids[i].grid.voxelCount() * sumsPerItem;
+        }
+        slot.groups = scene.densityGrids[grid].grid.voxelCount();
+        slot.stride = sumsPerItem;
     } else {
         slot.first = owner * sumsPerItem + description.firstFloat;
     }

@@ -42,7 +42,7 @@ gpu::GpuDensityGrid deviceGrid(const SceneDensityGrid& placed, const MajorantGri
 
 }  // namespace
 
-GpuDensityGrids uploadDensityGrids(const VulkanContext& context, const Scene& scene) {
+void writeDensityGrids(const VulkanContext& context, const Scene& scene, GpuDensityGrids& gpu) {
     std::vector<gpu::GpuDensityGrid> grids;
     std::vector<float> values;
     std::vector<float> maxima;
@@ -53,9 +53,9 @@ GpuDensityGrids uploadDensityGrids(const VulkanContext& context, const Scene& sc
         values.insert(values.end(), placed.grid.values.begin(), placed.grid.values.end());
         maxima.insert(maxima.end(), majorants.maxima.begin(), majorants.maxima.end());
     }
-    return {uploadVector<gpu::GpuDensityGrid>(context, grids, "density grids"),
-            uploadVector<float>(context, values, "density grid values"),
-            uploadVector<float>(context, maxima, "density grid majorants")};
+    overwriteBuffer(context, gpu.grids, std::as_bytes(std::span(grids)), "density grids");
+    overwriteBuffer(context, gpu.values, std::as_bytes(std::span(values)), "density grid values");
+    overwriteBuffer(context, gpu.majorants, std::as_bytes(std::span(maxima)), "density grid majorants");
 }
 
 }  // namespace vkdr

@@ -14,8 +14,10 @@ struct GpuDensityGrids {
     Buffer majorants;
 };
 
-// Throws vkdr::Error naming the grid's file when the grids need more than half the
-// device's memory, saying how many voxels fit.
-GpuDensityGrids uploadDensityGrids(const VulkanContext& context, const Scene& scene);
+// Writes the scene's grids, their placements and majorant cells (rebuilt from the
+// voxels) into `gpu`, in place where the sizes are unchanged. Throws vkdr::Error naming
+// the grid's file when the grids need more than half the device's memory, saying how
+// many voxels fit.
+void writeDensityGrids(const VulkanContext& context, const Scene& scene, GpuDensityGrids& gpu);
 
 }  // namespace vkdr

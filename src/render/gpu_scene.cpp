@@ -112,7 +112,6 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     gpu.triangleNormals = uploadVector<glm::vec4>(context, normals, "triangle normals");
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
-    gpu.densityGrids = uploadDensityGrids(context, scene);
     gpu.extent = sceneExtent(scene);
     gpu.rayEpsilon = kRayEpsilonPerExtent * gpu.extent;
     uploadSceneParameters(context, scene, bvh.triangleOrder, gpu);
@@ -127,6 +126,7 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
     overwriteBuffer(context, gpu.media, std::as_bytes(std::span(media)), "media");
     std::vector<glm::vec4> texels = allTexels(scene);
     overwriteBuffer(context, gpu.texels, std::as_bytes(std::span(texels)), "texels");
+    writeDensityGrids(context, scene, gpu.densityGrids);
 
     std::vector<glm::vec3> powers = emitterPowers(scene);
     if (gpu.emitterPowers && powers == *gpu.emitterPowers) {

@@ -41,8 +41,8 @@ struct GpuScene {
 GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh& bvh);
 
 // Uploads what the differentiable parameters change, for new parameter values of the
-// same scene (geometry, material assignment and sidedness as before): materials, media
-// and texels, written in place, and the emitter distribution (per triangle, as large
+// same scene (geometry, material assignment and sidedness as before): materials, media,
+// texels and density grids (with their majorants), written in place, and the emitter distribution (per triangle, as large
 // as the geometry) and punctual lights only when a material's mean emitted radiance or
 // a light's intensity changed.
 void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std::span<const uint32_t> triangleOrder,

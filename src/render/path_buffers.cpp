@@ -91,7 +91,7 @@ void PathBuffers::setAddresses(gpu::RenderParams& params) const {
 
 AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount,
                                uint32_t mediumCount, uint32_t materialCount, uint32_t punctualLightCount,
-                               uint32_t texelCount,
+                               uint32_t texelCount, uint32_t voxelCount,
                                uint64_t keptPaths)
     : capacity(capacity),
       VKDR_ADJOINT_PATH_ARRAYS(VKDR_ALLOCATE_PATH_ARRAY)

@@ -56,7 +56,8 @@ struct GradientCopies {
 // rendered paths, kept for their adjoint pass.
 struct AdjointBuffers {
     AdjointBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount, uint32_t mediumCount,
-                   uint32_t materialCount, uint32_t punctualLightCount, uint32_t texelCount, uint64_t keptPaths);
+                   uint32_t materialCount, uint32_t punctualLightCount, uint32_t texelCount, uint32_t voxelCount,
+                   uint64_t keptPaths);
 
     uint32_t capacity;
     VKDR_ADJOINT_PATH_ARRAYS(VKDR_PATH_ARRAY_MEMBER)

@@ -46,6 +46,15 @@ uint32_t totalTexels(const Scene& scene) {
     return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
 }
 
+// The voxels of every density grid; uploadDensityGrids keeps them below 2^31.
+uint32_t totalVoxels(const Scene& scene) {
+    uint64_t count = 0;
+    for (const SceneDensityGrid& placed : scene.densityGrids) {
+        count += placed.grid.voxelCount();
+    }
+    return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
+}
+
 uint32_t bit(uint32_t queue) {
     return 1u << queue;
 }
@@ -71,6 +80,7 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       materialCount_(static_cast<uint32_t>(scene.materials.size())),
       punctualLightCount_(static_cast<uint32_t>(scene.punctualLights.size())),
       texelCount_(totalTexels(scene)),
+      voxelCount_(totalVoxels(scene)),
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context),
       lossKind_(LossKind::L2) {

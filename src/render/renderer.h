@@ -37,7 +37,8 @@ using ProgressCallback = std::function<void(double)>;
 // of VKDR_GRADIENT_ACCUMULATORS (device_types.h): `media` has gpu::kMediumGradientStride
 // values per medium, `baseColors` and `emissions` gpu::kColorGradientStride per material,
 // `lights` as many per punctual light (Scene::punctualLights),
-// `texels` as many per texel (textures one after another as in Scene::textures).
+// `texels` as many per texel (textures one after another as in Scene::textures),
+// `densities` one per voxel (grids one after another as in Scene::densityGrids).
 struct SceneGradients {
 #define VKDR_SCENE_GRADIENTS_FIELD(name, field, ...) std::vector<float> field;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_SCENE_GRADIENTS_FIELD)
@@ -54,8 +55,8 @@ struct SceneGradients {
 // gradient has the bits it has when every kind is wanted, unless the scene has a medium
 // that does not scatter, which a gradient pass samples only when sigma_s is wanted
 // (RenderParams.sampleNonScatteringMedia).
-// Texel gradients take 216 bytes per texel of every texture: they are held only when
-// wanted.
+// Texel gradients take 216 bytes per texel of every texture, and density gradients 72
+// bytes per voxel of every grid: they are held only when wanted.
 struct DerivativeTargets {
     uint32_t kinds = gpu::kEveryGradientKind;  // bit (1 << ParameterKind)
 
@@ -202,6 +203,7 @@ private:
     uint32_t materialCount_;
     uint32_t punctualLightCount_;
     uint32_t texelCount_;
+    uint32_t voxelCount_;
     GpuScene scene_;
     StagePipelines pipelines_;
     std::unique_ptr<PathBuffers> paths_;

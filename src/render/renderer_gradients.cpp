@@ -72,9 +72,10 @@ void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint6
     }
     adjoint_.reset();  // the old state's memory is free before the new one takes its own
     const bool texels = derivativeTargets.wants(ParameterKind::BaseColorTexture);
+    const bool voxels = derivativeTargets.wants(ParameterKind::Density);
     adjoint_ = std::make_unique<AdjointBuffers>(context_, paths_->capacity, camera_.width * camera_.height,
                                                 mediumCount_, materialCount_, punctualLightCount_,
-                                                texels ? texelCount_ : 0, keptPaths);
+                                                texels ? texelCount_ : 0, voxels ? voxelCount_ : 0, keptPaths);
     derivativeTargets_ = derivativeTargets;
     uploadParams();
 }

@@ -52,7 +52,12 @@ double emissionStep(float value) {
     return 1e-2 * std::max(std::abs(double(value)), 0.1);
 }
 
-constexpr std::array<ParameterDescription, 7> kDescriptions = {{
+// A voxel's density scales sigma where it is, the way sigma scales a whole medium.
+double densityStep(float value) {
+    return sigmaStep(value);
+}
+
+constexpr std::array<ParameterDescription, 8> kDescriptions = {{
     {ParameterKind::SigmaA, "media/", "/sigma_a", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
      gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientSigmaA},
     {ParameterKind::SigmaS, "media/", "/sigma_s", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
@@ -69,6 +74,8 @@ constexpr std::array<ParameterDescription, 7> kDescriptions = {{
     // near it (as 1 / distance^2), which the renderer's check of every pixel catches.
     {ParameterKind::LightIntensity, "lights/", "/intensity", ParameterOwner::PunctualLight, 3, {0.0, kMaxRadiance},
      emissionStep, gpu::GradientAccumulator::lightGradients, 0},
+    {ParameterKind::Density, "media/", "/density", ParameterOwner::Medium, 1, {0.0, kInfinity}, densityStep,
+     gpu::GradientAccumulator::densityGradients, 0},
 }};
 
 // describe() indexes the table by kind.

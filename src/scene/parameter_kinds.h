@@ -23,6 +23,8 @@ enum class ParameterKind : uint32_t {
     Emission = gpu::kGradientKindEmission,  // lights/<material>/emission: RGB radiance, at most kMaxRadiance
     // lights/<light>/intensity: a punctual light's RGB color x intensity
     LightIntensity = gpu::kGradientKindLightIntensity,
+    // media/<medium>/density: every voxel of a density grid medium's grid, one value each
+    Density = gpu::kGradientKindDensity,
 };
 
 // The largest radiance, per channel, an emitter (emissiveFactor x emissiveStrength, or
@@ -52,7 +54,7 @@ struct ParameterDescription {
     std::string_view prefix;  // the name up to the owner: "media/"
     std::string_view field;   // the name after the owner: "/sigma_a"
     ParameterOwner owner;
-    size_t channels;          // floats per value: 3 (RGB, per texel for a texture), 1 for g
+    size_t channels;          // floats per value: 3 (RGB, per texel for a texture), 1 for g and per voxel
     ValueRange range;
     // grad --check's central-difference step at `value` (parameter_kinds.cpp says why
     // each kind steps as it does).

@@ -55,8 +55,14 @@ auto findStorage(SceneType& scene, std::string_view name) {
     const ParameterKind kind = parsed->description->kind;
     if (parsed->description->owner == ParameterOwner::Medium) {
         for (auto& medium : scene.media) {
-            if (medium.name == parsed->owner) {
+            if (medium.name != parsed->owner) {
+                continue;
+            }
+            if (kind != ParameterKind::Density) {
                 storage = mediumStorage<Float>(medium, kind);
+            } else if (medium.isHeterogeneous()) {
+                auto& values = scene.densityGrids[size_t(medium.densityGrid)].grid.values;
+                storage = ParameterStorage<Float>{values.data(), values.size(), parsed->description, 1};
             }
         }
         return storage;
@@ -102,6 +108,9 @@ std::vector<std::string> parameterNames(const Scene& scene) {
     for (const Medium& medium : scene.media) {
         for (ParameterKind kind : {ParameterKind::SigmaA, ParameterKind::SigmaS, ParameterKind::G}) {
             names.push_back(parameterName(kind, medium.name));
+        }
+        if (medium.isHeterogeneous()) {
+            names.push_back(parameterName(ParameterKind::Density, medium.name));
         }
     }
     for (const Material& material : scene.materials) {

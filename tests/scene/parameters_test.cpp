@@ -65,7 +65,8 @@ TEST(Parameters, SetsRgbValuesAndBroadcastsOneValue) {
     EXPECT_EQ(scene.media[1].g, -0.9f);
 }
 
-// sceneWithEverything with a texture on "white": an owner for every kind of parameter.
+// sceneWithEverything with a texture on "white" and a density grid in "smoke": an owner
+// for every kind of parameter.
 Scene sceneWithEveryKind() {
     Scene scene = sceneWithEverything();
     scene.textures.push_back({"checker", 2, 1, {glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), glm::vec4(0.4f, 0.5f, 0.6f, 1.0f)}});
@@ -73,6 +74,11 @@ Scene sceneWithEveryKind() {
     PunctualLight bulb;
     bulb.name = "bulb";
     scene.punctualLights.push_back(bulb);
+    SceneDensityGrid grid;
+    grid.grid.size = glm::ivec3(3, 1, 1);
+    grid.grid.values = {0.5f, 1.0f, 0.0f};
+    scene.densityGrids.push_back(grid);
+    scene.media[1].densityGrid = 0;  // "smoke"
     return scene;
 }
 
@@ -83,6 +89,7 @@ std::string ownerOf(ParameterKind kind) {
     case ParameterKind::G: return "fog";
     case ParameterKind::Emission: return "light";
     case ParameterKind::LightIntensity: return "bulb";
+    case ParameterKind::Density: return "smoke";
     default: return "white";
     }
 }
@@ -140,7 +147,9 @@ TEST(ParameterKinds, ChannelsAreThoseSettingAndGettingUse) {
     Scene scene = sceneWithEveryKind();
     for (const ParameterDescription& description : parameterDescriptions()) {
         const std::string name = parameterName(description.kind, ownerOf(description.kind));
-        const size_t groups = description.kind == ParameterKind::BaseColorTexture ? scene.textures[0].texels.size() : 1;
+        const size_t groups = description.kind == ParameterKind::BaseColorTexture ? scene.textures[0].texels.size()
+                              : description.kind == ParameterKind::Density   ? scene.densityGrids[0].grid.voxelCount()
+                                                                             : 1;
         EXPECT_EQ(getParameter(scene, name).size(), description.channels * groups) << name;
     }
 }

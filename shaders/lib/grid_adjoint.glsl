@@ -1,0 +1,51 @@
+// The adjoint of tracking through a density grid (docs/density-grids.md, "Gradients").
+// A path segment's factor in channel c is T_c = exp(-sigma_t,c D), D the density's
+// integral along it, times sigma_s,c d(x) where it scatters. The derivatives of log T are
+// integrals along the segment, which stratified points of their own estimate without
+// bias, independently of the tracking that chose the path.
+#ifndef VKDR_GRID_ADJOINT_GLSL
+#define VKDR_GRID_ADJOINT_GLSL
+#include "adjoint.glsl"
+#include "grid_tracking.glsl"
+
+// Adds g times each of the point's trilinear weights to the gradient of its voxel. Voxels
+// outside the grid's box are not parameters.
+void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
+    if (!gradientWanted(kGradientKindDensity)) {
+        return;
+    }
+    vec3 base = floor(index);
+    vec3 w = index - base;
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 offset = ivec3(corner & 1, (corner >> 1) & 1, corner >> 2);
+        ivec3 local = ivec3(base) + offset - grid.firstVoxel.xyz;
+        if (any(lessThan(local, ivec3(0))) || any(greaterThanEqual(local, grid.size.xyz))) {
+            continue;
+        }
+        vec3 weights = mix(vec3(1.0f) - w, w, vec3(offset));
+        uint voxel = uint(grid.firstVoxel.w + (local.z * grid.size.y + local.y) * grid.size.x + local.x);
+        addGradient(P.densityGradients, P.densityGradientsCopyStride, voxel, 0u,
+                    vec3(g * weights.x * weights.y * weights.z, 0.0f, 0.0f), 1u);
+    }
+}
+
+// An unbiased estimate of D over [0, tMax) of the ray from its kDensityIntegralPoints
+// points (offset by u in their strata). With `voxelWeight` != 0 it also adds
+// -voxelWeight dD/d(voxel) to every voxel's gradient: d log T_c / d(voxel) is
+// -sigma_t,c dD/d(voxel), so voxelWeight is the sum over channels of sigma_t,c times the
+// adjoint weight of T_c.
+float densityIntegralAdjoint(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, float u,
+                             float voxelWeight) {
+    GridRay ray = gridRay(grid, origin, direction);
+    float integral = 0.0f;
+    for (uint k = 0u; k < kDensityIntegralPoints; ++k) {
+        vec4 point = densityIntegralPoint(grid, ray, tMax, k, u);
+        integral += point.w * gridDensity(grid, point.xyz);
+        if (voxelWeight != 0.0f) {
+            addTrilinearDensityGradient(grid, point.xyz, -voxelWeight * point.w);
+        }
+    }
+    return integral;
+}
+
+#endif

@@ -1,0 +1,123 @@
+// Per-voxel density gradients against central finite differences with common random
+// numbers: a small grid in a box, lit from behind (where the transmittance's derivative
+// dominates) or from the side (the scattering's), at voxels inside the medium, on its
+// face, and one of zero
+// density between denser ones. The loss is L1 against a target brighter than every
+// pixel, so it is linear in the image: the finite difference estimates the gradient of
+// the expected loss exactly as the adjoint does, and both are means over seeds whose
+// standard errors set the tolerance (5 combined standard errors per voxel). One voxel
+// denser than all the others holds the majorant fixed under the steps.
+#include <cmath>
+
+#include "diff/gradient_over_seeds.h"
+#include "diff/rendered_loss_gradient.h"
+#include "render_test_support.h"
+#include "scene/load_scene.h"
+#include "scene/parameters.h"
+#include "test_gltf.h"
+#include "volume/write_density_grid.h"
+
+namespace vkdr::test {
+namespace {
+
+constexpr int kSide = 8;
+constexpr int kVoxels = 6;
+constexpr uint32_t kSeeds = 32;
+const char* const kParameter = "media/smoke/density";
+
+// Voxel centres span the medium's box: x, y in [-0.6, 0.6], z in [1, 2.2].
+DensityGrid smokeGrid() {
+    DensityGrid grid;
+    grid.name = "density";
+    grid.size = glm::ivec3(kVoxels);
+    const double edge = 1.2 / (kVoxels - 1);
+    grid.indexToLocal = glm::dmat4(glm::dvec4(edge, 0, 0, 0), glm::dvec4(0, edge, 0, 0), glm::dvec4(0, 0, edge, 0),
+                                   glm::dvec4(-0.6, -0.6, 1.0, 1.0));
+    for (int i = 0; i < kVoxels * kVoxels * kVoxels; ++i) {
+        grid.values.push_back(0.4f + 1.6f * float((i * 37) % 11) / 10.0f);
+    }
+    grid.values[size_t(1 + kVoxels * (2 + kVoxels * 3))] = 0.0f;
+    // The densest voxel sets the majorant, so that the steps of the voxels under test
+    // leave it, and with it the tentative collisions of every path, unchanged.
+    grid.values[size_t(4 + kVoxels * (1 + kVoxels * 1))] = 3.0f;
+    return grid;
+}
+
+struct Lighting {
+    const char* label;
+    float back;  // radiance of the emitter behind the medium
+    float side;  // radiance of the emitter beside it
+    float sigma;  // scales sigma_a and sigma_s: a thin medium shows its in-scattering
+};
+
+void PrintTo(const Lighting& lighting, std::ostream* os) {
+    *os << lighting.label;
+}
+
+TestGltf smokeScene(const Lighting& lighting) {
+    TestGltf g;
+    nlohmann::json smoke = vkdrMediumMaterial("smoke", lighting.sigma * glm::vec3(0.5f),
+                                              lighting.sigma * glm::vec3(2.0f, 3.0f, 4.0f), 0.3f);
+    smoke["extensions"]["VKDR_participating_media"]["density"] = {{"uri", "smoke.vdb"}};
+    g.materials = {emissiveMaterial("back", lighting.back * glm::vec3(1.0f, 0.8f, 0.6f), false),
+                   emissiveMaterial("side", glm::vec3(lighting.side), false), smoke};
+    TestMesh side = quadZ(0.0f, 0.0f, 0.4f, 0.0f, true, 1);
+    for (glm::vec3& p : side.positions) {
+        // Swapping x and z mirrors the square into the plane x = 1.5, facing -x (towards the medium).
+        p = glm::vec3(1.5f, p.y, 1.6f + p.x);
+    }
+    g.meshes = {quadZ(0.0f, 0.0f, 2.0f, 3.0f, false, 0), side,
+                box(glm::vec3(-0.6f, -0.6f, 1.0f), glm::vec3(0.6f, 0.6f, 2.2f), 2)};
+    g.yfov = 0.9f;
+    return g;
+}
+
+size_t voxelIndex(glm::ivec3 v) {
+    return size_t(v.x + kVoxels * (v.y + kVoxels * v.z));
+}
+
+class DensityGradientTest : public RenderTest, public ::testing::WithParamInterface<Lighting> {};
+
+TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
+    const std::filesystem::path dir = tempDir();
+    writeDensityGridVdb(dir / "smoke.vdb", smokeGrid());
+    Scene scene = loadScene(smokeScene(GetParam()).write(dir, "smoke")).scene;
+    Image bright{kSide, kSide, std::vector<float>(kSide * kSide * 3, 10.0f)};
+    RenderedLossGradient lg(testContext(), scene, {{"", bright}}, {kParameter}, {.spp = 64, .maxDepth = 3},
+                            LossKind::L1);
+    const std::vector<std::vector<MeanAndError>> adjoint = gradientOverSeeds(lg, scene, kSeeds);
+
+    const std::vector<float> values = getParameter(scene, kParameter);
+    for (glm::ivec3 voxel : {glm::ivec3(2, 2, 2), glm::ivec3(1, 2, 3), glm::ivec3(0, 3, 3), glm::ivec3(3, 1, 4)}) {
+        const size_t index = voxelIndex(voxel);
+        const double value = values[index];
+        const double h = value > 0.0 ? 0.2 * value : 0.5;
+        auto lossAt = [&](double offset, uint32_t seed) {
+            std::vector<float> changed = values;
+            changed[index] = float(value + offset);
+            Scene edited = scene;
+            setParameter(edited, kParameter, changed);
+            return lg.loss(edited, seed);
+        };
+        std::vector<double> differences;
+        for (uint32_t seed = 0; seed < kSeeds; ++seed) {
+            // Central where the value can step down, else the second-order one-sided difference.
+            differences.push_back(value > 0.0 ? (lossAt(h, seed) - lossAt(-h, seed)) / (2.0 * h)
+                                              : (-3.0 * lossAt(0.0, seed) + 4.0 * lossAt(h, seed) - lossAt(2.0 * h, seed)) /
+                                                    (2.0 * h));
+        }
+        const MeanAndError fd = meanAndError(differences);
+        const MeanAndError& ad = adjoint[0][index];
+        EXPECT_NEAR(ad.mean, fd.mean, 5.0 * std::hypot(ad.error, fd.error))
+            << "voxel " << voxel.x << " " << voxel.y << " " << voxel.z << ": adjoint " << ad.mean << " +- " << ad.error
+            << ", finite difference " << fd.mean << " +- " << fd.error;
+        EXPECT_GT(std::abs(fd.mean), 3.0 * fd.error) << "voxel " << voxel.x << " " << voxel.y << " " << voxel.z;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Lightings, DensityGradientTest,
+                         ::testing::Values(Lighting{"BackLit", 1.0f, 0.0f, 1.0f}, Lighting{"SideLit", 0.0f, 20.0f, 0.25f}),
+                         [](const ::testing::TestParamInfo<Lighting>& info) { return std::string(info.param.label); });
+
+}  // namespace
+}  // namespace vkdr::test
