@@ -207,7 +207,8 @@ void bindParameter(py::module_& m) {
         .def_readonly("name", &ParameterInfo::name, "media/<medium>/sigma_a and so on")
         .def_property_readonly(
             "shape", [](const ParameterInfo& p) { return py::tuple(py::cast(p.shape)); },
-            "(3,) for RGB, (1,) for g, (height, width, 3) for a base colour texture")
+            "(3,) for RGB, (1,) for g, (height, width, 3) for a base colour texture, (z, y, x) for a density "
+            "grid's voxels")
         .def_property_readonly(
             "lower", [](const ParameterInfo& p) { return p.range.lower; }, "the smallest valid value")
         .def_property_readonly(

@@ -16,6 +16,7 @@
 #include "image/regular_file.h"
 #include "scene/glb_layout.h"
 #include "scene/scene_file_access.h"
+#include "volume/write_density_grid.h"
 
 namespace vkdr {
 namespace {
@@ -266,24 +267,28 @@ void referToExternalFiles(json& document, const char* array, const ExternalFileR
     }
 }
 
-// The density grid files of media (VKDR_participating_media's "density"), on materials
-// and at the root.
-void referToDensityGrids(json& document, const ExternalFileReferences& references, const std::filesystem::path& out) {
-    auto referIn = [&](json& owner, const std::string& field, const std::string& copyStem) {
-        if (owner.contains("extensions") && owner["extensions"].contains(kMediumExtension) &&
-            owner["extensions"][kMediumExtension].contains("density")) {
-            references.referTo(owner["extensions"][kMediumExtension]["density"],
-                               field + (field.empty() ? "" : ".") + "extensions." + kMediumExtension + ".density",
-                               copyStem);
+// Density grids are parameters too: each medium's grid, with its current voxels, is
+// written beside `out` as <stem>.materials<i>.density.vdb (a material's medium) or
+// <stem>.density.vdb (the scene medium), and its "density" refers to that file.
+void writeDensityGrids(json& document, const Scene& scene, const std::filesystem::path& out) {
+    auto writeGrid = [&](json& owner, int32_t medium, const std::string& suffix) {
+        if (medium < 0 || !scene.media[size_t(medium)].isHeterogeneous() || !owner.contains("extensions") ||
+            !owner["extensions"].contains(kMediumExtension) || !owner["extensions"][kMediumExtension].contains("density")) {
+            return;
         }
+        const DensityGrid& grid = scene.densityGrids[size_t(scene.media[size_t(medium)].densityGrid)].grid;
+        const std::string file = out.stem().string() + suffix + ".density.vdb";
+        writeDensityGridVdb(out.parent_path() / file, grid);
+        json& density = owner["extensions"][kMediumExtension]["density"];
+        density["uri"] = encodeUriPath(file);
+        density["grid"] = grid.name.empty() ? "density" : grid.name;
     };
     if (document.contains("materials") && document["materials"].is_array()) {
-        for (size_t i = 0; i < document["materials"].size(); ++i) {
-            referIn(document["materials"][i], "materials[" + std::to_string(i) + "]",
-                    out.stem().string() + ".materials" + std::to_string(i) + ".density");
+        for (size_t i = 0; i < document["materials"].size() && i < scene.materials.size(); ++i) {
+            writeGrid(document["materials"][i], scene.materials[i].interiorMedium, ".materials" + std::to_string(i));
         }
     }
-    referIn(document, "", out.stem().string() + ".density");
+    writeGrid(document, scene.sceneMedium, "");
 }
 
 void writeBinaryChunkBeside(json& document, const GltfSource& source, const std::filesystem::path& original,
@@ -352,7 +357,7 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     const ExternalFileReferences references(original, out);
     referToExternalFiles(document, "buffers", references, out);
     referToExternalFiles(document, "images", references, out);
-    referToDensityGrids(document, references, out);
+    writeDensityGrids(document, scene, out);
     writeBinaryChunkBeside(document, source, original, out);
     writeBaseColorTextures(document, scene, out);
 

@@ -15,7 +15,9 @@ namespace vkdr {
 // - the scene medium, baseColorFactor (alpha kept), and emissiveFactor with
 //   KHR_materials_emissive_strength so that factor * strength = emission, factor <= 1.
 // - the texels of base colour textures, as <stem>.image<i>.png beside `out` (8-bit
-//   sRGB, alpha dropped), which the image then refers to.
+//   sRGB, alpha dropped), which the image then refers to;
+// - density grids with their current voxels, as <stem>.materials<i>.density.vdb (or
+//   <stem>.density.vdb for the scene medium) beside `out`, which "density" then names.
 // External buffers and images are referred to by URIs rewritten relative to `out`'s
 // directory; a .glb's binary chunk is written beside `out` as <stem>.bin. Files are
 // written atomically. Throws vkdr::Error naming the file at fault.

@@ -46,6 +46,10 @@ openvdb::FloatGrid::Ptr openVdbGridOf(const DensityGrid& grid) {
     // background (tolerance 0: exactly 0) stay inactive.
     const openvdb::tools::Dense<const float, openvdb::tools::LayoutXYZ> dense(box, grid.values.data());
     openvdb::tools::copyFromDense(dense, *vdb, 0.0f);
+    // The box's two extreme corners are active whatever their values, so that the box
+    // (and with it a fitted grid's parameter) reads back unchanged.
+    vdb->tree().setValueOn(box.min());
+    vdb->tree().setValueOn(box.max());
     return vdb;
 }
 

@@ -1,6 +1,6 @@
 // Density grids referenced from glTF: placement by the grid's own transform and a node's,
-// on materials and the scene medium; the grid files among the files read and carried
-// along by a written scene; and one error naming the field for each kind of bad reference.
+// on materials and the scene medium; the grid files among the files read, and the
+// fitted voxels in the grid a written scene refers to; and one error naming the field for each kind of bad reference.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "gltf_test_files.h"
 #include "scene/load_scene.h"
+#include "scene/parameters.h"
 #include "scene/write_scene.h"
 #include "volume/write_density_grid.h"
 
@@ -88,18 +89,23 @@ TEST(DensityGridScene, SceneMediumGridWithoutNodeIsInWorldSpace) {
     EXPECT_EQ(loaded.scene.densityGrids[0].indexToWorld, smallGrid().indexToLocal);
 }
 
-TEST(DensityGridScene, WrittenSceneCarriesItsGridAlong) {
+TEST(DensityGridScene, WrittenSceneHasTheGridsCurrentVoxels) {
     TemporaryDirectory directory;
     std::filesystem::create_directories(directory / "in");
     std::filesystem::create_directories(directory / "out");
     writeDensityGridVdb(directory / "in" / "smoke.vdb", smallGrid());
-    std::filesystem::path original = boxScene(gridMedium({{"uri", "smoke.vdb"}})).writeGltf(directory / "in" / "s.gltf");
+    std::filesystem::path original =
+        boxScene(gridMedium({{"uri", "smoke.vdb"}, {"node", 1}})).writeGltf(directory / "in" / "s.gltf");
     LoadedScene loaded = loadScene(original);
+    std::vector<float> fitted = smallGrid().values;
+    fitted[3] = 7.5f;
+    setParameter(loaded.scene, "media/smoke/density", fitted);
     writeSceneWithParameters(original, loaded.scene, directory / "out" / "scene.gltf");
     EXPECT_TRUE(std::filesystem::exists(directory / "out" / "scene.materials0.density.vdb"));
     LoadedScene again = loadScene(directory / "out" / "scene.gltf");
     ASSERT_EQ(again.scene.densityGrids.size(), 1u);
-    EXPECT_EQ(again.scene.densityGrids[0].grid.values, smallGrid().values);
+    EXPECT_EQ(again.scene.densityGrids[0].grid.values, fitted);
+    EXPECT_EQ(again.scene.densityGrids[0].grid.firstVoxel, smallGrid().firstVoxel);
     EXPECT_EQ(again.scene.densityGrids[0].indexToWorld, loaded.scene.densityGrids[0].indexToWorld);
 }
 

@@ -88,11 +88,14 @@ TEST(DensityGridFiles, GridWithoutActiveVoxelsIsEmpty) {
         EXPECT_TRUE(read.values.empty()) << name;
         EXPECT_EQ(read.indexToLocal, grid.indexToLocal) << name;
     }
-    // An all-zero box has no active voxels either.
+    // An all-zero box keeps its box: a fitted grid whose voxels all went to 0 is still
+    // the same parameter.
     grid.size = glm::ivec3(4);
     grid.values.assign(64, 0.0f);
     writeDensityGridVdb(directory / "zeros.vdb", grid);
-    EXPECT_EQ(readDensityGrid(directory / "zeros.vdb", "density").voxelCount(), 0u);
+    const DensityGrid zeros = readDensityGrid(directory / "zeros.vdb", "density");
+    EXPECT_EQ(zeros.size, grid.size);
+    EXPECT_EQ(zeros.values, grid.values);
 }
 
 // An active tile (a whole 8^3 leaf of one value) is filled in voxel by voxel; an
