@@ -6,6 +6,7 @@
 #include <map>
 
 #define GLM_ENABLE_EXPERIMENTAL
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtx/quaternion.hpp>
 
 namespace vkdr::test {
@@ -141,6 +142,11 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
         camera["rotation"] = {0.0, 1.0, 0.0, 0.0};
     }
     nodes.push_back(camera);
+    for (const TestCameraNode& c : moreCameras) {
+        glm::mat4 lookAt = glm::inverse(glm::lookAt(c.position, c.target, glm::vec3(0.0f, 1.0f, 0.0f)));
+        glm::quat q = glm::quat_cast(glm::mat3(lookAt));
+        nodes.push_back({{"name", c.name}, {"camera", 0}, {"translation", vec(c.position)}, {"rotation", {q.x, q.y, q.z, q.w}}});
+    }
     for (const TestLightNode& l : lightNodes) {
         // The rotation taking the node's -Z to `direction`.
         glm::quat q = glm::rotation(glm::vec3(0.0f, 0.0f, -1.0f), glm::normalize(l.direction));

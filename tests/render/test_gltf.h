@@ -31,12 +31,21 @@ TestMesh sphere(glm::vec3 centre, float radius, int subdivisions, int material);
 // Square in the plane z = `z`, centred on (cx, cy), facing +z when `facingPlusZ`.
 TestMesh quadZ(float cx, float cy, float halfSize, float z, bool facingPlusZ, int material);
 
+// A further camera node (the scene's camera definition), named, at `position` looking at
+// `target` with +Y up.
+struct TestCameraNode {
+    std::string name;
+    glm::vec3 position{0.0f};
+    glm::vec3 target{0.0f};
+};
+
 struct TestGltf {
     std::vector<TestMesh> meshes;
     nlohmann::json materials = nlohmann::json::array();
     nlohmann::json extensions = nlohmann::json::object();  // root extensions
     nlohmann::json lights = nlohmann::json::array();       // KHR_lights_punctual's definitions
     std::vector<TestLightNode> lightNodes;
+    std::vector<TestCameraNode> moreCameras;  // after the first camera
     glm::vec3 cameraPosition{0.0f};
     bool cameraLooksAlongPlusZ = true;  // else along -Z
     float yfov = 0.5f;

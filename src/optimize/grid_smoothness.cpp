@@ -1,0 +1,72 @@
+#include "optimize/grid_smoothness.h"
+
+#include "core/error.h"
+#include "scene/parameter_kinds.h"
+
+namespace vkdr {
+namespace {
+
+const DensityGrid& gridNamed(const Scene& scene, const std::string& name) {
+    const std::optional<ParsedParameterName> parsed = parseParameterName(name);
+    if (parsed && parsed->description->kind == ParameterKind::Density) {
+        for (const Medium& medium : scene.media) {
+            if (medium.name == parsed->owner && medium.isHeterogeneous()) {
+                return scene.densityGrids[size_t(medium.densityGrid)].grid;
+            }
+        }
+    }
+    throw Error("smoothness: " + name + " is not the density of a grid medium");
+}
+
+}  // namespace
+
+double gridSmoothness(const DensityGrid& grid, double weight, std::vector<double>* gradient) {
+    const size_t voxels = grid.voxelCount();
+    if (voxels == 0) {
+        return 0.0;
+    }
+    const double scale = weight / double(voxels);
+    double sum = 0.0;
+    const size_t strides[3] = {1, size_t(grid.size.x), size_t(grid.size.x) * size_t(grid.size.y)};
+    for (int z = 0; z < grid.size.z; ++z) {
+        for (int y = 0; y < grid.size.y; ++y) {
+            for (int x = 0; x < grid.size.x; ++x) {
+                const glm::ivec3 voxel(x, y, z);
+                const size_t i = x * strides[0] + y * strides[1] + z * strides[2];
+                for (int axis = 0; axis < 3; ++axis) {
+                    if (voxel[axis] + 1 >= grid.size[axis]) {
+                        continue;
+                    }
+                    const size_t j = i + strides[axis];
+                    const double difference = double(grid.values[i]) - grid.values[j];
+                    sum += difference * difference;
+                    if (gradient) {
+                        (*gradient)[i] += 2.0 * scale * difference;
+                        (*gradient)[j] -= 2.0 * scale * difference;
+                    }
+                }
+            }
+        }
+    }
+    return scale * sum;
+}
+
+SmoothedLossGradient::SmoothedLossGradient(LossGradient& inner, std::map<std::string, double> weights)
+    : inner_(inner), weights_(std::move(weights)) {}
+
+GradientResult SmoothedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
+    GradientResult result = inner_.evaluate(scene, seed);
+    for (const auto& [name, weight] : weights_) {
+        const DensityGrid& grid = gridNamed(scene, name);
+        std::vector<double>* gradient = nullptr;
+        for (ParameterGradient& parameter : result.parameters) {
+            if (parameter.name == name) {
+                gradient = &parameter.gradient;
+            }
+        }
+        result.loss += gridSmoothness(grid, weight, gradient);
+    }
+    return result;
+}
+
+}  // namespace vkdr

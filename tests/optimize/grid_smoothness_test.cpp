@@ -1,0 +1,77 @@
+// The smoothness term of density grids: its value on grids whose sum is known by hand,
+// its gradient against central differences of the value, and SmoothedLossGradient adding
+// both to the inner LossGradient's.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/error.h"
+#include "optimize/grid_smoothness.h"
+
+namespace vkdr::test {
+namespace {
+
+DensityGrid gridOf(glm::ivec3 size, std::vector<float> values) {
+    DensityGrid grid;
+    grid.size = size;
+    grid.values = std::move(values);
+    return grid;
+}
+
+TEST(GridSmoothness, ValueSumsSquaredDifferencesOfFaceNeighbours) {
+    EXPECT_EQ(gridSmoothness(gridOf({2, 2, 2}, std::vector<float>(8, 0.7f)), 3.0, nullptr), 0.0);
+    // Two voxels: one pair, over two voxels.
+    EXPECT_DOUBLE_EQ(gridSmoothness(gridOf({2, 1, 1}, {1.0f, 4.0f}), 2.0, nullptr), 2.0 / 2.0 * 9.0);
+    // A 2x2x1 grid: four pairs (two along x, two along y), over four voxels.
+    EXPECT_DOUBLE_EQ(gridSmoothness(gridOf({2, 2, 1}, {0.0f, 1.0f, 2.0f, 3.0f}), 1.0, nullptr),
+                     (1.0 + 1.0 + 4.0 + 4.0) / 4.0);
+}
+
+TEST(GridSmoothness, GradientMatchesCentralDifferences) {
+    std::mt19937 random(5);
+    std::uniform_real_distribution<float> value(0.0f, 2.0f);
+    DensityGrid grid = gridOf({3, 4, 2}, {});
+    for (size_t i = 0; i < grid.voxelCount(); ++i) {
+        grid.values.push_back(value(random));
+    }
+    std::vector<double> gradient(grid.voxelCount(), 0.0);
+    gridSmoothness(grid, 0.8, &gradient);
+    for (size_t i = 0; i < grid.voxelCount(); ++i) {
+        // The term is quadratic: a central difference is exact up to rounding.
+        constexpr float h = 1.0f / 64.0f;
+        DensityGrid up = grid, down = grid;
+        up.values[i] += h;
+        down.values[i] -= h;
+        const double difference = (gridSmoothness(up, 0.8, nullptr) - gridSmoothness(down, 0.8, nullptr)) / (2.0 * h);
+        EXPECT_NEAR(gradient[i], difference, 1e-6) << "voxel " << i;
+    }
+}
+
+// A LossGradient returning zero loss and gradients, to see what the smoothing adds.
+class ZeroLossGradient : public LossGradient {
+public:
+    GradientResult evaluate(const Scene& scene, uint32_t) override {
+        GradientResult result;
+        result.parameters.push_back({"media/smoke/density", scene.densityGrids[0].grid.values,
+                                     std::vector<double>(scene.densityGrids[0].grid.voxelCount(), 0.0)});
+        return result;
+    }
+};
+
+TEST(GridSmoothness, SmoothedLossGradientAddsTheTermAndItsGradient) {
+    Scene scene;
+    scene.media.push_back({"smoke", glm::vec3(0.0f), glm::vec3(1.0f), 0.0f, 0});
+    scene.densityGrids.push_back({"", gridOf({2, 1, 1}, {1.0f, 4.0f}), glm::dmat4(1.0)});
+    ZeroLossGradient inner;
+    SmoothedLossGradient smoothed(inner, {{"media/smoke/density", 2.0}});
+    GradientResult result = smoothed.evaluate(scene, 0);
+    EXPECT_DOUBLE_EQ(result.loss, 9.0);
+    EXPECT_DOUBLE_EQ(result.parameters[0].gradient[0], -6.0);
+    EXPECT_DOUBLE_EQ(result.parameters[0].gradient[1], 6.0);
+
+    SmoothedLossGradient wrong(inner, {{"media/smoke/sigma_s", 2.0}});
+    EXPECT_THROW(wrong.evaluate(scene, 0), Error);
+}
+
+}  // namespace
+}  // namespace vkdr::test
