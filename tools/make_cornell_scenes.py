@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""Writes scenes/cornell_box.gltf, cornell_fog.gltf and cornell_smoke.gltf.
+"""Writes scenes/cornell_box.gltf, cornell_fog.gltf, cornell_smoke.gltf and cornell_plume.gltf.
 
 The geometry is the published Cornell box data (https://www.graphics.cornell.edu/online/box/data.html),
 kept in millimetres in the buffer and scaled to metres by the root node, so the box is
 about 5.55 units across and media coefficients are per metre. Each quad is wound so
 that its front face points into the room (walls), out of the block (blocks), or down
 (the light); the script checks this rather than trusting the data's vertex order.
+
+cornell_plume.gltf reads the density grid cornell_plume.vdb beside it, which
+`vkdr-make-plume --resolution 64 --seed 1 scenes/cornell_plume.vdb` writes.
 
 Usage: tools/make_cornell_scenes.py [OUTPUT_DIR]   (default: scenes/ next to tools/)
 """
@@ -61,6 +64,10 @@ def box_quads(lo, hi):
 # the medium boundary and the floor are not coplanar; clear of the short block (x < 290).
 SMOKE_BOX = ("smoke_box", "smoke", box_quads((293.5, 1, 276.5), (443.5, 251, 426.5)), "out")
 
+# Where the tall block stood, taller: the smoke plume's medium, 150 x 400 x 150 mm.
+PLUME_LO, PLUME_HI = (293.5, 1, 276.5), (443.5, 401, 426.5)
+PLUME_BOX = ("plume_box", "plume", box_quads(PLUME_LO, PLUME_HI), "out")
+
 MATERIALS = {
     "white": {"pbrMetallicRoughness": {"baseColorFactor": [0.725, 0.71, 0.68, 1.0], "metallicFactor": 0.0}},
     "red": {"pbrMetallicRoughness": {"baseColorFactor": [0.63, 0.065, 0.05, 1.0], "metallicFactor": 0.0}},
@@ -72,6 +79,17 @@ MATERIALS = {
     },
     "smoke": {"extensions": {"VKDR_participating_media": {
         "sigma_a": [0.05, 0.05, 0.05], "sigma_s": [4.0, 4.0, 4.0], "g": 0.3}}},
+    # Per unit density: the plume is thin, its densities mostly far below their peak of 0.9.
+    "plume": {"extensions": {"VKDR_participating_media": {
+        "sigma_a": [2.0, 2.0, 2.0], "sigma_s": [150.0, 150.0, 150.0], "g": 0.3,
+        "density": {"uri": "cornell_plume.vdb", "grid": "density"}}}},
+}
+# The plume grid's cube [-0.5, 0.5]^3 placed on the plume's box, in scene units (the
+# root node scales millimetres by 0.01).
+PLUME_PLACEMENT = {
+    "name": "plume_placement",
+    "translation": [round((lo + hi) / 200, 6) for lo, hi in zip(PLUME_LO, PLUME_HI)],
+    "scale": [round((hi - lo) / 100, 6) for lo, hi in zip(PLUME_LO, PLUME_HI)],
 }
 FOG = {"name": "fog", "sigma_a": [0.01, 0.01, 0.01], "sigma_s": [0.04, 0.04, 0.04], "g": 0.0}
 
@@ -163,6 +181,18 @@ def build(meshes, root_extensions):
     return gltf
 
 
+def with_plume_placement(gltf):
+    """Adds the node that places the plume's grid and points the plume's density at it."""
+    node = len(gltf["nodes"])
+    gltf["nodes"].append(PLUME_PLACEMENT)
+    gltf["scenes"][0]["nodes"].append(node)
+    for material in gltf["materials"]:
+        density = material.get("extensions", {}).get("VKDR_participating_media", {}).get("density")
+        if density is not None:
+            density["node"] = node
+    return gltf
+
+
 def to_text(value, indent=0):
     """JSON with objects one member per line and arrays of numbers on one line."""
     pad = "  " * indent
@@ -185,6 +215,7 @@ def main():
         "cornell_box.gltf": build(box, None),
         "cornell_fog.gltf": build(box, {"VKDR_participating_media": FOG}),
         "cornell_smoke.gltf": build(WALLS + [LIGHT, SHORT_BLOCK, SMOKE_BOX], None),
+        "cornell_plume.gltf": with_plume_placement(build(WALLS + [LIGHT, SHORT_BLOCK, PLUME_BOX], None)),
     }
     for name, gltf in scenes.items():
         (out / name).write_text(to_text(gltf) + "\n")
