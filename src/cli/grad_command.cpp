@@ -70,14 +70,33 @@ void requireFiniteResult(const GradientResult& result, const std::vector<Gradien
     }
 }
 
-void printText(const GradientResult& result, const std::vector<GradientCheckRow>& check) {
-    std::printf("loss %.9g\n", result.loss);
-    for (const ParameterGradient& p : result.parameters) {
-        std::printf("d loss / d %s =", p.name.c_str());
+// Past this many values (a texture's texels, a grid's voxels) the text output gives a
+// summary of the gradient; --json has every value.
+constexpr size_t kGradientValuesPrinted = 12;
+
+void printGradient(const ParameterGradient& p) {
+    std::printf("d loss / d %s =", p.name.c_str());
+    if (p.gradient.size() <= kGradientValuesPrinted) {
         for (double g : p.gradient) {
             std::printf(" %.6g", g);
         }
         std::printf("\n");
+        return;
+    }
+    double sumOfSquares = 0.0;
+    size_t largest = 0;
+    for (size_t i = 0; i < p.gradient.size(); ++i) {
+        sumOfSquares += p.gradient[i] * p.gradient[i];
+        largest = std::abs(p.gradient[i]) > std::abs(p.gradient[largest]) ? i : largest;
+    }
+    std::printf(" %zu values, L2 norm %.6g, largest %.6g at [%zu] (--json prints them all)\n", p.gradient.size(),
+                std::sqrt(sumOfSquares), p.gradient[largest], largest);
+}
+
+void printText(const GradientResult& result, const std::vector<GradientCheckRow>& check) {
+    std::printf("loss %.9g\n", result.loss);
+    for (const ParameterGradient& p : result.parameters) {
+        printGradient(p);
     }
     if (check.empty()) {
         return;
