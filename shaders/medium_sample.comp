@@ -37,7 +37,8 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
     flight.paused = false;
     if (m.sigma_s == vec3(0.0f)) {
         bool truncated = false;
-        beta *= ratioTrackTransmittance(grid, origin, direction, tHit, sigma_t, random, truncated);
+        uint stepsLeft = kMaxTransmittanceSteps;
+        beta *= ratioTrackTransmittance(grid, origin, direction, tHit, sigma_t, random, stepsLeft, truncated);
         if (truncated) {
             atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
         }

@@ -64,6 +64,10 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                          inout TrackingRandom gradientPoints) {
     vec3 tr = vec3(1.0f);
     bool toInfinity = distance >= kFar;
+    // A trace for the gradients alone (a weight is given) needs no transmittance.
+    bool forGradientsOnly = maxComponent(abs(gradientWeight)) > 0.0f;
+    uint trackingStepsLeft = kMaxTransmittanceSteps;
+    bool truncated = false;
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
         TraceHit hit = traceClosest(origin, direction, distance, true);
         if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
@@ -78,10 +82,13 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             bool unbounded = toInfinity && hit.triangle == kNoHit;
             if (m.densityGrid != kNoDensityGrid) {
                 GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
-                bool truncated = false;
-                tr *= ratioTrackTransmittance(grid, origin, direction, segment, sigmaT(m), random, truncated);
+                if (!forGradientsOnly) {
+                    tr *= ratioTrackTransmittance(grid, origin, direction, segment, sigmaT(m), random,
+                                                  trackingStepsLeft, truncated);
+                }
                 if (truncated) {
                     atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
+                    return vec3(0.0f);
                 }
                 unbounded = false;  // the grid ends
                 if (kAdjoint) {

@@ -212,9 +212,10 @@ const uint kNoDensityGrid = 0xffffffffu;
 // Edge of a majorant cell, in voxels: each cell holds the largest density the trilinear
 // lookup takes anywhere inside it (src/render/majorant_grid.h).
 const int kMajorantCellVoxels = 8;
-// Tentative collisions and majorant cells one invocation walks at most, below lavapipe's
-// silent loop cap. Free flight that reaches its bound pauses (kVertexPause) and goes on in
-// the next segment; transmittance tracking that reaches its bound is counted
+// Tentative collisions and majorant cells that free flight, and the transmittance
+// tracking of one ray (all its grid segments together), walk at most, below lavapipe's
+// silent loop cap. Free flight that reaches its bound pauses (kVertexPause) and goes on
+// in the next segment; transmittance tracking that reaches its bound is counted
 // (QueueCountersData.truncatedTracking) and the render refused.
 const uint kMaxFreeFlightSteps = 1024u;
 const uint kMaxTransmittanceSteps = 8192u;

@@ -37,12 +37,17 @@ void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
 float densityIntegralAdjoint(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, float u,
                              float voxelWeight) {
     GridRay ray = gridRay(grid, origin, direction);
+    vec2 interval = cellsInterval(grid, ray, tMax);
+    if (!(interval.x < interval.y)) {
+        return 0.0f;  // the ray misses the grid (or its interval is not finite)
+    }
+    float length = (interval.y - interval.x) / float(kDensityIntegralPoints);
     float integral = 0.0f;
     for (uint k = 0u; k < kDensityIntegralPoints; ++k) {
-        vec4 point = densityIntegralPoint(grid, ray, tMax, k, u);
-        integral += point.w * gridDensity(grid, point.xyz);
+        vec3 point = densityIntegralPoint(ray, interval, k, u);
+        integral += length * gridDensity(grid, point);
         if (voxelWeight != 0.0f) {
-            addTrilinearDensityGradient(grid, point.xyz, -voxelWeight * point.w);
+            addTrilinearDensityGradient(grid, point, -voxelWeight * length);
         }
     }
     return integral;

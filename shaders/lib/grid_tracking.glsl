@@ -218,9 +218,11 @@ vec3 heroMisWeight(vec3 sigma_t, uint tentative, float integral) {
 }
 
 // Ratio tracking along [0, tMax): an unbiased estimate of each channel's transmittance
-// exp(-sigma_t integral of d). `truncated` is set where the step bound was reached.
+// exp(-sigma_t integral of d). Each tentative collision and majorant cell takes one of
+// `stepsLeft`, which a caller shares among the segments of one ray; `truncated` is set,
+// and 0 returned, where they run out.
 vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, vec3 sigma_t,
-                             inout TrackingRandom random, inout bool truncated) {
+                             inout TrackingRandom random, inout uint stepsLeft, inout bool truncated) {
     vec3 transmittance = vec3(1.0f);
     float rate = maxComponent(sigma_t);
     if (rate <= 0.0f) {
@@ -229,11 +231,12 @@ vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, f
     GridRay ray = gridRay(grid, origin, direction);
     MajorantWalk walk = startMajorantWalk(grid, ray, tMax);
     float tau = -log(1.0f - nextTrackingRandom(random).x);
-    for (uint steps = 0u; !walkDone(walk); ++steps) {
-        if (steps == kMaxTransmittanceSteps) {
+    while (!walkDone(walk)) {
+        if (stepsLeft == 0u) {
             truncated = true;
             return vec3(0.0f);
         }
+        --stepsLeft;
         float exit = cellExit(walk);
         float majorant = gridMajorant(grid, walk.cell);
         float cellDepth = majorant * rate * (exit - walk.t);
@@ -264,13 +267,11 @@ vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, f
 // tracking that chose the path.
 const uint kDensityIntegralPoints = 4u;
 
-// The grid's index coordinates of point `k` of the ray's kDensityIntegralPoints, offset
-// by `u` within its stratum, and (w) the length each point stands for.
-vec4 densityIntegralPoint(GpuDensityGrid grid, GridRay ray, float tMax, uint k, float u) {
-    vec2 interval = cellsInterval(grid, ray, tMax);
-    float length = max(interval.y - interval.x, 0.0f);
-    float t = interval.x + (float(k) + u) * (length / float(kDensityIntegralPoints));
-    return vec4(ray.origin + t * ray.direction, length / float(kDensityIntegralPoints));
+// The grid's index coordinates of point `k` of kDensityIntegralPoints along `interval`
+// of the ray (cellsInterval), offset by `u` within its stratum.
+vec3 densityIntegralPoint(GridRay ray, vec2 interval, uint k, float u) {
+    float t = interval.x + (float(k) + u) * ((interval.y - interval.x) / float(kDensityIntegralPoints));
+    return ray.origin + t * ray.direction;
 }
 
 #endif

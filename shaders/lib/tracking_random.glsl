@@ -17,7 +17,7 @@ struct TrackingRandom {
 
 TrackingRandom trackingRandom(uint pixel, uint sampleIndex, uint stream, uint segment, uint purpose, uint seed) {
     TrackingRandom r;
-    r.key = pcg4d(uvec4(pixel, sampleIndex, segment * kTrackingPurposes + purpose, seed ^ (stream << 28u)));
+    r.key = pcg4d(uvec4(pixel, sampleIndex, (segment * 4u + stream) * kTrackingPurposes + purpose, seed));
     r.counter = 0u;
     return r;
 }

@@ -10,6 +10,7 @@
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
 #include "core/error.h"
+#include "scene/parameters.h"
 #include "core/interrupt.h"
 #include "diff/gradient_check.h"
 #include "diff/rendered_loss_gradient.h"
@@ -132,8 +133,23 @@ void printJson(const GradientResult& result, const std::vector<GradientCheckRow>
     std::printf("%s\n", out.dump().c_str());
 }
 
+// --check renders twice per value and seed: a texture or a grid would take hours.
+constexpr size_t kMostValuesChecked = 64;
+
+void requireCheckable(const Scene& scene, const GradOptions& options) {
+    for (const std::string& name : options.parameters) {
+        const size_t values = getParameter(scene, name).size();
+        if (options.check && values > kMostValuesChecked) {
+            throw Error("--check: " + name + " has " + std::to_string(values) + " values; finite differences of more "
+                        "than " + std::to_string(kMostValuesChecked) + " would take " +
+                        std::to_string(2 * values * size_t(options.checkSeeds)) + " renders");
+        }
+    }
+}
+
 int runGrad(const GradOptions& options) {
     Scene scene = std::move(loadSceneWithOverrides(options.scene).scene);
+    requireCheckable(scene, options);
     std::vector<TargetView> views = readViews(options, scene);
     VulkanContext context(ContextOptions{options.device});
     RenderedLossGradient lossGradient(context, scene, views, options.parameters, options.settings,

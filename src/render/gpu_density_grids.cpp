@@ -13,7 +13,18 @@ namespace {
 // Grids share the device with the path state, the BVH and the images.
 constexpr uint64_t kGridShareOfDeviceMemory = 2;
 
+// The shaders hold index coordinates as floats, exact to 2^24.
+constexpr int32_t kLargestIndexCoordinate = 1 << 24;
+
 void requireFits(const VulkanContext& context, const SceneDensityGrid& placed, uint64_t valuesBefore) {
+    const glm::ivec3 first = placed.grid.firstVoxel;
+    const glm::ivec3 last = first + placed.grid.size - 1;
+    if (glm::any(glm::lessThan(first, glm::ivec3(-kLargestIndexCoordinate + 1))) ||
+        glm::any(glm::greaterThan(last, glm::ivec3(kLargestIndexCoordinate - 1)))) {
+        throw Error(placed.file.string() + ": grid '" + placed.grid.name + "' has voxels at index coordinates beyond " +
+                    std::to_string(kLargestIndexCoordinate - 1) +
+                    " in magnitude, which the renderer cannot address exactly; move its voxels nearer the origin");
+    }
     const uint64_t budget = context.deviceLocalHeapBytes() / kGridShareOfDeviceMemory;
     const uint64_t fittingVoxels = std::min<uint64_t>(budget / sizeof(float), std::numeric_limits<int32_t>::max());
     const uint64_t voxels = valuesBefore + placed.grid.voxelCount();

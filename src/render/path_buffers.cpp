@@ -34,7 +34,7 @@ GradientCopies gradientCopies(const VulkanContext& context, gpu::GradientAccumul
     if (sums > maxSums) {
         throw Error(std::string(name) + ": " + std::to_string(items) + " items to differentiate, more than the " +
                     std::to_string(maxSums / layout.sumsPerItem) +
-                    " the adjoint pass can address; differentiate fewer or smaller textures");
+                    " the adjoint pass can address; differentiate fewer or smaller textures or grids");
     }
     return GradientCopies(context, uint32_t(sums), layout.copies, name);
 }

@@ -46,7 +46,7 @@ uint32_t totalTexels(const Scene& scene) {
     return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
 }
 
-// The voxels of every density grid; uploadDensityGrids keeps them below 2^31.
+// The voxels of every density grid; writeDensityGrids keeps them below 2^31.
 uint32_t totalVoxels(const Scene& scene) {
     uint64_t count = 0;
     for (const SceneDensityGrid& placed : scene.densityGrids) {

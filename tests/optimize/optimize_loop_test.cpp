@@ -251,7 +251,8 @@ TEST(Constraints, FollowTheLastComponentOfTheName) {
     EXPECT_EQ(boundsForParameter("media/a/b/sigma_s").lower, 0.0);
     EXPECT_EQ(boundsForParameter("materials/x/base_color").upper, 1.0);
     EXPECT_EQ(boundsForParameter("media/fog/g").lower, -0.99);
-    EXPECT_THROW(boundsForParameter("media/fog/density"), Error);
+    EXPECT_EQ(boundsForParameter("media/fog/density").lower, 0.0);
+    EXPECT_THROW(boundsForParameter("media/fog/temperature"), Error);
 }
 
 // The optimiser keeps each value in the range that setting it enforces: a value

@@ -118,10 +118,6 @@ SingleScattering singleScattering(const FogSetup& fog) {
     return out;
 }
 
-}  // namespace vkdr::test
-
-namespace vkdr::test {
-
 DensityGrid linearDensityGrid(const FogSetup& fog, double voxel) {
     const glm::dvec3 lo = fog.enclosure->lo - 2.0 * voxel;
     const glm::ivec3 size = glm::ivec3(glm::ceil((fog.enclosure->hi - fog.enclosure->lo) / voxel)) + 5;

@@ -43,18 +43,6 @@ GltfBuilder boxScene(json material, double placementScale = 2.0) {
     return builder;
 }
 
-void expectLoadError(const std::filesystem::path& file, const std::vector<std::string>& parts) {
-    try {
-        loadScene(file);
-        ADD_FAILURE() << "loading " << file << " did not fail";
-    } catch (const Error& error) {
-        std::string message = error.what();
-        for (const std::string& part : parts) {
-            EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
-        }
-    }
-}
-
 TEST(DensityGridScene, GridIsPlacedByTheNodeThenItsOwnTransform) {
     TemporaryDirectory directory;
     writeDensityGridVdb(directory / "smoke.vdb", smallGrid());

@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
+#include "scene/load_scene.h"
+
 namespace vkdr::test {
 namespace {
 
@@ -216,6 +219,19 @@ std::vector<unsigned char> bmpImage(int width, int height, const std::vector<glm
         bmp.resize(start + rowBytes, 0);
     }
     return bmp;
+}
+
+void expectLoadError(const std::filesystem::path& file, const std::vector<std::string>& parts) {
+    try {
+        loadScene(file);
+        ADD_FAILURE() << "loading " << file << " did not fail";
+    } catch (const Error& error) {
+        std::string message = error.what();
+        EXPECT_NE(message.find(file.string() + ": "), std::string::npos) << message;
+        for (const std::string& part : parts) {
+            EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+        }
+    }
 }
 
 }  // namespace vkdr::test

@@ -64,6 +64,8 @@ private:
 };
 
 std::filesystem::path writeText(const std::filesystem::path& file, const std::string& text);
+// Loads `file` expecting a vkdr::Error that names the file and contains every one of `parts`.
+void expectLoadError(const std::filesystem::path& file, const std::vector<std::string>& parts);
 std::string base64(const std::vector<unsigned char>& bytes);
 // A 24-bit BMP image (rows given top first), which stb_image, and so tinygltf, decodes.
 std::vector<unsigned char> bmpImage(int width, int height, const std::vector<glm::u8vec3>& topFirstRgb);

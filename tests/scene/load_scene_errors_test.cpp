@@ -9,20 +9,6 @@
 namespace vkdr::test {
 namespace {
 
-// Loads `file` expecting a vkdr::Error whose message contains every one of `parts`.
-void expectLoadError(const std::filesystem::path& file, const std::vector<std::string>& parts) {
-    try {
-        loadScene(file);
-        ADD_FAILURE() << "loading " << file << " did not fail";
-    } catch (const Error& error) {
-        std::string message = error.what();
-        EXPECT_NE(message.find(file.string() + ": "), std::string::npos) << message;
-        for (const std::string& part : parts) {
-            EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
-        }
-    }
-}
-
 GltfBuilder boxWithMaterial(json material) {
     GltfBuilder builder;
     int index = builder.addMaterial(std::move(material));
