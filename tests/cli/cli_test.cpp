@@ -205,6 +205,26 @@ TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
     EXPECT_NE(missing.err.find("none.exr"), std::string::npos) << missing.err;
 }
 
+// A density grid's gradient has a value per voxel: the text output summarises it, --json
+// has them all, and --check (two renders per value and seed) is refused.
+TEST_F(CliTest, GradOfADensityGridSummarisesItsVoxels) {
+    fs::path target = dir_ / "plume.exr";
+    ASSERT_EQ(run("render " + scene("cornell_plume.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string())
+                  .exitCode,
+              0);
+    const std::string grad = "grad " + scene("cornell_plume.gltf") + " --target " + target.string() +
+                             " --param media/plume/density --spp 1";
+    RunResult text = run(grad);
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("d loss / d media/plume/density = 262144 values, L2 norm"), std::string::npos) << text.out;
+    RunResult json = run(grad + " --json");
+    ASSERT_EQ(json.exitCode, 0) << json.err;
+    EXPECT_EQ(nlohmann::json::parse(json.out)["gradients"]["media/plume/density"].size(), 262144u);
+    RunResult check = run(grad + " --check");
+    EXPECT_EQ(check.exitCode, 2);
+    EXPECT_NE(check.err.find("error: --check: media/plume/density has 262144 values"), std::string::npos) << check.err;
+}
+
 TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {
     fs::path json = dir_ / "bench.json";
     RunResult r = run("bench cornell_fog room_2k --width 16 --height 16 --spp 1 --max-depth 3 --iters 1 "
