@@ -19,6 +19,7 @@
 #include "optimize/report_html.h"
 #include "optimize/run_directory.h"
 #include "optimize/run_report.h"
+#include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
 #include "scene/write_scene.h"
 
@@ -116,10 +117,23 @@ std::vector<Image> startImages(LossGradient& lossGradient, Scene& scene, const O
     return images;
 }
 
+// The run's table, log, charts and params.json hold every value of every parameter: for
+// a density grid's voxels they would run to hundreds of megabytes.
+void requireNoDensityGrid(const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+        const std::optional<ParsedParameterName> parsed = parseParameterName(name);
+        if (parsed && parsed->description->kind == ParameterKind::Density) {
+            throw Error("parameter " + name + ": optimize does not fit density grids yet (its outputs would hold "
+                        "every voxel); fit them from Python (docs/python.md) and see docs/density-grids.md");
+        }
+    }
+}
+
 }  // namespace
 
 OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(uint32_t iteration, double loss)>& progress) {
+    requireNoDensityGrid(job.options.parameters);
     const auto startTime = std::chrono::steady_clock::now();
     const std::filesystem::path& directory = job.outputDirectory;
     const std::vector<std::string>& names = job.options.parameters;

@@ -206,7 +206,8 @@ TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
 }
 
 // A density grid's gradient has a value per voxel: the text output summarises it, --json
-// has them all, and --check (two renders per value and seed) is refused.
+// has them all, and --check (two renders per value and seed) is refused, as is optimize,
+// whose outputs would hold every voxel.
 TEST_F(CliTest, GradOfADensityGridSummarisesItsVoxels) {
     fs::path target = dir_ / "plume.exr";
     ASSERT_EQ(run("render " + scene("cornell_plume.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string())
@@ -223,6 +224,14 @@ TEST_F(CliTest, GradOfADensityGridSummarisesItsVoxels) {
     RunResult check = run(grad + " --check");
     EXPECT_EQ(check.exitCode, 2);
     EXPECT_NE(check.err.find("error: --check: media/plume/density has 262144 values"), std::string::npos) << check.err;
+    const fs::path out = dir_ / "fit";
+    RunResult optimize = run("optimize " + scene("cornell_plume.gltf") + " --target " + target.string() +
+                             " --param media/plume/density --iters 1 --spp 1 --out " + out.string());
+    EXPECT_EQ(optimize.exitCode, 2);
+    EXPECT_NE(optimize.err.find("error: parameter media/plume/density: optimize does not fit density grids yet"),
+              std::string::npos)
+        << optimize.err;
+    EXPECT_FALSE(fs::exists(out));
 }
 
 TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {
