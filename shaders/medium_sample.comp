@@ -48,7 +48,7 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
         flight = trackFreeFlight(grid, origin, direction, tHit, sigma_t[hero], u.yz, random);
         beta *= heroMisWeight(sigma_t, flight.tentative, flight.majorantIntegral);
         if (flight.collided) {
-            beta *= m.sigma_s * logDerivativeOfLinear(sigma_t);
+            beta *= scatteringAlbedo(m.sigma_s, sigma_t);
         }
     }
     if (kAdjoint && (gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS) ||

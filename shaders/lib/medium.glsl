@@ -8,6 +8,13 @@ vec3 transmittance(vec3 sigma_t, float t) {
     return exp(-sigma_t * t);
 }
 
+// sigma_s / sigma_t per channel: the weight of a collision sampled in proportion to
+// sigma_t; 0 in a channel without extinction.
+vec3 scatteringAlbedo(vec3 sigma_s, vec3 sigma_t) {
+    return vec3(sigma_t.x > 0.0f ? sigma_s.x / sigma_t.x : 0.0f, sigma_t.y > 0.0f ? sigma_s.y / sigma_t.y : 0.0f,
+                sigma_t.z > 0.0f ? sigma_s.z / sigma_t.z : 0.0f);
+}
+
 // Density of a sampled distance t: the channel-average of the per-channel exponentials,
 // because the hero channel is picked uniformly.
 float freeFlightPdf(vec3 sigma_t, float t) {
