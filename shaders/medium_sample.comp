@@ -79,7 +79,7 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
 // delta * L_rem * d log(weight) to the medium's sigma gradients.
 uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, inout vec3 beta) {
     GpuMedium m = P.media.v[medium];
-    if (m.densityGrid != kNoDensityGrid) {
+    if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
         return sampleGridFreeFlightVertex(slot, medium, m, tHit, beta);
     }
     vec3 sigma_t = sigmaT(m);

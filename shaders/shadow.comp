@@ -80,7 +80,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             // length, or in a grid the density's integral along it.
             float opticalLength = segment;
             bool unbounded = toInfinity && hit.triangle == kNoHit;
-            if (m.densityGrid != kNoDensityGrid) {
+            if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
                 GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
                 if (!forGradientsOnly) {
                     tr *= ratioTrackTransmittance(grid, origin, direction, segment, sigmaT(m), random,

@@ -30,6 +30,9 @@ layout(constant_id = 0) const bool kAdjoint = false;
 // kGradientKind* in device_types.h. The other kinds' code is compiled out rather than
 // skipped, since a CPU device runs every branch of a shader, taken or not.
 layout(constant_id = 1) const uint kGradientKinds = 0xffffffffu;
+// Whether the scene has density grid media: without them their tracking is compiled out,
+// which a CPU device would otherwise pay for on every path.
+layout(constant_id = 2) const bool kDensityGrids = true;
 
 #define P params.p
 

@@ -81,8 +81,9 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       punctualLightCount_(static_cast<uint32_t>(scene.punctualLights.size())),
       texelCount_(totalTexels(scene)),
       voxelCount_(totalVoxels(scene)),
+      hasDensityGrids_(!scene.densityGrids.empty()),
       scene_(uploadScene(context, scene, bvh)),
-      pipelines_(context),
+      pipelines_(context, hasDensityGrids_),
       lossKind_(LossKind::L2) {
     if (settings.spp == 0 || settings.spp > kMaxSamplesPerPixel) {
         throw Error("--spp must be in [1, " + std::to_string(kMaxSamplesPerPixel) + "], got " +

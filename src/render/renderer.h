@@ -204,6 +204,7 @@ private:
     uint32_t punctualLightCount_;
     uint32_t texelCount_;
     uint32_t voxelCount_;
+    bool hasDensityGrids_;  // the stages are compiled to track through grids only when the scene has some
     GpuScene scene_;
     StagePipelines pipelines_;
     std::unique_ptr<PathBuffers> paths_;

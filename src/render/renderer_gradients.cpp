@@ -68,7 +68,7 @@ void Renderer::enableImageAdjoint(const DerivativeTargets& derivativeTargets) {
 
 void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths) {
     if (!pipelines_.gradient || pipelines_.gradient->kinds != derivativeTargets.kinds) {
-        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, derivativeTargets.kinds);
+        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, derivativeTargets.kinds, hasDensityGrids_);
     }
     adjoint_.reset();  // the old state's memory is free before the new one takes its own
     const bool texels = derivativeTargets.wants(ParameterKind::BaseColorTexture);

@@ -10,9 +10,9 @@ class VulkanContext;
 
 // The stages that follow a path (render/stages.h), compiled once as primal and once as
 // adjoint pipelines; the adjoint ones add the gradients of `gradientKinds` (bit
-// 1 << ParameterKind) alone.
+// 1 << ParameterKind) alone. Without `densityGrids` they cannot track through grid media.
 struct PathStages {
-    PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds);
+    PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, bool densityGrids);
 
     ComputePipeline generate;
     ComputePipeline mediumSample;
@@ -23,7 +23,7 @@ struct PathStages {
 // What only differentiation needs; compiled on first use, since a plain render
 // should not pay for it, and again for other kinds of gradient.
 struct GradientPipelines {
-    GradientPipelines(const VulkanContext& context, uint32_t gradientKinds);
+    GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, bool densityGrids);
 
     uint32_t kinds;  // the kinds of parameter whose gradients the adjoint stages add
     PathStages adjoint;
@@ -32,7 +32,7 @@ struct GradientPipelines {
 
 // One pipeline per wavefront stage, named after it.
 struct StagePipelines {
-    explicit StagePipelines(const VulkanContext& context);
+    StagePipelines(const VulkanContext& context, bool densityGrids);
 
     PathStages primal;
     ComputePipeline intersect;  // closest hits: the same in both passes
