@@ -220,50 +220,35 @@ void writePunctualLights(json& document, const Scene& scene, const std::filesyst
 
 // The written scene must load by the same rule as any other (scene_file_access.h): files
 // the original refers to stay where they are when they lie in the output's directory
-// tree, and are copied beside the output, as <copyStem><extension>, when not.
-class ExternalFileReferences {
-public:
-    ExternalFileReferences(const std::filesystem::path& original, const std::filesystem::path& out)
-        // The original has been loaded by its own rule already; here its files only need finding.
-        : original_(original), from_(original, SceneFileAccess{true}) {
-        std::error_code ec;
-        toDirectory_ = std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
-    }
-
-    // Rewrites entry["uri"] (a file, not a data URI) to refer to the file from the output.
-    void referTo(json& entry, const std::string& field, const std::string& copyStem) const {
-        if (!entry.contains("uri") || !entry["uri"].is_string() || isDataUri(entry["uri"].get<std::string>())) {
-            return;
-        }
-        ResolvedFile resolved = from_.resolveUri(entry["uri"].get<std::string>());
-        if (!resolved.problem.empty()) {
-            failReading(original_, field + ".uri: " + resolved.problem);
-        }
-        std::filesystem::path relative = resolved.file.lexically_relative(toDirectory_);
-        if (relative.empty() || *relative.begin() == "..") {
-            relative = copyStem + resolved.file.extension().string();
-            std::string bytes = readRegularFile(resolved.file);
-            writeAtomically(toDirectory_ / relative, [&](std::ofstream& stream) {
-                stream.write(bytes.data(), std::streamsize(bytes.size()));
-            });
-        }
-        entry["uri"] = encodeUriPath(relative.generic_string());
-    }
-
-private:
-    std::filesystem::path original_;
-    SceneFiles from_;
-    std::filesystem::path toDirectory_;
-};
-
-void referToExternalFiles(json& document, const char* array, const ExternalFileReferences& references,
+// tree, and are copied beside the output, as <stem>.<array><i><extension>, when not.
+void referToExternalFiles(json& document, const char* array, const std::filesystem::path& original,
                           const std::filesystem::path& out) {
     if (!document.contains(array) || !document[array].is_array()) {
         return;
     }
+    // The original has been loaded by its own rule already; here its files only need finding.
+    SceneFiles from(original, SceneFileAccess{true});
+    std::error_code ec;
+    std::filesystem::path toDirectory =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
     for (size_t i = 0; i < document[array].size(); ++i) {
-        references.referTo(document[array][i], std::string(array) + "[" + std::to_string(i) + "]",
-                           out.stem().string() + "." + array + std::to_string(i));
+        json& entry = document[array][i];
+        if (!entry.contains("uri") || !entry["uri"].is_string() || isDataUri(entry["uri"].get<std::string>())) {
+            continue;
+        }
+        ResolvedFile resolved = from.resolveUri(entry["uri"].get<std::string>());
+        if (!resolved.problem.empty()) {
+            failReading(original, std::string(array) + "[" + std::to_string(i) + "].uri: " + resolved.problem);
+        }
+        std::filesystem::path relative = resolved.file.lexically_relative(toDirectory);
+        if (relative.empty() || *relative.begin() == "..") {
+            relative = out.stem().string() + "." + array + std::to_string(i) + resolved.file.extension().string();
+            std::string bytes = readRegularFile(resolved.file);
+            writeAtomically(toDirectory / relative, [&](std::ofstream& stream) {
+                stream.write(bytes.data(), std::streamsize(bytes.size()));
+            });
+        }
+        entry["uri"] = encodeUriPath(relative.generic_string());
     }
 }
 
@@ -354,9 +339,8 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     writeSceneMedium(document, scene);
     writePunctualLights(document, scene, original);
 
-    const ExternalFileReferences references(original, out);
-    referToExternalFiles(document, "buffers", references, out);
-    referToExternalFiles(document, "images", references, out);
+    referToExternalFiles(document, "buffers", original, out);
+    referToExternalFiles(document, "images", original, out);
     writeDensityGrids(document, scene, out);
     writeBinaryChunkBeside(document, source, original, out);
     writeBaseColorTextures(document, scene, out);
