@@ -51,8 +51,7 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
             beta *= scatteringAlbedo(m.sigma_s, sigma_t);
         }
     }
-    if (kAdjoint && (gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS) ||
-                     gradientWanted(kGradientKindDensity))) {
+    if (kAdjoint && gridGradientsWanted()) {
         // The segment's factor is T(t), times sigma_s d(x_t) at a collision
         // (grid_adjoint.glsl).
         vec3 weight = factorGradient(slot, vec3(1.0f));

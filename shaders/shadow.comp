@@ -91,7 +91,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                     return vec3(0.0f);
                 }
                 unbounded = false;  // the grid ends
-                if (kAdjoint) {
+                if (kAdjoint && gridGradientsWanted()) {
                     opticalLength = densityIntegralAdjoint(grid, origin, direction, segment,
                                                            nextTrackingRandom(gradientPoints).x,
                                                            dot(gradientWeight, sigmaT(m)));
@@ -106,7 +106,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             }
             if (kAdjoint && !unbounded) {
                 addMediumLength(lengths, medium, opticalLength);
-                if (maxComponent(abs(gradientWeight)) > 0.0f) {
+                if (forGradientsOnly) {
                     addSigmaTGradient(medium, -opticalLength * gradientWeight);
                 }
             }

@@ -3,12 +3,20 @@
 #ifndef VKDR_DENSITY_GRID_GLSL
 #define VKDR_DENSITY_GRID_GLSL
 
-float gridVoxel(GpuDensityGrid grid, ivec3 voxel) {
+// Where the voxel at index coordinates `voxel` sits in RenderParams.gridValues (and its
+// gradient among the density gradients); -1 outside the grid's box, where the density
+// is 0 and no parameter exists.
+int gridVoxelOffset(GpuDensityGrid grid, ivec3 voxel) {
     ivec3 local = voxel - grid.firstVoxel.xyz;
     if (any(lessThan(local, ivec3(0))) || any(greaterThanEqual(local, grid.size.xyz))) {
-        return 0.0f;
+        return -1;
     }
-    return P.gridValues.v[grid.firstVoxel.w + (local.z * grid.size.y + local.y) * grid.size.x + local.x];
+    return grid.firstVoxel.w + (local.z * grid.size.y + local.y) * grid.size.x + local.x;
+}
+
+float gridVoxel(GpuDensityGrid grid, ivec3 voxel) {
+    int offset = gridVoxelOffset(grid, voxel);
+    return offset < 0 ? 0.0f : P.gridValues.v[offset];
 }
 
 float gridMajorant(GpuDensityGrid grid, ivec3 cell) {

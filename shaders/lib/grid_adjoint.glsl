@@ -8,24 +8,26 @@
 #include "adjoint.glsl"
 #include "grid_tracking.glsl"
 
-// Adds g times each of the point's trilinear weights to the gradient of its voxel. Voxels
-// outside the grid's box are not parameters.
+// Whether the adjoint pipelines add any gradient that tracking through a grid touches.
+bool gridGradientsWanted() {
+    return gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS) ||
+           gradientWanted(kGradientKindDensity);
+}
+
+// Adds g times each of the point's trilinear weights (gridDensity's footprint) to the
+// gradient of its voxel. Voxels outside the grid's box are not parameters.
 void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
     if (!gradientWanted(kGradientKindDensity)) {
         return;
     }
     vec3 base = floor(index);
-    vec3 w = index - base;
     for (int corner = 0; corner < 8; ++corner) {
-        ivec3 offset = ivec3(corner & 1, (corner >> 1) & 1, corner >> 2);
-        ivec3 local = ivec3(base) + offset - grid.firstVoxel.xyz;
-        if (any(lessThan(local, ivec3(0))) || any(greaterThanEqual(local, grid.size.xyz))) {
-            continue;
+        ivec3 offset = trilinearCorner(corner);
+        int voxel = gridVoxelOffset(grid, ivec3(base) + offset);
+        if (voxel >= 0) {
+            addGradient(P.densityGradients, P.densityGradientsCopyStride, uint(voxel), 0u,
+                        vec3(g * trilinearWeight(index - base, offset), 0.0f, 0.0f), 1u);
         }
-        vec3 weights = mix(vec3(1.0f) - w, w, vec3(offset));
-        uint voxel = uint(grid.firstVoxel.w + (local.z * grid.size.y + local.y) * grid.size.x + local.x);
-        addGradient(P.densityGradients, P.densityGradientsCopyStride, voxel, 0u,
-                    vec3(g * weights.x * weights.y * weights.z, 0.0f, 0.0f), 1u);
     }
 }
 

@@ -36,15 +36,27 @@ GridRay gridRay(GpuDensityGrid grid, vec3 origin, vec3 direction) {
     return ray;
 }
 
+// The eight voxels a trilinear lookup at index coordinates p blends: corner c (bit 0: x,
+// bit 1: y, bit 2: z) is voxel floor(p) + trilinearCorner(c), weighted by
+// trilinearWeight(p - floor(p), that corner). The adjoint spreads a density's gradient
+// over the same voxels with the same weights.
+ivec3 trilinearCorner(int corner) {
+    return ivec3(corner & 1, (corner >> 1) & 1, corner >> 2);
+}
+
+float trilinearWeight(vec3 fraction, ivec3 corner) {
+    vec3 w = mix(vec3(1.0f) - fraction, fraction, vec3(corner));
+    return w.x * w.y * w.z;
+}
+
 float gridDensity(GpuDensityGrid grid, vec3 index) {
     vec3 base = floor(index);
-    vec3 w = index - base;
-    ivec3 v = ivec3(base);
-    float x00 = mix(gridVoxel(grid, v), gridVoxel(grid, v + ivec3(1, 0, 0)), w.x);
-    float x10 = mix(gridVoxel(grid, v + ivec3(0, 1, 0)), gridVoxel(grid, v + ivec3(1, 1, 0)), w.x);
-    float x01 = mix(gridVoxel(grid, v + ivec3(0, 0, 1)), gridVoxel(grid, v + ivec3(1, 0, 1)), w.x);
-    float x11 = mix(gridVoxel(grid, v + ivec3(0, 1, 1)), gridVoxel(grid, v + ivec3(1, 1, 1)), w.x);
-    return mix(mix(x00, x10, w.y), mix(x01, x11, w.y), w.z);
+    float density = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 offset = trilinearCorner(corner);
+        density += trilinearWeight(index - base, offset) * gridVoxel(grid, ivec3(base) + offset);
+    }
+    return density;
 }
 
 // A DDA walk over the majorant cells along a ray: the current cell and where the ray
