@@ -6,7 +6,6 @@
 // loose that free flight pauses at its step bound and continues in the next segment.
 #include <cmath>
 
-#include "core/sample_statistics.h"
 #include "furnace_scene.h"
 #include "render_test_support.h"
 #include "single_scattering_quadrature.h"
@@ -18,31 +17,14 @@ namespace {
 
 class GridMediumTest : public RenderTest {};
 
+const RenderSettings kSettings{.spp = 8192, .maxDepth = 1};
+
 FogSetup rampFog(double a, double b) {
     FogSetup fog;
     fog.g = 0.3;
     fog.enclosure = FogSetup::Box{glm::dvec3(-1.0, -1.0, 0.5), glm::dvec3(1.0, 1.0, 4.0)};
     fog.density = FogSetup::LinearDensity{a, b, "density.vdb"};
     return fog;
-}
-
-// The mean over `renders` independent one-pixel renders and its standard error.
-std::array<MeanAndError, 3> renderPixel(const std::filesystem::path& file, int renders) {
-    std::vector<double> channels[3];
-    for (int seed = 0; seed < renders; ++seed) {
-        Image image = renderFile(file, {.width = 1, .height = 1, .spp = 8192, .maxDepth = 1, .seed = uint32_t(seed)});
-        for (int c = 0; c < 3; ++c) {
-            channels[c].push_back(image.rgb[c]);
-        }
-    }
-    return {meanAndError(channels[0]), meanAndError(channels[1]), meanAndError(channels[2])};
-}
-
-// 16 renders: the standard error is itself uncertain, so allow 6 of them.
-void expectPixel(const std::array<MeanAndError, 3>& pixel, glm::dvec3 expected) {
-    for (int c = 0; c < 3; ++c) {
-        EXPECT_NEAR(pixel[c].mean, expected[c], 6.0 * pixel[c].error + 1e-3 * expected[c]) << "channel " << c;
-    }
 }
 
 std::filesystem::path writeFog(const FogSetup& fog, const std::filesystem::path& dir) {
@@ -54,7 +36,7 @@ std::filesystem::path writeFog(const FogSetup& fog, const std::filesystem::path&
 
 TEST_F(GridMediumTest, SingleScatteringInALinearDensityMatchesQuadrature) {
     FogSetup fog = rampFog(0.2, 0.6);
-    expectPixel(renderPixel(writeFog(fog, tempDir()), 16), singleScattering(fog).radiance);
+    expectPixelNear(pixelOverSeeds(writeFog(fog, tempDir()), kSettings, 16), singleScattering(fog).radiance);
 }
 
 TEST_F(GridMediumTest, ConstantGridRendersAsTheHomogeneousMedium) {
@@ -69,10 +51,10 @@ TEST_F(GridMediumTest, ConstantGridRendersAsTheHomogeneousMedium) {
     std::filesystem::create_directories(homogeneousDir);
     std::filesystem::create_directories(gridDir);
     const glm::dvec3 expected = singleScattering(homogeneous).radiance;
-    auto fromGrid = renderPixel(writeFog(grid, gridDir), 16);
-    auto fromHomogeneous = renderPixel(writeFog(homogeneous, homogeneousDir), 16);
-    expectPixel(fromGrid, expected);
-    expectPixel(fromHomogeneous, expected);
+    auto fromGrid = pixelOverSeeds(writeFog(grid, gridDir), kSettings, 16);
+    auto fromHomogeneous = pixelOverSeeds(writeFog(homogeneous, homogeneousDir), kSettings, 16);
+    expectPixelNear(fromGrid, expected);
+    expectPixelNear(fromHomogeneous, expected);
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(fromGrid[c].mean, fromHomogeneous[c].mean,
                     6.0 * std::hypot(fromGrid[c].error, fromHomogeneous[c].error))

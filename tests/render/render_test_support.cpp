@@ -102,4 +102,23 @@ void expectPixelsMatch(const Image& image, uint32_t spp, double floatTolerance,
     }
 }
 
+std::array<MeanAndError, 3> pixelOverSeeds(const std::filesystem::path& scene, RenderSettings settings, int renders) {
+    settings.width = settings.height = 1;
+    std::vector<double> channels[3];
+    for (int seed = 0; seed < renders; ++seed) {
+        settings.seed = uint32_t(seed);
+        Image image = renderFile(scene, settings);
+        for (int c = 0; c < 3; ++c) {
+            channels[c].push_back(image.rgb[c]);
+        }
+    }
+    return {meanAndError(channels[0]), meanAndError(channels[1]), meanAndError(channels[2])};
+}
+
+void expectPixelNear(const std::array<MeanAndError, 3>& pixel, glm::dvec3 expected) {
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(pixel[c].mean, expected[c], 6.0 * pixel[c].error + 1e-3 * expected[c]) << "channel " << c;
+    }
+}
+
 }  // namespace vkdr::test

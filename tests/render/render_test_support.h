@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <vector>
@@ -6,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
+#include "core/sample_statistics.h"
 #include "image/image.h"
 #include "render/render_settings.h"
 #include "render/renderer.h"
@@ -39,6 +41,14 @@ struct PixelStatistics {
 PixelStatistics pixelStatistics(const Image& image);
 
 bool allFinite(const Image& image);
+
+// One pixel, rendered `renders` times with seeds 0, 1, ... and `settings` otherwise: each
+// channel's mean over the renders and its standard error, from their spread.
+std::array<MeanAndError, 3> pixelOverSeeds(const std::filesystem::path& scene, RenderSettings settings, int renders);
+
+// Every channel of `pixel` within 6 of its standard errors of `expected` (the standard
+// error of a few renders is itself uncertain), plus 1e-3 relative for quadrature.
+void expectPixelNear(const std::array<MeanAndError, 3>& pixel, glm::dvec3 expected);
 
 // A pixel's expected value and the variance of one sample of it.
 struct PixelExpectation {

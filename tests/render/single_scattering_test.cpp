@@ -5,7 +5,6 @@
 // depend on the direction convention of the phase function, which furnaces cannot see.
 #include <cmath>
 
-#include "core/sample_statistics.h"
 #include "render_test_support.h"
 #include "single_scattering_quadrature.h"
 
@@ -21,20 +20,8 @@ TEST_P(SingleScatteringTest, MatchesQuadrature) {
     const glm::dvec3 expected = singleScattering(fog).radiance;
 
     // Independent renders of one pixel: their spread gives the standard error.
-    constexpr int kRenders = 16;
-    std::vector<double> channels[3];
-    for (uint32_t seed = 0; seed < kRenders; ++seed) {
-        Image image = renderFile(file, {.width = 1, .height = 1, .spp = 8192, .maxDepth = 1, .seed = seed});
-        for (int c = 0; c < 3; ++c) {
-            channels[c].push_back(image.rgb[c]);
-        }
-    }
-    for (int c = 0; c < 3; ++c) {
-        MeanAndError pixel = meanAndError(channels[c]);
-        // 16 renders: the standard error is itself uncertain, so allow 6 of them.
-        EXPECT_NEAR(pixel.mean, expected[c], 6.0 * pixel.error + 1e-3 * expected[c])
-            << "channel " << c << ", g = " << fog.g;
-    }
+    SCOPED_TRACE("g = " + std::to_string(fog.g));
+    expectPixelNear(pixelOverSeeds(file, {.spp = 8192, .maxDepth = 1}, 16), expected);
 }
 
 INSTANTIATE_TEST_SUITE_P(Anisotropies, SingleScatteringTest, ::testing::Values(-0.6, 0.0, 0.5));
