@@ -12,11 +12,14 @@
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
 #include "core/error.h"
+#include "core/format_text.h"
 #include "core/interrupt.h"
 #include "diff/rendered_loss_gradient.h"
 #include "image/image.h"
 #include "optimize/checkpoint.h"
+#include "optimize/coarse_grid_gradient.h"
 #include "optimize/experiment_run.h"
+#include "optimize/grid_smoothness.h"
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/optimization_run.h"
@@ -57,6 +60,8 @@ struct ExperimentOverrides {
     CLI::Option* logParameters;
     CLI::Option* adamEpsilon;
     CLI::Option* optimizer;
+    CLI::Option* smoothness;
+    CLI::Option* gridLevels;
     CLI::Option* spp;
     CLI::Option* maxDepth;
     CLI::Option* loss;
@@ -117,6 +122,12 @@ void clearOldRun(const OptimizeCommandOptions& options, bool experiment) {
     if (options.overwrite) removeRunFiles(options.out, experiment);
 }
 
+std::string metricsText(const std::vector<Metric>& metrics) {
+    std::string text;
+    for (const Metric& metric : metrics) text += formatText(", %s %.4g", metric.name.c_str(), metric.value);
+    return text;
+}
+
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
     const OptimizeResult& result = report.result;
     std::printf("%s", parameterTable(report.parameters).c_str());
@@ -124,6 +135,7 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
     std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint\n",
                 result.losses.back(), result.losses.size(), result.forwardMs / iterations,
                 result.adjointMs / iterations);
+    if (!result.lastMetrics.empty()) std::printf("last iteration%s\n", metricsText(result.lastMetrics).c_str());
     std::printf("diff.png: white is an absolute difference of %.4g\n", double(report.largestDifference));
     std::printf("wrote log.jsonl, params.json, scene.gltf, final.exr, final.png, diff.png, loss.svg, report.html "
                 "to %s\n",
@@ -150,11 +162,11 @@ int withResumeHint(const std::filesystem::path& directory, const std::function<i
     }
 }
 
-std::function<void(uint32_t, double)> progressOn(ProgressBar& bar, uint32_t iterations) {
-    return [&bar, iterations](uint32_t iteration, double loss) {
-        char status[64];
-        std::snprintf(status, sizeof(status), "iteration %u/%u loss %.4g", iteration + 1, iterations, loss);
-        bar.update(double(iteration + 1) / iterations, status);
+std::function<void(const IterationRecord&)> progressOn(ProgressBar& bar, uint32_t iterations) {
+    return [&bar, iterations](const IterationRecord& record) {
+        bar.update(double(record.iteration + 1) / iterations,
+                   formatText("iteration %u/%u loss %.4g", record.iteration + 1, iterations, record.loss) +
+                       metricsText(record.metrics));
     };
 }
 
@@ -173,6 +185,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     requireRunWritesNoInput(options.out, false, filesTheSceneReads(loaded));
     Scene& scene = loaded.scene;
     requireOptimisableParameters(scene, options.optimize.parameters);
+    smoothnessWeights(options.optimize.parameters, options.optimize.smoothness);
     LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
     std::vector<TargetView> views = readTargets(options.targets, scene);
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views};
@@ -209,6 +222,8 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.logParameters->count()) experiment.optimize.logParameters = options.optimize.logParameters;
     if (given.adamEpsilon->count()) experiment.optimize.adamEpsilon = options.optimize.adamEpsilon;
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
+    if (given.smoothness->count()) experiment.optimize.smoothness = options.optimize.smoothness;
+    if (given.gridLevels->count()) experiment.optimize.gridLevels = options.optimize.gridLevels;
     if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
     if (given.spp->count()) experiment.render.spp = options.settings.spp;
     if (given.maxDepth->count()) experiment.render.maxDepth = options.settings.maxDepth;
@@ -301,6 +316,18 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
         command->add_option("--adam-epsilon", options->optimize.adamEpsilon,
                             "Adam's epsilon, in the gradient's units: make it smaller than the gradients")
             ->default_val(options->optimize.adamEpsilon)->check(finitePositiveNumber());
+    overrides.smoothness =
+        command->add_option("--smoothness", options->optimize.smoothness,
+                            "Add W x the mean squared difference between face-neighbouring voxels of every density "
+                            "grid optimised to the loss (0: none)")
+            ->default_val(options->optimize.smoothness)->check(finiteNumberIn(0.0, 1e12));
+    overrides.gridLevels =
+        command
+            ->add_option("--grid-levels", options->optimize.gridLevels,
+                         "Fit density grids coarse to fine in L equal parts of the run: the first restricts the steps "
+                         "to a grid 2^(L-1) times coarser, each next halves that (1: the grid's own voxels)")
+            ->default_val(options->optimize.gridLevels)
+            ->transform(integerIn(1, kMostGridLevels));
     overrides.optimizer = command->add_option("--optimizer", options->optimizer, "adam or sgd")
                               ->default_val(options->optimizer)->check(CLI::IsMember({"adam", "sgd"}));
     SamplingOptions sampling = addSamplingOptions(*command, options->settings);

@@ -10,6 +10,8 @@
 
 #include "core/error.h"
 #include "image/regular_file.h"
+#include "optimize/coarse_grid_gradient.h"
+#include "optimize/grid_smoothness.h"
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
@@ -23,7 +25,7 @@ using Json = nlohmann::ordered_json;  // keeps "start" in file order: the defaul
 const std::set<std::string> kKeys = {"scene", "views", "cameras", "width", "height", "spp", "target_spp",
                                      "max_depth", "seed", "iterations", "optimizer", "learning_rate",
                                      "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "log_parameters", "adam_epsilon", "loss", "true", "start",
-                                     "parameters"};
+                                     "parameters", "smoothness", "grid_levels", "held_out_views"};
 const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees"};
 
 // Reads one experiment file, prefixing every error with the file and the key at fault.
@@ -190,6 +192,16 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
         }
         options.learningRateDecayStart = start.get<double>();
     }
+    if (document.contains("smoothness")) {
+        const Json& weight = document["smoothness"];
+        if (!weight.is_number() || !(weight.get<double>() >= 0.0) || !std::isfinite(weight.get<double>())) {
+            reader.fail("smoothness", "expected a finite number >= 0");
+        }
+        options.smoothness = weight.get<double>();
+    }
+    if (document.contains("grid_levels")) {
+        options.gridLevels = reader.count(document["grid_levels"], "grid_levels", 1, kMostGridLevels);
+    }
     if (document.contains("adam_epsilon")) {
         options.adamEpsilon = reader.positive(document["adam_epsilon"], "adam_epsilon");
     }
@@ -268,6 +280,9 @@ Experiment readExperiment(const std::filesystem::path& file) {
     if (!reason.empty()) reader.fail("scene", experiment.scene.string() + ": " + reason);
     if (document.contains("views")) experiment.views = reader.strings(document["views"], "views");
     if (experiment.views.empty()) experiment.views = {""};
+    if (document.contains("held_out_views")) {
+        experiment.heldOutViews = reader.strings(document["held_out_views"], "held_out_views");
+    }
     if (document.contains("cameras")) {
         if (!document["cameras"].is_array()) reader.fail("cameras", "expected an array");
         for (size_t i = 0; i < document["cameras"].size(); ++i) {
@@ -293,10 +308,26 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
             reader.fail("views", "no camera '" + view + "'; cameras: " + cameraList(scene));
         }
     }
+    for (const std::string& view : experiment.heldOutViews) {
+        if (!hasCamera(scene, view)) reader.fail("held_out_views", "no camera '" + view + "'; cameras: " + cameraList(scene));
+        if (std::find(experiment.views.begin(), experiment.views.end(), view) != experiment.views.end()) {
+            reader.fail("held_out_views", "'" + view + "' is also in \"views\": a held-out view is one the fit never sees");
+        }
+    }
     try {
         requireOptimisableParameters(scene, experiment.optimize.parameters);
     } catch (const Error& e) {
         reader.fail("parameters", e.what());
+    }
+    const bool fitsAGrid = std::any_of(experiment.optimize.parameters.begin(), experiment.optimize.parameters.end(),
+                                       [&](const std::string& name) { return densityGridOf(scene, name) != nullptr; });
+    if (experiment.optimize.gridLevels > 1 && !fitsAGrid) {
+        reader.fail("grid_levels", "no density grid (media/<medium>/density) is being optimised");
+    }
+    try {
+        smoothnessWeights(experiment.optimize.parameters, experiment.optimize.smoothness);
+    } catch (const Error& e) {
+        reader.fail("smoothness", e.what());
     }
     for (const auto& [name, rate] : experiment.optimize.learningRates) {
         const std::vector<std::string>& names = experiment.optimize.parameters;

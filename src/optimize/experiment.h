@@ -32,6 +32,9 @@ struct Experiment {
     std::filesystem::path file;              // the experiment file itself
     std::filesystem::path scene;             // resolved against the experiment file's directory
     std::vector<std::string> views;          // camera names; "" = the scene's first camera
+    // Cameras whose targets are rendered but not fitted: their error is measured at every
+    // iteration (optimize/held_out_error.h), to see the fit generalise.
+    std::vector<std::string> heldOutViews;
     std::vector<ExperimentCamera> cameras;   // added to the scene before anything renders
     RenderSettings render;                   // width, height, spp, max depth of every render
     uint32_t targetSpp = 0;                  // samples per pixel of the target renders

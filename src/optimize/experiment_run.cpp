@@ -1,6 +1,9 @@
 #include "optimize/experiment_run.h"
 
 #include "core/error.h"
+#include "core/format_text.h"
+#include "optimize/held_out_error.h"
+#include "optimize/value_summary.h"
 #include "image/finite_pixels.h"
 #include "scene/parameters.h"
 
@@ -19,10 +22,10 @@ std::vector<std::vector<float>> currentValues(const Scene& scene, const std::vec
     return values;
 }
 
-std::vector<TargetView> renderTargets(const Experiment& experiment, const Scene& scene,
-                                      const ExperimentBackend& backend) {
+std::vector<TargetView> renderTargets(const Experiment& experiment, const std::vector<std::string>& cameras,
+                                      const Scene& scene, const ExperimentBackend& backend) {
     std::vector<TargetView> targets;
-    for (const std::string& camera : experiment.views) {
+    for (const std::string& camera : cameras) {
         RenderSettings settings = experiment.render;
         settings.camera = camera;
         settings.spp = experiment.targetSpp;
@@ -37,18 +40,75 @@ std::vector<TargetView> renderTargets(const Experiment& experiment, const Scene&
     return targets;
 }
 
+// A held-out view: its target, and the true scene rendered with the samples every
+// iteration's render of it uses (experiment seed + kHeldOutSeedOffset, the fit's spp).
+struct HeldOutView {
+    TargetView target;
+    RenderSettings settings;
+    Image trueRender;
+};
+
+std::vector<HeldOutView> heldOutViews(const Experiment& experiment, const Scene& trueScene,
+                                      const ExperimentBackend& backend) {
+    std::vector<HeldOutView> views;
+    std::vector<TargetView> targets = renderTargets(experiment, experiment.heldOutViews, trueScene, backend);
+    for (TargetView& target : targets) {
+        RenderSettings settings = experiment.render;
+        settings.camera = target.camera;
+        settings.seed = experiment.optimize.seed + kHeldOutSeedOffset;
+        Image trueRender = backend.render(trueScene, settings);
+        views.push_back({std::move(target), settings, std::move(trueRender)});
+    }
+    return views;
+}
+
+// Each held-out view's error and each summarised parameter's error against its true
+// values, at an iteration's values.
+std::vector<Metric> experimentMetrics(const Scene& scene, const std::vector<HeldOutView>& heldOut,
+                                      const ExperimentBackend& backend, const std::vector<std::string>& names,
+                                      const std::vector<std::vector<float>>& truth) {
+    std::vector<Metric> metrics;
+    for (const HeldOutView& view : heldOut) {
+        HeldOutError error = heldOutError(backend.render(scene, view.settings), view.trueRender, view.target.target);
+        metrics.push_back({"held-out " + view.target.camera + " relative RMSE", error.relativeRmse});
+        metrics.push_back({"held-out " + view.target.camera + " excess error (standard errors)",
+                           error.excessInStandardErrors});
+    }
+    for (size_t i = 0; i < names.size(); ++i) {
+        std::vector<float> values = getParameter(scene, names[i]);
+        if (!isSummarised(values.size())) continue;
+        if (std::optional<double> error = relativeL2Error(values, truth[i])) {
+            metrics.push_back({names[i] + " relative L2 error", *error});
+        }
+    }
+    return metrics;
+}
+
+std::vector<std::pair<std::string, std::string>> heldOutSettings(const std::vector<HeldOutView>& heldOut) {
+    std::vector<std::pair<std::string, std::string>> rows;
+    for (const HeldOutView& view : heldOut) {
+        HeldOutError floor = heldOutError(view.trueRender, view.trueRender, view.target.target);
+        rows.push_back({"held-out view " + view.target.camera,
+                        formatText("not fitted; the true scene rendered with the same samples is %.4g from its "
+                                   "target (relative RMSE), the noise floor a perfect fit reaches",
+                                   floor.relativeRmse)});
+    }
+    return rows;
+}
+
 }  // namespace
 
 OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
                                  const std::filesystem::path& outputDirectory, bool resume,
-                                 const std::function<void(uint32_t iteration, double loss)>& progress,
+                                 const std::function<void(const IterationRecord&)>& progress,
                                  const RunDescription& description) {
     prepareExperimentScene(experiment, scene);
     const std::vector<std::string>& names = experiment.optimize.parameters;
 
     applyValues(scene, experiment.trueValues);
     std::vector<std::vector<float>> truth = currentValues(scene, names);
-    std::vector<TargetView> targets = renderTargets(experiment, scene, backend);
+    std::vector<TargetView> targets = renderTargets(experiment, experiment.views, scene, backend);
+    std::vector<HeldOutView> heldOut = heldOutViews(experiment, scene, backend);
     applyValues(scene, experiment.startValues);
 
     OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, targets};
@@ -56,6 +116,10 @@ OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, con
     job.resume = resume;
     job.trueValues = truth;
     job.description = description;
+    job.settings = heldOutSettings(heldOut);
+    job.measure = [&](const Scene& current, uint32_t) {
+        return experimentMetrics(current, heldOut, backend, names, truth);
+    };
     std::unique_ptr<LossGradient> lossGradient =
         backend.makeLossGradient(scene, targets, names, experiment.render, experiment.loss);
     OptimizationReport report = runOptimization(*lossGradient, scene, job, progress);

@@ -27,17 +27,22 @@ struct ExperimentBackend {
 // The targets render with the experiment's seed plus this, so that their noise is
 // independent of every optimisation iteration's (seed + iteration).
 inline constexpr uint32_t kTargetSeedOffset = 0x80000000u;
+// Held-out views render with the experiment's seed plus this at every iteration: the
+// same samples each time, so that their error changes only with the values.
+inline constexpr uint32_t kHeldOutSeedOffset = 0x40000000u;
 
 // Checks `experiment` against `scene` (loaded from experiment.scene), renders the targets
 // from the true values, resets to the start values and optimises, writing the outputs of
 // runOptimization into `outputDirectory` (report.html with the true values) plus
-// target.exr/.png (the first view's target).
+// target.exr/.png (the first view's target). Each iteration's record carries, as
+// metrics, each held-out view's error (optimize/held_out_error.h) and each summarised
+// parameter's relative L2 error against its true values.
 // With `resume` the optimisation continues from the directory's checkpoint, which must
 // come from the same experiment file, scene and settings.
 // The report's parameters carry their true values.
 OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
                                  const std::filesystem::path& outputDirectory, bool resume = false,
-                                 const std::function<void(uint32_t iteration, double loss)>& progress = {},
+                                 const std::function<void(const IterationRecord&)>& progress = {},
                                  const RunDescription& description = {});
 
 }  // namespace vkdr

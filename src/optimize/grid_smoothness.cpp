@@ -2,23 +2,9 @@
 
 #include "core/error.h"
 #include "scene/parameter_kinds.h"
+#include "scene/parameters.h"
 
 namespace vkdr {
-namespace {
-
-const DensityGrid& gridNamed(const Scene& scene, const std::string& name) {
-    const std::optional<ParsedParameterName> parsed = parseParameterName(name);
-    if (parsed && parsed->description->kind == ParameterKind::Density) {
-        for (const Medium& medium : scene.media) {
-            if (medium.name == parsed->owner && medium.isHeterogeneous()) {
-                return scene.densityGrids[size_t(medium.densityGrid)].grid;
-            }
-        }
-    }
-    throw Error("smoothness: " + name + " is not the density of a grid medium");
-}
-
-}  // namespace
 
 double gridSmoothness(const DensityGrid& grid, double weight, std::vector<double>* gradient) {
     const size_t voxels = grid.voxelCount();
@@ -57,16 +43,30 @@ SmoothedLossGradient::SmoothedLossGradient(LossGradient& inner, std::map<std::st
 GradientResult SmoothedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
     GradientResult result = inner_.evaluate(scene, seed);
     for (const auto& [name, weight] : weights_) {
-        const DensityGrid& grid = gridNamed(scene, name);
+        const DensityGrid* grid = densityGridOf(scene, name);
+        if (!grid) throw Error("smoothness: " + name + " is not the density of a grid medium");
         std::vector<double>* gradient = nullptr;
         for (ParameterGradient& parameter : result.parameters) {
             if (parameter.name == name) {
                 gradient = &parameter.gradient;
             }
         }
-        result.loss += gridSmoothness(grid, weight, gradient);
+        result.loss += gridSmoothness(*grid, weight, gradient);
     }
     return result;
+}
+
+std::map<std::string, double> smoothnessWeights(const std::vector<std::string>& parameters, double weight) {
+    std::map<std::string, double> weights;
+    if (weight == 0.0) return weights;
+    for (const std::string& name : parameters) {
+        const std::optional<ParsedParameterName> parsed = parseParameterName(name);
+        if (parsed && parsed->description->kind == ParameterKind::Density) weights[name] = weight;
+    }
+    if (weights.empty()) {
+        throw Error("a smoothness weight is given, but no density grid (media/<medium>/density) is being optimised");
+    }
+    return weights;
 }
 
 }  // namespace vkdr

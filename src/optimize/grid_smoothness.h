@@ -1,6 +1,7 @@
 #pragma once
 #include <map>
 #include <string>
+#include <vector>
 
 #include "diff/loss_gradient.h"
 
@@ -22,6 +23,11 @@ private:
     LossGradient& inner_;
     std::map<std::string, double> weights_;
 };
+
+// The weight of the smoothness term for each density grid among `parameters`: `weight`
+// for each, none when it is 0. Throws vkdr::Error when the weight is not 0 but no
+// density grid is among them.
+std::map<std::string, double> smoothnessWeights(const std::vector<std::string>& parameters, double weight);
 
 // The smoothness term of one grid, and (when `gradient` is not null, sized as the
 // grid's values) its gradient added to *gradient.

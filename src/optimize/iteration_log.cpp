@@ -1,5 +1,7 @@
 #include "optimize/iteration_log.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -10,22 +12,59 @@
 #include "image/atomic_write.h"
 #include "image/regular_file.h"
 #include "optimize/json_numbers.h"
+#include "optimize/value_summary.h"
 
 namespace vkdr {
+
+namespace {
+
+nlohmann::ordered_json summaryJson(const ValueSummary& summary) {
+    return {{"count", summary.count}, {"mean", summary.mean}, {"min", summary.minimum}, {"max", summary.maximum}};
+}
+
+nlohmann::ordered_json gradientSummaryJson(const std::vector<double>& gradient) {
+    double sumOfSquares = 0.0, largest = 0.0;
+    for (double value : gradient) {
+        sumOfSquares += value * value;
+        largest = std::abs(value) > std::abs(largest) ? value : largest;
+    }
+    return {{"count", gradient.size()}, {"l2_norm", std::sqrt(sumOfSquares)}, {"largest", largest}};
+}
+
+ValueSummary summaryFrom(const nlohmann::json& object) {
+    ValueSummary summary;
+    summary.count = object.at("count").get<size_t>();
+    summary.mean = object.at("mean").get<double>();
+    summary.minimum = object.at("min").get<double>();
+    summary.maximum = object.at("max").get<double>();
+    return summary;
+}
+
+}  // namespace
 
 std::string iterationJsonLine(const IterationRecord& record) {
     nlohmann::ordered_json values = nlohmann::ordered_json::object();
     nlohmann::ordered_json gradients = nlohmann::ordered_json::object();
     for (const ParameterGradient& parameter : record.parameters) {
-        values[parameter.name] = floatArray(parameter.value);
-        gradients[parameter.name] = parameter.gradient;
+        if (isSummarised(parameter.value.size())) {
+            values[parameter.name] = summaryJson(summarise(parameter.value));
+            gradients[parameter.name] = gradientSummaryJson(parameter.gradient);
+        } else {
+            values[parameter.name] = floatArray(parameter.value);
+            gradients[parameter.name] = parameter.gradient;
+        }
     }
     nlohmann::ordered_json line = {{"iteration", record.iteration},
                                    {"loss", record.loss},
                                    {"parameters", values},
-                                   {"gradients", gradients},
-                                   {"forward_ms", record.forwardMs},
-                                   {"adjoint_ms", record.adjointMs}};
+                                   {"gradients", gradients}};
+    if (!record.metrics.empty()) {
+        nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
+        for (const Metric& metric : record.metrics) metrics[metric.name] = metric.value;
+        line["metrics"] = metrics;
+    }
+    line["forward_ms"] = record.forwardMs;
+    line["adjoint_ms"] = record.adjointMs;
     return line.dump();
 }
 
@@ -40,6 +79,17 @@ std::vector<ParameterTrajectory> readTrajectories(const std::filesystem::path& f
         nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
         const nlohmann::json* values = record.is_object() && record.contains("parameters") ? &record["parameters"] : nullptr;
         for (ParameterTrajectory& trajectory : trajectories) {
+            const bool summarised = values && values->contains(trajectory.name) &&
+                                    (*values)[trajectory.name].is_object();
+            if (summarised) {
+                try {
+                    trajectory.summaries.push_back(summaryFrom((*values)[trajectory.name]));
+                } catch (const nlohmann::json::exception&) {
+                    throw Error(file.string() + ": line " + std::to_string(lineNumber) + ": the summary of " +
+                                trajectory.name + " lacks its count, mean, min or max");
+                }
+                continue;
+            }
             if (!values || !values->contains(trajectory.name) || !(*values)[trajectory.name].is_array()) {
                 throw Error(file.string() + ": line " + std::to_string(lineNumber) + " has no values of " +
                             trajectory.name);
@@ -56,6 +106,32 @@ std::vector<ParameterTrajectory> readTrajectories(const std::filesystem::path& f
         }
     }
     return trajectories;
+}
+
+std::vector<MetricSeries> readMetrics(const std::filesystem::path& file) {
+    std::vector<MetricSeries> series;
+    std::istringstream in(readRegularFile(file));
+    size_t lineNumber = 0;
+    for (std::string line; std::getline(in, line); ++lineNumber) {
+        nlohmann::ordered_json record = nlohmann::ordered_json::parse(line, nullptr, false);
+        if (!record.is_object() || !record.contains("metrics") || !record["metrics"].is_object()) continue;
+        for (const auto& [name, value] : record["metrics"].items()) {
+            if (!value.is_number()) {
+                throw Error(file.string() + ": line " + std::to_string(lineNumber + 1) + ": metric " + name +
+                            " is not a number");
+            }
+            auto found = std::find_if(series.begin(), series.end(),
+                                      [&](const MetricSeries& metric) { return metric.name == name; });
+            if (found == series.end()) {
+                series.push_back({name, {}});
+                found = series.end() - 1;
+            }
+            found->values.resize(lineNumber, std::nan(""));
+            found->values.push_back(value.get<double>());
+        }
+    }
+    for (MetricSeries& metric : series) metric.values.resize(lineNumber, std::nan(""));
+    return series;
 }
 
 IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>& losses) : file_(std::move(file)) {

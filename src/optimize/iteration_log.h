@@ -5,11 +5,16 @@
 #include <vector>
 
 #include "optimize/optimize_loop.h"
+#include "optimize/value_summary.h"
 
 namespace vkdr {
 
 // One line of log.jsonl: {"iteration", "loss", "parameters": {name: [values]},
-// "gradients": {name: [dLoss/dvalue]}, "forward_ms", "adjoint_ms"}, no newline.
+// "gradients": {name: [dLoss/dvalue]}, "metrics": {name: value} (only when the record
+// has any), "forward_ms", "adjoint_ms"}, no newline. A parameter of more values than
+// kMostValuesListed (optimize/value_summary.h) is logged as {"count", "mean", "min",
+// "max"} and its gradient as {"count", "l2_norm", "largest"} (the value of largest
+// magnitude).
 std::string iterationJsonLine(const IterationRecord& record);
 
 // log.jsonl, one line per iteration. The whole file is rewritten (atomically) after
@@ -19,6 +24,7 @@ std::string iterationJsonLine(const IterationRecord& record);
 struct ParameterTrajectory {
     std::string name;
     std::vector<std::vector<float>> values;  // per iteration: the value it was evaluated at, before its step
+    std::vector<ValueSummary> summaries;     // instead, for a parameter the log summarises
 };
 
 // The trajectories of `names` in the log `file`, one value per logged iteration. Throws
@@ -26,6 +32,16 @@ struct ParameterTrajectory {
 // one of the parameters.
 std::vector<ParameterTrajectory> readTrajectories(const std::filesystem::path& file,
                                                   const std::vector<std::string>& names);
+
+// One metric (IterationRecord::metrics) through a run, as log.jsonl holds it.
+struct MetricSeries {
+    std::string name;
+    std::vector<double> values;  // per iteration, NaN where a line lacks it
+};
+
+// Every metric the log `file` holds, in the order the first line naming each gives.
+// Throws vkdr::Error naming the file and line when a metric is not a number.
+std::vector<MetricSeries> readMetrics(const std::filesystem::path& file);
 
 class IterationLog {
 public:

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "image/atomic_write.h"
 #include "optimize/checkpoint.h"
 #include "optimize/difference_image.h"
+#include "optimize/grid_smoothness.h"
 #include "optimize/iteration_log.h"
 #include "optimize/json_numbers.h"
 #include "optimize/loss_chart.h"
@@ -19,6 +21,7 @@
 #include "optimize/report_html.h"
 #include "optimize/run_directory.h"
 #include "optimize/run_report.h"
+#include "optimize/value_summary.h"
 #include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
 #include "scene/write_scene.h"
@@ -30,10 +33,22 @@ void writeText(const std::filesystem::path& file, const std::string& text) {
     writeAtomically(file, [&](std::ofstream& stream) { stream << text; });
 }
 
+// Each parameter's fitted values; one of many values (a texture, a grid) as its summary,
+// its values being in scene.gltf and the files beside it.
 std::string parametersJson(const Scene& scene, const std::vector<std::string>& names) {
     nlohmann::ordered_json values = nlohmann::ordered_json::object();
     for (const std::string& name : names) {
-        values[name] = floatArray(getParameter(scene, name));
+        std::vector<float> value = getParameter(scene, name);
+        if (isSummarised(value.size())) {
+            ValueSummary summary = summarise(value);
+            values[name] = {{"count", summary.count},
+                            {"mean", summary.mean},
+                            {"min", summary.minimum},
+                            {"max", summary.maximum},
+                            {"values_in", "scene.gltf"}};
+        } else {
+            values[name] = floatArray(value);
+        }
     }
     return values.dump(2) + "\n";
 }
@@ -117,23 +132,14 @@ std::vector<Image> startImages(LossGradient& lossGradient, Scene& scene, const O
     return images;
 }
 
-// The run's table, log, charts and params.json hold every value of every parameter: for
-// a density grid's voxels they would run to hundreds of megabytes.
-void requireNoDensityGrid(const std::vector<std::string>& names) {
-    for (const std::string& name : names) {
-        const std::optional<ParsedParameterName> parsed = parseParameterName(name);
-        if (parsed && parsed->description->kind == ParameterKind::Density) {
-            throw Error("parameter " + name + ": optimize does not fit density grids yet (its outputs would hold "
-                        "every voxel); fit them from Python (docs/python.md) and see docs/density-grids.md");
-        }
-    }
-}
-
 }  // namespace
 
-OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
-                                   const std::function<void(uint32_t iteration, double loss)>& progress) {
-    requireNoDensityGrid(job.options.parameters);
+OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene, const OptimizationJob& job,
+                                   const std::function<void(const IterationRecord&)>& progress) {
+    std::map<std::string, double> smoothness = smoothnessWeights(job.options.parameters, job.options.smoothness);
+    std::optional<SmoothedLossGradient> smoothed;
+    if (!smoothness.empty()) smoothed.emplace(imageLossGradient, std::move(smoothness));
+    LossGradient& lossGradient = smoothed ? static_cast<LossGradient&>(*smoothed) : imageLossGradient;
     const auto startTime = std::chrono::steady_clock::now();
     const std::filesystem::path& directory = job.outputDirectory;
     const std::vector<std::string>& names = job.options.parameters;
@@ -143,10 +149,15 @@ OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, con
     removeStaleTemporaries(directory);  // a killed run's partial writes
     IterationLog log = resume ? IterationLog(directory / "log.jsonl", resume->losses)
                               : IterationLog(directory / "log.jsonl");
-    OptimizeCallbacks callbacks{progress, [&](const IterationRecord& record) { log.append(record); },
-                                [&](const LoopState& state) {
-                                    writeCheckpoint(directory / kCheckpointFileName, {identity, state});
-                                }};
+    OptimizeCallbacks callbacks;
+    callbacks.measure = job.measure;
+    callbacks.iterationDone = [&](const IterationRecord& record) {
+        log.append(record);
+        if (progress) progress(record);
+    };
+    callbacks.checkpoint = [&](const LoopState& state) {
+        writeCheckpoint(directory / kCheckpointFileName, {identity, state});
+    };
 
     OptimizationReport report;
     // The scene holds the start values until optimize() writes a resumed run's into it.

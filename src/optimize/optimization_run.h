@@ -29,6 +29,10 @@ struct OptimizationJob {
     // experiment); empty otherwise. Shown in report.html.
     std::vector<std::vector<float>> trueValues;
     RunDescription description;
+    std::vector<std::pair<std::string, std::string>> settings;  // more rows of report.html's settings: name, value
+    // Figures measured at each iteration's values besides the loss (OptimizeCallbacks::measure):
+    // logged, charted in report.html and shown by the progress callback.
+    std::function<std::vector<Metric>(const Scene& scene, uint32_t iteration)> measure;
 };
 
 struct OptimizationReport {
@@ -40,7 +44,7 @@ struct OptimizationReport {
 // Optimises `scene` in place and writes into job.outputDirectory, every file atomically:
 //   log.jsonl   after every iteration (optimize/iteration_log.h)
 //   checkpoint.json every options.checkpointEvery iterations (optimize/checkpoint.h)
-//   params.json the fitted values by name, scene.gltf the input scene with them written
+//   params.json the fitted values by name (a summary for a parameter of many values), scene.gltf the input scene with them written
 //               back, final.exr/.png the last render of the first view, diff.png its
 //               scaled difference to the target, loss.svg the loss curve, and
 //   report.html a page of all of it (optimize/report_html.h) for every view, with the
@@ -55,7 +59,9 @@ struct OptimizationReport {
 // to it, drops the log's lines past it and continues from it: the outputs are those of
 // the run that was never stopped. Interrupted by a signal, it leaves the log and a
 // checkpoint of the last finished iteration (optimize/optimize_loop.h), and rethrows.
-OptimizationReport runOptimization(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
-                                   const std::function<void(uint32_t iteration, double loss)>& progress = {});
+// With options.smoothness > 0 the loss optimised is `imageLossGradient`'s plus the
+// smoothness term of every density grid optimised (optimize/grid_smoothness.h).
+OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene, const OptimizationJob& job,
+                                   const std::function<void(const IterationRecord&)>& progress = {});
 
 }  // namespace vkdr

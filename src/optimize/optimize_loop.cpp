@@ -9,8 +9,10 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "optimize/coarse_grid_gradient.h"
 #include "optimize/log_space.h"
 #include "optimize/parameter_vector.h"
+#include "scene/parameters.h"
 
 namespace vkdr {
 namespace {
@@ -128,6 +130,29 @@ std::vector<double> flatGradient(const ParameterVector& parameters, const Gradie
     return gradient;
 }
 
+// Each density grid's slice of the ParameterVector: what coarse-to-fine levels filter.
+struct GridSlice {
+    size_t offset = 0;
+    size_t count = 0;
+    glm::ivec3 size{0};
+};
+
+std::vector<GridSlice> densityGridSlices(const Scene& scene, const ParameterVector& parameters) {
+    std::vector<GridSlice> slices;
+    for (size_t i = 0; i < parameters.names().size(); ++i) {
+        if (const DensityGrid* grid = densityGridOf(scene, parameters.names()[i])) {
+            slices.push_back({parameters.offset(i), parameters.count(i), grid->size});
+        }
+    }
+    return slices;
+}
+
+void coarsenGridGradients(const std::vector<GridSlice>& slices, uint32_t divisor, std::span<double> gradient) {
+    for (const GridSlice& slice : slices) {
+        coarsenGridGradient(slice.size, divisor, gradient.subspan(slice.offset, slice.count));
+    }
+}
+
 // The exponent of the learning rate decay: 0 until the decay starts, 1 at the last iteration.
 double decayProgress(const OptimizeOptions& options, uint32_t iteration) {
     if (options.iterations < 2) {
@@ -179,6 +204,11 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         first = resume->iteration;
     }
     const LogSpace logSpace(parameters, options.logParameters);
+    const std::vector<GridSlice> gridSlices = densityGridSlices(scene, parameters);
+    if (options.gridLevels > 1 && gridSlices.empty()) {
+        throw Error("coarse-to-fine grid levels are given, but no density grid (media/<medium>/density) is being "
+                    "optimised");
+    }
     auto stateAfter = [&](uint32_t done) {
         std::vector<double> values(parameters.values().begin(), parameters.values().end());
         return LoopState{done, std::move(values), optimizer->state(), result.losses, result.forwardMs,
@@ -197,7 +227,9 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         }
         std::vector<double> gradient = flatGradient(parameters, evaluation);
         requireFinite(evaluation, parameters, iteration);
+        std::vector<Metric> metrics = callbacks.measure ? callbacks.measure(scene, iteration) : std::vector<Metric>{};
 
+        coarsenGridGradients(gridSlices, gridDivisorAt(iteration, options.iterations, options.gridLevels), gradient);
         optimizer->setLearningRateScale(std::pow(options.learningRateDecay, decayProgress(options, iteration)));
         logSpace.enter(parameters.values(), gradient);
         optimizer->step(parameters.values(), gradient);
@@ -209,12 +241,10 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         result.losses.push_back(evaluation.loss);
         result.forwardMs += evaluation.forwardMs;
         result.adjointMs += evaluation.adjointMs;
+        result.lastMetrics = metrics;
         if (callbacks.iterationDone) {
             callbacks.iterationDone(IterationRecord{iteration, evaluation.loss, evaluation.parameters,
-                                                    evaluation.forwardMs, evaluation.adjointMs});
-        }
-        if (callbacks.progress) {
-            callbacks.progress(iteration, evaluation.loss);
+                                                    std::move(metrics), evaluation.forwardMs, evaluation.adjointMs});
         }
         if (iteration == 0) result.firstImages = evaluation.images;
         result.lastImages = std::move(evaluation.images);

@@ -31,6 +31,14 @@ struct OptimizeOptions {
     // The fraction of the iterations that run at the full rate before the decay starts,
     // in [0, 1): the values can travel to the minimum first, then settle on it.
     double learningRateDecayStart = 0.0;
+    // The weight of the smoothness term (optimize/grid_smoothness.h) added to the loss for
+    // every density grid optimised; 0 for none.
+    double smoothness = 0.0;
+    // Coarse-to-fine levels for density grids (optimize/coarse_grid_gradient.h): the run
+    // is split into this many equal parts, the first restricting each grid's steps to a
+    // grid 2^(levels - 1) times coarser, each next part halving that; 1: the grid's own
+    // voxels throughout.
+    uint32_t gridLevels = 1;
     uint32_t iterations = 100;
     uint32_t seed = 0;  // iteration i renders with seed + i
     // OptimizeCallbacks::checkpoint is called after every this many iterations (0: never).
@@ -49,18 +57,28 @@ struct LoopState {
     double adjointMs = 0.0;
 };
 
+// A figure measured at an iteration's values besides the loss (an experiment's held-out
+// view error, a grid's error against the true grid).
+struct Metric {
+    std::string name;
+    double value = 0.0;
+};
+
 // One evaluation of the loop: the loss and gradient at the values before that
 // iteration's step.
 struct IterationRecord {
     uint32_t iteration = 0;  // counted from 0
     double loss = 0.0;
     std::vector<ParameterGradient> parameters;  // value and dLoss/dvalue, in OptimizeOptions order
+    std::vector<Metric> metrics;                // from OptimizeCallbacks::measure
     double forwardMs = 0.0;
     double adjointMs = 0.0;
 };
 
 struct OptimizeCallbacks {
-    std::function<void(uint32_t iteration, double loss)> progress;
+    // Called with the scene at an iteration's values, once its loss is known and before
+    // its step: what it returns goes into the iteration's record.
+    std::function<std::vector<Metric>(const Scene& scene, uint32_t iteration)> measure;
     std::function<void(const IterationRecord&)> iterationDone;
     // After every OptimizeOptions::checkpointEvery iterations, except after the last one
     // (the run's outputs follow it), once `scene` holds the new values; and when a
@@ -72,6 +90,7 @@ struct OptimizeResult {
     std::vector<double> losses;     // per iteration
     std::vector<Image> lastImages;  // the last iteration's render of each view
     std::vector<Image> firstImages; // iteration 0's render of each view; empty when resumed past it
+    std::vector<Metric> lastMetrics; // the last iteration's (OptimizeCallbacks::measure)
     double forwardMs = 0.0;         // all iterations together
     double adjointMs = 0.0;
 };

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/format_text.h"
+#include "optimize/value_summary.h"
+
 namespace vkdr {
 namespace {
 
@@ -30,7 +33,15 @@ std::string joinedValues(const std::vector<float>& values, const char* pattern) 
 
 }  // namespace
 
+std::string fitValues(const std::vector<float>& values, const char* pattern) {
+    return isSummarised(values.size()) ? summaryText(values) : joinedValues(values, pattern);
+}
+
 std::string fitErrors(const ParameterFit& fit) {
+    if (isSummarised(fit.fitted.size())) {
+        std::optional<double> error = relativeL2Error(fit.fitted, fit.truth);
+        return error ? formatText("relative L2 error %.2f%%", 100.0 * *error) : "";
+    }
     std::string text;
     for (size_t c = 0; c < fit.truth.size() && c < fit.fitted.size(); ++c) {
         double truth = fit.truth[c], error = double(fit.fitted[c]) - truth;
@@ -52,8 +63,8 @@ std::string parameterTable(const std::vector<ParameterFit>& fits) {
     std::vector<std::vector<std::string>> rows = {{"parameter", "start", "fitted"}};
     if (truthKnown) rows[0].insert(rows[0].end(), {"true", "error"});
     for (const ParameterFit& fit : fits) {
-        rows.push_back({fit.name, joinedValues(fit.start, "%.4g"), joinedValues(fit.fitted, "%.5g")});
-        if (truthKnown) rows.back().insert(rows.back().end(), {joinedValues(fit.truth, "%.4g"), fitErrors(fit)});
+        rows.push_back({fit.name, fitValues(fit.start, "%.4g"), fitValues(fit.fitted, "%.5g")});
+        if (truthKnown) rows.back().insert(rows.back().end(), {fitValues(fit.truth, "%.4g"), fitErrors(fit)});
     }
     std::vector<size_t> widths(rows[0].size(), 0);
     for (const auto& row : rows) {

@@ -7,7 +7,9 @@
 #include "optimize/base64.h"
 #include "optimize/difference_colour_map.h"
 #include "optimize/loss_chart.h"
+#include "optimize/metric_chart.h"
 #include "optimize/trajectory_chart.h"
+#include "optimize/value_summary.h"
 
 namespace vkdr {
 namespace {
@@ -44,7 +46,9 @@ std::string escaped(const std::string& text) {
 }
 
 // Each value as the shortest decimal that reads back as the same float: what params.json holds.
+// Every digit a float needs, or the summary of a parameter of many values.
 std::string exactValues(const std::vector<float>& values) {
+    if (isSummarised(values.size())) return escaped(summaryText(values));
     std::string text;
     for (float value : values) {
         char number[32];
@@ -129,6 +133,10 @@ std::string chartSection(const ReportPage& page) {
     for (size_t i = 0; i < page.trajectories.size() && i < page.fits.size(); ++i) {
         html += "<figure class=\"trajectory\">" + trajectoryChartSvg(page.trajectories[i], page.fits[i]) +
                 "<figcaption>" + escaped(page.fits[i].name) + "</figcaption></figure>\n";
+    }
+    for (const MetricSeries& metric : page.metrics) {
+        html += "<figure class=\"metric\">" + metricChartSvg(metric) + "<figcaption>" + escaped(metric.name) +
+                " per iteration</figcaption></figure>\n";
     }
     return html + "</div>\n</section>\n";
 }

@@ -31,12 +31,14 @@ struct ReportPage {
     std::string lossName;
     std::vector<ParameterFit> fits;
     std::vector<ParameterTrajectory> trajectories;  // the same parameters, in the same order
+    std::vector<MetricSeries> metrics;              // each charted after the parameters
 };
 
 // report.html: a self-contained page (no scripts, nothing fetched: images are data:
 // URIs of PNGs, charts inline SVG) with the run's command, scene, settings, the
-// parameter table, the loss curve, each parameter's trajectory and, per view, the
-// target, start, current and difference images with the colour bar of the difference.
+// parameter table, the loss curve, each parameter's and each metric's chart and, per
+// view, the target, start, current and difference images with the colour bar of the
+// difference.
 std::string reportHtml(const ReportPage& page);
 
 }  // namespace vkdr

@@ -8,7 +8,8 @@ namespace vkdr {
 // another run's files, whose log and checkpoint it would mix with its own.
 
 // Whether a run writes a file of this name into its directory (optimize/optimization_run.h:
-// log.jsonl, checkpoint.json, params.json, scene.gltf with what it refers to beside it,
+// log.jsonl, checkpoint.json, params.json, scene.gltf with what it refers to beside it
+// (textures, density grids),
 // final.exr, final.png, diff.png, loss.svg, report.html), or, for an experiment, besides
 // (optimize/experiment_run.h: target.exr, target.png). A directory holding any of them
 // holds a run.

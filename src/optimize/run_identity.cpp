@@ -60,6 +60,8 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
     identity["learning_rate_decay_start"] = numberText(options.learningRateDecayStart);
     identity["log_parameters"] = joined(options.logParameters, " ");
     identity["adam_epsilon"] = numberText(options.adamEpsilon);
+    identity["smoothness"] = numberText(options.smoothness);
+    identity["grid_levels"] = std::to_string(options.gridLevels);
     identity["iterations"] = std::to_string(options.iterations);
     identity["seed"] = std::to_string(options.seed);
     identity["loss"] = lossKindName(loss);

@@ -35,6 +35,17 @@ std::vector<std::pair<std::string, std::string>> settings(const OptimizationJob&
     rows.push_back({"max depth", std::to_string(job.inputs.maxDepth)});
     rows.push_back({"loss", lossKindName(job.loss)});
     rows.push_back({"seed", std::to_string(options.seed) + " (iteration i renders with seed + i)"});
+    rows.insert(rows.end(), job.settings.begin(), job.settings.end());
+    if (options.smoothness != 0.0) {
+        rows.push_back({"smoothness", formatText("%g times the mean squared difference of face neighbours, on "
+                                                 "every density grid (in the loss)", options.smoothness)});
+    }
+    if (options.gridLevels > 1) {
+        rows.push_back({"coarse-to-fine", formatText("%u levels: density grid steps restricted to a grid %u times "
+                                                     "coarser at first, halved every %g iterations",
+                                                     options.gridLevels, 1u << (options.gridLevels - 1),
+                                                     double(options.iterations) / options.gridLevels)});
+    }
     if (!job.description.device.empty()) rows.push_back({"device", job.description.device});
     rows.push_back({"render time", formatText("%.1f s forward, %.1f s adjoint over all %zu iterations",
                                              result.forwardMs / 1000.0, result.adjointMs / 1000.0,
@@ -60,6 +71,7 @@ ReportPage runReportPage(const OptimizationJob& job, const OptimizationReport& r
     page.lossName = lossKindName(job.loss);
     page.fits = report.parameters;
     page.trajectories = readTrajectories(job.outputDirectory / "log.jsonl", job.options.parameters);
+    page.metrics = readMetrics(job.outputDirectory / "log.jsonl");
     return page;
 }
 

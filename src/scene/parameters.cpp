@@ -196,4 +196,15 @@ void applyAssignment(Scene& scene, std::string_view assignment) {
     setParameter(scene, name, values);
 }
 
+const DensityGrid* densityGridOf(const Scene& scene, std::string_view name) {
+    const std::optional<ParsedParameterName> parsed = parseParameterName(name);
+    if (!parsed || parsed->description->kind != ParameterKind::Density) return nullptr;
+    for (const Medium& medium : scene.media) {
+        if (medium.name == parsed->owner && medium.isHeterogeneous()) {
+            return &scene.densityGrids[size_t(medium.densityGrid)].grid;
+        }
+    }
+    return nullptr;
+}
+
 }  // namespace vkdr

@@ -34,4 +34,8 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
 // Applies "NAME=v" or "NAME=v,v,v" (the CLI's --set syntax).
 void applyAssignment(Scene& scene, std::string_view assignment);
 
+// The grid that a density parameter (media/<medium>/density) names; null for any other
+// name, or a medium without a grid.
+const DensityGrid* densityGridOf(const Scene& scene, std::string_view name);
+
 }  // namespace vkdr

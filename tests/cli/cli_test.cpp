@@ -206,8 +206,7 @@ TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
 }
 
 // A density grid's gradient has a value per voxel: the text output summarises it, --json
-// has them all, and --check (two renders per value and seed) is refused, as is optimize,
-// whose outputs would hold every voxel.
+// has them all, and --check (two renders per value and seed) is refused.
 TEST_F(CliTest, GradOfADensityGridSummarisesItsVoxels) {
     fs::path target = dir_ / "plume.exr";
     ASSERT_EQ(run("render " + scene("cornell_plume.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string())
@@ -224,14 +223,32 @@ TEST_F(CliTest, GradOfADensityGridSummarisesItsVoxels) {
     RunResult check = run(grad + " --check");
     EXPECT_EQ(check.exitCode, 2);
     EXPECT_NE(check.err.find("error: --check: media/plume/density has 262144 values"), std::string::npos) << check.err;
+}
+
+// optimize fits a grid with a smoothness term, summarises its voxels in what it prints
+// and writes the fitted grid as a .vdb that the written scene loads; a smoothness weight
+// without a grid is refused before anything renders.
+TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
+    fs::path target = dir_ / "plume.exr";
+    ASSERT_EQ(run("render " + scene("cornell_plume.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string())
+                  .exitCode,
+              0);
     const fs::path out = dir_ / "fit";
-    RunResult optimize = run("optimize " + scene("cornell_plume.gltf") + " --target " + target.string() +
-                             " --param media/plume/density --iters 1 --spp 1 --out " + out.string());
-    EXPECT_EQ(optimize.exitCode, 2);
-    EXPECT_NE(optimize.err.find("error: parameter media/plume/density: optimize does not fit density grids yet"),
-              std::string::npos)
-        << optimize.err;
-    EXPECT_FALSE(fs::exists(out));
+    const std::string optimize = "optimize " + scene("cornell_plume.gltf") + " --target " + target.string() +
+                                 " --iters 2 --spp 2 --lr 0.001 --smoothness 0.5 --out " + out.string();
+    RunResult fit = run(optimize + " --param media/plume/density");
+    ASSERT_EQ(fit.exitCode, 0) << fit.err;
+    EXPECT_NE(fit.out.find("over 262144 values"), std::string::npos) << fit.out;
+    EXPECT_EQ(nlohmann::json::parse(slurp(out / "params.json"))["media/plume/density"]["count"], 262144);
+    ASSERT_TRUE(fs::is_regular_file(out / "scene.materials4.density.vdb"));
+    RunResult rendered = run("render " + (out / "scene.gltf").string() + " --width 8 --height 8 --spp 1 -o " +
+                             (dir_ / "fitted.exr").string());
+    EXPECT_EQ(rendered.exitCode, 0) << rendered.err;
+
+    RunResult refused = run(optimize + " --param media/plume/sigma_s --overwrite");
+    EXPECT_EQ(refused.exitCode, 2);
+    EXPECT_NE(refused.err.find("error: a smoothness weight is given, but no density grid"), std::string::npos)
+        << refused.err;
 }
 
 TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {

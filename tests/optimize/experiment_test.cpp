@@ -10,6 +10,7 @@
 #include "expect_error.h"
 #include "optimize/experiment.h"
 #include "optimize/experiment_run.h"
+#include "optimize/iteration_log.h"
 #include "quadratic_loss_gradient.h"
 #include "scene/load_scene.h"
 #include "scene/parameters.h"
@@ -173,6 +174,23 @@ TEST(Experiment, RejectsUnknownParametersValuesAndViewsAgainstTheScene) {
     expectPrepareError(scratch, experiment, {"log_parameters", "media/fog/sigma_a", "positive value"});
 }
 
+TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndASmoothnessWithoutAGrid) {
+    ScratchDirectory scratch;
+    json experiment = fogExperiment(scratch.path());
+    experiment["held_out_views"] = {"side"};
+    expectPrepareError(scratch, experiment, {"held_out_views", "no camera 'side'"});
+
+    experiment["views"] = {"camera"};
+    experiment["held_out_views"] = {"camera"};
+    expectPrepareError(scratch, experiment, {"held_out_views", "'camera' is also in \"views\""});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["smoothness"] = -1.0;
+    expectReadError(scratch, experiment, {"smoothness", "expected a finite number >= 0"});
+    experiment["smoothness"] = 0.5;
+    expectPrepareError(scratch, experiment, {"smoothness", "no density grid"});
+}
+
 TEST(Experiment, AddsItsCamerasToTheScene) {
     ScratchDirectory scratch;
     json experiment = fogExperiment(scratch.path());
@@ -241,9 +259,55 @@ TEST(Experiment, RecoversTheTrueValuesWithAnAnalyticBackend) {
     }
 }
 
+// A held-out view renders its target once and, at every iteration, with the same
+// samples as the true scene's render of it: its error falls to that floor as the fit
+// converges, and is logged with the iteration.
+TEST(Experiment, MeasuresTheHeldOutViewAtEveryIteration) {
+    ScratchDirectory scratch;
+    json file = fogExperiment(scratch.path());
+    file["iterations"] = 200;
+    file["cameras"] = {{{"name", "side"}, {"position", {0, 2, -4}}, {"look_at", {0, 2, 0}}}};
+    file["views"] = {"camera"};
+    file["held_out_views"] = {"side"};
+    Experiment experiment = readExperiment(writeExperiment(scratch, file));
+    Scene scene = loadScene(experiment.scene).scene;
+    std::vector<RenderSettings> renders;
+    ExperimentBackend backend;
+    backend.render = [&](const Scene& rendered, const RenderSettings& settings) {
+        renders.push_back(settings);
+        float sigma_a = getParameter(rendered, "media/fog/sigma_a")[0];
+        return Image{settings.width, settings.height, std::vector<float>(size_t(settings.width * settings.height * 3), 1.0f + sigma_a)};
+    };
+    backend.makeLossGradient = [&](const Scene&, std::vector<TargetView> views, std::vector<std::string>,
+                                   const RenderSettings&, LossKind) -> std::unique_ptr<LossGradient> {
+        const Image& target = views.at(0).target;
+        double truth = target.rgb[0] - 1.0;
+        auto loss = std::make_unique<QuadraticLossGradient>(
+            QuadraticLossGradient::Minima{{"media/fog/sigma_a", {truth, truth, truth}}, {"media/fog/g", {0.0}}});
+        loss->setImageSize(target.width, target.height);
+        return loss;
+    };
+    OptimizationReport report = runExperiment(experiment, scene, backend, scratch / "out");
+
+    // The fitted view's target, the held-out target, the true held-out render, then one
+    // render of the held-out view per iteration with the same seed.
+    ASSERT_EQ(renders.size(), 3u + 200u);
+    EXPECT_EQ(renders[1].camera, "side");
+    EXPECT_EQ(renders[1].seed, kTargetSeedOffset);
+    EXPECT_EQ(renders[2].seed, kHeldOutSeedOffset);
+    EXPECT_EQ(renders[2].spp, experiment.render.spp);
+    EXPECT_EQ(renders.back().seed, kHeldOutSeedOffset);
+    ASSERT_EQ(report.result.lastMetrics.size(), 2u);
+    EXPECT_EQ(report.result.lastMetrics[0].name, "held-out side relative RMSE");
+    EXPECT_NEAR(report.result.lastMetrics[0].value, 0.0, 1e-3);
+    std::vector<MetricSeries> metrics = readMetrics(scratch / "out" / "log.jsonl");
+    ASSERT_EQ(metrics.size(), 2u);
+    EXPECT_NEAR(metrics[0].values[0], 0.25 / 1.05, 1e-6);  // the start 0.3 against the truth 0.05
+}
+
 TEST(Experiment, ShippedExperimentsMatchTheirScenes) {
     std::filesystem::path directory = kScenes / "experiments";
-    for (const char* name : {"cornell_absorption.json", "smoke_g_and_colour.json"}) {
+    for (const char* name : {"cornell_absorption.json", "smoke_g_and_colour.json", "smoke_reconstruction.json"}) {
         SCOPED_TRACE(name);
         Experiment experiment = readExperiment(directory / name);
         Scene scene = loadScene(experiment.scene).scene;

@@ -145,7 +145,9 @@ TEST(OptimizeLoop, RendersIterationIWithBaseSeedPlusIAndReportsProgress) {
     OptimizeOptions options = optionsFor({"media/fog/g"}, OptimizerKind::Adam, 0.01, 3);
     options.seed = 40;
     std::vector<std::pair<uint32_t, double>> progress;
-    optimize(loss, scene, options, {[&](uint32_t iteration, double value) { progress.push_back({iteration, value}); }, {}});
+    OptimizeCallbacks callbacks;
+    callbacks.iterationDone = [&](const IterationRecord& record) { progress.push_back({record.iteration, record.loss}); };
+    optimize(loss, scene, options, callbacks);
     EXPECT_EQ(loss.seeds(), (std::vector<uint32_t>{40, 41, 42}));
     ASSERT_EQ(progress.size(), 3u);
     EXPECT_EQ(progress[2].first, 2u);

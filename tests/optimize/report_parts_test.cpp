@@ -1,7 +1,8 @@
 // The parts of report.html that carry numbers: the percentile that scales the
 // difference images, the colour map and its bar, base64, the parameter table and the
-// trajectory chart.
+// trajectory and metric charts, and the summaries of parameters of many values.
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 #include <string>
@@ -13,7 +14,9 @@
 #include "optimize/base64.h"
 #include "optimize/difference_colour_map.h"
 #include "optimize/parameter_table.h"
+#include "optimize/metric_chart.h"
 #include "optimize/trajectory_chart.h"
+#include "optimize/value_summary.h"
 
 namespace vkdr::test {
 namespace {
@@ -146,6 +149,56 @@ TEST(TrajectoryChart, DrawsALinePerChannelWithStartFittedAndTrueMarks) {
 
     fit.truth.clear();
     EXPECT_EQ(occurrences(trajectoryChartSvg(trajectory, fit), "class=\"truth\""), 0u);
+}
+
+TEST(ValueSummary, GivesCountMeanAndRangeAndTheRelativeL2Error) {
+    const std::vector<float> values = {0.0f, 1.0f, 2.0f, 5.0f};
+    ValueSummary summary = summarise(values);
+    EXPECT_EQ(summary.count, 4u);
+    EXPECT_DOUBLE_EQ(summary.mean, 2.0);
+    EXPECT_EQ(summary.minimum, 0.0);
+    EXPECT_EQ(summary.maximum, 5.0);
+    EXPECT_EQ(summaryText(values), "mean 2 in [0, 5] over 4 values");
+    // ||(0, 1, 2, 5) - (0, 1, 2, 3)|| / ||(0, 1, 2, 3)|| = 2 / sqrt(14).
+    EXPECT_DOUBLE_EQ(*relativeL2Error(values, std::vector<float>{0.0f, 1.0f, 2.0f, 3.0f}), 2.0 / std::sqrt(14.0));
+    EXPECT_FALSE(relativeL2Error(values, std::vector<float>(4, 0.0f)));
+    EXPECT_FALSE(relativeL2Error(values, std::vector<float>(3, 1.0f)));
+    EXPECT_FALSE(isSummarised(kMostValuesListed));
+    EXPECT_TRUE(isSummarised(kMostValuesListed + 1));
+}
+
+TEST(ParameterTable, SummarisesAParameterOfManyValuesWithItsRelativeError) {
+    std::vector<float> truth(64, 1.0f), fitted(64, 1.0f);
+    fitted[0] = 9.0f;  // ||fitted - truth|| = 8, ||truth|| = 8
+    std::vector<ParameterFit> fits = {{"media/smoke/density", std::vector<float>(64, 0.5f), fitted, truth}};
+    std::string table = parameterTable(fits);
+    EXPECT_NE(table.find("mean 0.5 in [0.5, 0.5] over 64 values"), std::string::npos) << table;
+    EXPECT_NE(table.find("mean 1.125 in [1, 9] over 64 values"), std::string::npos) << table;
+    EXPECT_NE(table.find("relative L2 error 100.00%"), std::string::npos) << table;
+}
+
+TEST(TrajectoryChart, DrawsTheSmallestMeanAndLargestOfASummarisedParameter) {
+    ParameterTrajectory trajectory{"media/smoke/density", {}, {{64, 0.5, 0.5, 0.5}, {64, 0.6, 0.1, 2.0}}};
+    ParameterFit fit{"media/smoke/density", std::vector<float>(64, 0.5f), std::vector<float>(64, 0.7f),
+                     std::vector<float>(64, 0.8f)};
+    std::string svg = trajectoryChartSvg(trajectory, fit);
+    EXPECT_EQ(occurrences(svg, "<polyline"), 3u);
+    EXPECT_EQ(occurrences(svg, "class=\"truth\""), 3u);
+    EXPECT_NE(svg.find("smallest, mean and largest"), std::string::npos);
+    size_t points = svg.find("points=\"");
+    std::string list = svg.substr(points + 8, svg.find('"', points + 8) - points - 8);
+    EXPECT_EQ(std::count(list.begin(), list.end(), ','), 3) << list;  // two iterations and the fitted value
+}
+
+TEST(MetricChart, DrawsEveryFiniteValueAndAZeroLineWhereTheRangeCrossesIt) {
+    MetricSeries metric{"excess", {3.0, std::nan(""), -1.0, 0.5}};
+    std::string svg = metricChartSvg(metric);
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+    size_t points = svg.find("points=\"");
+    std::string list = svg.substr(points + 8, svg.find('"', points + 8) - points - 8);
+    EXPECT_EQ(std::count(list.begin(), list.end(), ','), 3) << list;
+    EXPECT_EQ(occurrences(svg, "class=\"zero\""), 1u);
+    EXPECT_EQ(occurrences(metricChartSvg({"error", {0.5, 0.25}}), "class=\"zero\""), 0u);
 }
 
 }  // namespace

@@ -1,0 +1,57 @@
+#include "optimize/metric_chart.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/format_text.h"
+#include "optimize/svg_chart.h"
+
+namespace vkdr {
+namespace {
+
+constexpr double kWidth = 480, kHeight = 240;
+constexpr double kLeft = 64, kRight = 16, kTop = 16, kBottom = 40;  // margins around the plot area
+
+std::pair<double, double> valueRange(const std::vector<double>& values) {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (double value : values) {
+        if (!std::isfinite(value)) continue;
+        low = std::min(low, value);
+        high = std::max(high, value);
+    }
+    if (!(low <= high)) return {0.0, 1.0};
+    double padding = high > low ? 0.06 * (high - low) : std::max(1e-6, 0.1 * std::abs(high));
+    return {low - padding, high + padding};
+}
+
+}  // namespace
+
+std::string metricChartSvg(const MetricSeries& metric) {
+    auto [low, high] = valueRange(metric.values);
+    const double plotWidth = kWidth - kLeft - kRight, plotHeight = kHeight - kTop - kBottom;
+    const double lastIteration = std::max<double>(1.0, double(metric.values.size()) - 1.0);
+    auto x = [&](double iteration) { return kLeft + plotWidth * iteration / lastIteration; };
+    auto y = [&](double value) { return kTop + plotHeight * (high - value) / (high - low); };
+
+    std::string svg = svgHeader(kWidth, kHeight);
+    for (int tick = 0; tick <= 4; ++tick) {
+        double value = low + (high - low) * tick / 4.0;
+        svg += formatText("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", kLeft, y(value),
+                         kWidth - kRight, y(value));
+        svg += formatText("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%.4g</text>\n",
+                         kLeft - 6, y(value), value);
+    }
+    if (low < 0.0 && high > 0.0) {
+        svg += formatText("<line class=\"zero\" x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#555\"/>\n", kLeft,
+                         y(0.0), kWidth - kRight, y(0.0));
+    }
+    svg += iterationAxisSvg(kLeft, kTop, kWidth - kRight, kHeight - kBottom, lastIteration, x);
+    svg += "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"";
+    for (size_t i = 0; i < metric.values.size(); ++i) {
+        if (std::isfinite(metric.values[i])) svg += formatText("%.2f,%.2f ", x(double(i)), y(metric.values[i]));
+    }
+    return svg + "\"/>\n</svg>\n";
+}
+
+}  // namespace vkdr

@@ -1,0 +1,32 @@
+#pragma once
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace vkdr {
+
+// Past this many values (a texture's texels, a density grid's voxels) a parameter is
+// summarised in optimize's outputs instead of listed: every voxel of a 64^3 grid in
+// every line of log.jsonl would run to gigabytes over a run.
+inline constexpr size_t kMostValuesListed = 12;
+
+inline bool isSummarised(size_t count) { return count > kMostValuesListed; }
+
+struct ValueSummary {
+    size_t count = 0;
+    double mean = 0.0;
+    double minimum = 0.0;
+    double maximum = 0.0;
+};
+
+ValueSummary summarise(std::span<const float> values);
+
+// "mean 0.1234 in [0, 1.5] over 262144 values".
+std::string summaryText(std::span<const float> values);
+
+// ||values - truth|| / ||truth||, the L2 norms over every value; nothing where the sizes
+// differ or the truth is all 0 (no scale to be relative to).
+std::optional<double> relativeL2Error(std::span<const float> values, std::span<const float> truth);
+
+}  // namespace vkdr
