@@ -1,5 +1,6 @@
 #include "bench/bench_report.h"
 
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <span>
@@ -70,6 +71,26 @@ std::string gradientTable(const BenchReport& report) {
     return out;
 }
 
+// One row per scene: its density grids' voxels, those above 0, and the majorant grids'
+// build; nothing when no scene has a grid.
+std::string densityGridTable(const BenchReport& report) {
+    if (std::none_of(report.scenes.begin(), report.scenes.end(),
+                     [](const SceneBenchmark& s) { return s.densityGrids.has_value(); })) {
+        return "";
+    }
+    std::string out = "\nDensity grids: voxels in their boxes (what the device holds), voxels above 0, and the host's "
+                      "majorant grid build\n\n"
+                      "| scene | grid voxels | active voxels | majorant build ms |\n"
+                      "|---|--:|--:|--:|\n";
+    for (const SceneBenchmark& s : report.scenes) {
+        const std::optional<DensityGridFigures>& grids = s.densityGrids;
+        out += "| " + s.name + " | " + (grids ? std::to_string(grids->voxels) : "-") + " | " +
+               (grids ? std::to_string(grids->activeVoxels) : "-") + " | " +
+               cell("%.2f", grids ? std::optional(grids->majorantBuildMs) : std::nullopt) + " |\n";
+    }
+    return out;
+}
+
 // A table of GPU ms per stage, a row per scene, from the breakdown `stagesMs` names.
 std::string stageTable(const BenchReport& report, const std::string& title, std::span<const char* const> stages,
                        std::map<std::string, double> SceneBenchmark::*stagesMs) {
@@ -119,6 +140,7 @@ std::string markdownTable(const BenchReport& report) {
     out += stageTable(report, "GPU ms per stage of the adjoint-mode passes (the adjoint column above, broken down)",
                       kAdjointStages, &SceneBenchmark::adjointStagesMs);
     out += gradientTable(report);
+    out += densityGridTable(report);
     for (const SkippedScene& skipped : report.skipped) {
         out += "\nskipped " + skipped.name + ": " + skipped.reason + "\n";
     }
@@ -138,6 +160,7 @@ nlohmann::ordered_json reportJson(const BenchReport& report) {
             adjointStages[stage] = valueOr0(s.adjointStagesMs, stage);
         }
         const GradientNoise* noise = s.gradient && s.gradient->noise ? &*s.gradient->noise : nullptr;
+        const std::optional<DensityGridFigures>& grids = s.densityGrids;
         scenes.push_back({
             {"name", s.name},
             {"triangles", s.triangles},
@@ -147,6 +170,9 @@ nlohmann::ordered_json reportJson(const BenchReport& report) {
             {"max_depth", s.maxDepth},
             {"bvh_build_ms", s.bvhBuildMs},
             {"bvh_triangles_per_s", s.trianglesPerSecond()},
+            {"grid_voxels", grids ? ordered_json(grids->voxels) : ordered_json(nullptr)},
+            {"active_voxels", grids ? ordered_json(grids->activeVoxels) : ordered_json(nullptr)},
+            {"majorant_build_ms", jsonValue(grids ? std::optional(grids->majorantBuildMs) : std::nullopt)},
             {"stages_ms", stages},
             {"adjoint_stages_ms", adjointStages},
             {"forward_ms", s.forwardMs},

@@ -8,8 +8,11 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/format_text.h"
 #include "procedural/room_scene.h"
 #include "scene/load_scene.h"
+#include "volume/index_transform.h"
+#include "volume/smoke_plume.h"
 
 namespace vkdr {
 namespace {
@@ -22,6 +25,19 @@ constexpr uint64_t kMaxRoomTriangles = uint64_t(1) << 30;
 // a third as margin over what bench measures on room_1m (docs/performance.md).
 constexpr uint64_t kHostBytesPerTriangle = 500;
 constexpr uint64_t kDeviceBytesPerTriangle = 200;
+
+constexpr const char* kPlumePrefix = "plume_";
+constexpr const char* kPlumeScene = "cornell_plume";
+constexpr uint32_t kPlumeSeed = 1;  // the shipped grid's
+// Peaks per voxel of a plume, with about a third as margin over what bench measures
+// (plume_64 to plume_192, docs/performance.md). On the device 8.5 bytes while the grid
+// is uploaded (its values and their staging copy), and 148 once the density gradient is
+// downloaded: the values, the gradient's fixed-point sums (72 bytes) and their staging
+// copy (72). On the host 80 besides: the downloaded sums, the scene's values and the
+// gradient's floats.
+constexpr uint64_t kHostBytesPerVoxel = 110;
+constexpr uint64_t kForwardDeviceBytesPerVoxel = 12;
+constexpr uint64_t kGradientDeviceBytesPerVoxel = 192;
 
 // "10k" -> 10000, "1m" -> 1000000; nothing for anything else or too large to multiply.
 std::optional<uint64_t> parseCount(const std::string& text) {
@@ -38,6 +54,33 @@ std::optional<uint64_t> parseCount(const std::string& text) {
     return value * scale;
 }
 
+// "64" -> 64; nothing unless the whole text is a resolution makeSmokePlume takes.
+std::optional<int> parseResolution(const std::string& text) {
+    int value = 0;
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size() || value < 2 ||
+        uint64_t(value) * uint64_t(value) * uint64_t(value) > kMaxDenseVoxels) {
+        return std::nullopt;
+    }
+    return value;
+}
+
+// Puts a procedural plume of resolution^3 voxels in place of each of the scene's grids,
+// keeping the node's placement: the plume fills the box the old grid filled.
+void replaceGridsWithPlume(Scene& scene, const BenchSceneSource& source) {
+    if (scene.densityGrids.empty()) {
+        throw Error("scene " + source.name + ": " + source.file.string() + " has no density grid to replace");
+    }
+    for (SceneDensityGrid& placed : scene.densityGrids) {
+        DensityGrid plume = makeSmokePlume(source.plumeResolution, kPlumeSeed);
+        plume.name = placed.grid.name;
+        const glm::dmat4 nodeToWorld = placed.indexToWorld * glm::inverse(placed.grid.indexToLocal);
+        placed.indexToWorld = nodeToWorld * plume.indexToLocal;
+        placed.grid = std::move(plume);
+        placed.file = source.name;  // errors about the grid name the bench scene
+    }
+}
+
 bool looksLikeFile(const std::string& name) {
     std::filesystem::path path(name);
     return path.has_parent_path() || path.extension() == ".gltf" || path.extension() == ".glb";
@@ -46,7 +89,7 @@ bool looksLikeFile(const std::string& name) {
 }  // namespace
 
 std::vector<std::string> defaultBenchScenes() {
-    return {"cornell_fog", "cornell_smoke", "room_10k", "room_100k", "room_1m", "room_10m"};
+    return {"cornell_fog", "cornell_smoke", "plume_64", "room_10k", "room_100k", "room_1m", "room_10m"};
 }
 
 BenchSceneSource resolveBenchScene(const std::string& name, const std::filesystem::path& scenesDirectory) {
@@ -54,7 +97,7 @@ BenchSceneSource resolveBenchScene(const std::string& name, const std::filesyste
         if (!std::filesystem::is_regular_file(name)) {
             throw Error("scene " + name + ": no such file");
         }
-        return {name, name, 0};
+        return {name, name};
     }
     if (name.starts_with(kRoomPrefix)) {
         std::optional<uint64_t> triangles = parseCount(name.substr(std::string(kRoomPrefix).size()));
@@ -63,19 +106,40 @@ BenchSceneSource resolveBenchScene(const std::string& name, const std::filesyste
         }
         return {name, {}, *triangles};
     }
+    if (name.starts_with(kPlumePrefix)) {
+        std::optional<int> resolution = parseResolution(name.substr(std::string(kPlumePrefix).size()));
+        if (!resolution) {
+            throw Error("scene " + name + ": expected plume_<N> with N from 2 to 1290 voxels along each axis, e.g. "
+                        "plume_64");
+        }
+        std::filesystem::path shipped = scenesDirectory / (std::string(kPlumeScene) + ".gltf");
+        if (!std::filesystem::is_regular_file(shipped)) {
+            throw Error("scene " + name + ": the plume goes into " + shipped.string() + ", which is not there");
+        }
+        return {name, shipped, 0, *resolution};
+    }
     std::filesystem::path shipped = scenesDirectory / (name + ".gltf");
     if (!std::filesystem::is_regular_file(shipped)) {
         throw Error("unknown scene '" + name + "': not " + shipped.string() +
-                    ", nor room_<N> (e.g. room_100k), nor a .gltf or .glb file");
+                    ", nor room_<N> (e.g. room_100k), nor plume_<N> (e.g. plume_64), nor a .gltf or .glb file");
     }
-    return {name, shipped, 0};
+    return {name, shipped};
+}
+
+BenchMemoryEstimate estimateBenchMemory(const BenchSceneSource& source) {
+    const uint64_t voxels = uint64_t(source.plumeResolution) * uint64_t(source.plumeResolution) *
+                            uint64_t(source.plumeResolution);
+    return {source.roomTriangles * kHostBytesPerTriangle + voxels * kHostBytesPerVoxel,
+            source.roomTriangles * kDeviceBytesPerTriangle +
+                voxels * (kForwardDeviceBytesPerVoxel + kGradientDeviceBytesPerVoxel)};
 }
 
 std::optional<std::string> whyTooLarge(const BenchSceneSource& source, uint64_t availableHostBytes,
                                        uint64_t deviceHeapBytes, bool deviceIsHost) {
-    const uint64_t host = source.roomTriangles * (kHostBytesPerTriangle + (deviceIsHost ? kDeviceBytesPerTriangle : 0));
-    const uint64_t device = source.roomTriangles * kDeviceBytesPerTriangle;
-    auto gib = [](uint64_t bytes) { return std::to_string((bytes + (1ull << 29)) >> 30) + " GiB"; };
+    const BenchMemoryEstimate estimate = estimateBenchMemory(source);
+    const uint64_t host = estimate.hostBytes + (deviceIsHost ? estimate.deviceBytes : 0);
+    const uint64_t device = estimate.deviceBytes;
+    auto gib = [](uint64_t bytes) { return formatText("%.1f GiB", double(bytes) / double(1ull << 30)); };
     if (host > availableHostBytes) {
         return "needs about " + gib(host) + " of host memory, " + gib(availableHostBytes) + " available";
     }
@@ -87,7 +151,11 @@ std::optional<std::string> whyTooLarge(const BenchSceneSource& source, uint64_t 
 
 Scene loadBenchScene(const BenchSceneSource& source) {
     if (!source.file.empty()) {
-        return loadScene(source.file).scene;
+        Scene scene = loadScene(source.file).scene;
+        if (source.plumeResolution > 0) {
+            replaceGridsWithPlume(scene, source);
+        }
+        return scene;
     }
     static std::atomic<int> counter{0};
     std::filesystem::path file = std::filesystem::temp_directory_path() /

@@ -175,6 +175,7 @@ SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& n
         steps.step();
     }
     result.bvhBuildMs = median(bvhMs);
+    result.densityGrids = measureDensityGrids(scene, iterations);
 
     const Image target = measureRenderer(context, scene, bvh, settings, iterations, steps, result);
     result.gradient =

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "bench/density_grid_figures.h"
 #include "bench/gradient_benchmark.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
@@ -28,6 +29,7 @@ struct SceneBenchmark {
     int width = 0, height = 0;
     uint32_t spp = 0, maxDepth = 0;
     double bvhBuildMs = 0.0;
+    std::optional<DensityGridFigures> densityGrids;  // nullopt for a scene without grids
     double forwardMs = 0.0;   // Renderer::render(), wall clock
     double gradientMs = 0.0;  // Renderer::renderWithGradients(), wall clock
     uint64_t paths = 0;       // of one forward pass
@@ -56,9 +58,10 @@ struct SceneBenchmark {
     double efficiency() const;
 };
 
-// Times the BVH build, then renders: a warm-up render that becomes the target image,
-// one warm-up gradient iteration, and then `iterations` (at least 2) each of forward
-// passes (alternating between two seeds, for the noise figure),
+// Times the BVH build, counts the density grids' voxels and times their majorant grids'
+// build, then renders: a warm-up render that becomes the target image, one warm-up
+// gradient iteration, and then `iterations` (at least 2) each of forward passes
+// (alternating between two seeds, for the noise figure),
 // gradient iterations (as RenderedLossGradient runs them), and gradient iterations
 // with a DispatchTimer attached for the stage times, so that the timestamps do not
 // slow the wall-clock figures. The memory figures end there; with that renderer gone,

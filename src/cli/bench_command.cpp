@@ -87,8 +87,9 @@ CommandAction addBenchCommand(CLI::App& app) {
     options->settings.render.spp = kDefaultSpp;
     command->add_option("scenes", options->scenes,
                         "cornell_fog, cornell_smoke (any NAME.gltf in --scenes-dir), room_<N> for a procedural "
-                        "room of N triangles (room_10k, room_1m), or a .gltf/.glb file (default: cornell_fog "
-                        "cornell_smoke room_10k room_100k room_1m room_10m)");
+                        "room of N triangles (room_10k, room_1m), plume_<N> for cornell_plume with a procedural "
+                        "plume of N^3 voxels (plume_64, plume_256), or a .gltf/.glb file (default: cornell_fog "
+                        "cornell_smoke plume_64 room_10k room_100k room_1m room_10m)");
     SamplingOptions sampling = addSamplingOptions(*command, options->settings.render);
     command->remove_option(sampling.seed);  // the benchmark picks its own seeds
     command->add_option("--width", options->settings.render.width,

@@ -86,6 +86,25 @@ TEST(BenchReport, GradientFiguresAreNullWhereThereAreNone) {
     EXPECT_NE(table.find("| room_10k | media/fog/sigma_s | 8 | - | - | 200.0 |\n"), std::string::npos) << table;
 }
 
+TEST(BenchReport, DensityGridFiguresAreNullWithoutGrids) {
+    BenchReport report = exampleReport();
+    EXPECT_EQ(markdownTable(report).find("Density grids"), std::string::npos);  // no grid, no table
+    report.scenes.push_back(report.scenes[0]);
+    report.scenes[1].name = "plume_64";
+    report.scenes[1].densityGrids = DensityGridFigures{262144, 12345, 7.25};
+    nlohmann::ordered_json json = reportJson(report);
+    for (const char* key : {"grid_voxels", "active_voxels", "majorant_build_ms"}) {
+        EXPECT_TRUE(json["scenes"][0][key].is_null()) << key;
+    }
+    EXPECT_EQ(json["scenes"][1]["grid_voxels"], 262144);
+    EXPECT_EQ(json["scenes"][1]["active_voxels"], 12345);
+    EXPECT_EQ(json["scenes"][1]["majorant_build_ms"], 7.25);
+    std::string table = markdownTable(report);
+    EXPECT_NE(table.find("| scene | grid voxels | active voxels | majorant build ms |\n"), std::string::npos) << table;
+    EXPECT_NE(table.find("| room_10k | - | - | - |\n"), std::string::npos) << table;
+    EXPECT_NE(table.find("| plume_64 | 262144 | 12345 | 7.25 |\n"), std::string::npos) << table;
+}
+
 TEST(BenchReport, DriverMemoryCountTakesPrecedence) {
     BenchReport report = exampleReport();
     report.scenes[0].peakDriverDeviceBytes = 3 << 20;

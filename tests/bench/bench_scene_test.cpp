@@ -3,6 +3,7 @@
 
 #include "bench/bench_scene.h"
 #include "expect_error.h"
+#include "scene/load_scene.h"
 
 namespace vkdr::test {
 namespace {
@@ -37,6 +38,58 @@ TEST(BenchScene, UnknownNamesAreErrorsNamingThem) {
     expectErrorMentioning([] { resolveBenchScene("room_99999999999999999999999", kScenes); }, {"room_9999"});
 }
 
+TEST(BenchScene, PlumesTakeTheirResolutionFromTheName) {
+    BenchSceneSource plume = resolveBenchScene("plume_64", kScenes);
+    EXPECT_EQ(plume.plumeResolution, 64);
+    EXPECT_EQ(plume.file, kScenes / "cornell_plume.gltf");
+    EXPECT_EQ(resolveBenchScene("plume_2", kScenes).plumeResolution, 2);
+    EXPECT_EQ(resolveBenchScene("plume_1290", kScenes).plumeResolution, 1290);
+    EXPECT_EQ(resolveBenchScene("cornell_plume", kScenes).plumeResolution, 0);  // the shipped grid as it is
+}
+
+TEST(BenchScene, PlumeNamesOutsideTheGeneratorsRangeAreErrorsNamingThem) {
+    for (const char* name : {"plume_0", "plume_1", "plume_1291", "plume_abc", "plume_", "plume_64k", "plume_-64",
+                             "plume_64.5", "plume_99999999999999999999"}) {
+        expectErrorMentioning([&] { resolveBenchScene(name, kScenes); }, {name});
+    }
+    expectErrorMentioning([] { resolveBenchScene("plume_64", "/nonexistent"); }, {"plume_64", "cornell_plume.gltf"});
+}
+
+TEST(BenchScene, Plume64IsTheShippedPlumeScene) {
+    Scene shipped = loadScene(kScenes / "cornell_plume.gltf").scene;
+    Scene generated = loadBenchScene(resolveBenchScene("plume_64", kScenes));
+    ASSERT_EQ(generated.densityGrids.size(), 1u);
+    const SceneDensityGrid& grid = generated.densityGrids[0];
+    EXPECT_EQ(grid.grid.size, shipped.densityGrids[0].grid.size);
+    EXPECT_EQ(grid.grid.firstVoxel, shipped.densityGrids[0].grid.firstVoxel);
+    EXPECT_EQ(grid.grid.name, shipped.densityGrids[0].grid.name);
+    EXPECT_TRUE(grid.grid.values == shipped.densityGrids[0].grid.values);
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) {
+            EXPECT_NEAR(grid.indexToWorld[column][row], shipped.densityGrids[0].indexToWorld[column][row], 1e-12);
+        }
+    }
+    EXPECT_EQ(generated.triangles.size(), shipped.triangles.size());
+    EXPECT_EQ(generated.media.size(), shipped.media.size());
+}
+
+TEST(BenchScene, PlumesOfOtherResolutionsFillTheSameBox) {
+    const Scene shipped = loadScene(kScenes / "cornell_plume.gltf").scene;
+    const Scene plume = loadBenchScene(resolveBenchScene("plume_24", kScenes));
+    const SceneDensityGrid& grid = plume.densityGrids[0];
+    EXPECT_EQ(grid.grid.size, glm::ivec3(24));
+    EXPECT_EQ(grid.file, "plume_24");
+    // The outer corners of the voxel boxes (index -0.5 and size - 0.5) land on the same points.
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 pick(corner & 1, (corner >> 1) & 1, corner >> 2);
+        const glm::dvec3 inShipped = pick * glm::dvec3(shipped.densityGrids[0].grid.size) - 0.5;
+        const glm::dvec3 inPlume = pick * glm::dvec3(grid.grid.size) - 0.5;
+        const glm::dvec3 expected(shipped.densityGrids[0].indexToWorld * glm::dvec4(inShipped, 1.0));
+        const glm::dvec3 actual(grid.indexToWorld * glm::dvec4(inPlume, 1.0));
+        EXPECT_LT(glm::length(actual - expected), 1e-9) << corner;
+    }
+}
+
 TEST(BenchScene, GeneratedRoomHasAboutTheRequestedTriangles) {
     Scene scene = loadBenchScene(resolveBenchScene("room_3k", kScenes));
     EXPECT_NEAR(double(scene.triangles.size()), 3000.0, 0.05 * 3000.0);
@@ -56,6 +109,33 @@ TEST(BenchScene, RoomsTooLargeForMemoryAreSkippedWithTheReason) {
     EXPECT_NE(device->find("device memory"), std::string::npos) << *device;
     // Shipped scenes and files are not judged before loading.
     EXPECT_FALSE(whyTooLarge(resolveBenchScene("cornell_fog", kScenes), 0, 0, true));
+}
+
+TEST(BenchScene, PlumesTooLargeForMemoryAreSkippedWithTheReason) {
+    constexpr uint64_t GiB = uint64_t(1) << 30;
+    BenchSceneSource small = resolveBenchScene("plume_64", kScenes);
+    BenchSceneSource huge = resolveBenchScene("plume_1290", kScenes);
+    EXPECT_FALSE(whyTooLarge(small, 16 * GiB, 16 * GiB, true));
+    std::optional<std::string> host = whyTooLarge(huge, 16 * GiB, 1024 * GiB, false);
+    ASSERT_TRUE(host);
+    EXPECT_NE(host->find("host memory"), std::string::npos) << *host;
+    std::optional<std::string> device = whyTooLarge(huge, 1024 * GiB, 16 * GiB, false);
+    ASSERT_TRUE(device);
+    EXPECT_NE(device->find("device memory"), std::string::npos) << *device;
+    // On a CPU device the device's share counts against the host too.
+    const BenchMemoryEstimate estimate = estimateBenchMemory(huge);
+    EXPECT_FALSE(whyTooLarge(huge, estimate.hostBytes + estimate.deviceBytes, estimate.deviceBytes, true));
+    EXPECT_TRUE(whyTooLarge(huge, estimate.hostBytes + estimate.deviceBytes - 1, estimate.deviceBytes, true));
+}
+
+TEST(BenchScene, MemoryEstimatesGrowWithTheVoxelCount) {
+    const BenchMemoryEstimate small = estimateBenchMemory(resolveBenchScene("plume_64", kScenes));
+    const BenchMemoryEstimate large = estimateBenchMemory(resolveBenchScene("plume_128", kScenes));
+    EXPECT_EQ(large.deviceBytes, 8 * small.deviceBytes);
+    EXPECT_EQ(large.hostBytes, 8 * small.hostBytes);
+    // The density gradient alone is 72 bytes a voxel (docs/density-grids.md).
+    EXPECT_GT(small.deviceBytes, 72u * 64 * 64 * 64);
+    EXPECT_EQ(estimateBenchMemory(resolveBenchScene("cornell_plume", kScenes)).deviceBytes, 0u);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // from the timestamps of every stage, and the gradient noise is there exactly where the
 // scene has a medium parameter and seeds are asked for (the values are not judged: this
 // is a benchmark, not a test of speed).
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -80,6 +81,40 @@ TEST(SceneBenchmark, NoGradientNoiseWithoutAMediumOrSeeds) {
     BenchSettings noSeeds = tinySettings();
     noSeeds.gradientSeeds = 0;
     EXPECT_FALSE(benchmarkShippedScene(context, "cornell_fog", noSeeds).gradient.has_value());
+    requireNoValidationMessages(context);
+}
+
+TEST(SceneBenchmark, CountsTheVoxelsOfAPlumeAndTimesItsMajorants) {
+    VulkanContext context(ContextOptions{});
+    BenchSettings settings = tinySettings();
+    settings.gradientSeeds = 0;
+    SceneBenchmark plume = benchmarkShippedScene(context, "plume_16", settings);
+    ASSERT_TRUE(plume.densityGrids.has_value());
+    const Scene scene = loadBenchScene(resolveBenchScene("plume_16", VKDR_TEST_SCENES_DIR));
+    const std::vector<float>& values = scene.densityGrids[0].grid.values;
+    EXPECT_EQ(plume.densityGrids->voxels, 16u * 16u * 16u);
+    EXPECT_EQ(plume.densityGrids->activeVoxels,
+              uint64_t(std::count_if(values.begin(), values.end(), [](float v) { return v != 0.0f; })));
+    EXPECT_GT(plume.densityGrids->activeVoxels, 0u);
+    EXPECT_GE(plume.densityGrids->majorantBuildMs, 0.0);
+    EXPECT_FALSE(benchmarkShippedScene(context, "cornell_fog", settings).densityGrids.has_value());
+    requireNoValidationMessages(context);
+}
+
+// The bytes per voxel that whyTooLarge assumes cover what a plume's voxels take on the
+// device, without being a gross overestimate: the peaks of two plumes differ by no more
+// than the estimates do.
+TEST(SceneBenchmark, PlumeMemoryEstimateCoversTheMeasuredPeak) {
+    VulkanContext context(ContextOptions{});
+    BenchSettings settings = tinySettings();
+    settings.gradientSeeds = 0;
+    const uint64_t small = benchmarkShippedScene(context, "plume_32", settings).peakAllocatedDeviceBytes;
+    const uint64_t large = benchmarkShippedScene(context, "plume_64", settings).peakAllocatedDeviceBytes;
+    const uint64_t estimated = estimateBenchMemory(resolveBenchScene("plume_64", VKDR_TEST_SCENES_DIR)).deviceBytes -
+                               estimateBenchMemory(resolveBenchScene("plume_32", VKDR_TEST_SCENES_DIR)).deviceBytes;
+    ASSERT_GT(large, small);
+    EXPECT_LE(large - small, estimated);
+    EXPECT_GE(double(large - small), 0.5 * double(estimated));
     requireNoValidationMessages(context);
 }
 

@@ -300,6 +300,9 @@ TEST_F(CliTest, BenchRejectsUnknownScenesBeforeRunning) {
     EXPECT_TRUE(r.out.empty()) << r.out;
     EXPECT_EQ(slurp(json), "previous result");
     EXPECT_EQ(run("bench room_ --iters 1").exitCode, 2);
+    RunResult plume = run("bench plume_0 --iters 1");
+    EXPECT_EQ(plume.exitCode, 2);
+    EXPECT_NE(plume.err.find("error: scene plume_0: expected plume_<N>"), std::string::npos) << plume.err;
     EXPECT_EQ(run("bench cornell_fog --iters 0").exitCode, 2);
 }
 
