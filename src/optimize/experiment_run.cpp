@@ -57,6 +57,10 @@ std::vector<HeldOutView> heldOutViews(const Experiment& experiment, const Scene&
         settings.camera = target.camera;
         settings.seed = experiment.optimize.seed + kHeldOutSeedOffset;
         Image trueRender = backend.render(trueScene, settings);
+        if (std::optional<std::string> pixel = unrepresentablePixel(trueRender)) {
+            throw Error(experiment.file.string() + ": the held-out view '" + target.camera +
+                        "' rendered from the true values: " + *pixel);
+        }
         views.push_back({std::move(target), settings, std::move(trueRender)});
     }
     return views;
@@ -69,7 +73,11 @@ std::vector<Metric> experimentMetrics(const Scene& scene, const std::vector<Held
                                       const std::vector<std::vector<float>>& truth) {
     std::vector<Metric> metrics;
     for (const HeldOutView& view : heldOut) {
-        HeldOutError error = heldOutError(backend.render(scene, view.settings), view.trueRender, view.target.target);
+        Image render = backend.render(scene, view.settings);
+        if (std::optional<std::string> pixel = unrepresentablePixel(render)) {
+            throw Error("held-out view '" + view.target.camera + "' rendered at the fit's values: " + *pixel);
+        }
+        HeldOutError error = heldOutError(render, view.trueRender, view.target.target);
         metrics.push_back({"held-out " + view.target.camera + " relative RMSE", error.relativeRmse});
         metrics.push_back({"held-out " + view.target.camera + " excess error (standard errors)",
                            error.excessInStandardErrors});

@@ -99,7 +99,7 @@ std::string trajectoryChartSvg(const ParameterTrajectory& trajectory, const Para
     svg += iterationAxisSvg(kLeft, kTop, kWidth - kRight, kHeight - kBottom, double(steps), x);
     const bool truthKnown = !fit.truth.empty();
     svg += formatText("<text x=\"%g\" y=\"14\">%s; dots: start and fitted%s</text>\n", kLeft,
-                     summarised ? "lines: smallest, mean and largest value per iteration" : "line: value per iteration",
+                     summarised ? "lines: smallest, mean, largest" : "line: value per iteration",
                      truthKnown ? "; dashed: true value" : "");
 
     for (const Series& line : series) {

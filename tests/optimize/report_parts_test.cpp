@@ -184,7 +184,7 @@ TEST(TrajectoryChart, DrawsTheSmallestMeanAndLargestOfASummarisedParameter) {
     std::string svg = trajectoryChartSvg(trajectory, fit);
     EXPECT_EQ(occurrences(svg, "<polyline"), 3u);
     EXPECT_EQ(occurrences(svg, "class=\"truth\""), 3u);
-    EXPECT_NE(svg.find("smallest, mean and largest"), std::string::npos);
+    EXPECT_NE(svg.find("smallest, mean, largest"), std::string::npos);
     size_t points = svg.find("points=\"");
     std::string list = svg.substr(points + 8, svg.find('"', points + 8) - points - 8);
     EXPECT_EQ(std::count(list.begin(), list.end(), ','), 3) << list;  // two iterations and the fitted value
