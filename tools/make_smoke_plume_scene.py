@@ -69,11 +69,13 @@ def main():
         while len(buffer) % 4:
             buffer += b"\0"
         views = gltf["bufferViews"]
-        views.append({"buffer": 0, "byteOffset": position_offset, "byteLength": index_offset - position_offset})
-        views.append({"buffer": 0, "byteOffset": index_offset, "byteLength": 2 * len(indices)})
+        views.append({"buffer": 0, "byteOffset": position_offset, "byteLength": index_offset - position_offset,
+                      "target": 34962})
+        views.append({"buffer": 0, "byteOffset": index_offset, "byteLength": 2 * len(indices), "target": 34963})
+        stored = [struct.unpack("<3f", struct.pack("<3f", *p)) for p in positions]
         gltf["accessors"].append({"bufferView": len(views) - 2, "componentType": 5126, "count": len(positions),
-                                  "type": "VEC3", "min": [min(c) for c in zip(*positions)],
-                                  "max": [max(c) for c in zip(*positions)]})
+                                  "type": "VEC3", "min": [min(c) for c in zip(*stored)],
+                                  "max": [max(c) for c in zip(*stored)]})
         gltf["accessors"].append({"bufferView": len(views) - 1, "componentType": 5123, "count": len(indices),
                                   "type": "SCALAR"})
         gltf["meshes"].append({"name": gltf["nodes"][material]["name"], "primitives": [{
