@@ -20,9 +20,7 @@ std::pair<double, double> valueRange(const std::vector<double>& values) {
         low = std::min(low, value);
         high = std::max(high, value);
     }
-    if (!(low <= high)) return {0.0, 1.0};
-    double padding = high > low ? 0.06 * (high - low) : std::max(1e-6, 0.1 * std::abs(high));
-    return {low - padding, high + padding};
+    return paddedRange(low, high);
 }
 
 }  // namespace
@@ -35,13 +33,7 @@ std::string metricChartSvg(const MetricSeries& metric) {
     auto y = [&](double value) { return kTop + plotHeight * (high - value) / (high - low); };
 
     std::string svg = svgHeader(kWidth, kHeight);
-    for (int tick = 0; tick <= 4; ++tick) {
-        double value = low + (high - low) * tick / 4.0;
-        svg += formatText("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", kLeft, y(value),
-                         kWidth - kRight, y(value));
-        svg += formatText("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%.4g</text>\n",
-                         kLeft - 6, y(value), value);
-    }
+    svg += valueGridSvg(kLeft, kWidth - kRight, low, high, y);
     if (low < 0.0 && high > 0.0) {
         svg += formatText("<line class=\"zero\" x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#555\"/>\n", kLeft,
                          y(0.0), kWidth - kRight, y(0.0));

@@ -30,6 +30,24 @@ std::string iterationAxisSvg(double left, double top, double right, double botto
     return svg;
 }
 
+std::string valueGridSvg(double left, double right, double low, double high, const std::function<double(double)>& y) {
+    std::string svg;
+    for (int tick = 0; tick <= 4; ++tick) {
+        double value = low + (high - low) * tick / 4.0;
+        svg += formatText("<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", left, y(value),
+                         right, y(value));
+        svg += formatText("<text x=\"%g\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%.4g</text>\n",
+                         left - 6, y(value), value);
+    }
+    return svg;
+}
+
+std::pair<double, double> paddedRange(double low, double high) {
+    if (!(low <= high)) return {0.0, 1.0};
+    double padding = high > low ? 0.06 * (high - low) : std::max(1e-6, 0.1 * std::abs(high));
+    return {low - padding, high + padding};
+}
+
 std::string svgHeader(double width, double height) {
     return formatText("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\" "
                      "font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%%\" height=\"100%%\" "

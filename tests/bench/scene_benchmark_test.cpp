@@ -25,6 +25,13 @@ BenchSettings tinySettings() {
     return settings;
 }
 
+// Without the gradient noise step, for tests of the other figures.
+BenchSettings tinySettingsWithoutGradientNoise() {
+    BenchSettings settings = tinySettings();
+    settings.gradientSeeds = 0;
+    return settings;
+}
+
 SceneBenchmark benchmarkShippedScene(const VulkanContext& context, const char* name, const BenchSettings& settings) {
     Scene scene = loadBenchScene(resolveBenchScene(name, VKDR_TEST_SCENES_DIR));
     double lastProgress = 0.0;
@@ -78,16 +85,14 @@ TEST(SceneBenchmark, ReportsEveryStageOfATinyRender) {
 TEST(SceneBenchmark, NoGradientNoiseWithoutAMediumOrSeeds) {
     VulkanContext context(ContextOptions{});
     EXPECT_FALSE(benchmarkShippedScene(context, "cornell_box", tinySettings()).gradient.has_value());
-    BenchSettings noSeeds = tinySettings();
-    noSeeds.gradientSeeds = 0;
-    EXPECT_FALSE(benchmarkShippedScene(context, "cornell_fog", noSeeds).gradient.has_value());
+    EXPECT_FALSE(
+        benchmarkShippedScene(context, "cornell_fog", tinySettingsWithoutGradientNoise()).gradient.has_value());
     requireNoValidationMessages(context);
 }
 
 TEST(SceneBenchmark, CountsTheVoxelsOfAPlumeAndTimesItsMajorants) {
     VulkanContext context(ContextOptions{});
-    BenchSettings settings = tinySettings();
-    settings.gradientSeeds = 0;
+    const BenchSettings settings = tinySettingsWithoutGradientNoise();
     SceneBenchmark plume = benchmarkShippedScene(context, "plume_16", settings);
     ASSERT_TRUE(plume.densityGrids.has_value());
     const Scene scene = loadBenchScene(resolveBenchScene("plume_16", VKDR_TEST_SCENES_DIR));
@@ -106,8 +111,7 @@ TEST(SceneBenchmark, CountsTheVoxelsOfAPlumeAndTimesItsMajorants) {
 // than the estimates do.
 TEST(SceneBenchmark, PlumeMemoryEstimateCoversTheMeasuredPeak) {
     VulkanContext context(ContextOptions{});
-    BenchSettings settings = tinySettings();
-    settings.gradientSeeds = 0;
+    const BenchSettings settings = tinySettingsWithoutGradientNoise();
     const uint64_t small = benchmarkShippedScene(context, "plume_32", settings).peakAllocatedDeviceBytes;
     const uint64_t large = benchmarkShippedScene(context, "plume_64", settings).peakAllocatedDeviceBytes;
     const uint64_t estimated = estimateBenchMemory(resolveBenchScene("plume_64", VKDR_TEST_SCENES_DIR)).deviceBytes -
