@@ -19,7 +19,7 @@
 #include "optimize/checkpoint.h"
 #include "optimize/coarse_grid_gradient.h"
 #include "optimize/experiment_run.h"
-#include "optimize/grid_smoothness.h"
+#include "optimize/grid_priors.h"
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/optimization_run.h"
@@ -61,6 +61,7 @@ struct ExperimentOverrides {
     CLI::Option* adamEpsilon;
     CLI::Option* optimizer;
     CLI::Option* smoothness;
+    CLI::Option* sparsity;
     CLI::Option* gridLevels;
     CLI::Option* spp;
     CLI::Option* maxDepth;
@@ -185,7 +186,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     requireRunWritesNoInput(options.out, false, filesTheSceneReads(loaded));
     Scene& scene = loaded.scene;
     requireOptimisableParameters(scene, options.optimize.parameters);
-    smoothnessWeights(options.optimize.parameters, options.optimize.smoothness);
+    gridPriorWeights(options.optimize.parameters, {options.optimize.smoothness, options.optimize.sparsity});
     LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
     std::vector<TargetView> views = readTargets(options.targets, scene);
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views};
@@ -223,6 +224,7 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.adamEpsilon->count()) experiment.optimize.adamEpsilon = options.optimize.adamEpsilon;
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
     if (given.smoothness->count()) experiment.optimize.smoothness = options.optimize.smoothness;
+    if (given.sparsity->count()) experiment.optimize.sparsity = options.optimize.sparsity;
     if (given.gridLevels->count()) experiment.optimize.gridLevels = options.optimize.gridLevels;
     if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
     if (given.spp->count()) experiment.render.spp = options.settings.spp;
@@ -321,6 +323,11 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
                             "Add W x the mean squared difference between face-neighbouring voxels of every density "
                             "grid optimised to the loss (0: none)")
             ->default_val(options->optimize.smoothness)->check(finiteNumberIn(0.0, 1e12));
+    overrides.sparsity =
+        command->add_option("--sparsity", options->optimize.sparsity,
+                            "Add W x the mean density of every density grid optimised to the loss, emptying what "
+                            "the images do not ask to fill (0: none)")
+            ->default_val(options->optimize.sparsity)->check(finiteNumberIn(0.0, 1e12));
     overrides.gridLevels =
         command
             ->add_option("--grid-levels", options->optimize.gridLevels,

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "image/regular_file.h"
 #include "optimize/coarse_grid_gradient.h"
-#include "optimize/grid_smoothness.h"
+#include "optimize/grid_priors.h"
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
@@ -25,7 +25,7 @@ using Json = nlohmann::ordered_json;  // keeps "start" in file order: the defaul
 const std::set<std::string> kKeys = {"scene", "views", "cameras", "width", "height", "spp", "target_spp",
                                      "max_depth", "seed", "iterations", "optimizer", "learning_rate",
                                      "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "log_parameters", "adam_epsilon", "loss", "true", "start",
-                                     "parameters", "smoothness", "grid_levels", "held_out_views"};
+                                     "parameters", "smoothness", "sparsity", "grid_levels", "held_out_views"};
 const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees"};
 
 // Reads one experiment file, prefixing every error with the file and the key at fault.
@@ -192,12 +192,13 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
         }
         options.learningRateDecayStart = start.get<double>();
     }
-    if (document.contains("smoothness")) {
-        const Json& weight = document["smoothness"];
-        if (!weight.is_number() || !(weight.get<double>() >= 0.0) || !std::isfinite(weight.get<double>())) {
-            reader.fail("smoothness", "expected a finite number >= 0");
+    for (auto [key, weight] : {std::pair{"smoothness", &options.smoothness}, std::pair{"sparsity", &options.sparsity}}) {
+        if (!document.contains(key)) continue;
+        const Json& value = document[key];
+        if (!value.is_number() || !(value.get<double>() >= 0.0) || !std::isfinite(value.get<double>())) {
+            reader.fail(key, "expected a finite number >= 0");
         }
-        options.smoothness = weight.get<double>();
+        *weight = value.get<double>();
     }
     if (document.contains("grid_levels")) {
         options.gridLevels = reader.count(document["grid_levels"], "grid_levels", 1, kMostGridLevels);
@@ -325,9 +326,10 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
         reader.fail("grid_levels", "no density grid (media/<medium>/density) is being optimised");
     }
     try {
-        smoothnessWeights(experiment.optimize.parameters, experiment.optimize.smoothness);
+        gridPriorWeights(experiment.optimize.parameters,
+                         {experiment.optimize.smoothness, experiment.optimize.sparsity});
     } catch (const Error& e) {
-        reader.fail("smoothness", e.what());
+        reader.fail(experiment.optimize.smoothness != 0.0 ? "smoothness" : "sparsity", e.what());
     }
     for (const auto& [name, rate] : experiment.optimize.learningRates) {
         const std::vector<std::string>& names = experiment.optimize.parameters;

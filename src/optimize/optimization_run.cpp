@@ -12,7 +12,7 @@
 #include "image/atomic_write.h"
 #include "optimize/checkpoint.h"
 #include "optimize/difference_image.h"
-#include "optimize/grid_smoothness.h"
+#include "optimize/grid_priors.h"
 #include "optimize/iteration_log.h"
 #include "optimize/json_numbers.h"
 #include "optimize/loss_chart.h"
@@ -136,10 +136,11 @@ std::vector<Image> startImages(LossGradient& lossGradient, Scene& scene, const O
 
 OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(const IterationRecord&)>& progress) {
-    std::map<std::string, double> smoothness = smoothnessWeights(job.options.parameters, job.options.smoothness);
-    std::optional<SmoothedLossGradient> smoothed;
-    if (!smoothness.empty()) smoothed.emplace(imageLossGradient, std::move(smoothness));
-    LossGradient& lossGradient = smoothed ? static_cast<LossGradient&>(*smoothed) : imageLossGradient;
+    std::map<std::string, GridPriorWeights> priors =
+        gridPriorWeights(job.options.parameters, {job.options.smoothness, job.options.sparsity});
+    std::optional<GridPriorLossGradient> withPriors;
+    if (!priors.empty()) withPriors.emplace(imageLossGradient, std::move(priors));
+    LossGradient& lossGradient = withPriors ? static_cast<LossGradient&>(*withPriors) : imageLossGradient;
     const auto startTime = std::chrono::steady_clock::now();
     const std::filesystem::path& directory = job.outputDirectory;
     const std::vector<std::string>& names = job.options.parameters;

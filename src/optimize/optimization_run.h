@@ -59,8 +59,9 @@ struct OptimizationReport {
 // to it, drops the log's lines past it and continues from it: the outputs are those of
 // the run that was never stopped. Interrupted by a signal, it leaves the log and a
 // checkpoint of the last finished iteration (optimize/optimize_loop.h), and rethrows.
-// With options.smoothness > 0 the loss optimised is `imageLossGradient`'s plus the
-// smoothness term of every density grid optimised (optimize/grid_smoothness.h).
+// With options.smoothness or options.sparsity > 0 the loss optimised is
+// `imageLossGradient`'s plus those priors of every density grid optimised
+// (optimize/grid_priors.h).
 OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(const IterationRecord&)>& progress = {});
 

@@ -31,9 +31,10 @@ struct OptimizeOptions {
     // The fraction of the iterations that run at the full rate before the decay starts,
     // in [0, 1): the values can travel to the minimum first, then settle on it.
     double learningRateDecayStart = 0.0;
-    // The weight of the smoothness term (optimize/grid_smoothness.h) added to the loss for
-    // every density grid optimised; 0 for none.
+    // The weights of the priors (optimize/grid_priors.h) added to the loss for every
+    // density grid optimised; 0 for none.
     double smoothness = 0.0;
+    double sparsity = 0.0;
     // Coarse-to-fine levels for density grids (optimize/coarse_grid_gradient.h): the run
     // is split into this many equal parts, the first restricting each grid's steps to a
     // grid 2^(levels - 1) times coarser, each next part halving that; 1: the grid's own

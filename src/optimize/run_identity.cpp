@@ -61,6 +61,7 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
     identity["log_parameters"] = joined(options.logParameters, " ");
     identity["adam_epsilon"] = numberText(options.adamEpsilon);
     identity["smoothness"] = numberText(options.smoothness);
+    identity["sparsity"] = numberText(options.sparsity);
     identity["grid_levels"] = std::to_string(options.gridLevels);
     identity["iterations"] = std::to_string(options.iterations);
     identity["seed"] = std::to_string(options.seed);

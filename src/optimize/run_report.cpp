@@ -40,6 +40,10 @@ std::vector<std::pair<std::string, std::string>> settings(const OptimizationJob&
         rows.push_back({"smoothness", formatText("%g times the mean squared difference of face neighbours, on "
                                                  "every density grid (in the loss)", options.smoothness)});
     }
+    if (options.sparsity != 0.0) {
+        rows.push_back({"sparsity", formatText("%g times the mean density, on every density grid (in the loss)",
+                                               options.sparsity)});
+    }
     if (options.gridLevels > 1) {
         rows.push_back({"coarse-to-fine", formatText("%u levels: density grid steps restricted to a grid %u times "
                                                      "coarser at first, halved every %g iterations",

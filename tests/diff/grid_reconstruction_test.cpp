@@ -9,7 +9,7 @@
 
 #include "bvh/bvh.h"
 #include "diff/rendered_loss_gradient.h"
-#include "optimize/grid_smoothness.h"
+#include "optimize/grid_priors.h"
 #include "optimize/optimize_loop.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
@@ -78,7 +78,7 @@ TEST_F(GridReconstructionTest, AdamReducesTheGridErrorFromAConstantStart) {
                                       LossKind::L2);
     OptimizeOptions options{.parameters = {kParameter}, .optimizer = OptimizerKind::Adam, .learningRate = 0.02,
                             .learningRateDecay = 0.2, .iterations = 60, .seed = 1000};
-    SmoothedLossGradient smoothed(lossGradient, {{kParameter, kSmoothness}});
+    GridPriorLossGradient smoothed(lossGradient, {{kParameter, {.smoothness = kSmoothness}}});
     optimize(smoothed, scene, options);
     const double endError = relativeError(getParameter(scene, kParameter), truth);
     EXPECT_LT(endError, 0.75 * startError) << "grid error " << startError << " -> " << endError;

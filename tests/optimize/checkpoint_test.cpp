@@ -165,12 +165,12 @@ TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
     EXPECT_EQ(experiment.at("experiment"), "target.exr, " + fileDigest(target));
     EXPECT_EQ(experiment.count("targets") + experiment.count("set"), 0u);
     for (const char* option : {"optimizer", "learning_rate", "learning_rates", "learning_rate_decay_start",
-                               "log_parameters", "adam_epsilon", "smoothness", "grid_levels", "iterations", "seed",
+                               "log_parameters", "adam_epsilon", "smoothness", "sparsity", "grid_levels", "iterations", "seed",
                                "loss"}) {
         EXPECT_EQ(command.at(option), experiment.at(option)) << option;
     }
-    EXPECT_EQ(command.size(), 18u);
-    EXPECT_EQ(experiment.size(), 17u);
+    EXPECT_EQ(command.size(), 19u);
+    EXPECT_EQ(experiment.size(), 18u);
 }
 
 TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {

@@ -1,12 +1,13 @@
-// The smoothness term of density grids: its value on grids whose sum is known by hand,
-// its gradient against central differences of the value, and SmoothedLossGradient adding
-// both to the inner LossGradient's.
+// The priors on density grids: the smoothness and sparsity terms' values on grids whose
+// sums are known by hand, the smoothness gradient against central differences of its
+// value, GridPriorLossGradient adding both to the inner LossGradient's, and the weights
+// refused without a grid to put them on.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "core/error.h"
-#include "optimize/grid_smoothness.h"
+#include "optimize/grid_priors.h"
 
 namespace vkdr::test {
 namespace {
@@ -58,19 +59,42 @@ public:
     }
 };
 
-TEST(GridSmoothness, SmoothedLossGradientAddsTheTermAndItsGradient) {
+TEST(GridSparsity, IsTheWeightedMeanDensityWithAConstantGradient) {
+    std::vector<double> gradient(4, 1.0);
+    EXPECT_DOUBLE_EQ(gridSparsity(gridOf({2, 2, 1}, {0.0f, 1.0f, 2.0f, 5.0f}), 3.0, &gradient), 3.0 * 8.0 / 4.0);
+    for (double value : gradient) EXPECT_DOUBLE_EQ(value, 1.0 + 3.0 / 4.0);
+}
+
+TEST(GridPriors, GridPriorLossGradientAddsTheTermsAndTheirGradients) {
     Scene scene;
     scene.media.push_back({"smoke", glm::vec3(0.0f), glm::vec3(1.0f), 0.0f, 0});
     scene.densityGrids.push_back({"", gridOf({2, 1, 1}, {1.0f, 4.0f}), glm::dmat4(1.0)});
     ZeroLossGradient inner;
-    SmoothedLossGradient smoothed(inner, {{"media/smoke/density", 2.0}});
+    GridPriorLossGradient smoothed(inner, {{"media/smoke/density", {.smoothness = 2.0}}});
     GradientResult result = smoothed.evaluate(scene, 0);
     EXPECT_DOUBLE_EQ(result.loss, 9.0);
     EXPECT_DOUBLE_EQ(result.parameters[0].gradient[0], -6.0);
     EXPECT_DOUBLE_EQ(result.parameters[0].gradient[1], 6.0);
 
-    SmoothedLossGradient wrong(inner, {{"media/smoke/sigma_s", 2.0}});
+    // Sparsity 0.5: the loss gains 0.5 * (1 + 4) / 2, each voxel's gradient 0.5 / 2.
+    GridPriorLossGradient both(inner, {{"media/smoke/density", {.smoothness = 2.0, .sparsity = 0.5}}});
+    result = both.evaluate(scene, 0);
+    EXPECT_DOUBLE_EQ(result.loss, 9.0 + 1.25);
+    EXPECT_DOUBLE_EQ(result.parameters[0].gradient[0], -6.0 + 0.25);
+    EXPECT_DOUBLE_EQ(result.parameters[0].gradient[1], 6.0 + 0.25);
+
+    GridPriorLossGradient wrong(inner, {{"media/smoke/sigma_s", {.smoothness = 2.0}}});
     EXPECT_THROW(wrong.evaluate(scene, 0), Error);
+}
+
+TEST(GridPriors, WeightsGoToEveryGridAndNeedOne) {
+    const std::vector<std::string> names = {"media/fog/sigma_s", "media/smoke/density", "media/plume/density"};
+    std::map<std::string, GridPriorWeights> weights = gridPriorWeights(names, {.sparsity = 0.5});
+    ASSERT_EQ(weights.size(), 2u);
+    EXPECT_EQ(weights["media/plume/density"].sparsity, 0.5);
+    EXPECT_TRUE(gridPriorWeights({"media/fog/sigma_s"}, {}).empty());
+    EXPECT_THROW(gridPriorWeights({"media/fog/sigma_s"}, {.sparsity = 0.5}), Error);
+    EXPECT_THROW(gridPriorWeights({"media/fog/sigma_s"}, {.smoothness = 0.5}), Error);
 }
 
 }  // namespace

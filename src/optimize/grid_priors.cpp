@@ -1,4 +1,4 @@
-#include "optimize/grid_smoothness.h"
+#include "optimize/grid_priors.h"
 
 #include "core/error.h"
 #include "scene/parameter_kinds.h"
@@ -37,36 +37,53 @@ double gridSmoothness(const DensityGrid& grid, double weight, std::vector<double
     return scale * sum;
 }
 
-SmoothedLossGradient::SmoothedLossGradient(LossGradient& inner, std::map<std::string, double> weights)
+double gridSparsity(const DensityGrid& grid, double weight, std::vector<double>* gradient) {
+    const size_t voxels = grid.voxelCount();
+    if (voxels == 0) {
+        return 0.0;
+    }
+    const double scale = weight / double(voxels);
+    double sum = 0.0;
+    for (size_t i = 0; i < voxels; ++i) {
+        sum += grid.values[i];
+        if (gradient) (*gradient)[i] += scale;
+    }
+    return scale * sum;
+}
+
+GridPriorLossGradient::GridPriorLossGradient(LossGradient& inner, std::map<std::string, GridPriorWeights> weights)
     : inner_(inner), weights_(std::move(weights)) {}
 
-GradientResult SmoothedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
+GradientResult GridPriorLossGradient::evaluate(const Scene& scene, uint32_t seed) {
     GradientResult result = inner_.evaluate(scene, seed);
     for (const auto& [name, weight] : weights_) {
         const DensityGrid* grid = densityGridOf(scene, name);
-        if (!grid) throw Error("smoothness: " + name + " is not the density of a grid medium");
+        if (!grid) throw Error("grid priors: " + name + " is not the density of a grid medium");
         std::vector<double>* gradient = nullptr;
         for (ParameterGradient& parameter : result.parameters) {
             if (parameter.name == name) {
                 gradient = &parameter.gradient;
             }
         }
-        result.loss += gridSmoothness(*grid, weight, gradient);
+        result.loss += gridSmoothness(*grid, weight.smoothness, gradient);
+        result.loss += gridSparsity(*grid, weight.sparsity, gradient);
     }
     return result;
 }
 
-std::map<std::string, double> smoothnessWeights(const std::vector<std::string>& parameters, double weight) {
-    std::map<std::string, double> weights;
-    if (weight == 0.0) return weights;
+std::map<std::string, GridPriorWeights> gridPriorWeights(const std::vector<std::string>& parameters,
+                                                         GridPriorWeights weights) {
+    std::map<std::string, GridPriorWeights> named;
+    if (weights.smoothness == 0.0 && weights.sparsity == 0.0) return named;
     for (const std::string& name : parameters) {
         const std::optional<ParsedParameterName> parsed = parseParameterName(name);
-        if (parsed && parsed->description->kind == ParameterKind::Density) weights[name] = weight;
+        if (parsed && parsed->description->kind == ParameterKind::Density) named[name] = weights;
     }
-    if (weights.empty()) {
-        throw Error("a smoothness weight is given, but no density grid (media/<medium>/density) is being optimised");
+    if (named.empty()) {
+        throw Error(std::string("a ") + (weights.smoothness != 0.0 ? "smoothness" : "sparsity") +
+                    " weight is given, but no density grid (media/<medium>/density) is being optimised");
     }
-    return weights;
+    return named;
 }
 
 }  // namespace vkdr
