@@ -7,8 +7,8 @@
 // gradient among the density gradients); -1 outside the grid's box, where the density
 // is 0 and no parameter exists.
 int gridVoxelOffset(GpuDensityGrid grid, ivec3 voxel) {
-    ivec3 local = voxel - grid.firstVoxel.xyz;
-    if (any(lessThan(local, ivec3(0))) || any(greaterThanEqual(local, grid.size.xyz))) {
+    ivec3 local = voxel - ivec3(grid.firstVoxel);
+    if (any(lessThan(local, ivec3(0))) || any(greaterThanEqual(local, ivec3(grid.size)))) {
         return -1;
     }
     return grid.firstVoxel.w + (local.z * grid.size.y + local.y) * grid.size.x + local.x;

@@ -30,8 +30,8 @@ struct GridRay {
 GridRay gridRay(GpuDensityGrid grid, vec3 origin, vec3 direction) {
     GridRay ray;
     for (int k = 0; k < 3; ++k) {
-        ray.origin[k] = dot(grid.worldToIndex[k].xyz, origin) + grid.worldToIndex[k].w;
-        ray.direction[k] = dot(grid.worldToIndex[k].xyz, direction);
+        ray.origin[k] = dot(vec3(grid.worldToIndex[k]), origin) + grid.worldToIndex[k].w;
+        ray.direction[k] = dot(vec3(grid.worldToIndex[k]), direction);
     }
     return ray;
 }
@@ -73,8 +73,8 @@ struct MajorantWalk {
 // The part of [0, tMax) where the ray is inside the majorant cells, which hold all of the
 // density; empty (x >= y) when it misses them.
 vec2 cellsInterval(GpuDensityGrid grid, GridRay ray, float tMax) {
-    vec3 lower = vec3(grid.majorantOrigin.xyz);
-    vec3 upper = lower + vec3(grid.majorantCells.xyz * kMajorantCellVoxels);
+    vec3 lower = vec3(ivec3(grid.majorantOrigin));
+    vec3 upper = lower + vec3(ivec3(grid.majorantCells) * kMajorantCellVoxels);
     float enter = 0.0f;
     float exit = tMax;
     for (int k = 0; k < 3; ++k) {
@@ -95,7 +95,7 @@ vec2 cellsInterval(GpuDensityGrid grid, GridRay ray, float tMax) {
 // Starts a walk along [0, tMax); done at once when the ray misses the cells.
 MajorantWalk startMajorantWalk(GpuDensityGrid grid, GridRay ray, float tMax) {
     MajorantWalk walk;
-    vec3 cellOrigin = (ray.origin - vec3(grid.majorantOrigin.xyz)) / float(kMajorantCellVoxels);
+    vec3 cellOrigin = (ray.origin - vec3(ivec3(grid.majorantOrigin))) / float(kMajorantCellVoxels);
     vec3 cellDirection = ray.direction / float(kMajorantCellVoxels);
     vec2 interval = cellsInterval(grid, ray, tMax);
     float enter = interval.x;
@@ -107,7 +107,7 @@ MajorantWalk startMajorantWalk(GpuDensityGrid grid, GridRay ray, float tMax) {
         return walk;
     }
     vec3 start = cellOrigin + enter * cellDirection;
-    walk.cell = clamp(ivec3(floor(start)), ivec3(0), grid.majorantCells.xyz - 1);
+    walk.cell = clamp(ivec3(floor(start)), ivec3(0), ivec3(grid.majorantCells) - 1);
     for (int k = 0; k < 3; ++k) {
         if (cellDirection[k] > 0.0f) {
             walk.step[k] = 1;
@@ -135,7 +135,7 @@ float cellExit(MajorantWalk walk) {
     return min(min(min(walk.tNext.x, walk.tNext.y), walk.tNext.z), walk.tEnd);
 }
 
-void advanceToNextCell(inout MajorantWalk walk, GpuDensityGrid grid) {
+void advanceToNextCell(INOUT(MajorantWalk) walk, GpuDensityGrid grid) {
     float exit = cellExit(walk);
     int axis = walk.tNext.x <= walk.tNext.y ? (walk.tNext.x <= walk.tNext.z ? 0 : 2)
                                             : (walk.tNext.y <= walk.tNext.z ? 1 : 2);
@@ -161,7 +161,7 @@ struct GridFreeFlight {
 // `first` supplies the first distance (x) and acceptance (y) numbers; later ones come
 // from `random`.
 GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, float rate, vec2 first,
-                               inout TrackingRandom random) {
+                               INOUT(TrackingRandom) random) {
     GridFreeFlight flight;
     flight.t = tMax;
     flight.collided = false;
@@ -234,7 +234,7 @@ vec3 heroMisWeight(vec3 sigma_t, uint tentative, float integral) {
 // `stepsLeft`, which a caller shares among the segments of one ray; `truncated` is set,
 // and 0 returned, where they run out.
 vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, vec3 sigma_t,
-                             inout TrackingRandom random, inout uint stepsLeft, inout bool truncated) {
+                             INOUT(TrackingRandom) random, INOUT(uint) stepsLeft, INOUT(bool) truncated) {
     vec3 transmittance = vec3(1.0f);
     float rate = maxComponent(sigma_t);
     if (rate <= 0.0f) {

@@ -1,5 +1,6 @@
 #ifndef VKDR_TRACKING_RANDOM_GLSL
 #define VKDR_TRACKING_RANDOM_GLSL
+#include "constants.glsl"
 #include "rng.glsl"
 
 // Independent random numbers for loops that take as many as they need (tracking
@@ -22,7 +23,7 @@ TrackingRandom trackingRandom(uint pixel, uint sampleIndex, uint stream, uint se
     return r;
 }
 
-vec4 nextTrackingRandom(inout TrackingRandom r) {
+vec4 nextTrackingRandom(INOUT(TrackingRandom) r) {
     ++r.counter;
     return toUnitFloat(pcg4d(r.key + uvec4(0u, 0u, 0u, r.counter)));
 }

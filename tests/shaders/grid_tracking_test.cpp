@@ -1,0 +1,161 @@
+// Tracking through a density grid (shaders/lib/grid_tracking.glsl), compiled on the host:
+// along a ray through a random grid, ratio tracking's transmittance is unbiased for
+// exp(-sigma_t integral of d) in every channel, with a tight and with a loose majorant
+// and with its Russian roulette at work; and delta tracking's collisions follow the
+// distribution exp(-rate integral of d) sets, passing through with its probability.
+// The reference integrals are quadratures of the trilinear density.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "glsl_host.h"
+#include "statistics.h"
+
+namespace vkdr::test {
+namespace {
+
+using namespace glsl;
+
+constexpr float kVoxelsPerUnit = 10.0f;
+
+// A random grid of 12 x 10 x 9 voxels, about a third of them 0, at index = 10 world,
+// with majorant cells that bound its trilinear density times `looseness`.
+struct HostGrid {
+    GpuDensityGrid grid{};
+    std::vector<float> voxels;
+    std::vector<float> majorants;
+
+    explicit HostGrid(float looseness) {
+        grid.worldToIndex[0] = vec4(kVoxelsPerUnit, 0.0f, 0.0f, 0.0f);
+        grid.worldToIndex[1] = vec4(0.0f, kVoxelsPerUnit, 0.0f, 0.0f);
+        grid.worldToIndex[2] = vec4(0.0f, 0.0f, kVoxelsPerUnit, 0.0f);
+        grid.firstVoxel = ivec4(2, 1, 0, 0);
+        grid.size = ivec4(12, 10, 9, 0);
+        std::mt19937 random(11);
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        for (int i = 0; i < 12 * 10 * 9; ++i) voxels.push_back(unit(random) < 0.3f ? 0.0f : unit(random));
+        // Cells of kMajorantCellVoxels from one voxel before the box, as the renderer lays
+        // them out; a cell bounds the voxels its trilinear lookups blend, one more per axis.
+        grid.majorantOrigin = grid.firstVoxel - ivec4(1, 1, 1, 0);
+        const ivec3 cells = (ivec3(grid.size) + 2 + kMajorantCellVoxels - 1) / kMajorantCellVoxels;
+        grid.majorantCells = ivec4(cells, 0);
+        for (int z = 0; z < cells.z; ++z)
+            for (int y = 0; y < cells.y; ++y)
+                for (int x = 0; x < cells.x; ++x) {
+                    const ivec3 low = ivec3(grid.majorantOrigin) + ivec3(x, y, z) * kMajorantCellVoxels;
+                    float largest = 0.0f;
+                    for (int k = low.z; k <= low.z + kMajorantCellVoxels; ++k)
+                        for (int j = low.y; j <= low.y + kMajorantCellVoxels; ++j)
+                            for (int i = low.x; i <= low.x + kMajorantCellVoxels; ++i) largest = std::max(largest, voxel({i, j, k}));
+                    majorants.push_back(looseness * largest);
+                }
+    }
+
+    float voxel(ivec3 index) const {
+        const ivec3 local = index - ivec3(grid.firstVoxel);
+        if (any(lessThan(local, ivec3(0))) || any(greaterThanEqual(local, ivec3(grid.size)))) return 0.0f;
+        return voxels[size_t((local.z * grid.size.y + local.y) * grid.size.x + local.x)];
+    }
+
+    // The trilinear density at world point p, voxel centres at integer index coordinates.
+    double density(dvec3 p) const {
+        const dvec3 index = p * double(kVoxelsPerUnit);
+        const dvec3 base = floor(index), f = index - base;
+        double sum = 0.0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const ivec3 c(corner & 1, (corner >> 1) & 1, corner >> 2);
+            const double w = (c.x ? f.x : 1.0 - f.x) * (c.y ? f.y : 1.0 - f.y) * (c.z ? f.z : 1.0 - f.z);
+            sum += w * voxel(ivec3(base) + c);
+        }
+        return sum;
+    }
+
+    void bind() const {
+        P.gridValues.v = voxels.data();
+        P.gridMajorants.v = majorants.data();
+    }
+};
+
+const vec3 kOrigin(0.05f, 0.02f, -0.1f);
+const vec3 kEnd(1.55f, 1.15f, 1.0f);
+
+// The integral of the density from the ray's origin to distance t, by the midpoint rule.
+double densityIntegral(const HostGrid& grid, double t) {
+    const dvec3 direction = normalize(dvec3(kEnd - kOrigin));
+    constexpr int kSteps = 20000;
+    double sum = 0.0;
+    for (int i = 0; i < kSteps; ++i) sum += grid.density(dvec3(kOrigin) + (i + 0.5) * t / kSteps * direction);
+    return sum * t / kSteps;
+}
+
+void expectUnbiasedTransmittance(const HostGrid& grid, vec3 sigma_t) {
+    grid.bind();
+    const vec3 direction = normalize(kEnd - kOrigin);
+    const float length = glm::length(kEnd - kOrigin);
+    const double integral = densityIntegral(grid, length);
+    constexpr uint kRays = 40000;
+    dvec3 sum(0.0), sumOfSquares(0.0);
+    for (uint i = 0; i < kRays; ++i) {
+        TrackingRandom random = trackingRandom(i, 0u, 0u, 0u, kTrackingShadow, 7u);
+        uint stepsLeft = kMaxTransmittanceSteps;
+        bool truncated = false;
+        const dvec3 t = dvec3(ratioTrackTransmittance(grid.grid, kOrigin, direction, length, sigma_t, random,
+                                                      stepsLeft, truncated));
+        ASSERT_FALSE(truncated);
+        sum += t;
+        sumOfSquares += t * t;
+    }
+    for (int c = 0; c < 3; ++c) {
+        const double mean = sum[c] / kRays;
+        const double standardError = std::sqrt((sumOfSquares[c] / kRays - mean * mean) / (kRays - 1));
+        const double expected = std::exp(-double(sigma_t[c]) * integral);
+        EXPECT_GT(standardError, 0.0);
+        EXPECT_NEAR(mean, expected, 5.0 * standardError) << "channel " << c << ", optical depth "
+                                                         << sigma_t[c] * integral;
+    }
+}
+
+TEST(GridTracking, RatioTrackingIsUnbiasedWithATightMajorant) {
+    expectUnbiasedTransmittance(HostGrid(1.0f), vec3(0.5f, 1.5f, 3.0f));
+}
+
+TEST(GridTracking, RatioTrackingIsUnbiasedWithALooseMajorant) {
+    expectUnbiasedTransmittance(HostGrid(2.5f), vec3(0.5f, 1.5f, 3.0f));
+}
+
+// Transmittances down to about 0.004: the roulette below 0.05 ends most such estimates.
+TEST(GridTracking, RatioTrackingIsUnbiasedThroughItsRoulette) {
+    expectUnbiasedTransmittance(HostGrid(1.0f), vec3(2.0f, 4.0f, 8.0f));
+}
+
+TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
+    const HostGrid grid(1.5f);
+    grid.bind();
+    const vec3 direction = normalize(kEnd - kOrigin);
+    const float length = glm::length(kEnd - kOrigin);
+    const float rate = 2.0f;
+    constexpr int kBins = 10;
+    constexpr uint kFlights = 1u << 17;
+    std::vector<double> counts(kBins + 1, 0.0), expected(kBins + 1, 0.0);
+    for (uint i = 0; i < kFlights; ++i) {
+        TrackingRandom random = trackingRandom(i, 0u, 0u, 0u, kTrackingFreeFlight, 3u);
+        const vec4 first = nextTrackingRandom(random);
+        GridFreeFlight flight = trackFreeFlight(grid.grid, kOrigin, direction, length, rate, vec2(first), random);
+        ASSERT_FALSE(flight.paused);
+        counts[flight.collided ? std::min(kBins - 1, int(flight.t / length * kBins)) : kBins] += 1.0;
+    }
+    auto survival = [&](double t) { return std::exp(-double(rate) * densityIntegral(grid, t)); };
+    for (int b = 0; b < kBins; ++b) {
+        expected[size_t(b)] = kFlights * (survival(length * b / kBins) - survival(length * (b + 1) / kBins));
+    }
+    expected[kBins] = kFlights * survival(length);
+    int dof = 0;
+    const double statistic = chiSquare(counts, expected, &dof);
+    EXPECT_LT(statistic, chiSquareCritical(dof));
+}
+
+}  // namespace
+}  // namespace vkdr::test
