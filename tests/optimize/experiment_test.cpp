@@ -174,7 +174,7 @@ TEST(Experiment, RejectsUnknownParametersValuesAndViewsAgainstTheScene) {
     expectPrepareError(scratch, experiment, {"log_parameters", "media/fog/sigma_a", "positive value"});
 }
 
-TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndASmoothnessWithoutAGrid) {
+TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndGridSettingsWithoutAGrid) {
     ScratchDirectory scratch;
     json experiment = fogExperiment(scratch.path());
     experiment["held_out_views"] = {"side"};
@@ -189,6 +189,18 @@ TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndASmoothnessWithoutAGrid) {
     expectReadError(scratch, experiment, {"smoothness", "expected a finite number >= 0"});
     experiment["smoothness"] = 0.5;
     expectPrepareError(scratch, experiment, {"smoothness", "no density grid"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["sparsity"] = "a lot";
+    expectReadError(scratch, experiment, {"sparsity", "expected a finite number >= 0"});
+    experiment["sparsity"] = 2.0;
+    expectPrepareError(scratch, experiment, {"sparsity", "no density grid"});
+
+    experiment = fogExperiment(scratch.path());
+    experiment["grid_levels"] = 3;
+    expectPrepareError(scratch, experiment, {"grid_levels", "no density grid"});
+    experiment["grid_levels"] = 11;
+    expectReadError(scratch, experiment, {"grid_levels", "[1, 10]"});
 }
 
 TEST(Experiment, AddsItsCamerasToTheScene) {
