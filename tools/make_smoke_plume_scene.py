@@ -20,7 +20,7 @@ HALF = 0.51  # the medium's box, just outside the grid's cube so no voxel touche
 LIGHT_HEIGHT, LIGHT_HALF = 1.5, 0.5
 MATERIALS = [
     {"name": "plume", "extensions": {"VKDR_participating_media": {
-        "sigma_a": [1.0, 1.0, 1.0], "sigma_s": [40.0, 40.0, 40.0], "g": 0.2,
+        "sigma_a": [0.25, 0.25, 0.25], "sigma_s": [10.0, 10.0, 10.0], "g": 0.2,
         "density": {"uri": "smoke_plume.vdb", "grid": "density"}}}},
     {"name": "light", "emissiveFactor": [1.0, 1.0, 1.0],
      "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8.0}},
