@@ -121,6 +121,28 @@ def oriented(quad, facing, object_centre):
     return quad if dot(normal, wanted) > 0 else quad[::-1]
 
 
+def append_mesh(gltf, buffer, name, positions, indices, material):
+    """Appends a triangle mesh's positions and 16-bit indices to BUFFER (buffer 0) and
+    its buffer views, accessors (bounds as the floats stored) and mesh to GLTF."""
+    position_offset = len(buffer)
+    for p in positions:
+        buffer += struct.pack("<3f", *p)
+    index_offset = len(buffer)
+    buffer += struct.pack(f"<{len(indices)}H", *indices)
+    while len(buffer) % 4:
+        buffer += b"\0"
+    views = gltf["bufferViews"]
+    views.append({"buffer": 0, "byteOffset": position_offset, "byteLength": index_offset - position_offset, "target": 34962})
+    views.append({"buffer": 0, "byteOffset": index_offset, "byteLength": 2 * len(indices), "target": 34963})
+    stored = [struct.unpack("<3f", struct.pack("<3f", *p)) for p in positions]
+    gltf["accessors"].append({"bufferView": len(views) - 2, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                              "min": [min(c) for c in zip(*stored)], "max": [max(c) for c in zip(*stored)]})
+    gltf["accessors"].append({"bufferView": len(views) - 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
+    gltf["meshes"].append({"name": name, "primitives": [{
+        "attributes": {"POSITION": len(gltf["accessors"]) - 2}, "indices": len(gltf["accessors"]) - 1,
+        "material": material}]})
+
+
 def build(meshes, root_extensions):
     buffer = bytearray()
     gltf = {
@@ -153,23 +175,7 @@ def build(meshes, root_extensions):
             first = len(positions)
             positions += oriented(quad, facing, object_centre)
             indices += [first, first + 1, first + 2, first, first + 2, first + 3]
-        position_offset = len(buffer)
-        for p in positions:
-            buffer += struct.pack("<3f", *p)
-        index_offset = len(buffer)
-        buffer += struct.pack(f"<{len(indices)}H", *indices)
-        while len(buffer) % 4:
-            buffer += b"\0"
-        views = gltf["bufferViews"]
-        views.append({"buffer": 0, "byteOffset": position_offset, "byteLength": index_offset - position_offset, "target": 34962})
-        views.append({"buffer": 0, "byteOffset": index_offset, "byteLength": 2 * len(indices), "target": 34963})
-        stored = [struct.unpack("<3f", struct.pack("<3f", *p)) for p in positions]
-        gltf["accessors"].append({"bufferView": len(views) - 2, "componentType": 5126, "count": len(positions), "type": "VEC3",
-                                  "min": [min(c) for c in zip(*stored)], "max": [max(c) for c in zip(*stored)]})
-        gltf["accessors"].append({"bufferView": len(views) - 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
-        gltf["meshes"].append({"name": name, "primitives": [{
-            "attributes": {"POSITION": len(gltf["accessors"]) - 2}, "indices": len(gltf["accessors"]) - 1,
-            "material": material_index[material]}]})
+        append_mesh(gltf, buffer, name, positions, indices, material_index[material])
         gltf["nodes"][0]["children"].append(len(gltf["nodes"]))
         gltf["nodes"].append({"name": name, "mesh": len(gltf["meshes"]) - 1})
     gltf["buffers"].append({"byteLength": len(buffer),

@@ -13,8 +13,9 @@ Usage: tools/make_smoke_plume_scene.py [OUTPUT_DIR]   (default: scenes/experimen
 import base64
 import json
 import pathlib
-import struct
 import sys
+
+from make_cornell_scenes import append_mesh
 
 HALF = 0.51  # the medium's box, just outside the grid's cube so no voxel touches a face
 LIGHT_HEIGHT, LIGHT_HALF = 1.5, 0.5
@@ -61,26 +62,7 @@ def main():
         "materials": MATERIALS, "meshes": [], "accessors": [], "bufferViews": [], "buffers": [],
     }
     for material, (positions, indices) in enumerate([cube_triangles(HALF), light_triangles()]):
-        position_offset = len(buffer)
-        for p in positions:
-            buffer += struct.pack("<3f", *p)
-        index_offset = len(buffer)
-        buffer += struct.pack(f"<{len(indices)}H", *indices)
-        while len(buffer) % 4:
-            buffer += b"\0"
-        views = gltf["bufferViews"]
-        views.append({"buffer": 0, "byteOffset": position_offset, "byteLength": index_offset - position_offset,
-                      "target": 34962})
-        views.append({"buffer": 0, "byteOffset": index_offset, "byteLength": 2 * len(indices), "target": 34963})
-        stored = [struct.unpack("<3f", struct.pack("<3f", *p)) for p in positions]
-        gltf["accessors"].append({"bufferView": len(views) - 2, "componentType": 5126, "count": len(positions),
-                                  "type": "VEC3", "min": [min(c) for c in zip(*stored)],
-                                  "max": [max(c) for c in zip(*stored)]})
-        gltf["accessors"].append({"bufferView": len(views) - 1, "componentType": 5123, "count": len(indices),
-                                  "type": "SCALAR"})
-        gltf["meshes"].append({"name": gltf["nodes"][material]["name"], "primitives": [{
-            "attributes": {"POSITION": len(gltf["accessors"]) - 2}, "indices": len(gltf["accessors"]) - 1,
-            "material": material}]})
+        append_mesh(gltf, buffer, gltf["nodes"][material]["name"], positions, indices, material)
     gltf["buffers"].append({"byteLength": len(buffer),
                             "uri": "data:application/octet-stream;base64," + base64.b64encode(buffer).decode()})
     (out / "smoke_plume.gltf").write_text(json.dumps(gltf, indent=1) + "\n")
