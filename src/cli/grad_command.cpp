@@ -15,6 +15,7 @@
 #include "diff/gradient_check.h"
 #include "diff/rendered_loss_gradient.h"
 #include "optimize/loss_kind_text.h"
+#include "optimize/value_summary.h"
 #include "vk/context.h"
 
 namespace vkdr {
@@ -71,27 +72,20 @@ void requireFiniteResult(const GradientResult& result, const std::vector<Gradien
     }
 }
 
-// Past this many values (a texture's texels, a grid's voxels) the text output gives a
-// summary of the gradient; --json has every value.
-constexpr size_t kGradientValuesPrinted = 12;
-
 void printGradient(const ParameterGradient& p) {
     std::printf("d loss / d %s =", p.name.c_str());
-    if (p.gradient.size() <= kGradientValuesPrinted) {
+    // A gradient of many values (a texture's texels, a grid's voxels) is summarised, as
+    // optimize's outputs summarise it; --json has every value.
+    if (!isSummarised(p.gradient.size())) {
         for (double g : p.gradient) {
             std::printf(" %.6g", g);
         }
         std::printf("\n");
         return;
     }
-    double sumOfSquares = 0.0;
-    size_t largest = 0;
-    for (size_t i = 0; i < p.gradient.size(); ++i) {
-        sumOfSquares += p.gradient[i] * p.gradient[i];
-        largest = std::abs(p.gradient[i]) > std::abs(p.gradient[largest]) ? i : largest;
-    }
-    std::printf(" %zu values, L2 norm %.6g, largest %.6g at [%zu] (--json prints them all)\n", p.gradient.size(),
-                std::sqrt(sumOfSquares), p.gradient[largest], largest);
+    const GradientSummary summary = summariseGradient(p.gradient);
+    std::printf(" %zu values, L2 norm %.6g, largest %.6g at [%zu] (--json prints them all)\n", summary.count,
+                summary.l2Norm, summary.largest, summary.largestAt);
 }
 
 void printText(const GradientResult& result, const std::vector<GradientCheckRow>& check) {

@@ -18,17 +18,9 @@ namespace vkdr {
 
 namespace {
 
-nlohmann::ordered_json summaryJson(const ValueSummary& summary) {
-    return {{"count", summary.count}, {"mean", summary.mean}, {"min", summary.minimum}, {"max", summary.maximum}};
-}
-
 nlohmann::ordered_json gradientSummaryJson(const std::vector<double>& gradient) {
-    double sumOfSquares = 0.0, largest = 0.0;
-    for (double value : gradient) {
-        sumOfSquares += value * value;
-        largest = std::abs(value) > std::abs(largest) ? value : largest;
-    }
-    return {{"count", gradient.size()}, {"l2_norm", std::sqrt(sumOfSquares)}, {"largest", largest}};
+    const GradientSummary summary = summariseGradient(gradient);
+    return {{"count", summary.count}, {"l2_norm", summary.l2Norm}, {"largest", summary.largest}};
 }
 
 ValueSummary summaryFrom(const nlohmann::json& object) {

@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "optimize/value_summary.h"
+
 namespace vkdr {
 
 // The shortest decimal that reads back as `value`: parameters are floats, and 0.05f
@@ -14,6 +16,11 @@ inline double shortestDecimal(float value) {
     auto [end, ec] = std::to_chars(text, text + sizeof(text) - 1, value);
     *end = '\0';
     return std::strtod(text, nullptr);
+}
+
+// A parameter of many values as optimize's outputs give it (optimize/value_summary.h).
+inline nlohmann::ordered_json summaryJson(const ValueSummary& summary) {
+    return {{"count", summary.count}, {"mean", summary.mean}, {"min", summary.minimum}, {"max", summary.maximum}};
 }
 
 inline nlohmann::ordered_json floatArray(std::span<const float> values) {

@@ -40,12 +40,8 @@ std::string parametersJson(const Scene& scene, const std::vector<std::string>& n
     for (const std::string& name : names) {
         std::vector<float> value = getParameter(scene, name);
         if (isSummarised(value.size())) {
-            ValueSummary summary = summarise(value);
-            values[name] = {{"count", summary.count},
-                            {"mean", summary.mean},
-                            {"min", summary.minimum},
-                            {"max", summary.maximum},
-                            {"values_in", "scene.gltf"}};
+            values[name] = summaryJson(summarise(value));
+            values[name]["values_in"] = "scene.gltf";
         } else {
             values[name] = floatArray(value);
         }

@@ -22,6 +22,19 @@ ValueSummary summarise(std::span<const float> values) {
     return summary;
 }
 
+GradientSummary summariseGradient(std::span<const double> gradient) {
+    GradientSummary summary;
+    summary.count = gradient.size();
+    double sumOfSquares = 0.0;
+    for (size_t i = 0; i < gradient.size(); ++i) {
+        sumOfSquares += gradient[i] * gradient[i];
+        if (std::abs(gradient[i]) > std::abs(gradient[summary.largestAt])) summary.largestAt = i;
+    }
+    summary.l2Norm = std::sqrt(sumOfSquares);
+    summary.largest = gradient.empty() ? 0.0 : gradient[summary.largestAt];
+    return summary;
+}
+
 std::string summaryText(std::span<const float> values) {
     const ValueSummary summary = summarise(values);
     return formatText("mean %.4g in [%.4g, %.4g] over %zu values", summary.mean, summary.minimum, summary.maximum,

@@ -6,8 +6,8 @@
 
 namespace vkdr {
 
-// Past this many values (a texture's texels, a density grid's voxels) a parameter is
-// summarised in optimize's outputs instead of listed: every voxel of a 64^3 grid in
+// Past this many values (a texture's texels, a density grid's voxels) a parameter and its
+// gradient are summarised in optimize's outputs and grad's text instead of listed: every voxel of a 64^3 grid in
 // every line of log.jsonl would run to gigabytes over a run.
 inline constexpr size_t kMostValuesListed = 12;
 
@@ -21,6 +21,16 @@ struct ValueSummary {
 };
 
 ValueSummary summarise(std::span<const float> values);
+
+// A gradient of many values, as grad prints it and log.jsonl keeps it.
+struct GradientSummary {
+    size_t count = 0;
+    double l2Norm = 0.0;
+    size_t largestAt = 0;  // the first value of largest magnitude
+    double largest = 0.0;  // that value; 0 for an empty gradient
+};
+
+GradientSummary summariseGradient(std::span<const double> gradient);
 
 // "mean 0.1234 in [0, 1.5] over 262144 values".
 std::string summaryText(std::span<const float> values);

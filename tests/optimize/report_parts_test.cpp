@@ -163,6 +163,12 @@ TEST(ValueSummary, GivesCountMeanAndRangeAndTheRelativeL2Error) {
     EXPECT_DOUBLE_EQ(*relativeL2Error(values, std::vector<float>{0.0f, 1.0f, 2.0f, 3.0f}), 2.0 / std::sqrt(14.0));
     EXPECT_FALSE(relativeL2Error(values, std::vector<float>(4, 0.0f)));
     EXPECT_FALSE(relativeL2Error(values, std::vector<float>(3, 1.0f)));
+    const std::vector<double> gradient = {0.5, -3.0, 3.0, 4.0 / 3.0};
+    GradientSummary gradientSummary = summariseGradient(gradient);
+    EXPECT_EQ(gradientSummary.count, 4u);
+    EXPECT_DOUBLE_EQ(gradientSummary.l2Norm, std::sqrt(0.25 + 9.0 + 9.0 + 16.0 / 9.0));
+    EXPECT_EQ(gradientSummary.largestAt, 1u);  // the first of the two of largest magnitude
+    EXPECT_EQ(gradientSummary.largest, -3.0);
     EXPECT_FALSE(isSummarised(kMostValuesListed));
     EXPECT_TRUE(isSummarised(kMostValuesListed + 1));
 }
