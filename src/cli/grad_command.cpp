@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/cut_paths_warning.h"
 #include "cli/install_layout.h"
 #include "cli/number_options.h"
 #include "cli/sampling_options.h"
@@ -156,6 +157,7 @@ int runGrad(const GradOptions& options) {
     requireNoValidationMessages(context);
     requireFiniteResult(result, check);
     throwIfInterrupted();  // a signal after the last pass: no result printed
+    warnOfCutPaths(result.truncatedPaths);
     if (options.json) {
         printJson(result, check);
     } else {

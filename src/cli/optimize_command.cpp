@@ -4,6 +4,8 @@
 
 #include "bvh/bvh.h"
 #include "cli/commands.h"
+#include "cli/cut_paths_warning.h"
+#include "cli/experiment_backend.h"
 #include "cli/install_layout.h"
 #include "cli/number_options.h"
 #include "image/output_paths.h"
@@ -131,6 +133,7 @@ std::string metricsText(const std::vector<Metric>& metrics) {
 
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
     const OptimizeResult& result = report.result;
+    warnOfCutPaths(result.truncatedPaths);
     std::printf("%s", parameterTable(report.parameters).c_str());
     double iterations = double(result.losses.size());
     std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint\n",
@@ -254,16 +257,7 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     VulkanContext context(ContextOptions{options.device});
     // Only parameter values change during an experiment, never the geometry.
     Bvh bvh = buildBvh(loaded.scene.positions, loaded.scene.triangles);
-    ExperimentBackend backend;
-    backend.render = [&](const Scene& scene, const RenderSettings& settings) {
-        return Renderer(context, scene, bvh, settings).render();
-    };
-    backend.makeLossGradient = [&](const Scene& scene, std::vector<TargetView> views,
-                                   std::vector<std::string> parameters, const RenderSettings& settings,
-                                   LossKind loss) -> std::unique_ptr<LossGradient> {
-        return std::make_unique<RenderedLossGradient>(context, scene, std::move(views), std::move(parameters),
-                                                      settings, loss);
-    };
+    ExperimentBackend backend = renderingBackend(context, bvh);
     std::fprintf(stderr, "%s: %s, %zu triangles, %zu views, %u spp (targets %u), %u iterations of %s on %s\n",
                  options.experiment.c_str(), experiment.scene.string().c_str(), loaded.scene.triangles.size(),
                  experiment.views.size(), experiment.render.spp, experiment.targetSpp,

@@ -3,6 +3,7 @@
 
 #include "bvh/bvh.h"
 #include "cli/commands.h"
+#include "cli/cut_paths_warning.h"
 #include "image/output_paths.h"
 #include "cli/progress_bar.h"
 #include "cli/number_options.h"
@@ -91,10 +92,7 @@ int runRender(const RenderOptions& options) {
         writePng(options.png, image);
     }
     const RenderStats& stats = renderer.stats();
-    if (stats.truncatedPaths > 0) {
-        std::fprintf(stderr, "warning: %llu paths crossed too many medium boundaries and were cut short\n",
-                     static_cast<unsigned long long>(stats.truncatedPaths));
-    }
+    warnOfCutPaths(stats.truncatedPaths);
     std::printf("wrote %s%s%s\n", options.output.c_str(), options.png.empty() ? "" : " and ", options.png.c_str());
     std::printf("%.2f s, %.3g paths/s, %.3g rays/s\n", stats.seconds, stats.paths / stats.seconds,
                 stats.rays / stats.seconds);

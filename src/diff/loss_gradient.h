@@ -28,6 +28,7 @@ struct GradientResult {
     std::vector<Image> images;                  // the rendered image of each view
     double forwardMs = 0.0;                     // primal rendering, all views
     double adjointMs = 0.0;                     // replay and adjoint, all views
+    uint64_t truncatedPaths = 0;                // paths cut by the segment limit, all views (should be 0)
 };
 
 // The loss of a scene's renders against target views, and its gradient with respect to

@@ -1,5 +1,7 @@
 #include "diff/rendered_loss_gradient.h"
 
+#include <algorithm>
+
 #include "bvh/bvh.h"
 #include "core/error.h"
 #include "device_types.h"
@@ -9,31 +11,53 @@
 
 namespace vkdr {
 
+// Views of one image size share a renderer (Renderer::setCamera): one copy of the scene
+// on the device, and one gradient sum read back per evaluation however many views
+// there are.
+struct ViewsOfOneSize {
+    std::unique_ptr<Renderer> renderer;
+    std::vector<size_t> views;  // indices into Impl::targets
+};
+
 struct RenderedLossGradient::Impl {
-    std::vector<std::unique_ptr<Renderer>> views;  // one per target view
+    std::vector<TargetView> targets;
+    std::vector<ViewsOfOneSize> groups;
     std::vector<GradientSlot> slots;
 
     // Checks the views and the parameter names before anything is built.
-    Impl(const Scene& scene, const std::vector<TargetView>& targets, const std::vector<std::string>& parameters) {
+    Impl(const Scene& scene, std::vector<TargetView> views, const std::vector<std::string>& parameters)
+        : targets(std::move(views)) {
         if (targets.empty()) {
             throw Error("no target image given");
         }
         slots = resolveGradientSlots(scene, parameters);
     }
 
-    void addViews(const VulkanContext& context, const Scene& scene, const Bvh& bvh,
-                  const std::vector<TargetView>& targets, const RenderSettings& settings, LossKind loss) {
+    void addRenderers(const VulkanContext& context, const Scene& scene, const Bvh& bvh, const RenderSettings& settings,
+                      LossKind loss) {
         const DerivativeTargets derivativeTargets = derivativeTargetsOf(slots);
-        for (const TargetView& view : targets) {
+        for (size_t v = 0; v < targets.size(); ++v) {
+            const Image& target = targets[v].target;
+            auto sameSize = std::find_if(groups.begin(), groups.end(), [&](const ViewsOfOneSize& group) {
+                return group.renderer->width() == target.width && group.renderer->height() == target.height;
+            });
+            if (sameSize != groups.end()) {
+                sameSize->renderer->setCamera(scene, targets[v].camera);  // refuses an unknown camera now
+                sameSize->views.push_back(v);
+                continue;
+            }
             RenderSettings viewSettings = settings;
-            viewSettings.camera = view.camera;
-            viewSettings.width = view.target.width;
-            viewSettings.height = view.target.height;
+            viewSettings.camera = targets[v].camera;
+            viewSettings.width = target.width;
+            viewSettings.height = target.height;
             auto renderer = std::make_unique<Renderer>(context, scene, bvh, viewSettings);
-            renderer->enableGradients(view.target, loss, derivativeTargets);
-            views.push_back(std::move(renderer));
+            renderer->enableGradients(target, loss, derivativeTargets);
+            groups.push_back({std::move(renderer), {v}});
         }
     }
+
+    // Points the group's renderer at view v with the random numbers of `seed`.
+    void prepareView(ViewsOfOneSize& group, const Scene& scene, size_t v, uint32_t seed) const;
 };
 
 namespace {
@@ -45,49 +69,73 @@ uint32_t viewSeed(uint32_t seed, size_t view) {
 
 }  // namespace
 
+void RenderedLossGradient::Impl::prepareView(ViewsOfOneSize& group, const Scene& scene, size_t v,
+                                              uint32_t seed) const {
+    if (group.views.size() > 1) {  // a renderer of one view keeps its camera and target
+        group.renderer->setCamera(scene, targets[v].camera);
+        group.renderer->setTarget(targets[v].target);
+    }
+    group.renderer->setSeed(viewSeed(seed, v));
+}
+
 RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const Scene& scene,
                                            std::vector<TargetView> views, std::vector<std::string> parameters,
                                            const RenderSettings& settings, LossKind loss)
-    : impl_(std::make_unique<Impl>(scene, views, parameters)) {
-    impl_->addViews(context, scene, buildBvh(scene.positions, scene.triangles), views, settings, loss);
+    : impl_(std::make_unique<Impl>(scene, std::move(views), parameters)) {
+    impl_->addRenderers(context, scene, buildBvh(scene.positions, scene.triangles), settings, loss);
 }
 
 RenderedLossGradient::RenderedLossGradient(const VulkanContext& context, const Scene& scene, const Bvh& bvh,
                                            std::vector<TargetView> views, std::vector<std::string> parameters,
                                            const RenderSettings& settings, LossKind loss)
-    : impl_(std::make_unique<Impl>(scene, views, parameters)) {
-    impl_->addViews(context, scene, bvh, views, settings, loss);
+    : impl_(std::make_unique<Impl>(scene, std::move(views), parameters)) {
+    impl_->addRenderers(context, scene, bvh, settings, loss);
 }
 
 RenderedLossGradient::~RenderedLossGradient() = default;
 
 double RenderedLossGradient::loss(const Scene& scene, uint32_t seed) {
     double total = 0.0;
-    for (size_t v = 0; v < impl_->views.size(); ++v) {
-        Renderer& renderer = *impl_->views[v];
-        renderer.setParameters(scene);
-        renderer.setSeed(viewSeed(seed, v));
-        total += renderer.loss();
+    for (ViewsOfOneSize& group : impl_->groups) {
+        group.renderer->setParameters(scene);
+        for (size_t v : group.views) {
+            impl_->prepareView(group, scene, v, seed);
+            total += group.renderer->loss();
+        }
     }
-    return total / double(impl_->views.size());
+    return total / double(impl_->targets.size());
 }
 
 GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
     GradientResult result;
+    result.images.resize(impl_->targets.size());
     std::vector<std::vector<double>> gradients(impl_->slots.size());
-    const double viewWeight = 1.0 / double(impl_->views.size());
-    for (size_t v = 0; v < impl_->views.size(); ++v) {
-        Renderer& renderer = *impl_->views[v];
+    // The loss is the views' mean, and so is its gradient.
+    const double viewWeight = 1.0 / double(impl_->targets.size());
+    for (ViewsOfOneSize& group : impl_->groups) {
+        Renderer& renderer = *group.renderer;
         renderer.setParameters(scene);
-        renderer.setSeed(viewSeed(seed, v));
-        GradientEvaluation evaluation = renderer.renderWithGradients();
-        result.images.push_back(std::move(evaluation.image));
-        result.loss += viewWeight * evaluation.loss;
-        result.forwardMs += evaluation.forwardMs;
-        result.adjointMs += evaluation.adjointMs;
-        const SceneGradients& g = evaluation.gradients;
+        // One view renders, back-propagates and reads everything back in one go.
+        const bool oneView = group.views.size() == 1;
+        if (!oneView) {
+            renderer.clearGradientSum();
+        }
+        SceneGradients sum;
+        for (size_t v : group.views) {
+            impl_->prepareView(group, scene, v, seed);
+            GradientEvaluation evaluation = oneView ? renderer.renderWithGradients() : renderer.renderAddingGradients();
+            result.images[v] = std::move(evaluation.image);
+            result.loss += viewWeight * evaluation.loss;
+            result.forwardMs += evaluation.forwardMs;
+            result.adjointMs += evaluation.adjointMs;
+            result.truncatedPaths += renderer.stats().truncatedPaths;
+            sum = std::move(evaluation.gradients);
+        }
+        if (!oneView) {
+            sum = renderer.downloadGradientSum();
+        }
         for (size_t i = 0; i < impl_->slots.size(); ++i) {
-            std::vector<double> values = gatherGradient(impl_->slots[i], g);
+            std::vector<double> values = gatherGradient(impl_->slots[i], sum);
             gradients[i].resize(values.size(), 0.0);
             for (size_t k = 0; k < values.size(); ++k) {
                 gradients[i][k] += viewWeight * values[k];

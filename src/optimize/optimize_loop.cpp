@@ -241,6 +241,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         result.losses.push_back(evaluation.loss);
         result.forwardMs += evaluation.forwardMs;
         result.adjointMs += evaluation.adjointMs;
+        result.truncatedPaths += evaluation.truncatedPaths;
         result.lastMetrics = metrics;
         if (callbacks.iterationDone) {
             callbacks.iterationDone(IterationRecord{iteration, evaluation.loss, evaluation.parameters,

@@ -110,6 +110,16 @@ void Renderer::setSeed(uint32_t seed) {
     uploadParams();
 }
 
+void Renderer::setCamera(const Scene& scene, const std::string& camera) {
+    RenderSettings settings = settings_;
+    settings.camera = camera;
+    settings.width = width();
+    settings.height = height();
+    camera_ = setUpCamera(scene, settings);
+    settings_.camera = camera;
+    uploadParams();
+}
+
 void Renderer::uploadParams() {
     gpu::RenderParams p{};
     p.camera = camera_;
@@ -288,11 +298,16 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
         recorder.dispatch(pipelines_.film, range.pixelCount, push.bytes());
         recorder.barrier();
     }
-    // Start the next pass's ray count from zero.
-    recorder.fillRange(paths_->queueCounters, offsetof(gpu::QueueCountersData, raysTraced), 4, 0);
+    // Start the next pass's counts of cut paths and rays from zero.
+    static_assert(offsetof(gpu::QueueCountersData, raysTraced) ==
+                  offsetof(gpu::QueueCountersData, truncatedPaths) + 4);
+    recorder.fillRange(paths_->queueCounters, offsetof(gpu::QueueCountersData, truncatedPaths), 8, 0);
     recorder.submitAndWait();
     stats_.rays += counters.raysTraced;
-    stats_.truncatedPaths = counters.truncatedPaths;
+    // Replays and adjoint passes trace the film's paths again: counted once.
+    if (mode == PassMode::Film) {
+        stats_.truncatedPaths += counters.truncatedPaths;
+    }
     if (counters.truncatedTracking > 0) {
         throw Error(std::to_string(counters.truncatedTracking) + " rays through a density grid medium needed more than " +
                     std::to_string(gpu::kMaxTransmittanceSteps) +

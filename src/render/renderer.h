@@ -109,6 +109,17 @@ public:
     double loss();
     GradientEvaluation renderWithGradients();
 
+    // Renders through another of the scene's cameras at the same image size, so that
+    // views of one size share a renderer: its scene, its paths and its gradient sums.
+    void setCamera(const Scene& scene, const std::string& camera);
+    // The gradients of several views' losses in one sum on the device, read back once:
+    // clearGradientSum(), then renderAddingGradients() at each view's camera, target
+    // and seed (each returns its image, loss and times, not its gradients), then
+    // downloadGradientSum(). renderWithGradients() is the three for one view.
+    void clearGradientSum();
+    GradientEvaluation renderAddingGradients();
+    SceneGradients downloadGradientSum();
+
     // Gradients of a loss the caller computes from render()'s image. enableImageAdjoint()
     // allocates the adjoint state without a target; backpropagate() takes dLoss/dI (one
     // RGB value per pixel) and returns dLoss/dparameters, replaying the paths with random
@@ -182,7 +193,10 @@ private:
                                                           const gpu::PassConstants& constants);
     void uploadParams();
     SceneGradients backpropagateImageAdjoint(const Image& imageAdjoint);
-    GradientEvaluation renderAndBackpropagateLoss();
+    // Renders, adds the loss's gradients to the sums, and reads back the image and the
+    // loss. A view `alone` clears the sums first, in the same submission as the film, and
+    // reads them back with the image.
+    GradientEvaluation renderAndBackpropagateLoss(bool alone);
     // Whether a gradient pass draws the two halves of each pixel's samples from
     // independent streams (RenderParams.secondStreamFrom), as the split estimator of
     // renderWithGradients() and loss() needs, or stratifies them together.

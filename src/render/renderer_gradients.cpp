@@ -200,15 +200,33 @@ void Renderer::copyKeptRadiance(const PassRange& range, bool keep) {
 }
 
 GradientEvaluation Renderer::renderWithGradients() {
-    return asGradientPass(SampleHalves::Independent, [&] { return renderAndBackpropagateLoss(); });
+    return asGradientPass(SampleHalves::Independent, [&] { return renderAndBackpropagateLoss(true); });
 }
 
-GradientEvaluation Renderer::renderAndBackpropagateLoss() {
+void Renderer::clearGradientSum() {
+    requireAdjointUse(AdjointUse::Loss, "clearGradientSum()");
+    CommandRecorder recorder(context_);
+    recordClearAccumulators(recorder);
+    recorder.submitAndWait();
+}
+
+GradientEvaluation Renderer::renderAddingGradients() {
+    return asGradientPass(SampleHalves::Independent, [&] { return renderAndBackpropagateLoss(false); });
+}
+
+SceneGradients Renderer::downloadGradientSum() {
+    requireAdjointUse(AdjointUse::Loss, "downloadGradientSum()");
+    return downloadGradients({});
+}
+
+GradientEvaluation Renderer::renderAndBackpropagateLoss(bool alone) {
     requireAdjointUse(AdjointUse::Loss, "renderWithGradients()");
     stats_ = {};
     {
         CommandRecorder recorder(context_);
-        recordClearAccumulators(recorder);
+        if (alone) {
+            recordClearAccumulators(recorder);
+        }
         recordClearFilm(recorder);
         if (splitSample_ > 0) {
             recorder.fill(adjoint_->filmBaseline, 0);
@@ -227,8 +245,13 @@ GradientEvaluation Renderer::renderAndBackpropagateLoss() {
 
     std::vector<glm::vec4> film(size_t(camera_.width) * camera_.height);
     int64_t lossWords[gpu::kFixedPointWordsPerSum];
-    result.gradients = downloadGradients({{&paths_->film, std::as_writable_bytes(std::span(film))},
-                                          {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossWords))}});
+    std::vector<Download> imageAndLoss{{&paths_->film, std::as_writable_bytes(std::span(film))},
+                                       {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossWords))}};
+    if (alone) {
+        result.gradients = downloadGradients(std::move(imageAndLoss));
+    } else {
+        downloadBuffers(context_, imageAndLoss);
+    }
     result.image = imageOfFilm(film);
     result.loss = fixedPointValue(lossWords);
     return result;

@@ -6,9 +6,11 @@
 // loose that free flight pauses at its step bound and continues in the next segment.
 #include <cmath>
 
+#include "bvh/bvh.h"
 #include "furnace_scene.h"
 #include "render_test_support.h"
 #include "single_scattering_quadrature.h"
+#include "scene/load_scene.h"
 #include "volume/smoke_plume.h"
 #include "volume/write_density_grid.h"
 
@@ -146,6 +148,49 @@ TEST_F(GridMediumTest, FurnaceWithLooseMajorantPausesAndConservesRadiance) {
     writeDensityGridVdb(dir / "sparse.vdb", grid);
     Image image = renderFile(g.write(dir, "furnace"), {.width = 12, .height = 12, .spp = 16, .maxDepth = 2000});
     expectUniformRadiance(image, glm::dvec3(kFurnaceLe) / (1.0 - glm::dvec3(rho)));
+}
+
+// Every majorant cell holds one voxel of density 1 among voxels of 0, at a rate so high
+// (sigma_s 3e5, 1.5e5 tentative collisions per cell crossed) that free flight pauses
+// more often than the segment limit allows: camera rays far from the dense voxels are
+// cut short. Depth 0 keeps the few that collide from casting shadow rays through the
+// grid. A render counts each cut path once, and a gradient evaluation counts the paths
+// its film renders, not their replays again.
+TEST_F(GridMediumTest, PathsCutByTheSegmentLimitAreCountedOnce) {
+    TestGltf g = furnace(glm::vec3(0.5f));
+    nlohmann::json sparse = vkdrMediumMaterial("sparse", glm::vec3(0.0f), glm::vec3(3.0e5f), 0.0f);
+    sparse["extensions"]["VKDR_participating_media"]["density"] = {{"uri", "sparse.vdb"}};
+    g.materials.push_back(sparse);
+    g.meshes.push_back(box(glm::vec3(-0.5f), glm::vec3(0.5f), 1));
+    DensityGrid grid;
+    grid.name = "density";
+    grid.size = glm::ivec3(16);
+    grid.indexToLocal = glm::dmat4(glm::dvec4(1.0 / 16, 0, 0, 0), glm::dvec4(0, 1.0 / 16, 0, 0),
+                                   glm::dvec4(0, 0, 1.0 / 16, 0), glm::dvec4(glm::dvec3(-0.5 + 0.5 / 16), 1.0));
+    for (int i = 0; i < 16 * 16 * 16; ++i) {
+        glm::ivec3 v(i % 16, (i / 16) % 16, i / 256);
+        grid.values.push_back(v % 8 == glm::ivec3(0) ? 1.0f : 0.0f);
+    }
+    const std::filesystem::path dir = tempDir();
+    writeDensityGridVdb(dir / "sparse.vdb", grid);
+    const Scene scene = loadScene(g.write(dir, "furnace")).scene;
+    const Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    const RenderSettings settings{.width = 4, .height = 4, .spp = 4, .maxDepth = 0};
+    const uint64_t paths = 4 * 4 * 4;
+
+    Renderer renderer(testContext(), scene, bvh, settings);
+    const Image image = renderer.render();
+    const uint64_t cut = renderer.stats().truncatedPaths;
+    EXPECT_GT(cut, paths / 2);
+    EXPECT_LE(cut, paths);
+
+    renderer.enableGradients(image, LossKind::L2);
+    renderer.loss();
+    const uint64_t cutForLoss = renderer.stats().truncatedPaths;
+    EXPECT_GT(cutForLoss, paths / 2);
+    EXPECT_LE(cutForLoss, paths);
+    renderer.renderWithGradients();
+    EXPECT_EQ(renderer.stats().truncatedPaths, cutForLoss);
 }
 
 }  // namespace
