@@ -7,13 +7,18 @@ smoke_plume.vdb beside the scene, which
 (the grid maps onto [-0.5, 0.5]^3). A square area light above lights it, a grey
 background lies behind every view, and one camera looks at it from the front; the
 experiment file scenes/experiments/smoke_reconstruction.json adds the cameras around it.
+With --resolution N other than 64 the scene is smoke_plume_N.gltf and reads
+smoke_plume_N.vdb (`vkdr-make-plume --resolution N --seed 2`), which is not shipped:
+scenes/experiments/smoke_reconstruction_256.json fits such a grid on a GPU.
 
-Usage: tools/make_smoke_plume_scene.py [OUTPUT_DIR]   (default: scenes/experiments/ next to tools/)
+Usage: tools/make_smoke_plume_scene.py [OUTPUT_DIR] [--resolution N]
+       (default: scenes/experiments/ next to tools/, N = 64)
 """
+import argparse
 import base64
+import copy
 import json
 import pathlib
-import sys
 
 from make_cornell_scenes import append_mesh
 
@@ -46,8 +51,14 @@ def light_triangles():
 
 
 def main():
-    out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else \
-        pathlib.Path(__file__).resolve().parent.parent / "scenes" / "experiments"
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("output_dir", nargs="?", type=pathlib.Path,
+                        default=pathlib.Path(__file__).resolve().parent.parent / "scenes" / "experiments")
+    parser.add_argument("--resolution", type=int, default=64, help="the grid's voxels a side (names the files)")
+    args = parser.parse_args()
+    name = "smoke_plume" if args.resolution == 64 else f"smoke_plume_{args.resolution}"
+    materials = copy.deepcopy(MATERIALS)
+    materials[0]["extensions"]["VKDR_participating_media"]["density"]["uri"] = name + ".vdb"
     buffer = bytearray()
     gltf = {
         "asset": {"version": "2.0", "generator": "tools/make_smoke_plume_scene.py"},
@@ -59,13 +70,13 @@ def main():
                   {"name": "front", "camera": 0, "translation": [0.0, 0.0, 2.5]}],
         "cameras": [{"name": "front", "type": "perspective",
                      "perspective": {"yfov": 0.5, "aspectRatio": 1.0, "znear": 0.01}}],
-        "materials": MATERIALS, "meshes": [], "accessors": [], "bufferViews": [], "buffers": [],
+        "materials": materials, "meshes": [], "accessors": [], "bufferViews": [], "buffers": [],
     }
     for material, (positions, indices) in enumerate([cube_triangles(HALF), light_triangles()]):
         append_mesh(gltf, buffer, gltf["nodes"][material]["name"], positions, indices, material)
     gltf["buffers"].append({"byteLength": len(buffer),
                             "uri": "data:application/octet-stream;base64," + base64.b64encode(buffer).decode()})
-    (out / "smoke_plume.gltf").write_text(json.dumps(gltf, indent=1) + "\n")
+    (args.output_dir / (name + ".gltf")).write_text(json.dumps(gltf, indent=1) + "\n")
 
 
 if __name__ == "__main__":
