@@ -1,9 +1,12 @@
 #include "optimize/checkpoint.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <limits>
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -11,6 +14,7 @@
 #include "core/error.h"
 #include "image/atomic_write.h"
 #include "image/regular_file.h"
+#include "optimize/base64.h"
 
 namespace vkdr {
 namespace {
@@ -27,8 +31,40 @@ std::string text(double value) {
 }
 
 // Names the file format, so that another JSON file is not taken for a checkpoint and a
-// later format can be told apart.
-constexpr const char* kFormat = "vkdiffrender optimize checkpoint 1";
+// later format can be told apart. Format 1 wrote every vector as an array; format 2
+// writes long ones as base64 (numbersJson), and reads both.
+constexpr const char* kFormat = "vkdiffrender optimize checkpoint 2";
+constexpr const char* kFormatWithArraysOnly = "vkdiffrender optimize checkpoint 1";
+
+// Beyond this many numbers a vector is written as the base64 of its little-endian
+// binary64 values: 10.7 characters a number instead of about 25 in indented JSON, and no
+// decimal conversion either way, which is what a checkpoint of a density grid's millions
+// of voxels (values and Adam's two moments) spends its time on.
+constexpr size_t kMostNumbersInAnArray = 1024;
+
+Json numbersJson(const std::vector<double>& values) {
+    if (values.size() <= kMostNumbersInAnArray) return values;
+    std::vector<unsigned char> bytes;
+    bytes.reserve(values.size() * 8);
+    for (double value : values) {
+        const uint64_t bits = std::bit_cast<uint64_t>(value);
+        for (int k = 0; k < 8; ++k) bytes.push_back(static_cast<unsigned char>(bits >> (8 * k)));
+    }
+    return base64(bytes);
+}
+
+// The doubles numbersJson encoded as `text`; nothing if it is not base64 of whole doubles.
+std::optional<std::vector<double>> numbersOfBase64(const std::string& text) {
+    std::optional<std::vector<unsigned char>> bytes = decodeBase64(text);
+    if (!bytes || bytes->size() % 8 != 0) return std::nullopt;
+    std::vector<double> values(bytes->size() / 8);
+    for (size_t i = 0; i < values.size(); ++i) {
+        uint64_t bits = 0;
+        for (int k = 0; k < 8; ++k) bits |= uint64_t((*bytes)[8 * i + k]) << (8 * k);
+        values[i] = std::bit_cast<double>(bits);
+    }
+    return values;
+}
 
 class CheckpointReader {
 public:
@@ -41,7 +77,8 @@ public:
     Json parse() const {
         Json document = Json::parse(readRegularFile(file_), nullptr, false);
         if (document.is_discarded() || !document.is_object()) fail("", "not a JSON object");
-        if (!document.contains("format") || document["format"] != kFormat) {
+        if (!document.contains("format") ||
+            (document["format"] != kFormat && document["format"] != kFormatWithArraysOnly)) {
             fail("format", std::string("not a checkpoint (expected \"") + kFormat + "\")");
         }
         return document;
@@ -68,13 +105,21 @@ public:
     // range), and Adam takes the square root of its second moments.
     std::vector<double> numbers(const Json& object, const std::string& key, double minimum = -kFloatMax,
                                 double maximum = kFloatMax) const {
-        const Json& array = member(object, key);
-        if (!array.is_array()) fail(key, "expected an array of numbers");
+        const Json& stored = member(object, key);
+        const std::string expected = "expected numbers in [" + text(minimum) + ", " + text(maximum) + "]";
+        if (stored.is_string()) {
+            std::optional<std::vector<double>> values = numbersOfBase64(stored.get<std::string>());
+            if (!values) fail(key, "expected an array of numbers or base64 of binary64 values");
+            for (double value : *values) {
+                if (!(value >= minimum && value <= maximum)) fail(key, expected + ", got " + text(value));
+            }
+            return *values;
+        }
+        if (!stored.is_array()) fail(key, "expected an array of numbers or base64 of binary64 values");
         std::vector<double> values;
-        for (const Json& value : array) {
+        for (const Json& value : stored) {
             if (!value.is_number() || !(value.get<double>() >= minimum && value.get<double>() <= maximum)) {
-                fail(key, "expected numbers in [" + text(minimum) + ", " + text(maximum) + "]" +
-                              (value.is_number() ? ", got " + value.dump() : ""));
+                fail(key, expected + (value.is_number() ? ", got " + value.dump() : ""));
             }
             values.push_back(value.get<double>());
         }
@@ -105,12 +150,12 @@ void writeCheckpoint(const std::filesystem::path& file, const Checkpoint& checkp
     Json document = {{"format", kFormat},
                      {"run", run},
                      {"iteration", state.iteration},
-                     {"values", state.values},
+                     {"values", numbersJson(state.values)},
                      {"optimizer",
                       {{"steps", state.optimizer.steps},
-                       {"mean", state.optimizer.mean},
-                       {"mean_square", state.optimizer.meanSquare}}},
-                     {"losses", state.losses},
+                       {"mean", numbersJson(state.optimizer.mean)},
+                       {"mean_square", numbersJson(state.optimizer.meanSquare)}}},
+                     {"losses", numbersJson(state.losses)},
                      {"forward_ms", state.forwardMs},
                      {"adjoint_ms", state.adjointMs}};
     writeAtomically(file, [&](std::ofstream& out) { out << document.dump(1) << "\n"; });

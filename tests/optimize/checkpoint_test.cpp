@@ -1,5 +1,7 @@
 // Checkpoints and --resume: a run stopped at any point and resumed ends exactly where
 // the uninterrupted run ends; a resume that does not match its checkpoint is refused.
+#include <bit>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -237,6 +239,70 @@ TEST(Checkpoint, ResumeRefusesAValueOutsideItsParametersRange) {
     QuadraticLossGradient loss(fogMinima());
     expectErrorMentioning([&] { runOptimization(loss, scene, job); },
                           {file.string(), "values", "media/fog/g[0]", "outside"});
+}
+
+// A density grid's checkpoint holds millions of numbers: vectors longer than 1024 are
+// stored as base64 of their binary64 bits and read back bit for bit, every kind of double
+// included; what a damaged or edited one holds is refused like an array's numbers.
+TEST(Checkpoint, LongVectorsReadBackBitForBit) {
+    ScratchDirectory scratch;
+    Checkpoint checkpoint;
+    checkpoint.run = {{"scene", "plume.gltf"}};
+    LoopState& state = checkpoint.state;
+    state.iteration = 3;
+    for (int i = 0; i < 3000; ++i) {
+        state.values.push_back(std::ldexp(1.0 + i / 3001.0, i % 200 - 100) * (i % 3 == 0 ? -1.0 : 1.0));
+    }
+    state.values[1] = -0.0;
+    state.values[2] = 4.9e-324;  // the smallest subnormal
+    state.optimizer = {3, state.values, std::vector<double>(3000, 1.0 / 3.0)};
+    state.losses = {0.5, 0.25, 0.125};
+    const std::filesystem::path file = scratch / kCheckpointFileName;
+    writeCheckpoint(file, checkpoint);
+    nlohmann::ordered_json document = nlohmann::ordered_json::parse(std::ifstream(file));
+    EXPECT_TRUE(document["values"].is_string());
+    EXPECT_TRUE(document["losses"].is_array());  // short vectors stay readable
+    Checkpoint read = readCheckpoint(file);
+    auto bits = [](const std::vector<double>& values) {
+        std::vector<uint64_t> result;
+        for (double value : values) result.push_back(std::bit_cast<uint64_t>(value));
+        return result;
+    };
+    EXPECT_EQ(bits(read.state.values), bits(state.values));
+    EXPECT_EQ(bits(read.state.optimizer.mean), bits(state.optimizer.mean));
+    EXPECT_EQ(read.state.optimizer.meanSquare, state.optimizer.meanSquare);
+    EXPECT_EQ(read.state.losses, state.losses);
+    EXPECT_EQ(read.run, checkpoint.run);
+
+    auto expectRefused = [&](const std::function<void(nlohmann::ordered_json&)>& edit,
+                             const std::vector<std::string>& parts) {
+        nlohmann::ordered_json edited = document;
+        edit(edited);
+        writeBytes(file, edited.dump());
+        std::vector<std::string> all = {file.string()};
+        all.insert(all.end(), parts.begin(), parts.end());
+        expectErrorMentioning([&] { readCheckpoint(file); }, all);
+    };
+    expectRefused([](auto& d) { d["values"] = d["values"].template get<std::string>().substr(4); },
+                  {"values", "base64"});
+    expectRefused([](auto& d) { d["values"] = "AAAA"; }, {"values", "base64"});  // 3 bytes: no whole double
+    expectRefused([](auto& d) { d["values"] = "AAAAAAAA!AA="; }, {"values", "base64"});
+    expectRefused([](auto& d) { d["values"] = "AAAAAAAA8H8="; }, {"values", "got inf"});  // +infinity
+    expectRefused([](auto& d) { d["optimizer"]["mean_square"] = "AAAAAAAA8L8="; }, {"mean_square", "got -1"});
+}
+
+// A checkpoint of the first format (every vector an array) still resumes.
+TEST(Checkpoint, ReadsTheFormatWithArraysOnly) {
+    ScratchDirectory scratch;
+    const std::filesystem::path file = scratch / kCheckpointFileName;
+    writeBytes(file, R"({"format": "vkdiffrender optimize checkpoint 1", "run": {"scene": "a.gltf"},
+        "iteration": 2, "values": [0.5, 0.25], "optimizer": {"steps": 2, "mean": [0.1, 0.2],
+        "mean_square": [0.01, 0.04]}, "losses": [1.0, 0.5], "forward_ms": 3.0, "adjoint_ms": 4.0})");
+    Checkpoint read = readCheckpoint(file);
+    EXPECT_EQ(read.state.iteration, 2u);
+    EXPECT_EQ(read.state.values, (std::vector<double>{0.5, 0.25}));
+    EXPECT_EQ(read.state.optimizer.meanSquare, (std::vector<double>{0.01, 0.04}));
+    EXPECT_EQ(read.state.adjointMs, 4.0);
 }
 
 TEST(Checkpoint, AdamContinuesFromItsStateExactly) {

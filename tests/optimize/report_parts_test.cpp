@@ -116,6 +116,24 @@ TEST(Base64, MatchesTheRfc4648TestVectors) {
     EXPECT_EQ(base64(high), "+/8=");
 }
 
+TEST(Base64, DecodesWhatItEncodesAndNothingElse) {
+    auto decoded = [](const std::string& text) -> std::optional<std::string> {
+        std::optional<std::vector<unsigned char>> bytes = decodeBase64(text);
+        if (!bytes) return std::nullopt;
+        return std::string(bytes->begin(), bytes->end());
+    };
+    for (const std::string text : {"", "f", "fo", "foo", "foob", "fooba", "foobar"}) {
+        EXPECT_EQ(decoded(base64(std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()))),
+                  text);
+    }
+    std::vector<unsigned char> every(256);
+    for (int i = 0; i < 256; ++i) every[i] = static_cast<unsigned char>(i);
+    EXPECT_EQ(decodeBase64(base64(every)), every);
+    for (const char* bad : {"Zg=", "Zg", "Z===", "Zh==", "Zm9=", "Zg==Zg==", "Zm 9", "Zm9*", "=Zm9"}) {
+        EXPECT_FALSE(decodeBase64(bad)) << bad;
+    }
+}
+
 TEST(ParameterTable, ShowsStartAndFittedAndTheTruthOnlyWhereKnown) {
     std::vector<ParameterFit> fits = {{"media/fog/sigma_a", {0.3f, 0.3f, 0.3f}, {0.05f, 0.06f, 0.07f}, {}},
                                       {"media/fog/g", {0.5f}, {0.1f}, {}}};
