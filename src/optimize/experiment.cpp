@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "image/regular_file.h"
 #include "optimize/coarse_grid_gradient.h"
+#include "optimize/density_grid_options.h"
 #include "optimize/grid_priors.h"
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
@@ -320,10 +321,12 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
     } catch (const Error& e) {
         reader.fail("parameters", e.what());
     }
-    const bool fitsAGrid = std::any_of(experiment.optimize.parameters.begin(), experiment.optimize.parameters.end(),
-                                       [&](const std::string& name) { return densityGridOf(scene, name) != nullptr; });
-    if (experiment.optimize.gridLevels > 1 && !fitsAGrid) {
-        reader.fail("grid_levels", "no density grid (media/<medium>/density) is being optimised");
+    try {
+        if (experiment.optimize.gridLevels > 1) {
+            requireADensityGridAmong(experiment.optimize.parameters, "grid levels are");
+        }
+    } catch (const Error& e) {
+        reader.fail("grid_levels", e.what());
     }
     try {
         gridPriorWeights(experiment.optimize.parameters,

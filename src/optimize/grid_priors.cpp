@@ -1,6 +1,7 @@
 #include "optimize/grid_priors.h"
 
 #include "core/error.h"
+#include "optimize/density_grid_options.h"
 #include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
 
@@ -75,13 +76,11 @@ std::map<std::string, GridPriorWeights> gridPriorWeights(const std::vector<std::
                                                          GridPriorWeights weights) {
     std::map<std::string, GridPriorWeights> named;
     if (weights.smoothness == 0.0 && weights.sparsity == 0.0) return named;
+    requireADensityGridAmong(parameters,
+                             std::string("a ") + (weights.smoothness != 0.0 ? "smoothness" : "sparsity") + " weight is");
     for (const std::string& name : parameters) {
         const std::optional<ParsedParameterName> parsed = parseParameterName(name);
         if (parsed && parsed->description->kind == ParameterKind::Density) named[name] = weights;
-    }
-    if (named.empty()) {
-        throw Error(std::string("a ") + (weights.smoothness != 0.0 ? "smoothness" : "sparsity") +
-                    " weight is given, but no density grid (media/<medium>/density) is being optimised");
     }
     return named;
 }

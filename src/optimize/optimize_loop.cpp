@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "optimize/coarse_grid_gradient.h"
+#include "optimize/density_grid_options.h"
 #include "optimize/log_space.h"
 #include "optimize/parameter_vector.h"
 #include "scene/parameters.h"
@@ -205,9 +206,8 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
     }
     const LogSpace logSpace(parameters, options.logParameters);
     const std::vector<GridSlice> gridSlices = densityGridSlices(scene, parameters);
-    if (options.gridLevels > 1 && gridSlices.empty()) {
-        throw Error("coarse-to-fine grid levels are given, but no density grid (media/<medium>/density) is being "
-                    "optimised");
+    if (options.gridLevels > 1) {
+        requireADensityGridAmong(options.parameters, "coarse-to-fine grid levels are");
     }
     auto stateAfter = [&](uint32_t done) {
         std::vector<double> values(parameters.values().begin(), parameters.values().end());
