@@ -11,7 +11,9 @@
 namespace vkdr {
 namespace {
 
-// What a renderer is built for; the seed and the parameter values change freely.
+// What a renderer is built for: every field of RenderSettings that render() depends on
+// but the seed, which changes freely as the parameter values do (keptRadianceBytes
+// matters to gradients only).
 std::string rendererKey(const RenderSettings& settings) {
     return settings.camera + ' ' + std::to_string(settings.width) + 'x' + std::to_string(settings.height) + ' ' +
            std::to_string(settings.spp) + ' ' + std::to_string(settings.maxDepth) + ' ' +

@@ -157,7 +157,7 @@ int runGrad(const GradOptions& options) {
     requireNoValidationMessages(context);
     requireFiniteResult(result, check);
     throwIfInterrupted();  // a signal after the last pass: no result printed
-    warnOfCutPaths(result.truncatedPaths);
+    warnOfCutPaths(result.truncatedPaths, "the render");
     if (options.json) {
         printJson(result, check);
     } else {

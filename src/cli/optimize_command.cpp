@@ -9,6 +9,7 @@
 #include "cli/install_layout.h"
 #include "cli/number_options.h"
 #include "image/output_paths.h"
+#include "optimize/density_grid_options.h"
 #include "cli/progress_bar.h"
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
@@ -133,7 +134,7 @@ std::string metricsText(const std::vector<Metric>& metrics) {
 
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
     const OptimizeResult& result = report.result;
-    warnOfCutPaths(result.truncatedPaths);
+    warnOfCutPaths(result.truncatedPaths, "the renders of the iterations run");
     std::printf("%s", parameterTable(report.parameters).c_str());
     double iterations = double(result.losses.size());
     std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint\n",
@@ -190,6 +191,9 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     Scene& scene = loaded.scene;
     requireOptimisableParameters(scene, options.optimize.parameters);
     gridPriorWeights(options.optimize.parameters, {options.optimize.smoothness, options.optimize.sparsity});
+    if (options.optimize.gridLevels > 1) {
+        requireADensityGridAmong(options.optimize.parameters, "coarse-to-fine grid levels are");
+    }
     LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
     std::vector<TargetView> views = readTargets(options.targets, scene);
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views};

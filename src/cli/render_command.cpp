@@ -92,7 +92,7 @@ int runRender(const RenderOptions& options) {
         writePng(options.png, image);
     }
     const RenderStats& stats = renderer.stats();
-    warnOfCutPaths(stats.truncatedPaths);
+    warnOfCutPaths(stats.truncatedPaths, "the render");
     std::printf("wrote %s%s%s\n", options.output.c_str(), options.png.empty() ? "" : " and ", options.png.c_str());
     std::printf("%.2f s, %.3g paths/s, %.3g rays/s\n", stats.seconds, stats.paths / stats.seconds,
                 stats.rays / stats.seconds);

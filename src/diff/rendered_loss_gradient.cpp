@@ -60,14 +60,9 @@ struct RenderedLossGradient::Impl {
     void prepareView(ViewsOfOneSize& group, const Scene& scene, size_t v, uint32_t seed) const;
 };
 
-namespace {
-
-// Each view gets its own random numbers.
 uint32_t viewSeed(uint32_t seed, size_t view) {
     return seed * 2654435761u + uint32_t(view) * 40503u;
 }
-
-}  // namespace
 
 void RenderedLossGradient::Impl::prepareView(ViewsOfOneSize& group, const Scene& scene, size_t v,
                                               uint32_t seed) const {

@@ -14,7 +14,8 @@ struct Bvh;
 // LossGradient by path replay on the GPU: each view is rendered, and its paths are
 // replayed in adjoint mode, accumulating parameter gradients with atomic adds
 // (docs/design.md, "The adjoint"; Renderer::renderWithGradients).
-// The scene's geometry is fixed at construction; evaluate() takes new parameter values.
+// The scene's geometry and cameras are fixed at construction; evaluate() takes new
+// parameter values.
 class RenderedLossGradient : public LossGradient {
 public:
     // settings: spp, max depth and paths per pass; each view's size is its target's.
@@ -36,5 +37,9 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+// The seed that view number `view` (in the order given) renders with in an evaluation at
+// `seed`: each view has random numbers of its own.
+uint32_t viewSeed(uint32_t seed, size_t view);
 
 }  // namespace vkdr

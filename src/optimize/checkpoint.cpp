@@ -24,9 +24,10 @@ using Json = nlohmann::ordered_json;
 constexpr double kFloatMax = double(std::numeric_limits<float>::max());
 constexpr double kDoubleMax = std::numeric_limits<double>::max();
 
-std::string text(double value) {
-    char number[32];
-    std::snprintf(number, sizeof(number), "%g", value);
+// `value` to `digits` significant digits: 6 say a range, 17 the exact double.
+std::string text(double value, int digits = 6) {
+    char number[40];
+    std::snprintf(number, sizeof(number), "%.*g", digits, value);
     return number;
 }
 
@@ -79,7 +80,8 @@ public:
         if (document.is_discarded() || !document.is_object()) fail("", "not a JSON object");
         if (!document.contains("format") ||
             (document["format"] != kFormat && document["format"] != kFormatWithArraysOnly)) {
-            fail("format", std::string("not a checkpoint (expected \"") + kFormat + "\")");
+            fail("format", std::string("not a checkpoint (expected \"") + kFormat + "\" or \"" +
+                               kFormatWithArraysOnly + "\")");
         }
         return document;
     }
@@ -111,7 +113,7 @@ public:
             std::optional<std::vector<double>> values = numbersOfBase64(stored.get<std::string>());
             if (!values) fail(key, "expected an array of numbers or base64 of binary64 values");
             for (double value : *values) {
-                if (!(value >= minimum && value <= maximum)) fail(key, expected + ", got " + text(value));
+                if (!(value >= minimum && value <= maximum)) fail(key, expected + ", got " + text(value, 17));
             }
             return *values;
         }

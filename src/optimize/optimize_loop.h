@@ -94,7 +94,7 @@ struct OptimizeResult {
     std::vector<Metric> lastMetrics; // the last iteration's (OptimizeCallbacks::measure)
     double forwardMs = 0.0;         // all iterations together
     double adjointMs = 0.0;
-    uint64_t truncatedPaths = 0;    // paths cut by the segment limit, all iterations (should be 0)
+    uint64_t truncatedPaths = 0;    // paths cut by the segment limit in the iterations run (should be 0)
 };
 
 // Gradient descent on `scene`'s parameters: each iteration evaluates the loss and its

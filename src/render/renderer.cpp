@@ -111,11 +111,15 @@ void Renderer::setSeed(uint32_t seed) {
 }
 
 void Renderer::setCamera(const Scene& scene, const std::string& camera) {
-    RenderSettings settings = settings_;
-    settings.camera = camera;
-    settings.width = width();
-    settings.height = height();
-    camera_ = setUpCamera(scene, settings);
+    auto placed = placedCameras_.find(camera);
+    if (placed == placedCameras_.end()) {
+        RenderSettings settings = settings_;
+        settings.camera = camera;
+        settings.width = width();
+        settings.height = height();
+        placed = placedCameras_.emplace(camera, setUpCamera(scene, settings)).first;
+    }
+    camera_ = placed->second;
     settings_.camera = camera;
     uploadParams();
 }
@@ -304,8 +308,9 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
     recorder.fillRange(paths_->queueCounters, offsetof(gpu::QueueCountersData, truncatedPaths), 8, 0);
     recorder.submitAndWait();
     stats_.rays += counters.raysTraced;
-    // Replays and adjoint passes trace the film's paths again: counted once.
-    if (mode == PassMode::Film) {
+    // Replays with the film's random numbers and adjoint passes trace the film's paths
+    // again, which are counted once; an independent replay traces paths of its own.
+    if (mode == PassMode::Film || (mode == PassMode::Replay && replayingIndependently_)) {
         stats_.truncatedPaths += counters.truncatedPaths;
     }
     if (counters.truncatedTracking > 0) {

@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
+#include <map>
 #include <memory>
 #include <span>
 #include <string>
@@ -111,6 +112,7 @@ public:
 
     // Renders through another of the scene's cameras at the same image size, so that
     // views of one size share a renderer: its scene, its paths and its gradient sums.
+    // `scene` is the one the renderer was built for (its cameras and geometry).
     void setCamera(const Scene& scene, const std::string& camera);
     // The gradients of several views' losses in one sum on the device, read back once:
     // clearGradientSum(), then renderAddingGradients() at each view's camera, target
@@ -211,6 +213,9 @@ private:
     const VulkanContext& context_;
     RenderSettings settings_;
     gpu::GpuCamera camera_;
+    // setCamera's cameras, placed once each: finding the medium a camera sits in tests
+    // it against every triangle.
+    std::map<std::string, gpu::GpuCamera> placedCameras_;
     glm::vec3 background_;
     std::vector<uint32_t> triangleOrder_;
     uint32_t mediumCount_;

@@ -227,7 +227,7 @@ TEST_F(CliTest, GradOfADensityGridSummarisesItsVoxels) {
 
 // optimize fits a grid with a smoothness term, summarises its voxels in what it prints
 // and writes the fitted grid as a .vdb that the written scene loads; a smoothness weight
-// without a grid is refused before anything renders.
+// or grid levels without a grid are refused before anything renders or is removed.
 TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
     fs::path target = dir_ / "plume.exr";
     ASSERT_EQ(run("render " + scene("cornell_plume.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string())
@@ -249,6 +249,13 @@ TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
     EXPECT_EQ(refused.exitCode, 2);
     EXPECT_NE(refused.err.find("error: a smoothness weight is given, but no density grid"), std::string::npos)
         << refused.err;
+    std::string levels = optimize;
+    levels.replace(levels.find(" --smoothness 0.5"), 17, " --grid-levels 2");
+    refused = run(levels + " --param media/plume/sigma_s --overwrite");
+    EXPECT_EQ(refused.exitCode, 2);
+    EXPECT_NE(refused.err.find("error: coarse-to-fine grid levels are given, but no density grid"), std::string::npos)
+        << refused.err;
+    EXPECT_TRUE(fs::is_regular_file(out / "params.json")) << "the refused run left the earlier one as it was";
 }
 
 TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {

@@ -1,6 +1,7 @@
 // Views of one image size share a renderer: Renderer::setCamera moves it to another
 // camera, and the gradients of several views add up in one sum on the device
 // (Renderer::renderAddingGradients), read back once.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -51,8 +52,8 @@ TEST_F(RenderTest, SetCameraRendersWhatARendererBuiltForThatCameraRenders) {
 
 // The sum of two views' gradients read back once equals the two read back one by one,
 // up to the rounding of each read-back to a float: the device's fixed-point sums are
-// exact, so a float sum of two roundings differs from one rounding of the sum by at most
-// 1.5 ulp of the larger term; 2^-22 of |a| + |b| bounds it.
+// exact, and each rounding errs by at most 2^-24 of its value, so the two differ by at
+// most 2^-24 (|a + b| + |a| + |b|) <= 2^-23 (|a| + |b|); the test allows 2^-22.
 TEST_F(RenderTest, GradientsOfTwoViewsAddUpInOneSum) {
     const Scene scene = smokeRoomWithCameraInTheSmoke(tempDir());
     const Bvh bvh = buildBvh(scene.positions, scene.triangles);
@@ -92,23 +93,49 @@ TEST_F(RenderTest, GradientsOfTwoViewsAddUpInOneSum) {
     EXPECT_GT(nonZero, 0) << "both views see the smoke";
 }
 
-// Views of two sizes: the images come back in the views' order at their sizes, and the
-// loss evaluate() returns is the one loss() renders with the same random numbers (up to
-// the order of the sum over views).
+// Views of two sizes: each image comes back in its view's place, rendered as a renderer
+// of its own for that view renders it with the view's seed, and the gradient is the mean
+// of those renderers' gradients; the loss evaluate() returns is the one loss() renders
+// with the same random numbers (up to the order of the sum over views).
 TEST_F(RenderTest, ViewsOfSeveralSizesComeBackInOrder) {
     const Scene scene = smokeRoomWithCameraInTheSmoke(tempDir());
+    const Bvh bvh = buildBvh(scene.positions, scene.triangles);
     std::vector<TargetView> views = {{"", flatImage(16, 0.2f)}, {"in_smoke", flatImage(12, 0.1f)},
                                      {"in_smoke", flatImage(16, 0.1f)}};
-    RenderedLossGradient lossGradient(testContext(), scene, views, {"media/smoke/sigma_s"},
-                                      {.spp = 4, .maxDepth = 5}, LossKind::L2);
+    const RenderSettings settings{.spp = 4, .maxDepth = 5};
+    RenderedLossGradient lossGradient(testContext(), scene, views, {"media/smoke/sigma_s"}, settings, LossKind::L2);
     const GradientResult result = lossGradient.evaluate(scene, 7);
     ASSERT_EQ(result.images.size(), 3u);
+    ASSERT_EQ(result.parameters.size(), 1u);
+    const size_t smoke = size_t(std::find_if(scene.media.begin(), scene.media.end(),
+                                             [](const Medium& m) { return m.name == "smoke"; }) -
+                                scene.media.begin());
+    ASSERT_LT(smoke, scene.media.size());
+    // Each view's gradient, and the shared sum, are rounded to float once: 2^-23 of the
+    // terms' magnitudes bounds the difference (above); the test allows 2^-21.
+    std::vector<double> mean(3, 0.0), bound(3, 0.0);
     for (size_t v = 0; v < views.size(); ++v) {
-        EXPECT_EQ(result.images[v].width, views[v].target.width) << "view " << v;
+        RenderSettings own = settings;
+        own.camera = views[v].camera;
+        own.width = uint32_t(views[v].target.width);
+        own.height = uint32_t(views[v].target.height);
+        Renderer renderer(testContext(), scene, bvh, own);
+        renderer.enableGradients(views[v].target, LossKind::L2);
+        renderer.setSeed(viewSeed(7, v));
+        const GradientEvaluation alone = renderer.renderWithGradients();
+        EXPECT_TRUE(sameBits(result.images[v], alone.image)) << "view " << v;
+        for (int c = 0; c < 3; ++c) {
+            const double g =
+                alone.gradients.media[smoke * gpu::kMediumGradientStride + gpu::kMediumGradientSigmaS + size_t(c)] / 3.0;
+            mean[c] += g;
+            bound[c] += std::ldexp(std::abs(g), -21);
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(result.parameters[0].gradient[c], mean[c], bound[c]) << "channel " << c;
     }
     const double loss = lossGradient.loss(scene, 7);
     EXPECT_NEAR(result.loss, loss, 1e-12 * loss);
-    EXPECT_FALSE(sameBits(result.images[0], result.images[2]));
 }
 
 }  // namespace
