@@ -92,13 +92,16 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                 }
                 unbounded = false;  // the grid ends
                 if (kAdjoint && gridGradientsWanted()) {
-                    opticalLength = densityIntegralAdjoint(grid, origin, direction, segment,
-                                                           nextTrackingRandom(gradientPoints).x,
-                                                           dot(gradientWeight, sigmaT(m)));
-                    // Voxel gradients need the contribution's weight, known once the whole
-                    // ray is: backpropagateNextEvent traces it again with the weight.
-                    if (gradientWanted(kGradientKindDensity)) {
+                    if (gradientWanted(kGradientKindDensity) && !forGradientsOnly) {
+                        // Voxel gradients need the contribution's weight, known once the
+                        // whole ray is: backpropagateNextEvent traces it again with the
+                        // weight and adds every medium's gradients then, so the density's
+                        // integral is not estimated here.
                         lengths.complete = false;
+                    } else {
+                        opticalLength = densityIntegralAdjoint(grid, origin, direction, segment,
+                                                               nextTrackingRandom(gradientPoints).x,
+                                                               dot(gradientWeight, sigmaT(m)));
                     }
                 }
             } else {

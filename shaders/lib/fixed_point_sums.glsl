@@ -71,4 +71,25 @@ void addFixedPoint(Int64Buffer sums, uint sum, uint alsoAt, vec3 x, uint channel
     }
 }
 
+// Adds x to the one sum at `sum` from this lane alone, with no subgroup operation: for
+// sums the lanes of a subgroup seldom share (a grid's voxels), where grouping the lanes
+// by sum would take one round per lane. Integer additions are exact, so the total is
+// the same in any order.
+void addFixedPointFromOneLane(Int64Buffer sums, uint sum, float x) {
+    FixedPointTerm term = fixedPointTerm(x);
+    if (term.flags != 0u) {
+        atomicOr(sums.v[sum + kFixedPointFlagsWord], int64_t(term.flags));
+        return;
+    }
+    if (term.word >= kFixedPointWords) {
+        return;  // 0, or below the lowest bit
+    }
+    if (term.low != int64_t(0)) {
+        addToWord(sums, sum, term.word, term.low);
+    }
+    if (term.high != int64_t(0)) {
+        addToWord(sums, sum, term.word + 1u, term.high);
+    }
+}
+
 #endif

@@ -15,18 +15,21 @@ bool gridGradientsWanted() {
 }
 
 // Adds g times each of the point's trilinear weights (gridDensity's footprint) to the
-// gradient of its voxel. Voxels outside the grid's box are not parameters.
+// gradient of its voxel. Voxels outside the grid's box are not parameters. The lanes of
+// a subgroup seldom add to the same voxel, so each adds alone (addFixedPointFromOneLane)
+// into its subgroup's copy of the sums.
 void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
     if (!gradientWanted(kGradientKindDensity)) {
         return;
     }
+    uint copy = (gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID) % kGradientCopies;
     vec3 base = floor(index);
     for (int corner = 0; corner < 8; ++corner) {
         ivec3 offset = trilinearCorner(corner);
         int voxel = gridVoxelOffset(grid, ivec3(base) + offset);
         if (voxel >= 0) {
-            addGradient(P.densityGradients, P.densityGradientsCopyStride, uint(voxel), 0u,
-                        vec3(g * trilinearWeight(index - base, offset), 0.0f, 0.0f), 1u);
+            uint sum = (copy * P.densityGradientsCopyStride + uint(voxel)) * kFixedPointWordsPerSum;
+            addFixedPointFromOneLane(P.densityGradients, sum, g * trilinearWeight(index - base, offset));
         }
     }
 }
