@@ -41,6 +41,20 @@ OptimizationJob fogJob(const std::filesystem::path& directory, uint32_t iteratio
     return job;
 }
 
+using EditJson = std::function<void(nlohmann::ordered_json&)>;
+
+// Writes `document` with `edit` applied as the checkpoint `file`, and expects reading it
+// to fail with an error naming the file and each of `parts`.
+void expectEditRefused(const std::filesystem::path& file, const nlohmann::ordered_json& document,
+                       const EditJson& edit, const std::vector<std::string>& parts) {
+    nlohmann::ordered_json edited = document;
+    edit(edited);
+    writeBytes(file, edited.dump());
+    std::vector<std::string> all = {file.string()};
+    all.insert(all.end(), parts.begin(), parts.end());
+    expectErrorMentioning([&] { readCheckpoint(file); }, all);
+}
+
 // Runs `job` until the evaluation `stopAt` fails, as a killed process would stop.
 void runUntil(const OptimizationJob& job, size_t stopAt) {
     Scene scene = loadScene(kFogScene).scene;
@@ -208,14 +222,8 @@ TEST(Checkpoint, RefusesNumbersOutOfRangeNamingTheFileAndKey) {
     runOptimization(loss, scene, job);
     std::filesystem::path file = scratch / kCheckpointFileName;
     nlohmann::ordered_json good = nlohmann::ordered_json::parse(std::ifstream(file));
-    auto expectRefused = [&](const std::function<void(nlohmann::ordered_json&)>& edit,
-                             const std::vector<std::string>& parts) {
-        nlohmann::ordered_json document = good;
-        edit(document);
-        writeBytes(file, document.dump());
-        std::vector<std::string> all = {file.string()};
-        all.insert(all.end(), parts.begin(), parts.end());
-        expectErrorMentioning([&] { readCheckpoint(file); }, all);
+    auto expectRefused = [&](const EditJson& edit, const std::vector<std::string>& parts) {
+        expectEditRefused(file, good, edit, parts);
     };
     expectRefused([](auto& d) { d["values"][0] = 1e300; }, {"values", "1e+300"});
     expectRefused([](auto& d) { d["optimizer"]["mean_square"][0] = -1.0; }, {"mean_square", "[0, "});
@@ -274,14 +282,8 @@ TEST(Checkpoint, LongVectorsReadBackBitForBit) {
     EXPECT_EQ(read.state.losses, state.losses);
     EXPECT_EQ(read.run, checkpoint.run);
 
-    auto expectRefused = [&](const std::function<void(nlohmann::ordered_json&)>& edit,
-                             const std::vector<std::string>& parts) {
-        nlohmann::ordered_json edited = document;
-        edit(edited);
-        writeBytes(file, edited.dump());
-        std::vector<std::string> all = {file.string()};
-        all.insert(all.end(), parts.begin(), parts.end());
-        expectErrorMentioning([&] { readCheckpoint(file); }, all);
+    auto expectRefused = [&](const EditJson& edit, const std::vector<std::string>& parts) {
+        expectEditRefused(file, document, edit, parts);
     };
     expectRefused([](auto& d) { d["values"] = d["values"].template get<std::string>().substr(4); },
                   {"values", "base64"});
