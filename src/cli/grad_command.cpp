@@ -4,7 +4,6 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "cli/cut_paths_warning.h"
 #include "cli/install_layout.h"
 #include "cli/number_options.h"
 #include "cli/sampling_options.h"
@@ -17,6 +16,7 @@
 #include "diff/rendered_loss_gradient.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/value_summary.h"
+#include "render/cut_paths.h"
 #include "vk/context.h"
 
 namespace vkdr {
@@ -157,7 +157,9 @@ int runGrad(const GradOptions& options) {
     requireNoValidationMessages(context);
     requireFiniteResult(result, check);
     throwIfInterrupted();  // a signal after the last pass: no result printed
-    warnOfCutPaths(result.truncatedPaths, "the render");
+    if (result.truncatedPaths > 0) {
+        std::fprintf(stderr, "warning: %s\n", cutPathsMessage(result.truncatedPaths, "the render").c_str());
+    }
     if (options.json) {
         printJson(result, check);
     } else {

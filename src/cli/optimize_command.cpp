@@ -4,7 +4,6 @@
 
 #include "bvh/bvh.h"
 #include "cli/commands.h"
-#include "cli/cut_paths_warning.h"
 #include "cli/experiment_backend.h"
 #include "cli/install_layout.h"
 #include "cli/number_options.h"
@@ -29,6 +28,7 @@
 #include "optimize/parameter_table.h"
 #include "optimize/parameter_vector.h"
 #include "optimize/run_directory.h"
+#include "render/cut_paths.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "scene/scene_warnings.h"
@@ -134,7 +134,10 @@ std::string metricsText(const std::vector<Metric>& metrics) {
 
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
     const OptimizeResult& result = report.result;
-    warnOfCutPaths(result.truncatedPaths, "the renders of the iterations run");
+    if (result.truncatedPaths > 0) {
+        std::fprintf(stderr, "warning: %s\n",
+                     cutPathsMessage(result.truncatedPaths, "the renders of the iterations run").c_str());
+    }
     std::printf("%s", parameterTable(report.parameters).c_str());
     double iterations = double(result.losses.size());
     std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint\n",

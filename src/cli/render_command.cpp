@@ -3,7 +3,6 @@
 
 #include "bvh/bvh.h"
 #include "cli/commands.h"
-#include "cli/cut_paths_warning.h"
 #include "image/output_paths.h"
 #include "cli/progress_bar.h"
 #include "cli/number_options.h"
@@ -13,6 +12,7 @@
 #include "core/interrupt.h"
 #include "image/finite_pixels.h"
 #include "image/image.h"
+#include "render/cut_paths.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 
@@ -92,7 +92,9 @@ int runRender(const RenderOptions& options) {
         writePng(options.png, image);
     }
     const RenderStats& stats = renderer.stats();
-    warnOfCutPaths(stats.truncatedPaths, "the render");
+    if (stats.truncatedPaths > 0) {
+        std::fprintf(stderr, "warning: %s\n", cutPathsMessage(stats.truncatedPaths, "the render").c_str());
+    }
     std::printf("wrote %s%s%s\n", options.output.c_str(), options.png.empty() ? "" : " and ", options.png.c_str());
     std::printf("%.2f s, %.3g paths/s, %.3g rays/s\n", stats.seconds, stats.paths / stats.seconds,
                 stats.rays / stats.seconds);

@@ -15,6 +15,7 @@
 #include "image/output_paths.h"
 #include "python/scene_session.h"
 #include "python/stop_signal_scope.h"
+#include "render/cut_paths.h"
 
 namespace py = pybind11;
 
@@ -155,18 +156,27 @@ py::array_t<float> getParameter(const SceneSession& session, const std::string& 
     return arrayOf(session.get(name), info.shape);
 }
 
+// A RuntimeWarning, as the command line warns, when paths of the call were cut short.
+void warnOfCutPaths(uint64_t paths) {
+    if (paths > 0 && PyErr_WarnEx(PyExc_RuntimeWarning, cutPathsMessage(paths, "the render").c_str(), 1) != 0) {
+        throw py::error_already_set();  // warnings turned into errors
+    }
+}
+
 py::array_t<float> render(SceneSession& session, const RenderKeywords& keywords) {
     const RenderSettings settings = keywords.settings();
-    return arrayOfImage(runOnDevice([&] { return session.render(settings); }));
+    SceneSession::Rendered rendered = runOnDevice([&] { return session.render(settings); });
+    warnOfCutPaths(rendered.cutPaths);
+    return arrayOfImage(std::move(rendered.image));
 }
 
 py::dict backpropagate(SceneSession& session, const py::object& imageAdjoint, const std::vector<std::string>& names,
                        const RenderKeywords& keywords) {
     const RenderSettings settings = keywords.settings();
     const Image adjoint = imageOfArray(imageAdjoint, "the image adjoint");
-    std::vector<ParameterGradient> gradients =
-        runOnDevice([&] { return session.backpropagate(settings, adjoint, names); });
-    return gradientDictionary(session, gradients);
+    SceneSession::Backpropagated result = runOnDevice([&] { return session.backpropagate(settings, adjoint, names); });
+    warnOfCutPaths(result.cutPaths);
+    return gradientDictionary(session, result.gradients);
 }
 
 py::tuple lossGradient(SceneSession& session, const py::object& targetArray, const std::vector<std::string>& names,
@@ -179,6 +189,7 @@ py::tuple lossGradient(SceneSession& session, const py::object& targetArray, con
     const LossKind loss = lossName == "l2" ? LossKind::L2 : LossKind::L1;
     SceneSession::LossGradient result =
         runOnDevice([&] { return session.lossGradient(settings, target, loss, names); });
+    warnOfCutPaths(result.cutPaths);
     return py::make_tuple(result.loss, arrayOfImage(std::move(result.image)),
                           gradientDictionary(session, result.gradients));
 }

@@ -138,19 +138,22 @@ auto SceneSession::withRenderer(const RenderSettings& settings, Work work) {
     }
 }
 
-Image SceneSession::render(const RenderSettings& settings) {
+SceneSession::Rendered SceneSession::render(const RenderSettings& settings) {
     std::lock_guard lock(mutex_);
-    Image image = withRenderer(settings, [](CachedRenderer& cached) { return cached.renderer->render(); });
+    Rendered rendered = withRenderer(settings, [](CachedRenderer& cached) {
+        Image image = cached.renderer->render();
+        return Rendered{std::move(image), cached.renderer->stats().truncatedPaths};
+    });
     // Accepted scenes keep every pixel finite (docs/scene-format.md); should one not be,
     // the caller gets an error, not the number.
-    if (std::optional<std::string> bad = unrepresentablePixel(image)) {
+    if (std::optional<std::string> bad = unrepresentablePixel(rendered.image)) {
         throw Error("the render's " + *bad);
     }
-    return image;
+    return rendered;
 }
 
-std::vector<ParameterGradient> SceneSession::backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
-                                                           const std::vector<std::string>& names) {
+SceneSession::Backpropagated SceneSession::backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
+                                                         const std::vector<std::string>& names) {
     std::lock_guard lock(mutex_);
     for (size_t i = 0; i < imageAdjoint.rgb.size(); ++i) {
         if (!std::isfinite(imageAdjoint.rgb[i])) {
@@ -164,14 +167,17 @@ std::vector<ParameterGradient> SceneSession::backpropagate(const RenderSettings&
         return {};
     }
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
+    uint64_t cutPaths = 0;
     const SceneGradients gradients = withRenderer(settings, [&](CachedRenderer& cached) {
         if (!cached.adjoint || cached.adjoint->loss || !cached.adjoint->targets.covers(wanted)) {
             cached.renderer->enableImageAdjoint(wanted);
             cached.adjoint = AdjointSetUp{std::nullopt, wanted};
         }
-        return cached.renderer->backpropagate(imageAdjoint);
+        SceneGradients result = cached.renderer->backpropagate(imageAdjoint);
+        cutPaths = cached.renderer->stats().truncatedPaths;
+        return result;
     });
-    return namedGradients(slots, gradients);
+    return {namedGradients(slots, gradients), cutPaths};
 }
 
 SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& settings, const Image& target,
@@ -182,6 +188,7 @@ SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& sett
     }
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
+    uint64_t cutPaths = 0;
     GradientEvaluation evaluation = withRenderer(settings, [&](CachedRenderer& cached) {
         if (!cached.adjoint || cached.adjoint->loss != loss || !cached.adjoint->targets.covers(wanted)) {
             cached.renderer->enableGradients(target, loss, wanted);
@@ -189,9 +196,11 @@ SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& sett
         } else {
             cached.renderer->setTarget(target);
         }
-        return cached.renderer->renderWithGradients();
+        GradientEvaluation result = cached.renderer->renderWithGradients();
+        cutPaths = cached.renderer->stats().truncatedPaths;
+        return result;
     });
-    return {evaluation.loss, std::move(evaluation.image), namedGradients(slots, evaluation.gradients)};
+    return {evaluation.loss, std::move(evaluation.image), namedGradients(slots, evaluation.gradients), cutPaths};
 }
 
 std::vector<ParameterGradient> SceneSession::namedGradients(const std::vector<GradientSlot>& slots,

@@ -49,11 +49,21 @@ public:
     // One value sets every channel (and texel); otherwise as many values as the parameter has.
     void set(const std::string& name, const std::vector<float>& values);
 
-    Image render(const RenderSettings& settings);
+    // Each call says how many of its paths were cut short by the renderer's bound on
+    // segments per path (RenderStats::truncatedPaths; 0 in a faithful render).
+    struct Rendered {
+        Image image;
+        uint64_t cutPaths = 0;
+    };
+    Rendered render(const RenderSettings& settings);
     // dLoss/dparameter for each name, for the image adjoint dLoss/dI of render(settings)'s
     // image (Renderer::backpropagate).
-    std::vector<ParameterGradient> backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
-                                                 const std::vector<std::string>& names);
+    struct Backpropagated {
+        std::vector<ParameterGradient> gradients;
+        uint64_t cutPaths = 0;
+    };
+    Backpropagated backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
+                                 const std::vector<std::string>& names);
 
     // The command line's loss and gradient (grad, optimize): the image of render(settings),
     // its loss against `target`, and dLoss/dparameter for each name by the split-sample
@@ -62,6 +72,7 @@ public:
         double loss;
         Image image;
         std::vector<ParameterGradient> gradients;
+        uint64_t cutPaths = 0;
     };
     LossGradient lossGradient(const RenderSettings& settings, const Image& target, LossKind loss,
                               const std::vector<std::string>& names);

@@ -2,10 +2,13 @@
 within standard errors; and repeatability."""
 import json
 import subprocess
+import warnings
 
 import numpy as np
+import pytest
 import vkdiffrender
 
+from conftest import SCENES
 from sample_means import assert_agree, mean_and_standard_error
 
 WIDTH, SPP = 32, 16
@@ -91,3 +94,26 @@ def test_loss_gradient_is_the_command_lines_bit_for_bit(cli, fog_scene_file, tmp
         assert image.shape == (24, 24, 3)
         for name in names:
             assert gradients[name].tolist() == expected["gradients"][name], name
+
+
+def test_paths_cut_short_are_a_runtime_warning():
+    """A grid whose majorant cells each hold one voxel of density 1 among zeros, at a
+    scattering of 3e5: free flight pauses more often than a path's segments allow, so
+    camera rays far from the dense voxels are cut short (depth 0: no shadow rays through
+    the grid). Each call that renders says so as the command line does; a faithful render
+    says nothing."""
+    scene = vkdiffrender.Scene(SCENES / "cornell_plume.gltf")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        scene.render(width=8, spp=1, max_depth=0)
+    density = np.zeros(scene.parameter("media/plume/density").shape, dtype=np.float32)
+    density[::8, ::8, ::8] = 1.0
+    scene["media/plume/density"] = density
+    scene["media/plume/sigma_s"] = 3e5
+    settings = {"width": 8, "spp": 2, "max_depth": 0}
+    with pytest.warns(RuntimeWarning, match="paths of the render .* were cut short"):
+        image = scene.render(**settings)
+    with pytest.warns(RuntimeWarning, match="were cut short"):
+        scene.loss_gradient(image, ["media/plume/sigma_s"], **settings)
+    with pytest.warns(RuntimeWarning, match="were cut short"):
+        scene.backpropagate(np.ones_like(image), ["media/plume/sigma_s"], **settings)
