@@ -71,6 +71,13 @@ void endReplay(uint slot) {
     }
 }
 
+// The first word of sum `first` in this subgroup's copy of an accumulator whose copies
+// lie `copyStride` sums apart (0 for an accumulator of one copy).
+uint subgroupCopyOfSum(uint copyStride, uint first) {
+    uint copy = (gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID) % kGradientCopies;
+    return (copy * copyStride + first) * kFixedPointWordsPerSum;
+}
+
 // Adds the first `channels` of g to the sums first, first + 1, ... of this subgroup's
 // copy (copies `copyStride` sums apart; kGradientCopies in device_types.h), and to those
 // from first + alsoAt on as well unless `alsoAt` is 0. Most lanes of a subgroup add to the
@@ -79,8 +86,7 @@ void endReplay(uint slot) {
 // must pass one buffer and one `alsoAt` for all its lanes, since the lanes are grouped by
 // `first` alone.
 void addGradient(Int64Buffer gradients, uint copyStride, uint first, uint alsoAt, vec3 g, uint channels) {
-    uint copy = (gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID) % kGradientCopies;
-    uint sum = (copy * copyStride + first) * kFixedPointWordsPerSum;
+    uint sum = subgroupCopyOfSum(copyStride, first);
     uint second = alsoAt == 0u ? kFixedPointNoSum : sum + alsoAt * kFixedPointWordsPerSum;
     for (;;) {
         uint leader = subgroupBroadcastFirst(first);

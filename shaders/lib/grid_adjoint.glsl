@@ -22,14 +22,13 @@ void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
     if (!gradientWanted(kGradientKindDensity)) {
         return;
     }
-    uint copy = (gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID) % kGradientCopies;
     vec3 base = floor(index);
     for (int corner = 0; corner < 8; ++corner) {
         ivec3 offset = trilinearCorner(corner);
         int voxel = gridVoxelOffset(grid, ivec3(base) + offset);
         if (voxel >= 0) {
-            uint sum = (copy * P.densityGradientsCopyStride + uint(voxel)) * kFixedPointWordsPerSum;
-            addFixedPointFromOneLane(P.densityGradients, sum, g * trilinearWeight(index - base, offset));
+            addFixedPointFromOneLane(P.densityGradients, subgroupCopyOfSum(P.densityGradientsCopyStride, uint(voxel)),
+                                     g * trilinearWeight(index - base, offset));
         }
     }
 }

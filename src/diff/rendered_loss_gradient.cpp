@@ -107,26 +107,29 @@ GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed)
     std::vector<std::vector<double>> gradients(impl_->slots.size());
     // The loss is the views' mean, and so is its gradient.
     const double viewWeight = 1.0 / double(impl_->targets.size());
+    // A view's image, loss, times and cut paths go into the result; its gradients are returned.
+    auto addView = [&](size_t v, const Renderer& renderer, GradientEvaluation evaluation) {
+        result.images[v] = std::move(evaluation.image);
+        result.loss += viewWeight * evaluation.loss;
+        result.forwardMs += evaluation.forwardMs;
+        result.adjointMs += evaluation.adjointMs;
+        result.truncatedPaths += renderer.stats().truncatedPaths;
+        return std::move(evaluation.gradients);
+    };
     for (ViewsOfOneSize& group : impl_->groups) {
         Renderer& renderer = *group.renderer;
         renderer.setParameters(scene);
-        // One view renders, back-propagates and reads everything back in one go.
-        const bool oneView = group.views.size() == 1;
-        if (!oneView) {
-            renderer.clearGradientSum();
-        }
         SceneGradients sum;
-        for (size_t v : group.views) {
-            impl_->prepareView(group, scene, v, seed);
-            GradientEvaluation evaluation = oneView ? renderer.renderWithGradients() : renderer.renderAddingGradients();
-            result.images[v] = std::move(evaluation.image);
-            result.loss += viewWeight * evaluation.loss;
-            result.forwardMs += evaluation.forwardMs;
-            result.adjointMs += evaluation.adjointMs;
-            result.truncatedPaths += renderer.stats().truncatedPaths;
-            sum = std::move(evaluation.gradients);
-        }
-        if (!oneView) {
+        if (group.views.size() == 1) {
+            // One view renders, back-propagates and reads everything back in one go.
+            impl_->prepareView(group, scene, group.views[0], seed);
+            sum = addView(group.views[0], renderer, renderer.renderWithGradients());
+        } else {
+            renderer.clearGradientSum();
+            for (size_t v : group.views) {
+                impl_->prepareView(group, scene, v, seed);
+                addView(v, renderer, renderer.renderAddingGradients());
+            }
             sum = renderer.downloadGradientSum();
         }
         for (size_t i = 0; i < impl_->slots.size(); ++i) {
