@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Stage 3: free-flight sampling in the medium the ray travels through. A distance
+// Stage 3: free-flight sampling in the medium the ray travels through. The segment
+// first gathers the medium's emission along it (medium_emission.glsl). A distance
 // before the surface hit becomes a medium vertex; otherwise the surface is the next
 // vertex. Rays that leave the scene collect the background and end here. The adjoint
 // pass adds delta * L_rem * d log(segment weight) to the medium's sigma gradients.
@@ -11,6 +12,7 @@
 #include "lib/medium.glsl"
 #include "lib/adjoint.glsl"
 #include "lib/grid_adjoint.glsl"
+#include "lib/medium_emission.glsl"
 
 // Whether a ray through the medium can go straight to the surface, weighted by its
 // transmittance: nothing scatters, and no path needs a collision to find the gradient of
@@ -123,6 +125,11 @@ void main() {
     applyPendingFactor(slot);
     uint vertexKind = kVertexSurface;
     if (medium != kNoMediumIndex) {
+        // A segment that goes on from a pause has had its emission gathered, up to the
+        // same surface, by the segment that paused.
+        if (P.vertexInfo.v[slot].y != kVertexPause) {
+            gatherMediumEmission(slot, medium, tHit, beta);
+        }
         vertexKind = sampleFreeFlightVertex(slot, medium, tHit, escaped, beta);
     }
     if (vertexKind == kVertexSurface && escaped) {

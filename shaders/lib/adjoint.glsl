@@ -138,6 +138,12 @@ void addPhaseGGradient(uint medium, float g) {
     }
 }
 
+void addMediumEmissionGradient(uint medium, vec3 g) {
+    if (gradientWanted(kGradientKindMediumEmission)) {
+        addMediumGradient(medium, kMediumGradientEmission, 0u, g, 3u);
+    }
+}
+
 void addBaseColorGradient(uint material, vec3 g) {
     if (gradientWanted(kGradientKindBaseColor)) {
         addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * kColorGradientStride, 0u, g,

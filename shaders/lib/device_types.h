@@ -70,7 +70,8 @@ const uint kGradientKindBaseColorTexture = 4u;
 const uint kGradientKindEmission = 5u;
 const uint kGradientKindLightIntensity = 6u;
 const uint kGradientKindDensity = 7u;
-const uint kEveryGradientKind = 0xffu;
+const uint kGradientKindMediumEmission = 8u;
+const uint kEveryGradientKind = 0x1ffu;
 
 // Derivative-mode targets of the adjoint pass (shaders/lib/adjoint.glsl): the kinds of
 // parameter whose zero-valued factors it follows, where their gradients are wanted.
@@ -82,7 +83,8 @@ const uint kTargetBaseColor = 2u;         // base colour of a material (factor o
 const uint kMediumGradientSigmaA = 0u;  // rgb
 const uint kMediumGradientSigmaS = 3u;  // rgb
 const uint kMediumGradientG = 6u;       // one value
-const uint kMediumGradientStride = 7u;
+const uint kMediumGradientEmission = 7u;  // rgb
+const uint kMediumGradientStride = 10u;
 // A base colour, emission or texel gradient: rgb.
 const uint kColorGradientStride = 3u;
 
@@ -206,6 +208,8 @@ struct GpuMedium {
     float g;                   // Henyey-Greenstein anisotropy
     vec3 sigma_s;              // scattering, per unit length (times the density, in a grid medium)
     uint densityGrid;          // index into RenderParams.densityGrids, kNoDensityGrid: homogeneous
+    vec3 emission;             // radiance emitted per unit length (times the density, in a grid medium)
+    uint padding;              // std430 rounds the struct to 16 bytes
 };
 
 const uint kNoDensityGrid = 0xffffffffu;

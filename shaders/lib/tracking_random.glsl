@@ -10,7 +10,9 @@ const uint kTrackingFreeFlight = 0u;
 const uint kTrackingShadow = 1u;
 const uint kTrackingFreeFlightGradient = 2u;  // the adjoint's own points, independent of the tracking
 const uint kTrackingShadowGradient = 3u;
-const uint kTrackingPurposes = 4u;
+const uint kTrackingEmission = 4u;            // a medium's emission along the segment (medium_emission.glsl)
+const uint kTrackingEmissionGradient = 5u;
+const uint kTrackingPurposes = 6u;
 struct TrackingRandom {
     uvec4 key;
     uint counter;

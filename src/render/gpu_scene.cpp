@@ -40,7 +40,8 @@ std::vector<gpu::GpuMaterial> deviceMaterials(const Scene& scene) {
 std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
     std::vector<gpu::GpuMedium> out;
     for (const Medium& m : scene.media) {
-        out.push_back({m.sigma_a, m.g, m.sigma_s, m.isHeterogeneous() ? uint32_t(m.densityGrid) : gpu::kNoDensityGrid});
+        out.push_back({m.sigma_a, m.g, m.sigma_s, m.isHeterogeneous() ? uint32_t(m.densityGrid) : gpu::kNoDensityGrid,
+                       m.emission, 0u});
     }
     return out;
 }

@@ -36,9 +36,11 @@ Medium readParticipatingMedia(const tinygltf::Value& extension, const std::strin
     medium.sigma_a = readRgbOrScalar(diagnostics, extension, field, "sigma_a", glm::vec3(0.0f));
     medium.sigma_s = readRgbOrScalar(diagnostics, extension, field, "sigma_s", glm::vec3(0.0f));
     medium.g = float(readNumber(diagnostics, extension, field, "g", 0.0));
+    medium.emission = readRgbOrScalar(diagnostics, extension, field, "emission", glm::vec3(0.0f));
     requireInRange(diagnostics, ParameterKind::SigmaA, {&medium.sigma_a.x, 3}, field + ".sigma_a");
     requireInRange(diagnostics, ParameterKind::SigmaS, {&medium.sigma_s.x, 3}, field + ".sigma_s");
     requireInRange(diagnostics, ParameterKind::G, {&medium.g, 1}, field + ".g");
+    requireInRange(diagnostics, ParameterKind::MediumEmission, {&medium.emission.x, 3}, field + ".emission");
     return medium;
 }
 
@@ -137,7 +139,20 @@ std::optional<Medium> readSceneMedium(const tinygltf::Model& model, GltfDiagnost
     if (name.empty()) {
         diagnostics.fail(field + ".name", "must not be empty");
     }
-    return readParticipatingMedia(*extension, field, name, diagnostics);
+    Medium medium = readParticipatingMedia(*extension, field, name, diagnostics);
+    // A density grid is finite; a homogeneous medium fills all space, and a ray that
+    // leaves the scene through it gathers its emission over an infinite length unless
+    // it is attenuated.
+    if (!(extension->IsObject() && extension->Has("density"))) {
+        for (int c = 0; c < 3; ++c) {
+            if (medium.emission[c] > 0.0f && medium.sigma_a[c] + medium.sigma_s[c] == 0.0f) {
+                diagnostics.fail(indexed(field + ".emission", size_t(c)),
+                                 "a scene-wide medium that emits where it neither absorbs nor scatters "
+                                 "(sigma_a + sigma_s = 0) makes every ray that leaves the scene infinitely bright");
+            }
+        }
+    }
+    return medium;
 }
 
 glm::vec3 readBackground(const tinygltf::Model& model, GltfDiagnostics& diagnostics) {

@@ -57,7 +57,7 @@ double densityStep(float value) {
     return sigmaStep(value);
 }
 
-constexpr std::array<ParameterDescription, 8> kDescriptions = {{
+constexpr std::array<ParameterDescription, 9> kDescriptions = {{
     {ParameterKind::SigmaA, "media/", "/sigma_a", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
      gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientSigmaA},
     {ParameterKind::SigmaS, "media/", "/sigma_s", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
@@ -76,6 +76,11 @@ constexpr std::array<ParameterDescription, 8> kDescriptions = {{
      emissionStep, gpu::GradientAccumulator::lightGradients, 0},
     {ParameterKind::Density, "media/", "/density", ParameterOwner::Medium, 1, {0.0, kInfinity}, densityStep,
      gpu::GradientAccumulator::densityGradients, 0},
+    // A medium's emission is per unit length: what a segment gathers grows with its
+    // length where nothing absorbs (emission / sigma_t where it does), which kMaxRadiance
+    // does not bound; the renderer's check of every pixel catches what overflows.
+    {ParameterKind::MediumEmission, "media/", "/emission", ParameterOwner::Medium, 3, {0.0, kMaxRadiance},
+     emissionStep, gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientEmission},
 }};
 
 // describe() indexes the table by kind.

@@ -25,6 +25,9 @@ enum class ParameterKind : uint32_t {
     LightIntensity = gpu::kGradientKindLightIntensity,
     // media/<medium>/density: every voxel of a density grid medium's grid, one value each
     Density = gpu::kGradientKindDensity,
+    // media/<medium>/emission: RGB radiance emitted per scene unit (per unit density in a
+    // density grid medium), at most kMaxRadiance
+    MediumEmission = gpu::kGradientKindMediumEmission,
 };
 
 // The largest radiance, per channel, an emitter (emissiveFactor x emissiveStrength, or

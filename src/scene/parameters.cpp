@@ -40,6 +40,7 @@ ParameterStorage<Float> mediumStorage(MediumType& medium, ParameterKind kind) {
     case ParameterKind::SigmaA: return packedStorage<Float>(glm::value_ptr(medium.sigma_a), kind);
     case ParameterKind::SigmaS: return packedStorage<Float>(glm::value_ptr(medium.sigma_s), kind);
     case ParameterKind::G: return packedStorage<Float>(&medium.g, kind);
+    case ParameterKind::MediumEmission: return packedStorage<Float>(glm::value_ptr(medium.emission), kind);
     default: throw Error("a medium has no parameter of this kind");
     }
 }
@@ -112,6 +113,7 @@ std::vector<std::string> parameterNames(const Scene& scene) {
         if (medium.isHeterogeneous()) {
             names.push_back(parameterName(ParameterKind::Density, medium.name));
         }
+        names.push_back(parameterName(ParameterKind::MediumEmission, medium.name));
     }
     for (const Material& material : scene.materials) {
         if (!material.isMediumBoundary()) {

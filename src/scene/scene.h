@@ -42,14 +42,19 @@ struct Material {
 };
 
 // A participating medium; sigma in inverse scene units. Homogeneous, or a density grid
-// medium whose coefficients at a point are sigma_a and sigma_s times the grid's value there.
+// medium whose coefficients at a point are sigma_a, sigma_s and emission times the grid's
+// value there.
 struct Medium {
     std::string name;  // parameter prefix is "media/<name>/"
     glm::vec3 sigma_a{0.0f};
     glm::vec3 sigma_s{0.0f};
     float g = 0.0f;    // Henyey-Greenstein anisotropy, in [-0.99, 0.99] (scene/parameter_kinds.h)
+    // Radiance emitted per unit length, in every direction alike (a source term of the
+    // radiative transfer equation, as Cycles' volume emission).
+    glm::vec3 emission{0.0f};
     int32_t densityGrid = -1;  // index into Scene::densityGrids; -1: homogeneous
     bool isHeterogeneous() const { return densityGrid >= 0; }
+    bool isEmissive() const { return emission != glm::vec3(0.0f); }
 };
 
 // A density grid as the scene places it.

@@ -83,6 +83,9 @@ void writeParticipatingMedia(json& extension, const Medium& medium) {
     extension["sigma_a"] = rgbJson(medium.sigma_a);
     extension["sigma_s"] = rgbJson(medium.sigma_s);
     extension["g"] = exactJsonNumber(medium.g);
+    if (medium.isEmissive() || extension.contains("emission")) {
+        extension["emission"] = rgbJson(medium.emission);
+    }
 }
 
 // sigma_a = -ln(attenuationColor) / attenuationDistance. The distance over which the
@@ -108,9 +111,9 @@ void writeVolumeAttenuation(json& volume, glm::vec3 sigma_a) {
 void writeEnclosedMedium(json& document, json& material, const Medium& medium) {
     json& extensions = material["extensions"];
     bool hasOwnSpelling = extensions.contains(kMediumExtension);
-    bool absorbsOnly = medium.sigma_s == glm::vec3(0.0f) && medium.g == 0.0f;
+    bool absorbsOnly = medium.sigma_s == glm::vec3(0.0f) && medium.g == 0.0f && !medium.isEmissive();
     // KHR_materials_volume describes absorption only; our spelling, which wins when a
-    // material has both, carries the scattering.
+    // material has both, carries the scattering and the emission.
     if (hasOwnSpelling || !absorbsOnly) {
         writeParticipatingMedia(extensions[kMediumExtension], medium);
         declareExtensionUsed(document, kMediumExtension);

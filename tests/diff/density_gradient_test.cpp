@@ -1,6 +1,7 @@
 // Per-voxel density gradients against central finite differences with common random
 // numbers: a small grid in a box, lit from behind (where the transmittance's derivative
-// dominates) or from the side (the scattering's), at voxels inside the medium, on its
+// dominates), from the side (the scattering's) or by its own emission, at voxels inside
+// the medium, on its
 // face, and one of zero
 // density between denser ones. The loss is L1 against a target brighter than every
 // pixel, so it is linear in the image: the finite difference estimates the gradient of
@@ -48,6 +49,7 @@ struct Lighting {
     float back;  // radiance of the emitter behind the medium
     float side;  // radiance of the emitter beside it
     float sigma;  // scales sigma_a and sigma_s: a thin medium shows its in-scattering
+    float glow = 0.0f;  // scales the medium's emission
 };
 
 void PrintTo(const Lighting& lighting, std::ostream* os) {
@@ -59,6 +61,8 @@ TestGltf smokeScene(const Lighting& lighting) {
     nlohmann::json smoke = vkdrMediumMaterial("smoke", lighting.sigma * glm::vec3(0.5f),
                                               lighting.sigma * glm::vec3(2.0f, 3.0f, 4.0f), 0.3f);
     smoke["extensions"]["VKDR_participating_media"]["density"] = {{"uri", "smoke.vdb"}};
+    smoke["extensions"]["VKDR_participating_media"]["emission"] = {lighting.glow, 0.6f * lighting.glow,
+                                                                   0.3f * lighting.glow};
     g.materials = {emissiveMaterial("back", lighting.back * glm::vec3(1.0f, 0.8f, 0.6f), false),
                    emissiveMaterial("side", glm::vec3(lighting.side), false), smoke};
     TestMesh side = quadZ(0.0f, 0.0f, 0.4f, 0.0f, true, 1);
@@ -116,7 +120,8 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Lightings, DensityGradientTest,
-                         ::testing::Values(Lighting{"BackLit", 1.0f, 0.0f, 1.0f}, Lighting{"SideLit", 0.0f, 20.0f, 0.25f}),
+                         ::testing::Values(Lighting{"BackLit", 1.0f, 0.0f, 1.0f}, Lighting{"SideLit", 0.0f, 20.0f, 0.25f},
+                                           Lighting{"Glowing", 0.0f, 0.0f, 0.5f, 2.0f}),
                          [](const ::testing::TestParamInfo<Lighting>& info) { return std::string(info.param.label); });
 
 }  // namespace

@@ -67,7 +67,7 @@ TEST(GridSparsity, IsTheWeightedMeanDensityWithAConstantGradient) {
 
 TEST(GridPriors, GridPriorLossGradientAddsTheTermsAndTheirGradients) {
     Scene scene;
-    scene.media.push_back({"smoke", glm::vec3(0.0f), glm::vec3(1.0f), 0.0f, 0});
+    scene.media.push_back({.name = "smoke", .sigma_s = glm::vec3(1.0f), .densityGrid = 0});
     scene.densityGrids.push_back({"", gridOf({2, 1, 1}, {1.0f, 4.0f}), glm::dmat4(1.0)});
     ZeroLossGradient inner;
     GridPriorLossGradient smoothed(inner, {{"media/smoke/density", {.smoothness = 2.0}}});

@@ -58,12 +58,17 @@ TestGltf FogSetup::scene() const {
         if (density) {
             gltf.materials.back()["extensions"]["VKDR_participating_media"]["density"] = {{"uri", density->uri}};
         }
+        if (emission != glm::dvec3(0.0)) {
+            gltf.materials.back()["extensions"]["VKDR_participating_media"]["emission"] = {emission.x, emission.y,
+                                                                                           emission.z};
+        }
         gltf.meshes.push_back(box(glm::vec3(enclosure->lo), glm::vec3(enclosure->hi), 1));
     } else {
         gltf.extensions["VKDR_participating_media"] = {{"name", "fog"},
                                                        {"sigma_a", {sigmaA.x, sigmaA.y, sigmaA.z}},
                                                        {"sigma_s", {sigmaS.x, sigmaS.y, sigmaS.z}},
-                                                       {"g", g}};
+                                                       {"g", g},
+                                                       {"emission", {emission.x, emission.y, emission.z}}};
     }
     gltf.yfov = float(yfov);
     return gltf;

@@ -19,6 +19,9 @@ struct FogSetup {
     glm::dvec3 sigmaA{0.1, 0.05, 0.0};
     glm::dvec3 sigmaS{0.3, 0.5, 0.8};
     double g = 0.0;
+    // Radiance the medium emits per unit length (per unit density); singleScattering
+    // leaves it out.
+    glm::dvec3 emission{0.0};
     double yfov = 0.01;  // one pixel, looking along +z from the origin
     // The emitter: a square in the plane x = lightX around (lightX, 0, lightZ), facing -x.
     double lightX = 1.5, lightZ = 2.0, lightHalf = 0.25;

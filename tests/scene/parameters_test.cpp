@@ -35,8 +35,8 @@ Scene sceneWithEverything() {
 
 TEST(Parameters, ListsMediaThenBaseColoursThenLights) {
     std::vector<std::string> expected = {
-        "media/fog/sigma_a",   "media/fog/sigma_s",   "media/fog/g",
-        "media/smoke/sigma_a", "media/smoke/sigma_s", "media/smoke/g",
+        "media/fog/sigma_a",   "media/fog/sigma_s",   "media/fog/g",   "media/fog/emission",
+        "media/smoke/sigma_a", "media/smoke/sigma_s", "media/smoke/g", "media/smoke/emission",
         "materials/white/base_color", "materials/light/base_color",
         "lights/light/emission"};
     EXPECT_EQ(parameterNames(sceneWithEverything()), expected);
@@ -86,7 +86,8 @@ std::string ownerOf(ParameterKind kind) {
     switch (kind) {
     case ParameterKind::SigmaA:
     case ParameterKind::SigmaS:
-    case ParameterKind::G: return "fog";
+    case ParameterKind::G:
+    case ParameterKind::MediumEmission: return "fog";
     case ParameterKind::Emission: return "light";
     case ParameterKind::LightIntensity: return "bulb";
     case ParameterKind::Density: return "smoke";
@@ -176,7 +177,7 @@ TEST(Parameters, BaseColorTextureIsTheRgbOfEveryTexel) {
     Scene scene = sceneWithEverything();
     scene.textures.push_back({"checker", 2, 1, {glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), glm::vec4(0.4f, 0.5f, 0.6f, 1.0f)}});
     scene.materials[0].baseColorTexture = 0;
-    EXPECT_EQ(parameterNames(scene)[7], "materials/white/base_color_texture");
+    EXPECT_EQ(parameterNames(scene)[9], "materials/white/base_color_texture");
     EXPECT_EQ(getParameter(scene, "materials/white/base_color_texture"),
               (std::vector<float>{0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f}));
     std::vector<float> texels = {0.6f, 0.5f, 0.4f, 0.3f, 0.2f, 0.1f};

@@ -1,6 +1,8 @@
 // Free-flight sampling with spectral MIS and transmittance (shaders/lib/medium.glsl):
 // sampled distances follow freeFlightPdf, survival is the probability of passing t,
-// and the surface-weighted estimator T / survival is unbiased for each channel.
+// and the surface-weighted estimator T / survival is unbiased for each channel. The
+// emission a segment gathers, and its sigma_t derivative, against the closed forms in
+// double precision, on both sides of the switch to their series and to infinity.
 #include <gtest/gtest.h>
 
 #include "glsl_host.h"
@@ -58,6 +60,27 @@ TEST(MediumTest, EmptyChannelNeverStopsTheRay) {
         }
     }
     EXPECT_FLOAT_EQ(freeFlightSurvival(sigma, kFar), 2.0f / 3.0f);
+}
+
+TEST(MediumTest, EmissionAlongASegmentMatchesItsClosedFormAndDerivative) {
+    for (double s : {1e-3, 0.02, 0.5, 3.0, 40.0}) {
+        for (double sigma : {0.0, 1e-4, 0.0199, 0.0201, 0.7, 5.0, 9.0}) {
+            const SegmentEmission e = emissionAlongSegment(vec3(float(sigma)), float(s));
+            const double x = sigma * s;
+            const double value = sigma > 0.0 ? -std::expm1(-x) / sigma : s;
+            // d/dsigma of (1 - exp(-sigma s)) / sigma; -s^2 / 2 at sigma = 0.
+            const double derivative =
+                sigma > 0.0 ? (s * std::exp(-x) + std::expm1(-x) / sigma) / sigma : -0.5 * s * s;
+            EXPECT_NEAR(e.value.x, value, 2e-6 * value) << "s " << s << " sigma " << sigma;
+            EXPECT_NEAR(e.dSigmaT.x, derivative, 2e-5 * std::abs(derivative) + 1e-12) << "s " << s << " sigma " << sigma;
+        }
+    }
+    const SegmentEmission unbounded = emissionAlongSegment(vec3(0.5f, 2.0f, 8.0f), kFar);
+    for (int c = 0; c < 3; ++c) {
+        const float sigma = vec3(0.5f, 2.0f, 8.0f)[c];
+        EXPECT_FLOAT_EQ(unbounded.value[c], 1.0f / sigma);
+        EXPECT_FLOAT_EQ(unbounded.dSigmaT[c], -1.0f / (sigma * sigma));
+    }
 }
 
 }  // namespace

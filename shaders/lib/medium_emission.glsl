@@ -1,0 +1,96 @@
+// Emissive media (docs/design.md, "Emissive media"). A medium emits j(x) = emission d(x)
+// per unit length, d the density (1 in a homogeneous medium), and attenuates with
+// sigma_t d(x). A segment through it gathers, whatever the free flight that ends it
+// samples, int_0^s T(t) j(t) dt, which is emission (1 - T(s)) / sigma_t exactly, since
+// dT/dt = -sigma_t d(t) T(t) (emission D(s), D the density's integral, where sigma_t is
+// 0): exact for a homogeneous medium, and in a density grid with ratio tracking's
+// unbiased estimate of T(s) (and stratified points' of D). The adjoint pass adds the
+// gradients of this contribution to the medium's emission, sigma and voxels.
+#ifndef VKDR_MEDIUM_EMISSION_GLSL
+#define VKDR_MEDIUM_EMISSION_GLSL
+#include "adjoint.glsl"
+#include "grid_adjoint.glsl"
+#include "medium.glsl"
+#include "path_state.glsl"
+
+bool mediumEmissionWanted(GpuMedium m) {
+    return m.emission != vec3(0.0f) || (kAdjoint && gradientWanted(kGradientKindMediumEmission));
+}
+
+// d log(contribution) is not defined where the contribution is 0, so the adjoint weights
+// each derivative by delta * beta on the normal channels: the gradient of the loss with
+// respect to the contribution.
+vec3 contributionAdjoint(vec3 beta) {
+    return delta * beta * normalMask(adjoint);
+}
+
+void gatherHomogeneousEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
+    SegmentEmission perUnit = emissionAlongSegment(sigmaT(m), tHit);
+    gather(slot, beta * m.emission * perUnit.value);
+    if (kAdjoint) {
+        vec3 g = contributionAdjoint(beta);
+        addMediumEmissionGradient(medium, g * perUnit.value);
+        addSigmaTGradient(medium, g * m.emission * perUnit.dSigmaT);
+    }
+}
+
+// In a density grid, T(s) comes from ratio tracking along the segment and D from
+// stratified points, each with numbers of its own; products of the two, which the
+// adjoint needs, are unbiased because they are independent.
+void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
+    GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
+    PathInfo info = loadPathInfo(slot);
+    vec3 origin = P.rayOrigin.v[slot].xyz;
+    vec3 direction = P.rayDirection.v[slot].xyz;
+    vec3 sigma_t = sigmaT(m);
+    TrackingRandom random = segmentTrackingRandom(info, kTrackingEmission);
+    float u = nextTrackingRandom(random).x;
+    bool truncated = false;
+    uint stepsLeft = kMaxTransmittanceSteps;
+    vec3 transmittance = ratioTrackTransmittance(grid, origin, direction, tHit, sigma_t, random, stepsLeft, truncated);
+    if (truncated) {
+        atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
+    }
+    bool anyUnattenuated = any(equal(sigma_t, vec3(0.0f)));
+    float integral = anyUnattenuated ? densityIntegralAdjoint(grid, origin, direction, tHit, u, 0.0f) : 0.0f;
+    vec3 perUnit;
+    for (int c = 0; c < 3; ++c) {
+        perUnit[c] = sigma_t[c] > 0.0f ? (1.0f - transmittance[c]) / sigma_t[c] : integral;
+    }
+    gather(slot, beta * m.emission * perUnit);
+    if (kAdjoint) {
+        // d/d sigma_t of emission (1 - T) / sigma_t is emission (D T / sigma_t - (1 - T) / sigma_t^2),
+        // and -emission D^2 / 2 where sigma_t is 0; d/d D is emission T (emission where
+        // sigma_t is 0), so the voxels get emission T dD/d(voxel).
+        vec3 g = contributionAdjoint(beta);
+        vec3 attenuation = mix(vec3(1.0f), transmittance, greaterThan(sigma_t, vec3(0.0f)));
+        float voxelWeight = dot(g, m.emission * attenuation);
+        TrackingRandom points = segmentTrackingRandom(info, kTrackingEmissionGradient);
+        float d1 = densityIntegralAdjoint(grid, origin, direction, tHit, nextTrackingRandom(points).x, -voxelWeight);
+        float d2 = anyUnattenuated ? densityIntegralAdjoint(grid, origin, direction, tHit,
+                                                            nextTrackingRandom(points).x, 0.0f)
+                                   : 0.0f;
+        vec3 dSigmaT;
+        for (int c = 0; c < 3; ++c) {
+            dSigmaT[c] = sigma_t[c] > 0.0f ? (d1 * transmittance[c] - perUnit[c]) / sigma_t[c] : -0.5f * d1 * d2;
+        }
+        addMediumEmissionGradient(medium, g * perUnit);
+        addSigmaTGradient(medium, g * m.emission * dSigmaT);
+    }
+}
+
+// Gathers the emission of `medium` along the segment [0, tHit) of the ray in `slot`
+// (tHit is kFar for a ray that leaves the scene), beta being the throughput at its start.
+void gatherMediumEmission(uint slot, uint medium, float tHit, vec3 beta) {
+    GpuMedium m = P.media.v[medium];
+    if (!mediumEmissionWanted(m)) {
+        return;
+    }
+    if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
+        gatherGridEmission(slot, medium, m, tHit, beta);
+    } else {
+        gatherHomogeneousEmission(slot, medium, m, tHit, beta);
+    }
+}
+
+#endif

@@ -1,0 +1,104 @@
+// Emissive media against closed forms. A segment gathers the emission along it,
+// int_0^s T(t) j(t) dt = emission (1 - T(s)) / sigma_t (emission times the density's
+// integral where sigma_t is 0), exactly in a homogeneous medium and with ratio tracking's
+// transmittance in a density grid. And furnaces: walls that emit Le and reflect albedo
+// rho hold the radiance L* = Le / (1 - rho) everywhere when every medium inside emits
+// exactly what it absorbs there, j = sigma_a L*, whatever it scatters: a homogeneous fog
+// around a nested smoke plume, and a grid whose loose majorant makes free flight pause.
+#include <cmath>
+
+#include "furnace_scene.h"
+#include "render_test_support.h"
+#include "single_scattering_quadrature.h"
+#include "volume/smoke_plume.h"
+#include "volume/write_density_grid.h"
+
+namespace vkdr::test {
+namespace {
+
+class EmissiveMediumTest : public RenderTest {};
+
+// Light that crosses the box z in [0.5, 4] (the one pixel looks along +z) gathers no
+// scattered light at depth 0: the pixel is the medium's emission along 3.5 units.
+FogSetup glowingBox() {
+    FogSetup fog;
+    fog.enclosure = FogSetup::Box{glm::dvec3(-1.0, -1.0, 0.5), glm::dvec3(1.0, 1.0, 4.0)};
+    fog.emission = glm::dvec3(1.0, 2.0, 3.0);
+    fog.le = glm::dvec3(0.0);
+    return fog;
+}
+
+constexpr double kBoxDepth = 3.5;
+
+// emission (1 - exp(-sigma_t D)) / sigma_t per channel, emission D where sigma_t is 0.
+glm::dvec3 emittedAlong(glm::dvec3 emission, glm::dvec3 sigmaT, double opticalLengthPerSigma) {
+    glm::dvec3 out;
+    for (int c = 0; c < 3; ++c) {
+        out[c] = sigmaT[c] > 0.0 ? emission[c] * -std::expm1(-sigmaT[c] * opticalLengthPerSigma) / sigmaT[c]
+                                 : emission[c] * opticalLengthPerSigma;
+    }
+    return out;
+}
+
+TEST_F(EmissiveMediumTest, HomogeneousEmissionMatchesTheClosedForm) {
+    FogSetup fog = glowingBox();
+    fog.sigmaA = glm::dvec3(0.2, 0.5, 0.0);
+    fog.sigmaS = glm::dvec3(0.3, 0.0, 0.0);
+    const auto pixel = pixelOverSeeds(fog.scene().write(tempDir(), "glow"), {.spp = 16, .maxDepth = 0}, 4);
+    expectPixelNear(pixel, emittedAlong(fog.emission, fog.sigmaA + fog.sigmaS, kBoxDepth));
+}
+
+// The density a + b z has its mean over the box at the box's middle, z = 2.25.
+TEST_F(EmissiveMediumTest, EmissionFollowingADensityRampMatchesTheClosedForm) {
+    FogSetup fog = glowingBox();
+    fog.sigmaA = glm::dvec3(0.2, 0.5, 0.0);
+    fog.sigmaS = glm::dvec3(0.0, 0.3, 0.0);
+    fog.density = FogSetup::LinearDensity{0.3, 0.5, "density.vdb"};
+    const std::filesystem::path dir = tempDir();
+    writeDensityGridVdb(dir / fog.density->uri, linearDensityGrid(fog, 0.25));
+    const auto pixel = pixelOverSeeds(fog.scene().write(dir, "glow"), {.spp = 1024, .maxDepth = 0}, 16);
+    const double densityIntegral = kBoxDepth * fog.densityAt(glm::dvec3(0.0, 0.0, 2.25));
+    expectPixelNear(pixel, emittedAlong(fog.emission, fog.sigmaA + fog.sigmaS, densityIntegral));
+}
+
+const glm::vec3 kRho(0.5f);
+const glm::vec3 kFurnaceRadiance = kFurnaceLe / (1.0f - kRho);
+
+TEST_F(EmissiveMediumTest, FurnaceHoldsItsRadianceWithAFogAndAPlumeThatEmitWhatTheyAbsorb) {
+    TestGltf g = furnace(kRho);
+    const glm::vec3 fogSigmaA(0.3f, 0.6f, 1.2f);
+    const glm::vec3 fogEmission = fogSigmaA * kFurnaceRadiance;
+    g.extensions["VKDR_participating_media"] = {{"name", "fog"},
+                                                {"sigma_a", {fogSigmaA.x, fogSigmaA.y, fogSigmaA.z}},
+                                                {"sigma_s", {0.5, 1.0, 0.2}},
+                                                {"g", 0.4},
+                                                {"emission", {fogEmission.x, fogEmission.y, fogEmission.z}}};
+    const glm::vec3 plumeSigmaA(6.0f, 2.0f, 4.0f);
+    const glm::vec3 plumeEmission = plumeSigmaA * kFurnaceRadiance;
+    nlohmann::json plume = vkdrMediumMaterial("plume", plumeSigmaA, glm::vec3(10.0f, 8.0f, 3.0f), -0.3f);
+    plume["extensions"]["VKDR_participating_media"]["density"] = {{"uri", "plume.vdb"}};
+    plume["extensions"]["VKDR_participating_media"]["emission"] = {plumeEmission.x, plumeEmission.y,
+                                                                   plumeEmission.z};
+    g.materials.push_back(plume);
+    g.meshes.push_back(box(glm::vec3(-0.6f), glm::vec3(0.6f), 1));
+    const std::filesystem::path dir = tempDir();
+    writeDensityGridVdb(dir / "plume.vdb", makeSmokePlume(24, 5));
+    Image image = renderFile(g.write(dir, "furnace"), {.width = 24, .height = 24, .spp = 32, .maxDepth = 2000});
+    expectUniformRadiance(image, glm::dvec3(kFurnaceRadiance));
+}
+
+// Free flight pauses in this medium (grid_medium_test.cpp), which absorbs far more than
+// it scatters: a segment that goes on from a pause must not gather again the emission
+// the segment that paused gathered up to the same surface (doing so raises the mean
+// by some 20 standard errors).
+TEST_F(EmissiveMediumTest, FurnaceWithPausesHoldsItsRadiance) {
+    const glm::vec3 sigmaA(3000.0f);
+    const std::filesystem::path scene = furnaceWithOneDenseVoxelPerCell(
+        kRho, {.sigmaA = sigmaA, .sigmaS = glm::vec3(10.0f), .emission = sigmaA * kFurnaceRadiance}, 3, 0.001f,
+        tempDir());
+    Image image = renderFile(scene, {.width = 12, .height = 12, .spp = 16, .maxDepth = 2000});
+    expectUniformRadiance(image, glm::dvec3(kFurnaceRadiance));
+}
+
+}  // namespace
+}  // namespace vkdr::test
