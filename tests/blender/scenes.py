@@ -1,5 +1,5 @@
 """Test scenes built with bpy (run inside Blender): a diffuse box lit by an area light,
-seen from its open front, and variants with a volume cube, a world fog, a point light,
+seen from its open front, and variants with a volume cube (one of them emissive), a world fog, a point light,
 a smooth sphere and Principled BSDF walls. Also the emissive mesh that stands in for an
 area light where Cycles' area lights and the exported emitter differ (docs/blender.md).
 The Cycles settings come from tools/blender/cycles_reference.py; the tests reach them as
@@ -11,10 +11,12 @@ from cycles_reference import configure_cycles, front_only_emission  # noqa: F401
 PRINCIPLED = {"Color": (0.7, 0.5, 0.3, 1.0), "Density": 2.0, "Absorption Color": (0.2, 0.5, 0.8, 1.0),
               "Anisotropy": 0.3}
 ABSORPTION = {"Color": (0.35, 0.6, 0.85, 1.0), "Density": 2.5}
+GLOWING = {"Color": (0.6, 0.5, 0.4, 1.0), "Density": 1.5, "Absorption Color": (0.3, 0.5, 0.7, 1.0),
+           "Anisotropy": 0.2, "Emission Color": (1.0, 0.5, 0.2, 1.0), "Emission Strength": 2.0}
 FOG = {"Color": (0.9, 0.9, 0.9, 1.0), "Density": 0.12, "Absorption Color": (0.0, 0.0, 0.0, 1.0),
        "Anisotropy": 0.2}
-SCENES = ("box_area", "principled_cube", "absorption_cube", "world_fog", "point_light", "smooth_sphere",
-          "principled_walls", "principled_walls_specular")
+SCENES = ("box_area", "principled_cube", "glowing_cube", "absorption_cube", "world_fog", "point_light",
+          "smooth_sphere", "principled_walls", "principled_walls_specular")
 
 
 def reset():
@@ -146,6 +148,8 @@ def build(name):
         add_area_light(scene)
     if name == "principled_cube":
         add_cube("smoke", volume_material("smoke", "ShaderNodeVolumePrincipled", PRINCIPLED))
+    elif name == "glowing_cube":
+        add_cube("glow", volume_material("glow", "ShaderNodeVolumePrincipled", GLOWING))
     elif name == "absorption_cube":
         add_cube("ink", volume_material("ink", "ShaderNodeVolumeAbsorption", ABSORPTION))
     elif name == "world_fog":

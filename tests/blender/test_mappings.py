@@ -12,7 +12,7 @@ TRIALS = 2000
 
 def random_medium(rng):
     return mappings.Medium(tuple(rng.uniform(0, 5) for _ in range(3)), tuple(rng.uniform(0, 5) for _ in range(3)),
-                           rng.uniform(-0.99, 0.99))
+                           rng.uniform(-0.99, 0.99), tuple(rng.uniform(0, 3) for _ in range(3)))
 
 
 def assert_close(a, b, tolerance=1e-9):
@@ -49,10 +49,20 @@ def test_principled_volume_inverse_reproduces_any_medium(seed):
         values = mappings.medium_to_principled_volume(medium)
         assert all(0.0 <= c <= 1.0 for c in values["color"] + values["absorption_color"])
         back = mappings.principled_volume_to_medium(values["color"], values["density"], values["absorption_color"],
-                                                    values["anisotropy"])
+                                                    values["anisotropy"], values["emission_color"],
+                                                    values["emission_strength"])
         assert_close(back.sigma_a, medium.sigma_a)
         assert_close(back.sigma_s, medium.sigma_s)
         assert back.g == pytest.approx(medium.g)
+        assert_close(back.emission, medium.emission)
+
+
+def test_principled_volume_emits_emission_color_times_strength_whatever_the_density():
+    medium = mappings.principled_volume_to_medium((0.5, 0.5, 0.5), 4.0, (0, 0, 0), 0.0, (1.0, 0.5, 0.25), 2.0)
+    assert_close(medium.emission, (2.0, 1.0, 0.5))
+    total, _ = mappings.add_media([medium, medium])
+    assert_close(total.emission, (4.0, 2.0, 1.0))
+    assert_close(mappings.scale_medium(medium, 0.25).emission, (0.5, 0.25, 0.125))
 
 
 @pytest.mark.parametrize("seed", range(3))

@@ -105,6 +105,30 @@ TEST(LoadSceneErrors, NegativeSigma) {
         {"materials[0].extensions.VKDR_participating_media.sigma_a", "must be >= 0, got -0.2"});
 }
 
+TEST(LoadSceneErrors, NegativeMediumEmission) {
+    TemporaryDirectory directory;
+    expectLoadError(
+        boxWithMaterial(mediumMaterial({{"emission", {1.0, -0.5, 0.0}}})).writeGltf(directory / "negative.gltf"),
+        {"materials[0].extensions.VKDR_participating_media.emission", "must be >= 0, got -0.5"});
+}
+
+// A scene-wide homogeneous medium fills all space: where it emits without attenuating,
+// a ray that leaves the scene would gather its emission without end. An enclosed medium,
+// or a scene-wide one that attenuates in that channel, loads.
+TEST(LoadSceneErrors, SceneWideEmissionWithoutAttenuation) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    builder.document()["extensions"]["VKDR_participating_media"] = {
+        {"name", "fog"}, {"sigma_a", {0.1, 0.0, 0.1}}, {"emission", {1.0, 1.0, 0.0}}};
+    expectLoadError(builder.writeGltf(directory / "fog.gltf"),
+                    {"extensions.VKDR_participating_media.emission[1]", "sigma_a + sigma_s = 0", "infinitely bright"});
+    builder.document()["extensions"]["VKDR_participating_media"]["sigma_s"] = {0.0, 0.2, 0.0};
+    EXPECT_EQ(loadScene(builder.writeGltf(directory / "fog.gltf")).scene.media.at(0).emission, glm::vec3(1.0f, 1.0f, 0.0f));
+    Scene enclosed = loadScene(boxWithMaterial(mediumMaterial({{"emission", 2.0}})).writeGltf(directory / "box.gltf")).scene;
+    EXPECT_EQ(enclosed.media.at(0).emission, glm::vec3(2.0f));
+}
+
 TEST(LoadSceneErrors, AnisotropyOfOneOrMore) {
     TemporaryDirectory directory;
     expectLoadError(boxWithMaterial(mediumMaterial({{"g", 1.2}})).writeGltf(directory / "g.gltf"),

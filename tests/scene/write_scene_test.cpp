@@ -55,9 +55,11 @@ TEST(WriteScene, RoundTripsEveryParameterOfTheExampleScene) {
     set(scene, "media/haze/sigma_a", {0.011f, 0.012f, 0.013f});
     set(scene, "media/haze/sigma_s", {0.5f});
     set(scene, "media/haze/g", {-0.25f});
+    set(scene, "media/haze/emission", {0.25f, 0.5f, 1.0f});
     set(scene, "media/smoke/sigma_a", {0.2f, 0.0f, 0.7f});
     set(scene, "media/smoke/sigma_s", {2.5f, 1.0f, 0.125f});
     set(scene, "media/smoke/g", {0.9f});
+    set(scene, "media/smoke/emission", {4.0f, 0.0f, 1.5f});
     set(scene, "materials/floor/base_color", {0.1f, 0.55f, 1.0f});
     set(scene, "lights/lamp/emission", {3.0f, 12.5f, 0.0f});
 
@@ -134,6 +136,19 @@ TEST(WriteScene, SwitchesAKhronosMediumThatScattersToOurSpelling) {
     EXPECT_TRUE(written["materials"][0]["extensions"].contains("VKDR_participating_media"));
     EXPECT_NE(std::find(written["extensionsUsed"].begin(), written["extensionsUsed"].end(), "VKDR_participating_media"),
               written["extensionsUsed"].end());
+}
+
+TEST(WriteScene, SwitchesAKhronosMediumThatEmitsToOurSpelling) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    addKhrVolumeBox(builder);
+    std::filesystem::path original = builder.writeGltf(directory / "ink.gltf");
+    Scene scene = loadScene(original).scene;
+    set(scene, "media/ink/emission", {0.5f, 2.0f, 0.0f});
+
+    Scene reloaded = writeAndReload(original, scene, directory / "fitted.gltf");
+    expectSameParameters(scene, reloaded);
+    EXPECT_TRUE(readJson(directory / "fitted.gltf")["materials"][0]["extensions"].contains("VKDR_participating_media"));
 }
 
 TEST(WriteScene, RoundTripsAnAbsorptionOfZero) {

@@ -33,7 +33,10 @@ def run_gltf_exporter(filepath):
 
 
 def medium_json(medium):
-    return {"sigma_a": list(medium.sigma_a), "sigma_s": list(medium.sigma_s), "g": medium.g}
+    entry = {"sigma_a": list(medium.sigma_a), "sigma_s": list(medium.sigma_s), "g": medium.g}
+    if any(c > 0.0 for c in medium.emission):
+        entry["emission"] = list(medium.emission)
+    return entry
 
 
 def add_material_media(doc, warnings):

@@ -53,7 +53,7 @@ def medium_from_json(entry, where):
             raise ValueError(f"{where}.attenuationColor: must be > 0, got {colour}")
         sigma_a = tuple(-math.log(c) / distance for c in colour)
         return mappings.Medium(sigma_a, (0.0, 0.0, 0.0), 0.0)
-    return mappings.Medium(rgb("sigma_a"), rgb("sigma_s"), float(entry.get("g", 0.0)))
+    return mappings.Medium(rgb("sigma_a"), rgb("sigma_s"), float(entry.get("g", 0.0)), rgb("emission"))
 
 
 def set_volume(owner, medium, output_kind):

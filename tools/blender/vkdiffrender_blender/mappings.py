@@ -1,7 +1,8 @@
 """Cycles' shader and light formulas, both ways, for the values vkdiffrender can express.
 
 Pure Python (no bpy), so it is tested outside Blender. vkdiffrender's medium is RGB
-absorption sigma_a and scattering sigma_s per scene unit plus one Henyey-Greenstein g;
+absorption sigma_a and scattering sigma_s per scene unit plus one Henyey-Greenstein g
+and an RGB emission (radiance per scene unit, Cycles' volume emission);
 its emitters are radiance (emissive triangles, emission 1 = radiance 1) and, for
 KHR_lights_punctual, radiant intensity per steradian (point, spot) or irradiance (sun),
 in the same units. The forward formulas follow Cycles 3.4 (kernel/svm/closure.h and the
@@ -19,6 +20,7 @@ class Medium:
     sigma_a: tuple  # RGB absorption per scene unit
     sigma_s: tuple  # RGB scattering per scene unit
     g: float        # Henyey-Greenstein anisotropy
+    emission: tuple = (0.0, 0.0, 0.0)  # RGB radiance emitted per scene unit
 
 
 def _rgb(value):
@@ -33,17 +35,20 @@ def _positive(x):
 
 # --- volumes: Blender node inputs -> vkdiffrender medium ----------------------------
 
-def principled_volume_to_medium(color, density, absorption_color, anisotropy):
+def principled_volume_to_medium(color, density, absorption_color, anisotropy, emission_color=0.0,
+                                emission_strength=0.0):
     """Cycles' svm_node_principled_volume: the scattering closure weighs color * density,
     and the extinction is (color + absorption) * density where
     absorption = max(1 - color, 0) * max(1 - sqrt(absorption_color), 0).
-    Absorption Color enters through its square root."""
+    Absorption Color enters through its square root. The emission is Emission Color x
+    Emission Strength, not scaled by the density."""
     color, absorption_color = _rgb(color), _rgb(absorption_color)
     density = _positive(float(density))
     sigma_s = tuple(_positive(c) * density for c in color)
     sigma_a = tuple(_positive(1.0 - c) * _positive(1.0 - math.sqrt(_positive(a))) * density
                     for c, a in zip(color, absorption_color))
-    return Medium(sigma_a, sigma_s, float(anisotropy))
+    emission = tuple(_positive(c) * _positive(float(emission_strength)) for c in _rgb(emission_color))
+    return Medium(sigma_a, sigma_s, float(anisotropy), emission)
 
 
 def volume_absorption_to_medium(color, density):
@@ -60,7 +65,8 @@ def volume_scatter_to_medium(color, density, anisotropy):
 
 def scale_medium(medium, weight):
     """A Mix Shader's factor scales every closure of its input."""
-    return Medium(tuple(weight * c for c in medium.sigma_a), tuple(weight * c for c in medium.sigma_s), medium.g)
+    return Medium(tuple(weight * c for c in medium.sigma_a), tuple(weight * c for c in medium.sigma_s), medium.g,
+                  tuple(weight * c for c in medium.emission))
 
 
 def add_media(media):
@@ -74,7 +80,8 @@ def add_media(media):
     total = sum(sum(m.sigma_s) for m in scatterers)
     g = sum(m.g * sum(m.sigma_s) for m in scatterers) / total if total > 0.0 else 0.0
     exact = len({m.g for m in scatterers}) <= 1
-    return Medium(sigma_a, sigma_s, g), exact
+    emission = tuple(sum(m.emission[i] for m in media) for i in range(3))
+    return Medium(sigma_a, sigma_s, g, emission), exact
 
 
 def clamp_g(g):
@@ -90,19 +97,23 @@ def medium_to_principled_volume(medium):
     written is the largest channel of sigma_t = sigma_a + sigma_s (the smallest density
     that keeps Color and Absorption Color in [0, 1]); then Color = sigma_s / Density and
     Absorption Color = (1 - sigma_a / (Density - sigma_s))^2. Where Density - sigma_s is 0
-    the channel absorbs nothing whatever Absorption Color is, and 0 is written."""
+    the channel absorbs nothing whatever Absorption Color is, and 0 is written. The
+    emission splits as a surface's does (radiance_to_emission)."""
     sigma_a, sigma_s = _rgb(medium.sigma_a), _rgb(medium.sigma_s)
+    emission = radiance_to_emission(medium.emission)
     density = max(a + s for a, s in zip(sigma_a, sigma_s))
     if density <= 0.0:
         return {"density": 0.0, "color": (1.0, 1.0, 1.0), "absorption_color": (0.0, 0.0, 0.0),
-                "anisotropy": float(medium.g)}
+                "anisotropy": float(medium.g), "emission_color": emission["color"],
+                "emission_strength": emission["strength"]}
     color = tuple(min(s / density, 1.0) for s in sigma_s)
     absorption_color = []
     for a, s in zip(sigma_a, sigma_s):
         room = density - s
         absorption_color.append(min(max(1.0 - a / room, 0.0), 1.0) ** 2 if room > 0.0 else 0.0)
     return {"density": density, "color": color, "absorption_color": tuple(absorption_color),
-            "anisotropy": float(medium.g)}
+            "anisotropy": float(medium.g), "emission_color": emission["color"],
+            "emission_strength": emission["strength"]}
 
 
 def medium_to_volume_absorption(sigma_a):

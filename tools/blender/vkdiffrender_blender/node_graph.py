@@ -34,13 +34,14 @@ def volume_medium(node, warnings, what):
     if node is None:
         return None
     if node.bl_idname == "ShaderNodeVolumePrincipled":
-        for name in ("Emission Strength", "Blackbody Intensity"):
-            if node.inputs[name].is_linked or node.inputs[name].default_value > 0.0:
-                warnings.append(f"{what}: '{node.name}' {name}: volume emission is not supported by "
-                                f"vkdiffrender and is dropped")
+        blackbody = node.inputs["Blackbody Intensity"]
+        if blackbody.is_linked or blackbody.default_value > 0.0:
+            warnings.append(f"{what}: '{node.name}' Blackbody Intensity: blackbody emission is not supported "
+                            f"by vkdiffrender and is dropped")
         return mappings.principled_volume_to_medium(
             constant(node, "Color", warnings, what), constant(node, "Density", warnings, what),
-            constant(node, "Absorption Color", warnings, what), constant(node, "Anisotropy", warnings, what))
+            constant(node, "Absorption Color", warnings, what), constant(node, "Anisotropy", warnings, what),
+            constant(node, "Emission Color", warnings, what), constant(node, "Emission Strength", warnings, what))
     if node.bl_idname == "ShaderNodeVolumeAbsorption":
         return mappings.volume_absorption_to_medium(constant(node, "Color", warnings, what),
                                                     constant(node, "Density", warnings, what))
@@ -93,7 +94,7 @@ def medium_of(owner, warnings, what):
     g, clamped = mappings.clamp_g(medium.g)
     if clamped:
         warnings.append(f"{what}: anisotropy {medium.g:g} is outside vkdiffrender's [-0.99, 0.99]; clamped")
-    return mappings.Medium(medium.sigma_a, medium.sigma_s, g)
+    return mappings.Medium(medium.sigma_a, medium.sigma_s, g, medium.emission)
 
 
 def surface_node(material):
@@ -112,6 +113,8 @@ def write_medium(node, medium):
         node.inputs["Color"].default_value = (*values["color"], 1.0)
         node.inputs["Absorption Color"].default_value = (*values["absorption_color"], 1.0)
         node.inputs["Anisotropy"].default_value = values["anisotropy"]
+        node.inputs["Emission Color"].default_value = (*values["emission_color"], 1.0)
+        node.inputs["Emission Strength"].default_value = values["emission_strength"]
         return None
     if node.bl_idname == "ShaderNodeVolumeAbsorption":
         values = mappings.medium_to_volume_absorption(medium.sigma_a)

@@ -43,7 +43,8 @@ def write_medium_values(owner_node, fitted, name):
     current = node_graph.volume_medium(owner_node, warnings, name)
     medium = mappings.Medium(tuple(fitted.get("sigma_a", current.sigma_a)),
                              tuple(fitted.get("sigma_s", current.sigma_s)),
-                             float(fitted.get("g", [current.g])[0]))
+                             float(fitted.get("g", [current.g])[0]),
+                             tuple(fitted.get("emission", current.emission)))
     warning = node_graph.write_medium(owner_node, medium)
     return [warning] if warning else []
 
