@@ -106,33 +106,33 @@ TEST(WriteScene, SplitsEmissionIntoAFactorAtMostOneAndAStrength) {
     EXPECT_FALSE(lamp.contains("extensions"));
 }
 
-TEST(WriteScene, KeepsTheKhronosSpellingForAnAbsorbingMedium) {
-    TemporaryDirectory directory;
+// A box of the Khronos-spelled medium "ink" with `values` set, written and reloaded
+// (the same parameters come back); returns the written document.
+json fittedKhrVolumeBox(const TemporaryDirectory& directory,
+                        const std::vector<std::pair<std::string, std::vector<float>>>& values) {
     GltfBuilder builder;
     addKhrVolumeBox(builder);
     std::filesystem::path original = builder.writeGltf(directory / "ink.gltf");
     Scene scene = loadScene(original).scene;
-    set(scene, "media/ink/sigma_a", {0.3f, 0.0f, 4.0f});
-
+    for (const auto& [name, value] : values) {
+        set(scene, name, value);
+    }
     Scene reloaded = writeAndReload(original, scene, directory / "fitted.gltf");
     expectSameParameters(scene, reloaded);
-    json extensions = readJson(directory / "fitted.gltf")["materials"][0]["extensions"];
+    return readJson(directory / "fitted.gltf");
+}
+
+TEST(WriteScene, KeepsTheKhronosSpellingForAnAbsorbingMedium) {
+    TemporaryDirectory directory;
+    json extensions =
+        fittedKhrVolumeBox(directory, {{"media/ink/sigma_a", {0.3f, 0.0f, 4.0f}}})["materials"][0]["extensions"];
     EXPECT_FALSE(extensions.contains("VKDR_participating_media"));
     EXPECT_TRUE(extensions.contains("KHR_materials_volume"));
 }
 
 TEST(WriteScene, SwitchesAKhronosMediumThatScattersToOurSpelling) {
     TemporaryDirectory directory;
-    GltfBuilder builder;
-    addKhrVolumeBox(builder);
-    std::filesystem::path original = builder.writeGltf(directory / "ink.gltf");
-    Scene scene = loadScene(original).scene;
-    set(scene, "media/ink/sigma_s", {0.75f});
-    set(scene, "media/ink/g", {0.5f});
-
-    Scene reloaded = writeAndReload(original, scene, directory / "fitted.gltf");
-    expectSameParameters(scene, reloaded);
-    json written = readJson(directory / "fitted.gltf");
+    json written = fittedKhrVolumeBox(directory, {{"media/ink/sigma_s", {0.75f}}, {"media/ink/g", {0.5f}}});
     EXPECT_TRUE(written["materials"][0]["extensions"].contains("VKDR_participating_media"));
     EXPECT_NE(std::find(written["extensionsUsed"].begin(), written["extensionsUsed"].end(), "VKDR_participating_media"),
               written["extensionsUsed"].end());
@@ -140,25 +140,13 @@ TEST(WriteScene, SwitchesAKhronosMediumThatScattersToOurSpelling) {
 
 TEST(WriteScene, SwitchesAKhronosMediumThatEmitsToOurSpelling) {
     TemporaryDirectory directory;
-    GltfBuilder builder;
-    addKhrVolumeBox(builder);
-    std::filesystem::path original = builder.writeGltf(directory / "ink.gltf");
-    Scene scene = loadScene(original).scene;
-    set(scene, "media/ink/emission", {0.5f, 2.0f, 0.0f});
-
-    Scene reloaded = writeAndReload(original, scene, directory / "fitted.gltf");
-    expectSameParameters(scene, reloaded);
-    EXPECT_TRUE(readJson(directory / "fitted.gltf")["materials"][0]["extensions"].contains("VKDR_participating_media"));
+    json written = fittedKhrVolumeBox(directory, {{"media/ink/emission", {0.5f, 2.0f, 0.0f}}});
+    EXPECT_TRUE(written["materials"][0]["extensions"].contains("VKDR_participating_media"));
 }
 
 TEST(WriteScene, RoundTripsAnAbsorptionOfZero) {
     TemporaryDirectory directory;
-    GltfBuilder builder;
-    addKhrVolumeBox(builder);
-    std::filesystem::path original = builder.writeGltf(directory / "ink.gltf");
-    Scene scene = loadScene(original).scene;
-    set(scene, "media/ink/sigma_a", {0.0f});
-    expectSameParameters(scene, writeAndReload(original, scene, directory / "fitted.gltf"));
+    fittedKhrVolumeBox(directory, {{"media/ink/sigma_a", {0.0f}}});
 }
 
 TEST(WriteScene, GivesPrimitivesWithoutAMaterialTheFittedDefaultMaterial) {
