@@ -14,7 +14,8 @@
 #include "path_state.glsl"
 
 bool mediumEmissionWanted(GpuMedium m) {
-    return m.emission != vec3(0.0f) || (kAdjoint && gradientWanted(kGradientKindMediumEmission));
+    return kEmissiveMedia &&
+           (m.emission != vec3(0.0f) || (kAdjoint && gradientWanted(kGradientKindMediumEmission)));
 }
 
 // d log(contribution) is not defined where the contribution is 0, so the adjoint weights
@@ -30,7 +31,10 @@ void gatherHomogeneousEmission(uint slot, uint medium, GpuMedium m, float tHit, 
     if (kAdjoint) {
         vec3 g = contributionAdjoint(beta);
         addMediumEmissionGradient(medium, g * perUnit.value);
-        addSigmaTGradient(medium, g * m.emission * perUnit.dSigmaT);
+        // Where nothing is emitted the other gradients of the emission are 0.
+        if (m.emission != vec3(0.0f)) {
+            addSigmaTGradient(medium, g * m.emission * perUnit.dSigmaT);
+        }
     }
 }
 
@@ -58,11 +62,16 @@ void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
         perUnit[c] = sigma_t[c] > 0.0f ? (1.0f - transmittance[c]) / sigma_t[c] : integral;
     }
     gather(slot, beta * m.emission * perUnit);
-    if (kAdjoint) {
+    if (!kAdjoint) {
+        return;
+    }
+    vec3 g = contributionAdjoint(beta);
+    addMediumEmissionGradient(medium, g * perUnit);
+    // Where nothing is emitted the other gradients of the emission are 0.
+    if (m.emission != vec3(0.0f)) {
         // d/d sigma_t of emission (1 - T) / sigma_t is emission (D T / sigma_t - (1 - T) / sigma_t^2),
         // and -emission D^2 / 2 where sigma_t is 0; d/d D is emission T (emission where
         // sigma_t is 0), so the voxels get emission T dD/d(voxel).
-        vec3 g = contributionAdjoint(beta);
         vec3 attenuation = mix(vec3(1.0f), transmittance, greaterThan(sigma_t, vec3(0.0f)));
         float voxelWeight = dot(g, m.emission * attenuation);
         TrackingRandom points = segmentTrackingRandom(info, kTrackingEmissionGradient);
@@ -74,7 +83,6 @@ void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
         for (int c = 0; c < 3; ++c) {
             dSigmaT[c] = sigma_t[c] > 0.0f ? (d1 * transmittance[c] - perUnit[c]) / sigma_t[c] : -0.5f * d1 * d2;
         }
-        addMediumEmissionGradient(medium, g * perUnit);
         addSigmaTGradient(medium, g * m.emission * dSigmaT);
     }
 }

@@ -33,6 +33,9 @@ layout(constant_id = 1) const uint kGradientKinds = 0xffffffffu;
 // Whether the scene has density grid media: without them their tracking is compiled out,
 // which a CPU device would otherwise pay for on every path.
 layout(constant_id = 2) const bool kDensityGrids = true;
+// Whether a medium of the scene emits (or, in the adjoint pipelines, the gradient of a
+// medium's emission is wanted): without, gathering media's emission is compiled out.
+layout(constant_id = 3) const bool kEmissiveMedia = true;
 
 #define P params.p
 

@@ -223,7 +223,9 @@ private:
     uint32_t punctualLightCount_;
     uint32_t texelCount_;
     uint32_t voxelCount_;
-    bool hasDensityGrids_;  // the stages are compiled to track through grids only when the scene has some
+    // What the primal stages are compiled for: tracking through grids only when the scene
+    // has some, gathering media's emission once a medium emits.
+    MediaFeatures media_;
     GpuScene scene_;
     StagePipelines pipelines_;
     std::unique_ptr<PathBuffers> paths_;

@@ -67,8 +67,12 @@ void Renderer::enableImageAdjoint(const DerivativeTargets& derivativeTargets) {
 }
 
 void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths) {
-    if (!pipelines_.gradient || pipelines_.gradient->kinds != derivativeTargets.kinds) {
-        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, derivativeTargets.kinds, hasDensityGrids_);
+    // The emission's gradient is wanted even where no medium emits yet.
+    MediaFeatures media = media_;
+    media.emission = media.emission || derivativeTargets.wants(ParameterKind::MediumEmission);
+    if (!pipelines_.gradient || pipelines_.gradient->kinds != derivativeTargets.kinds ||
+        pipelines_.gradient->media != media) {
+        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, derivativeTargets.kinds, media);
     }
     adjoint_.reset();  // the old state's memory is free before the new one takes its own
     const bool texels = derivativeTargets.wants(ParameterKind::BaseColorTexture);

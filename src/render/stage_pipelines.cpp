@@ -25,34 +25,34 @@ std::span<const uint32_t> stageSpirv(Stage stage) {
 namespace {
 
 // The pipeline of a stage; of a stage with an adjoint variant, the primal or the adjoint one
-// for the gradients of `gradientKinds`, with or without tracking through density grids
-// (specialization constants 0, 1 and 2 of shaders/lib/stage_common.glsl). The dispatch
-// timer's scope, not the name, tells the variants apart.
+// for the gradients of `gradientKinds`, for the media features `media` (specialization
+// constants 0 to 3 of shaders/lib/stage_common.glsl). The dispatch timer's scope, not
+// the name, tells the variants apart.
 ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false,
-                              uint32_t gradientKinds = 0, bool densityGrids = false) {
+                              uint32_t gradientKinds = 0, MediaFeatures media = {}) {
     const StageInfo& info = stageInfo(stage);
     assert(info.hasAdjointVariant || !adjoint);
     std::vector<uint32_t> specialization;
     if (info.hasAdjointVariant) {
-        specialization = {adjoint ? 1u : 0u, gradientKinds, densityGrids ? 1u : 0u};
+        specialization = {adjoint ? 1u : 0u, gradientKinds, media.densityGrids ? 1u : 0u, media.emission ? 1u : 0u};
     }
     return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);
 }
 
 }  // namespace
 
-PathStages::PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, bool densityGrids)
-    : generate(stagePipeline(context, Stage::Generate, adjoint, gradientKinds, densityGrids)),
-      mediumSample(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, densityGrids)),
-      shade(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, densityGrids)),
-      shadow(stagePipeline(context, Stage::Shadow, adjoint, gradientKinds, densityGrids)) {}
+PathStages::PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media)
+    : generate(stagePipeline(context, Stage::Generate, adjoint, gradientKinds, media)),
+      mediumSample(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, media)),
+      shade(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media)),
+      shadow(stagePipeline(context, Stage::Shadow, adjoint, gradientKinds, media)) {}
 
-GradientPipelines::GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, bool densityGrids)
-    : kinds(gradientKinds), adjoint(context, true, gradientKinds, densityGrids),
+GradientPipelines::GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media)
+    : kinds(gradientKinds), media(media), adjoint(context, true, gradientKinds, media),
       loss(stagePipeline(context, Stage::Loss)) {}
 
-StagePipelines::StagePipelines(const VulkanContext& context, bool densityGrids)
-    : primal(context, false, 0, densityGrids),
+StagePipelines::StagePipelines(const VulkanContext& context, MediaFeatures media)
+    : primal(context, false, 0, media),
       intersect(stagePipeline(context, Stage::Intersect)),
       queuePrepare(stagePipeline(context, Stage::QueuePrepare)),
       film(stagePipeline(context, Stage::Film)) {}

@@ -8,11 +8,20 @@ namespace vkdr {
 
 class VulkanContext;
 
+// What of the media the path stages are compiled to handle; a CPU device runs every
+// branch of a shader, taken or not, so what a scene does not have is compiled out.
+struct MediaFeatures {
+    bool densityGrids = false;  // tracking through density grid media
+    bool emission = false;      // gathering the emission of media (and its gradients)
+
+    bool operator==(const MediaFeatures&) const = default;
+};
+
 // The stages that follow a path (render/stages.h), compiled once as primal and once as
 // adjoint pipelines; the adjoint ones add the gradients of `gradientKinds` (bit
-// 1 << ParameterKind) alone. Without `densityGrids` they cannot track through grid media.
+// 1 << ParameterKind) alone.
 struct PathStages {
-    PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, bool densityGrids);
+    PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media);
 
     ComputePipeline generate;
     ComputePipeline mediumSample;
@@ -23,16 +32,17 @@ struct PathStages {
 // What only differentiation needs; compiled on first use, since a plain render
 // should not pay for it, and again for other kinds of gradient.
 struct GradientPipelines {
-    GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, bool densityGrids);
+    GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media);
 
     uint32_t kinds;  // the kinds of parameter whose gradients the adjoint stages add
+    MediaFeatures media;
     PathStages adjoint;
     ComputePipeline loss;
 };
 
 // One pipeline per wavefront stage, named after it.
 struct StagePipelines {
-    StagePipelines(const VulkanContext& context, bool densityGrids);
+    StagePipelines(const VulkanContext& context, MediaFeatures media);
 
     PathStages primal;
     ComputePipeline intersect;  // closest hits: the same in both passes

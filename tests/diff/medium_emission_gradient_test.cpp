@@ -111,6 +111,28 @@ TEST_P(MediumEmissionGradientTest, AdjointMatchesFiniteDifferences) {
     }
 }
 
+// What a medium emits enters the image linearly and changes no decision of a path, so
+// with a loss linear in the image the emission's gradient is the same at every emission,
+// bit for bit: in particular at 0, where the stages gather nothing until the gradient is
+// wanted, and after a renderer built for a scene without emission is given some.
+TEST_F(RenderTest, TheEmissionGradientAtZeroIsItsGradientAnywhere) {
+    const std::filesystem::path dir = tempDir();
+    writeDensityGridVdb(dir / "glow.vdb", glowGrid());
+    for (bool grid : {false, true}) {
+        const GlowCase c{"", glm::vec3(0.6f, 1.2f, 0.3f), glm::vec3(0.5f, 1.5f, 1.0f), grid, "media/glow/emission"};
+        Scene glowing = loadScene(glowScene(c).write(dir, "glow")).scene;
+        Scene dark = glowing;
+        setParameter(dark, c.parameter, std::vector<float>{0.0f});
+        Image bright{kSide, kSide, std::vector<float>(kSide * kSide * 3, 20.0f)};
+        RenderedLossGradient lg(testContext(), dark, {{"", bright}}, {c.parameter}, {.spp = 8, .maxDepth = 3},
+                                LossKind::L1);
+        const GradientResult atZero = lg.evaluate(dark, 3);
+        const GradientResult atSome = lg.evaluate(glowing, 3);
+        EXPECT_EQ(atZero.parameters[0].gradient, atSome.parameters[0].gradient) << (grid ? "grid" : "homogeneous");
+        EXPECT_LT(atSome.loss, atZero.loss) << "the emission must brighten the image";
+    }
+}
+
 const glm::vec3 kAbsorbing(0.6f, 1.2f, 0.3f);
 const glm::vec3 kScattering(0.5f, 1.5f, 1.0f);
 

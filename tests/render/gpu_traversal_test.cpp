@@ -79,7 +79,7 @@ TEST_F(GpuTraversalTest, ClosestHitMatchesBruteForce) {
     params.pathCapacity = kRays;
     Buffer paramBuffer = uploadBuffer(context, std::as_bytes(std::span(&params, 1)), "params");
 
-    StagePipelines pipelines(context, false);
+    StagePipelines pipelines(context, MediaFeatures{});
     PushConstants push{paramBuffer.address(), gpu::PassConstants{}};
     push.pass.currentRays = gpu::kQueueRays0;
     CommandRecorder recorder(context);
