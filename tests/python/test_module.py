@@ -80,7 +80,8 @@ def test_loss_gradient_is_the_command_lines_bit_for_bit(cli, fog_scene_file, tmp
     target_file = tmp_path / "target.exr"
     subprocess.run([cli, "render", str(fog_scene_file), "-o", str(target_file), "--spp", "8", "--width", "24",
                     "--set", "media/fog/sigma_a=0.05"], check=True, capture_output=True)
-    names = ["media/fog/sigma_a", "media/fog/sigma_s", "media/fog/g", "materials/white/base_color"]
+    names = ["media/fog/sigma_a", "media/fog/sigma_s", "media/fog/g", "media/fog/emission",
+             "materials/white/base_color"]
     for loss in ["l2", "l1"]:
         command = [cli, "grad", str(fog_scene_file), "--target", str(target_file), "--spp", "4", "--seed", "0",
                    "--loss", loss, "--json"]
