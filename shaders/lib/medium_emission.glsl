@@ -25,15 +25,25 @@ vec3 contributionAdjoint(vec3 beta) {
     return delta * beta * normalMask(adjoint);
 }
 
+// A ray that leaves the scene through a homogeneous medium that does not attenuate in a
+// channel would gather its emission without end: the loader refuses such emission, and
+// the gradients leave that channel out (its derivative is infinite).
 void gatherHomogeneousEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
-    SegmentEmission perUnit = emissionAlongSegment(sigmaT(m), tHit);
+    vec3 sigma_t = sigmaT(m);
+    SegmentEmission perUnit = emissionAlongSegment(sigma_t, tHit);
     gather(slot, beta * m.emission * perUnit.value);
     if (kAdjoint) {
+        bvec3 finite = tHit < kFar ? bvec3(true) : greaterThan(sigma_t, vec3(0.0f));
         vec3 g = contributionAdjoint(beta);
-        addMediumEmissionGradient(medium, g * perUnit.value);
+        addMediumEmissionGradient(medium, mix(vec3(0.0f), g * perUnit.value, finite));
         // Where nothing is emitted the other gradients of the emission are 0.
-        if (m.emission != vec3(0.0f)) {
-            addSigmaTGradient(medium, g * m.emission * perUnit.dSigmaT);
+        bvec3 emits = greaterThan(m.emission, vec3(0.0f));
+        if (any(emits)) {
+            vec3 dEmission = vec3(0.0f);
+            for (int c = 0; c < 3; ++c) {
+                dEmission[c] = emits[c] && finite[c] ? g[c] * m.emission[c] * perUnit.dSigmaT[c] : 0.0f;
+            }
+            addSigmaTGradient(medium, dEmission);
         }
     }
 }
@@ -67,8 +77,9 @@ void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
     }
     vec3 g = contributionAdjoint(beta);
     addMediumEmissionGradient(medium, g * perUnit);
-    // Where nothing is emitted the other gradients of the emission are 0.
-    if (m.emission != vec3(0.0f)) {
+    // Where nothing is emitted the other gradients of the emission are 0, and without
+    // sigma or density gradients nothing else is wanted.
+    if (m.emission != vec3(0.0f) && gridGradientsWanted()) {
         // d/d sigma_t of emission (1 - T) / sigma_t is emission (D T / sigma_t - (1 - T) / sigma_t^2),
         // and -emission D^2 / 2 where sigma_t is 0; d/d D is emission T (emission where
         // sigma_t is 0), so the voxels get emission T dD/d(voxel).

@@ -1,5 +1,7 @@
 #include "scene/scene_warnings.h"
 
+#include <algorithm>
+
 #include <glm/glm.hpp>
 
 namespace vkdr {
@@ -49,10 +51,12 @@ std::vector<std::string> sceneWarnings(const Scene& scene) {
             warnings.push_back("light '" + scene.punctualLights[i].name + "' is placed by no node and lights nothing");
         }
     }
-    if (emittingTriangles == 0 && shiningLights == 0 && scene.background == glm::vec3(0.0f)) {
+    const bool glowingMedium =
+        std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) { return m.isEmissive(); });
+    if (emittingTriangles == 0 && shiningLights == 0 && !glowingMedium && scene.background == glm::vec3(0.0f)) {
         warnings.push_back("the scene has no light: no triangle of non-zero area has an emissive material, no "
-                           "punctual light has an intensity above 0 and the background is black, so the image "
-                           "will be black");
+                           "punctual light has an intensity above 0, no medium emits and the background is "
+                           "black, so the image will be black");
     }
     return warnings;
 }

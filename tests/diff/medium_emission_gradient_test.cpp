@@ -1,6 +1,6 @@
 // Gradients of what emissive media gather, against finite differences with common random
 // numbers: a medium's emission and sigma_a, homogeneous (absorbing only, and scattering)
-// and in a density grid, in front of an emitter and lit from the side. The loss is L1
+// and in a density grid, and the emission of a channel that nothing attenuates, in front of an emitter and lit from the side. The loss is L1
 // against a target brighter than every pixel, so it is linear in the image: the finite
 // difference estimates the gradient of the expected loss exactly as the adjoint does,
 // and the tolerance is 5 of their combined standard errors over seeds. The difference is
@@ -133,8 +133,33 @@ TEST_F(RenderTest, TheEmissionGradientAtZeroIsItsGradientAnywhere) {
     }
 }
 
+// A scene-wide fog that attenuates nothing in blue (and emits no blue, as it must): rays
+// that leave the scene through it would gather blue emission without end, so the
+// gradients leave blue out, and every gradient stays finite.
+TEST_F(RenderTest, AFogClearInOneChannelGivesFiniteEmissionGradients) {
+    TestGltf g;
+    g.materials = {diffuseMaterial("floor", glm::vec3(0.5f))};
+    g.meshes = {quadZ(0.0f, 0.0f, 1.0f, 3.0f, false, 0)};
+    g.extensions["VKDR_participating_media"] = {
+        {"name", "fog"}, {"sigma_a", {0.1, 0.2, 0.0}}, {"sigma_s", {0.1, 0.0, 0.0}}, {"emission", {1.0, 0.5, 0.0}}};
+    g.yfov = 1.2f;
+    Scene scene = loadScene(g.write(tempDir(), "fog")).scene;
+    Image black{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.0f)};
+    const std::vector<std::string> names = {"media/fog/sigma_a", "media/fog/sigma_s", "media/fog/emission"};
+    RenderedLossGradient lg(testContext(), scene, {{"", black}}, names, {.spp = 4, .maxDepth = 3}, LossKind::L2);
+    const GradientResult result = lg.evaluate(scene, 0);
+    for (const ParameterGradient& p : result.parameters) {
+        for (double d : p.gradient) {
+            EXPECT_TRUE(std::isfinite(d)) << p.name;
+        }
+    }
+    EXPECT_EQ(result.parameters[2].gradient[2], 0.0) << "blue's emission gradient is infinite and left out";
+    EXPECT_GT(result.parameters[2].gradient[0], 0.0);
+}
+
 const glm::vec3 kAbsorbing(0.6f, 1.2f, 0.3f);
 const glm::vec3 kScattering(0.5f, 1.5f, 1.0f);
+const glm::vec3 kAbsorbingRedGreen(0.6f, 1.2f, 0.0f);
 
 INSTANTIATE_TEST_SUITE_P(
     Media, MediumEmissionGradientTest,
@@ -143,7 +168,13 @@ INSTANTIATE_TEST_SUITE_P(
                       GlowCase{"ScatteringEmission", kAbsorbing, kScattering, false, "media/glow/emission"},
                       GlowCase{"ScatteringSigmaA", kAbsorbing, kScattering, false, "media/glow/sigma_a"},
                       GlowCase{"GridEmission", kAbsorbing, kScattering, true, "media/glow/emission"},
-                      GlowCase{"GridSigmaA", kAbsorbing, kScattering, true, "media/glow/sigma_a"}),
+                      GlowCase{"GridSigmaA", kAbsorbing, kScattering, true, "media/glow/sigma_a"},
+                      // Blue neither absorbs nor scatters: its emission gathers the length
+                      // (homogeneous) or the density's integral (grid).
+                      GlowCase{"UnattenuatedBlueEmission", kAbsorbingRedGreen, glm::vec3(0.0f), false,
+                               "media/glow/emission"},
+                      GlowCase{"GridUnattenuatedBlueEmission", kAbsorbingRedGreen, glm::vec3(0.0f), true,
+                               "media/glow/emission"}),
     [](const ::testing::TestParamInfo<GlowCase>& info) { return std::string(info.param.label); });
 
 }  // namespace

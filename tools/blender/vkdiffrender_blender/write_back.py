@@ -23,7 +23,7 @@ def fittable_parameters(scene):
     """Parameter names in vkdiffrender's spelling, each with a label for the UI."""
     names = []
     for name, _, node in volume_owners(scene):
-        kinds = {"ShaderNodeVolumePrincipled": ("sigma_a", "sigma_s", "g"),
+        kinds = {"ShaderNodeVolumePrincipled": ("sigma_a", "sigma_s", "g", "emission"),
                  "ShaderNodeVolumeAbsorption": ("sigma_a",),
                  "ShaderNodeVolumeScatter": ("sigma_s", "g")}[node.bl_idname]
         names += [f"media/{name}/{kind}" for kind in kinds]
