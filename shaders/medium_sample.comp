@@ -119,7 +119,8 @@ void main() {
     vec4 hit = P.hit.v[slot];
     bool escaped = floatBitsToUint(hit.w) == kNoHit;
     float tHit = escaped ? kFar : hit.x;
-    uint medium = P.vertexInfo.v[slot].x;
+    uvec2 vertex = P.vertexInfo.v[slot].xy;  // the medium, and the kind of the vertex the ray left
+    uint medium = vertex.x;
     vec3 beta = P.beta.v[slot].rgb;
     beginReplay(slot);
     applyPendingFactor(slot);
@@ -127,7 +128,7 @@ void main() {
     if (medium != kNoMediumIndex) {
         // A segment that goes on from a pause has had its emission gathered, up to the
         // same surface, by the segment that paused.
-        if (P.vertexInfo.v[slot].y != kVertexPause) {
+        if (vertex.y != kVertexPause) {
             gatherMediumEmission(slot, medium, tHit, beta);
         }
         vertexKind = sampleFreeFlightVertex(slot, medium, tHit, escaped, beta);

@@ -9,6 +9,7 @@
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
+#include "cli/warnings.h"
 #include "core/error.h"
 #include "scene/parameters.h"
 #include "core/interrupt.h"
@@ -16,7 +17,6 @@
 #include "diff/rendered_loss_gradient.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/value_summary.h"
-#include "render/cut_paths.h"
 #include "vk/context.h"
 
 namespace vkdr {
@@ -157,9 +157,7 @@ int runGrad(const GradOptions& options) {
     requireNoValidationMessages(context);
     requireFiniteResult(result, check);
     throwIfInterrupted();  // a signal after the last pass: no result printed
-    if (result.truncatedPaths > 0) {
-        std::fprintf(stderr, "warning: %s\n", cutPathsMessage(result.truncatedPaths, "the render").c_str());
-    }
+    warnOfCutPaths(result.truncatedPaths, "the render");
     if (options.json) {
         printJson(result, check);
     } else {

@@ -13,6 +13,7 @@
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
+#include "cli/warnings.h"
 #include "core/error.h"
 #include "core/format_text.h"
 #include "core/interrupt.h"
@@ -28,7 +29,6 @@
 #include "optimize/parameter_table.h"
 #include "optimize/parameter_vector.h"
 #include "optimize/run_directory.h"
-#include "render/cut_paths.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "scene/scene_warnings.h"
@@ -134,10 +134,7 @@ std::string metricsText(const std::vector<Metric>& metrics) {
 
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
     const OptimizeResult& result = report.result;
-    if (result.truncatedPaths > 0) {
-        std::fprintf(stderr, "warning: %s\n",
-                     cutPathsMessage(result.truncatedPaths, "the renders of the iterations run").c_str());
-    }
+    warnOfCutPaths(result.truncatedPaths, "the renders of the iterations run");
     std::printf("%s", parameterTable(report.parameters).c_str());
     double iterations = double(result.losses.size());
     std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint\n",
@@ -254,11 +251,11 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     applyOverrides(options, overrides, experiment);
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     LoadedScene loaded = loadScene(experiment.scene, options.scene.access);
-    for (const std::string& warning : loaded.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    for (const std::string& warning : loaded.warnings) printWarning(warning);
     requireRunWritesNoInput(options.out, true, filesTheSceneReads(loaded));
     Scene checked = loaded.scene;
     prepareExperimentScene(experiment, checked);  // its errors before any rendering
-    for (const std::string& warning : sceneWarnings(checked)) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    for (const std::string& warning : sceneWarnings(checked)) printWarning(warning);
 
     throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});

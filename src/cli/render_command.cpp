@@ -8,11 +8,11 @@
 #include "cli/number_options.h"
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
+#include "cli/warnings.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "image/finite_pixels.h"
 #include "image/image.h"
-#include "render/cut_paths.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 
@@ -92,9 +92,7 @@ int runRender(const RenderOptions& options) {
         writePng(options.png, image);
     }
     const RenderStats& stats = renderer.stats();
-    if (stats.truncatedPaths > 0) {
-        std::fprintf(stderr, "warning: %s\n", cutPathsMessage(stats.truncatedPaths, "the render").c_str());
-    }
+    warnOfCutPaths(stats.truncatedPaths, "the render");
     std::printf("wrote %s%s%s\n", options.output.c_str(), options.png.empty() ? "" : " and ", options.png.c_str());
     std::printf("%.2f s, %.3g paths/s, %.3g rays/s\n", stats.seconds, stats.paths / stats.seconds,
                 stats.rays / stats.seconds);

@@ -1,7 +1,6 @@
 #include "cli/scene_options.h"
 
-#include <cstdio>
-
+#include "cli/warnings.h"
 #include "scene/load_scene.h"
 #include "scene/parameters.h"
 #include "scene/scene_warnings.h"
@@ -20,13 +19,13 @@ void addSceneOptions(CLI::App& command, SceneOptions& options) {
 LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     LoadedScene loaded = loadScene(options.file, options.access);
     for (const std::string& warning : loaded.warnings) {
-        std::fprintf(stderr, "warning: %s\n", warning.c_str());
+        printWarning(warning);
     }
     for (const std::string& assignment : options.assignments) {
         applyAssignment(loaded.scene, assignment);
     }
     for (const std::string& warning : sceneWarnings(loaded.scene)) {
-        std::fprintf(stderr, "warning: %s\n", warning.c_str());
+        printWarning(warning);
     }
     return loaded;
 }

@@ -55,10 +55,6 @@ uint32_t totalVoxels(const Scene& scene) {
     return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
 }
 
-bool anyMediumEmits(const Scene& scene) {
-    return std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) { return m.isEmissive(); });
-}
-
 uint32_t bit(uint32_t queue) {
     return 1u << queue;
 }
@@ -85,7 +81,7 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       punctualLightCount_(static_cast<uint32_t>(scene.punctualLights.size())),
       texelCount_(totalTexels(scene)),
       voxelCount_(totalVoxels(scene)),
-      media_{.densityGrids = !scene.densityGrids.empty(), .emission = anyMediumEmits(scene)},
+      media_{.densityGrids = !scene.densityGrids.empty(), .emission = scene.anyMediumEmits()},
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context, media_),
       lossKind_(LossKind::L2) {
@@ -105,11 +101,11 @@ uint64_t Renderer::pathMemoryBytes() const {
 }
 
 void Renderer::setParameters(const Scene& scene) {
-    if (!media_.emission && anyMediumEmits(scene)) {
+    if (!media_.emission && scene.anyMediumEmits()) {
         media_.emission = true;
         pipelines_.primal = PathStages(context_, false, 0, media_);
-        if (pipelines_.gradient && !pipelines_.gradient->media.emission) {
-            pipelines_.gradient = std::make_unique<GradientPipelines>(context_, pipelines_.gradient->kinds, media_);
+        if (pipelines_.gradient) {
+            compileGradientPipelines(pipelines_.gradient->kinds);
         }
     }
     uploadSceneParameters(context_, scene, triangleOrder_, scene_);

@@ -170,6 +170,9 @@ private:
     void backpropagateInOnePass(GradientEvaluation& result);
     // Throws vkdr::Error naming `what` unless the image has the render's size.
     void requireRenderSize(const Image& image, const std::string& what) const;
+    // Compiles the adjoint stages for the gradients of `kinds` (bit 1 << ParameterKind) and
+    // the media they meet, unless they are compiled already.
+    void compileGradientPipelines(uint32_t kinds);
     // Allocates the adjoint state; keptPaths as for AdjointBuffers.
     void allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths);
     // Replays every sample and runs its adjoint pass, with sample points from

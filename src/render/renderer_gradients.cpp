@@ -66,14 +66,17 @@ void Renderer::enableImageAdjoint(const DerivativeTargets& derivativeTargets) {
     adjointUse_ = AdjointUse::ImageAdjoint;
 }
 
-void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths) {
+void Renderer::compileGradientPipelines(uint32_t kinds) {
     // The emission's gradient is wanted even where no medium emits yet.
     MediaFeatures media = media_;
-    media.emission = media.emission || derivativeTargets.wants(ParameterKind::MediumEmission);
-    if (!pipelines_.gradient || pipelines_.gradient->kinds != derivativeTargets.kinds ||
-        pipelines_.gradient->media != media) {
-        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, derivativeTargets.kinds, media);
+    media.emission = media.emission || DerivativeTargets{kinds}.wants(ParameterKind::MediumEmission);
+    if (!pipelines_.gradient || pipelines_.gradient->kinds != kinds || pipelines_.gradient->media != media) {
+        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, kinds, media);
     }
+}
+
+void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths) {
+    compileGradientPipelines(derivativeTargets.kinds);
     adjoint_.reset();  // the old state's memory is free before the new one takes its own
     const bool texels = derivativeTargets.wants(ParameterKind::BaseColorTexture);
     const bool voxels = derivativeTargets.wants(ParameterKind::Density);

@@ -139,20 +139,21 @@ std::optional<Medium> readSceneMedium(const tinygltf::Model& model, GltfDiagnost
     if (name.empty()) {
         diagnostics.fail(field + ".name", "must not be empty");
     }
-    Medium medium = readParticipatingMedia(*extension, field, name, diagnostics);
-    // A density grid is finite; a homogeneous medium fills all space, and a ray that
-    // leaves the scene through it gathers its emission over an infinite length unless
-    // it is attenuated.
-    if (!(extension->IsObject() && extension->Has("density"))) {
-        for (int c = 0; c < 3; ++c) {
-            if (medium.emission[c] > 0.0f && medium.sigma_a[c] + medium.sigma_s[c] == 0.0f) {
-                diagnostics.fail(indexed(field + ".emission", size_t(c)),
-                                 "a scene-wide medium that emits where it neither absorbs nor scatters "
-                                 "(sigma_a + sigma_s = 0) makes every ray that leaves the scene infinitely bright");
-            }
+    return readParticipatingMedia(*extension, field, name, diagnostics);
+}
+
+void requireAttenuatedSceneEmission(const Scene& scene, GltfDiagnostics& diagnostics) {
+    if (scene.sceneMedium == kNoMedium || scene.media[size_t(scene.sceneMedium)].isHeterogeneous()) {
+        return;
+    }
+    const Medium& medium = scene.media[size_t(scene.sceneMedium)];
+    for (int c = 0; c < 3; ++c) {
+        if (medium.emission[c] > 0.0f && medium.sigma_a[c] + medium.sigma_s[c] == 0.0f) {
+            diagnostics.fail(indexed(std::string("extensions.") + kMediumExtension + ".emission", size_t(c)),
+                             "a scene-wide medium that emits where it neither absorbs nor scatters "
+                             "(sigma_a + sigma_s = 0) makes every ray that leaves the scene infinitely bright");
         }
     }
-    return medium;
 }
 
 glm::vec3 readBackground(const tinygltf::Model& model, GltfDiagnostics& diagnostics) {

@@ -64,6 +64,7 @@ LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& 
     readMaterials(model, diagnostics, scene);
     addSceneMedium(model, diagnostics, scene);
     readDensityGrids(model, SceneFiles(file, access), diagnostics, scene, externalFiles);
+    requireAttenuatedSceneEmission(scene, diagnostics);
     scene.background = readBackground(model, diagnostics);
     std::vector<MeshInstance> instances = flattenNodes(model, diagnostics, scene);
     if (scene.triangles.empty()) {

@@ -108,6 +108,13 @@ struct Scene {
     std::vector<LightPlacement> lightPlacements;
     int32_t sceneMedium = kNoMedium;            // fills all space outside enclosed media
     glm::vec3 background{0.0f};                 // radiance of rays that escape the scene
+
+    bool anyMediumEmits() const {
+        for (const Medium& medium : media) {
+            if (medium.isEmissive()) return true;
+        }
+        return false;
+    }
 };
 
 }  // namespace vkdr

@@ -1,7 +1,5 @@
 #include "scene/scene_warnings.h"
 
-#include <algorithm>
-
 #include <glm/glm.hpp>
 
 namespace vkdr {
@@ -51,9 +49,8 @@ std::vector<std::string> sceneWarnings(const Scene& scene) {
             warnings.push_back("light '" + scene.punctualLights[i].name + "' is placed by no node and lights nothing");
         }
     }
-    const bool glowingMedium =
-        std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) { return m.isEmissive(); });
-    if (emittingTriangles == 0 && shiningLights == 0 && !glowingMedium && scene.background == glm::vec3(0.0f)) {
+    if (emittingTriangles == 0 && shiningLights == 0 && !scene.anyMediumEmits() &&
+        scene.background == glm::vec3(0.0f)) {
         warnings.push_back("the scene has no light: no triangle of non-zero area has an emissive material, no "
                            "punctual light has an intensity above 0, no medium emits and the background is "
                            "black, so the image will be black");
