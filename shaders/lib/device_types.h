@@ -71,7 +71,8 @@ const uint kGradientKindEmission = 5u;
 const uint kGradientKindLightIntensity = 6u;
 const uint kGradientKindDensity = 7u;
 const uint kGradientKindMediumEmission = 8u;
-const uint kEveryGradientKind = 0x1ffu;
+const uint kGradientKindEmissionGrid = 9u;
+const uint kEveryGradientKind = 0x3ffu;
 
 // Derivative-mode targets of the adjoint pass (shaders/lib/adjoint.glsl): the kinds of
 // parameter whose zero-valued factors it follows, where their gradients are wanted.
@@ -208,8 +209,9 @@ struct GpuMedium {
     float g;                   // Henyey-Greenstein anisotropy
     vec3 sigma_s;              // scattering, per unit length (times the density, in a grid medium)
     uint densityGrid;          // index into RenderParams.densityGrids, kNoDensityGrid: homogeneous
-    vec3 emission;             // radiance emitted per unit length (times the density, in a grid medium)
-    uint padding;              // std430 rounds the struct to 16 bytes
+    vec3 emission;             // radiance emitted per unit length (times the density, in a grid medium,
+                               // or the emission grid's value where there is one)
+    uint emissionGrid;         // index into RenderParams.densityGrids, kNoDensityGrid: none
 };
 
 const uint kNoDensityGrid = 0xffffffffu;

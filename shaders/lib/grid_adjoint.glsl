@@ -15,13 +15,10 @@ bool gridGradientsWanted() {
 }
 
 // Adds g times each of the point's trilinear weights (gridDensity's footprint) to the
-// gradient of its voxel. Voxels outside the grid's box are not parameters. The lanes of
-// a subgroup seldom add to the same voxel, so each adds alone (addFixedPointFromOneLane)
-// into its subgroup's copy of the sums.
-void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
-    if (!gradientWanted(kGradientKindDensity)) {
-        return;
-    }
+// gradient of its voxel, in any grid (a density or an emission grid). Voxels outside the
+// grid's box are not parameters. The lanes of a subgroup seldom add to the same voxel,
+// so each adds alone (addFixedPointFromOneLane) into its subgroup's copy of the sums.
+void addTrilinearVoxelGradient(GpuDensityGrid grid, vec3 index, float g) {
     vec3 base = floor(index);
     for (int corner = 0; corner < 8; ++corner) {
         ivec3 offset = trilinearCorner(corner);
@@ -30,6 +27,12 @@ void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
             addFixedPointFromOneLane(P.densityGradients, subgroupCopyOfSum(P.densityGradientsCopyStride, uint(voxel)),
                                      g * trilinearWeight(index - base, offset));
         }
+    }
+}
+
+void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
+    if (gradientWanted(kGradientKindDensity)) {
+        addTrilinearVoxelGradient(grid, index, g);
     }
 }
 

@@ -229,15 +229,44 @@ vec3 heroMisWeight(vec3 sigma_t, uint tentative, float integral) {
     return density / average(density);
 }
 
+// Distances along a ray, in ascending order, at which ratioTrackTransmittanceAt also
+// reports its running estimate of the transmittance from 0.
+const uint kMaxTransmittancePoints = 4u;
+
+struct TransmittancePoints {
+    float t[kMaxTransmittancePoints];
+    vec3 transmittance[kMaxTransmittancePoints];
+    uint count;
+};
+
+// Gives the points before distance t (from `next` on) the running estimate.
+void recordTransmittanceBefore(INOUT(TransmittancePoints) points, INOUT(uint) next, float t, vec3 transmittance) {
+    for (; next < points.count && points.t[next] < t; ++next) {
+        points.transmittance[next] = transmittance;
+    }
+}
+
+void recordRemainingTransmittance(INOUT(TransmittancePoints) points, uint next, vec3 transmittance) {
+    for (; next < points.count; ++next) {
+        points.transmittance[next] = transmittance;
+    }
+}
+
 // Ratio tracking along [0, tMax): an unbiased estimate of each channel's transmittance
-// exp(-sigma_t integral of d). Each tentative collision and majorant cell takes one of
+// exp(-sigma_t integral of d). The product of the ratios of the tentative collisions
+// before any distance t is an unbiased estimate of the transmittance up to t (the
+// tentative collisions before t are a Poisson process of their own), which `points`
+// receives at its distances. Each tentative collision and majorant cell takes one of
 // `stepsLeft`, which a caller shares among the segments of one ray; `truncated` is set,
-// and 0 returned, where they run out.
-vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, vec3 sigma_t,
-                             INOUT(TrackingRandom) random, INOUT(uint) stepsLeft, INOUT(bool) truncated) {
+// and 0 returned (and reported), where they run out.
+vec3 ratioTrackTransmittanceAt(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, vec3 sigma_t,
+                               INOUT(TrackingRandom) random, INOUT(uint) stepsLeft, INOUT(bool) truncated,
+                               INOUT(TransmittancePoints) points) {
     vec3 transmittance = vec3(1.0f);
+    uint next = 0u;
     float rate = maxComponent(sigma_t);
     if (rate <= 0.0f) {
+        recordRemainingTransmittance(points, next, transmittance);
         return transmittance;
     }
     GridRay ray = gridRay(grid, origin, direction);
@@ -246,7 +275,8 @@ vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, f
     while (!walkDone(walk)) {
         if (stepsLeft == 0u) {
             truncated = true;
-            return vec3(0.0f);
+            transmittance = vec3(0.0f);
+            break;
         }
         --stepsLeft;
         float exit = cellExit(walk);
@@ -255,13 +285,15 @@ vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, f
         if (tau < cellDepth) {
             float rateHere = majorant * rate;
             walk.t += tau / rateHere;
+            recordTransmittanceBefore(points, next, walk.t, transmittance);
             float density = gridDensity(grid, ray.origin + walk.t * ray.direction);
             transmittance *= max(vec3(0.0f), vec3(1.0f) - sigma_t * (density / rateHere));
             vec4 u = nextTrackingRandom(random);
             float largest = maxComponent(transmittance);
             if (largest < kRatioTrackingRouletteBelow) {
                 if (largest <= 0.0f || u.y >= kRatioTrackingRouletteSurvival) {
-                    return vec3(0.0f);
+                    transmittance = vec3(0.0f);
+                    break;
                 }
                 transmittance /= kRatioTrackingRouletteSurvival;
             }
@@ -271,7 +303,16 @@ vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, f
         tau -= cellDepth;
         advanceToNextCell(walk, grid);
     }
+    recordRemainingTransmittance(points, next, transmittance);
     return transmittance;
+}
+
+// Ratio tracking's estimate of the transmittance over [0, tMax) alone.
+vec3 ratioTrackTransmittance(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, vec3 sigma_t,
+                             INOUT(TrackingRandom) random, INOUT(uint) stepsLeft, INOUT(bool) truncated) {
+    TransmittancePoints none;
+    none.count = 0u;
+    return ratioTrackTransmittanceAt(grid, origin, direction, tMax, sigma_t, random, stepsLeft, truncated, none);
 }
 
 // Stratified points along the ray's part in the grid, with which the adjoint estimates

@@ -1,5 +1,6 @@
 // Emissive media (docs/design.md, "Emissive media"). A medium emits j(x) = emission d(x)
-// per unit length, d the density (1 in a homogeneous medium), and attenuates with
+// per unit length, d the density (1 in a homogeneous medium; an emission grid's strength
+// instead where it has one, gatherEmissionGrid), and attenuates with
 // sigma_t d(x). A segment through it gathers, whatever the free flight that ends it
 // samples, int_0^s T(t) j(t) dt, which is emission (1 - T(s)) / sigma_t exactly, since
 // dT/dt = -sigma_t d(t) T(t) (emission D(s), D the density's integral, where sigma_t is
@@ -98,6 +99,88 @@ void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
     }
 }
 
+const uint kEmissionGridPoints = kMaxTransmittancePoints;
+
+// With an emission grid, j(t) = emission f(t), f the grid's strength, no longer follows
+// the extinction, so the segment gathers int T(t) j(t) dt from stratified points t_k on
+// its part [a, b) in the grid: emission (b - a) / N sum_k f(t_k) T(t_k), with T(t_k) exact
+// in a homogeneous medium and ratio tracking's running estimate in a density grid, whose
+// numbers are independent of the points', so every product is unbiased.
+void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
+    GpuDensityGrid strength = P.densityGrids.v[m.emissionGrid];
+    vec3 origin = P.rayOrigin.v[slot].xyz;
+    vec3 direction = P.rayDirection.v[slot].xyz;
+    GridRay ray = gridRay(strength, origin, direction);
+    vec2 interval = cellsInterval(strength, ray, tHit);
+    if (!(interval.x < interval.y)) {
+        return;
+    }
+    PathInfo info = loadPathInfo(slot);
+    TrackingRandom random = segmentTrackingRandom(info, kTrackingEmission);
+    float u = nextTrackingRandom(random).x;
+    float length = (interval.y - interval.x) / float(kEmissionGridPoints);
+    TransmittancePoints points;
+    points.count = kEmissionGridPoints;
+    float f[kEmissionGridPoints];
+    for (uint k = 0u; k < kEmissionGridPoints; ++k) {
+        points.t[k] = interval.x + (float(k) + u) * length;
+        f[k] = gridDensity(strength, ray.origin + points.t[k] * ray.direction);
+    }
+    vec3 sigma_t = sigmaT(m);
+    bool inDensityGrid = m.densityGrid != kNoDensityGrid;
+    if (inDensityGrid) {
+        bool truncated = false;
+        uint stepsLeft = kMaxTransmittanceSteps;
+        ratioTrackTransmittanceAt(P.densityGrids.v[m.densityGrid], origin, direction,
+                                  points.t[kEmissionGridPoints - 1u], sigma_t, random, stepsLeft, truncated, points);
+        if (truncated) {
+            atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
+        }
+    } else {
+        for (uint k = 0u; k < kEmissionGridPoints; ++k) {
+            points.transmittance[k] = transmittance(sigma_t, points.t[k]);
+        }
+    }
+    vec3 perUnit = vec3(0.0f);
+    for (uint k = 0u; k < kEmissionGridPoints; ++k) {
+        perUnit += (length * f[k]) * points.transmittance[k];
+    }
+    gather(slot, beta * m.emission * perUnit);
+    if (!kAdjoint) {
+        return;
+    }
+    vec3 g = contributionAdjoint(beta);
+    addMediumEmissionGradient(medium, g * perUnit);
+    // Where nothing is emitted the other gradients of the emission are 0.
+    if (m.emission == vec3(0.0f)) {
+        return;
+    }
+    if (gradientWanted(kGradientKindEmissionGrid)) {
+        for (uint k = 0u; k < kEmissionGridPoints; ++k) {
+            addTrilinearVoxelGradient(strength, ray.origin + points.t[k] * ray.direction,
+                                      length * dot(g, m.emission * points.transmittance[k]));
+        }
+    }
+    if (!gridGradientsWanted()) {
+        return;
+    }
+    // d T_c(t) / d sigma_t,c = -D(t) T_c(t), D(t) the density's integral over [0, t) (t in
+    // a homogeneous medium), estimated by points of its own; the voxels get
+    // -sigma_t,c T_c(t) dD(t)/d(voxel).
+    TrackingRandom gradientPoints = segmentTrackingRandom(info, kTrackingEmissionGradient);
+    vec3 dSigmaT = vec3(0.0f);
+    for (uint k = 0u; k < kEmissionGridPoints; ++k) {
+        vec3 weight = g * m.emission * (length * f[k]) * points.transmittance[k];  // of T(t_k)
+        float integral = points.t[k];
+        if (inDensityGrid) {
+            integral = densityIntegralAdjoint(P.densityGrids.v[m.densityGrid], origin, direction, points.t[k],
+                                              nextTrackingRandom(gradientPoints).x, dot(weight, sigma_t));
+        }
+        dSigmaT -= weight * integral;
+    }
+    addSigmaTGradient(medium, dSigmaT);
+}
+
 // Gathers the emission of `medium` along the segment [0, tHit) of the ray in `slot`
 // (tHit is kFar for a ray that leaves the scene), beta being the throughput at its start.
 void gatherMediumEmission(uint slot, uint medium, float tHit, vec3 beta) {
@@ -105,7 +188,9 @@ void gatherMediumEmission(uint slot, uint medium, float tHit, vec3 beta) {
     if (!mediumEmissionWanted(m)) {
         return;
     }
-    if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
+    if (kDensityGrids && m.emissionGrid != kNoDensityGrid) {
+        gatherEmissionGrid(slot, medium, m, tHit, beta);
+    } else if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
         gatherGridEmission(slot, medium, m, tHit, beta);
     } else {
         gatherHomogeneousEmission(slot, medium, m, tHit, beta);

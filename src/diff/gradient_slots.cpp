@@ -55,7 +55,7 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
         slot.stride = sumsPerItem;
     } else if (description.accumulator == gpu::GradientAccumulator::densityGradients) {
         // A grid's parameter is every voxel of it, after the voxels of the grids before it.
-        const size_t grid = size_t(scene.media[owner].densityGrid);
+        const size_t grid = size_t(mediumGridOf(scene.media[owner], description.kind));
         for (size_t i = 0; i < grid; ++i) {
             slot.first += scene.densityGrids[i].grid.voxelCount() * sumsPerItem;
         }

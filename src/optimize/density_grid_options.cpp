@@ -10,10 +10,10 @@ namespace vkdr {
 void requireADensityGridAmong(const std::vector<std::string>& parameters, const std::string& option) {
     const bool namesAGrid = std::any_of(parameters.begin(), parameters.end(), [](const std::string& name) {
         const std::optional<ParsedParameterName> parsed = parseParameterName(name);
-        return parsed && parsed->description->kind == ParameterKind::Density;
+        return parsed && isGridKind(parsed->description->kind);
     });
     if (!namesAGrid) {
-        throw Error(option + " given, but no density grid (media/<medium>/density) is being optimised");
+        throw Error(option + " given, but no grid (media/<medium>/density or media/<medium>/emission_grid) is being optimised");
     }
 }
 

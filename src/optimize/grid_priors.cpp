@@ -59,7 +59,7 @@ GradientResult GridPriorLossGradient::evaluate(const Scene& scene, uint32_t seed
     GradientResult result = inner_.evaluate(scene, seed);
     for (const auto& [name, weight] : weights_) {
         const DensityGrid* grid = densityGridOf(scene, name);
-        if (!grid) throw Error("grid priors: " + name + " is not the density of a grid medium");
+        if (!grid) throw Error("grid priors: " + name + " is not a grid (a density or an emission grid)");
         std::vector<double>* gradient = nullptr;
         for (ParameterGradient& parameter : result.parameters) {
             if (parameter.name == name) {
@@ -80,7 +80,7 @@ std::map<std::string, GridPriorWeights> gridPriorWeights(const std::vector<std::
                              std::string("a ") + (weights.smoothness != 0.0 ? "smoothness" : "sparsity") + " weight is");
     for (const std::string& name : parameters) {
         const std::optional<ParsedParameterName> parsed = parseParameterName(name);
-        if (parsed && parsed->description->kind == ParameterKind::Density) named[name] = weights;
+        if (parsed && isGridKind(parsed->description->kind)) named[name] = weights;
     }
     return named;
 }

@@ -75,13 +75,8 @@ ParameterInfo SceneSession::parameter(const std::string& name) const {
             }
         }
     }
-    if (description.kind == ParameterKind::Density) {
-        for (const Medium& medium : loaded_.scene.media) {
-            if (medium.isHeterogeneous() && name == parameterName(description.kind, medium.name)) {
-                const glm::ivec3 size = loaded_.scene.densityGrids[size_t(medium.densityGrid)].grid.size;
-                info.shape = {size_t(size.z), size_t(size.y), size_t(size.x)};
-            }
-        }
+    if (const DensityGrid* grid = densityGridOf(loaded_.scene, name)) {
+        info.shape = {size_t(grid->size.z), size_t(grid->size.y), size_t(grid->size.x)};
     }
     size_t count = 1;
     for (size_t extent : info.shape) count *= extent;

@@ -79,10 +79,11 @@ void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint6
     compileGradientPipelines(derivativeTargets.kinds);
     adjoint_.reset();  // the old state's memory is free before the new one takes its own
     const bool texels = derivativeTargets.wants(ParameterKind::BaseColorTexture);
-    const bool voxels = derivativeTargets.wants(ParameterKind::Density);
+    const bool voxels =
+        derivativeTargets.wants(ParameterKind::Density) || derivativeTargets.wants(ParameterKind::EmissionGrid);
     const uint64_t voxelGradientBytes = uint64_t(voxelCount_) * gpu::kFixedPointWordsPerSum * 8;
     if (voxels && voxelGradientBytes > context_.deviceLocalHeapBytes() / 2) {
-        throw Error("the density gradients of " + std::to_string(voxelCount_) + " voxels need " +
+        throw Error("the gradients of the grids' " + std::to_string(voxelCount_) + " voxels need " +
                     std::to_string(voxelGradientBytes >> 20) + " MiB, more than half of the device's " +
                     std::to_string(context_.deviceLocalHeapBytes() >> 20) + " MiB; differentiate a coarser grid");
     }

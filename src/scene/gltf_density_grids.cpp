@@ -52,10 +52,11 @@ void requireInvertible(const glm::dmat4& indexToWorld, const std::string& field,
     }
 }
 
-// Reads the grid a medium's "density" object references and makes the medium use it.
-void readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& density, const std::string& field,
-                    const SceneFiles& files, GltfDiagnostics& diagnostics, Scene& scene, Medium& medium,
-                    std::vector<std::filesystem::path>& read) {
+// Reads the grid a medium's "density" or "emissionGrid" object references; returns its
+// index in Scene::densityGrids.
+int32_t readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& density, const std::string& field,
+                       const std::string& defaultGrid, const SceneFiles& files, GltfDiagnostics& diagnostics,
+                       Scene& scene, std::vector<std::filesystem::path>& read) {
     if (!density.IsObject()) {
         diagnostics.fail(field, "expected an object {\"uri\", \"grid\", \"node\"}");
     }
@@ -70,7 +71,7 @@ void readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& density
     if (!resolved.problem.empty()) {
         diagnostics.fail(field + ".uri", resolved.problem);
     }
-    const std::string gridName = readString(diagnostics, density, field, "grid", "density");
+    const std::string gridName = readString(diagnostics, density, field, "grid", defaultGrid);
     glm::dmat4 placement(1.0);
     if (density.Has("node")) {
         const tinygltf::Value& node = density.Get("node");
@@ -89,16 +90,28 @@ void readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& density
     placed.indexToWorld = placement * placed.grid.indexToLocal;
     requireInvertible(placed.indexToWorld, field, diagnostics);
     read.push_back(resolved.file);
-    medium.densityGrid = int32_t(scene.densityGrids.size());
     scene.densityGrids.push_back(std::move(placed));
+    return int32_t(scene.densityGrids.size() - 1);
 }
 
-const tinygltf::Value* densityOf(const tinygltf::ExtensionMap& extensions) {
+// Reads the grids of the medium that `extensions` (a material's, or the root's) defines.
+void readGridsOf(const tinygltf::Model& model, const tinygltf::ExtensionMap& extensions, const std::string& prefix,
+                 const SceneFiles& files, GltfDiagnostics& diagnostics, Scene& scene, Medium& medium,
+                 std::vector<std::filesystem::path>& read) {
     auto found = extensions.find(kMediumExtension);
-    if (found == extensions.end() || !found->second.IsObject() || !found->second.Has("density")) {
-        return nullptr;
+    if (found == extensions.end() || !found->second.IsObject()) {
+        return;
     }
-    return &found->second.Get("density");
+    const tinygltf::Value& extension = found->second;
+    const std::string field = prefix + kMediumExtension;
+    if (extension.Has("density")) {
+        medium.densityGrid = readMediumGrid(model, extension.Get("density"), field + ".density", "density", files,
+                                            diagnostics, scene, read);
+    }
+    if (extension.Has("emissionGrid")) {
+        medium.emissionGrid = readMediumGrid(model, extension.Get("emissionGrid"), field + ".emissionGrid", "flame",
+                                             files, diagnostics, scene, read);
+    }
 }
 
 }  // namespace
@@ -106,17 +119,14 @@ const tinygltf::Value* densityOf(const tinygltf::ExtensionMap& extensions) {
 void readDensityGrids(const tinygltf::Model& model, const SceneFiles& files, GltfDiagnostics& diagnostics,
                       Scene& scene, std::vector<std::filesystem::path>& read) {
     for (size_t m = 0; m < model.materials.size(); ++m) {
-        const tinygltf::Value* density = densityOf(model.materials[m].extensions);
-        if (density && scene.materials[m].isMediumBoundary()) {
-            std::string field = indexed("materials", m) + ".extensions." + kMediumExtension + ".density";
-            readMediumGrid(model, *density, field, files, diagnostics, scene,
-                           scene.media[size_t(scene.materials[m].interiorMedium)], read);
+        if (scene.materials[m].isMediumBoundary()) {
+            readGridsOf(model, model.materials[m].extensions, indexed("materials", m) + ".extensions.", files,
+                        diagnostics, scene, scene.media[size_t(scene.materials[m].interiorMedium)], read);
         }
     }
-    if (const tinygltf::Value* density = densityOf(model.extensions); density && scene.sceneMedium >= 0) {
-        std::string field = std::string("extensions.") + kMediumExtension + ".density";
-        readMediumGrid(model, *density, field, files, diagnostics, scene, scene.media[size_t(scene.sceneMedium)],
-                       read);
+    if (scene.sceneMedium >= 0) {
+        readGridsOf(model, model.extensions, "extensions.", files, diagnostics, scene,
+                    scene.media[size_t(scene.sceneMedium)], read);
     }
 }
 

@@ -10,10 +10,12 @@
 
 namespace vkdr {
 
-// Reads the density grids that VKDR_participating_media objects reference, on materials
-// and at the root: "density": {"uri", "grid" (default "density"), "node" (optional)}.
-// Each becomes a Scene::densityGrids entry placed by the node's world transform times the
-// grid's own, and makes its medium heterogeneous. Appends the grid files to `read`.
+// Reads the grids that VKDR_participating_media objects reference, on materials and at
+// the root: "density": {"uri", "grid" (default "density"), "node" (optional)}, which makes
+// its medium heterogeneous, and "emissionGrid" (the same, its grid by default "flame"),
+// the strength that multiplies the medium's emission. Each becomes a Scene::densityGrids
+// entry placed by the node's world transform times the grid's own. Appends the grid files
+// to `read`.
 void readDensityGrids(const tinygltf::Model& model, const SceneFiles& files, GltfDiagnostics& diagnostics,
                       Scene& scene, std::vector<std::filesystem::path>& read);
 

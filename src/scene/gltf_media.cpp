@@ -36,7 +36,9 @@ Medium readParticipatingMedia(const tinygltf::Value& extension, const std::strin
     medium.sigma_a = readRgbOrScalar(diagnostics, extension, field, "sigma_a", glm::vec3(0.0f));
     medium.sigma_s = readRgbOrScalar(diagnostics, extension, field, "sigma_s", glm::vec3(0.0f));
     medium.g = float(readNumber(diagnostics, extension, field, "g", 0.0));
-    medium.emission = readRgbOrScalar(diagnostics, extension, field, "emission", glm::vec3(0.0f));
+    // An emission grid's strengths are emitted white unless the emission says otherwise.
+    const glm::vec3 defaultEmission(extension.Has("emissionGrid") ? 1.0f : 0.0f);
+    medium.emission = readRgbOrScalar(diagnostics, extension, field, "emission", defaultEmission);
     requireInRange(diagnostics, ParameterKind::SigmaA, {&medium.sigma_a.x, 3}, field + ".sigma_a");
     requireInRange(diagnostics, ParameterKind::SigmaS, {&medium.sigma_s.x, 3}, field + ".sigma_s");
     requireInRange(diagnostics, ParameterKind::G, {&medium.g, 1}, field + ".g");
@@ -143,7 +145,9 @@ std::optional<Medium> readSceneMedium(const tinygltf::Model& model, GltfDiagnost
 }
 
 void requireAttenuatedSceneEmission(const Scene& scene, GltfDiagnostics& diagnostics) {
-    if (scene.sceneMedium == kNoMedium || scene.media[size_t(scene.sceneMedium)].isHeterogeneous()) {
+    // A grid bounds what is emitted, or where.
+    if (scene.sceneMedium == kNoMedium || scene.media[size_t(scene.sceneMedium)].isHeterogeneous() ||
+        scene.media[size_t(scene.sceneMedium)].hasEmissionGrid()) {
         return;
     }
     const Medium& medium = scene.media[size_t(scene.sceneMedium)];

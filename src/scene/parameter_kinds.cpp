@@ -57,7 +57,7 @@ double densityStep(float value) {
     return sigmaStep(value);
 }
 
-constexpr std::array<ParameterDescription, 9> kDescriptions = {{
+constexpr std::array<ParameterDescription, 10> kDescriptions = {{
     {ParameterKind::SigmaA, "media/", "/sigma_a", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
      gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientSigmaA},
     {ParameterKind::SigmaS, "media/", "/sigma_s", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
@@ -81,6 +81,10 @@ constexpr std::array<ParameterDescription, 9> kDescriptions = {{
     // does not bound; the renderer's check of every pixel catches what overflows.
     {ParameterKind::MediumEmission, "media/", "/emission", ParameterOwner::Medium, 3, {0.0, kMaxRadiance},
      emissionStep, gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientEmission},
+    // An emission grid's voxels are strengths that multiply the emission, as densities
+    // multiply sigma: the same range and steps.
+    {ParameterKind::EmissionGrid, "media/", "/emission_grid", ParameterOwner::Medium, 1, {0.0, kInfinity},
+     densityStep, gpu::GradientAccumulator::densityGradients, 0},
 }};
 
 // describe() indexes the table by kind.

@@ -28,7 +28,15 @@ enum class ParameterKind : uint32_t {
     // media/<medium>/emission: RGB radiance emitted per scene unit (per unit density in a
     // density grid medium), at most kMaxRadiance
     MediumEmission = gpu::kGradientKindMediumEmission,
+    // media/<medium>/emission_grid: every voxel of a medium's emission grid (the strength
+    // that multiplies its emission), one value each
+    EmissionGrid = gpu::kGradientKindEmissionGrid,
 };
+
+// Whether a kind's parameter is every voxel of one of the scene's grids.
+constexpr bool isGridKind(ParameterKind kind) {
+    return kind == ParameterKind::Density || kind == ParameterKind::EmissionGrid;
+}
 
 // The largest radiance, per channel, an emitter (emissiveFactor x emissiveStrength, or
 // lights/<material>/emission) or the background may have: brighter ones could make a

@@ -59,10 +59,10 @@ auto findStorage(SceneType& scene, std::string_view name) {
             if (medium.name != parsed->owner) {
                 continue;
             }
-            if (kind != ParameterKind::Density) {
+            if (!isGridKind(kind)) {
                 storage = mediumStorage<Float>(medium, kind);
-            } else if (medium.isHeterogeneous()) {
-                auto& values = scene.densityGrids[size_t(medium.densityGrid)].grid.values;
+            } else if (int32_t grid = mediumGridOf(medium, kind); grid >= 0) {
+                auto& values = scene.densityGrids[size_t(grid)].grid.values;
                 storage = ParameterStorage<Float>{values.data(), values.size(), parsed->description, 1};
             }
         }
@@ -114,6 +114,9 @@ std::vector<std::string> parameterNames(const Scene& scene) {
             names.push_back(parameterName(ParameterKind::Density, medium.name));
         }
         names.push_back(parameterName(ParameterKind::MediumEmission, medium.name));
+        if (medium.hasEmissionGrid()) {
+            names.push_back(parameterName(ParameterKind::EmissionGrid, medium.name));
+        }
     }
     for (const Material& material : scene.materials) {
         if (!material.isMediumBoundary()) {
@@ -198,15 +201,26 @@ void applyAssignment(Scene& scene, std::string_view assignment) {
     setParameter(scene, name, values);
 }
 
-const DensityGrid* densityGridOf(const Scene& scene, std::string_view name) {
+int32_t mediumGridOf(const Medium& medium, ParameterKind kind) {
+    return kind == ParameterKind::Density ? medium.densityGrid
+           : kind == ParameterKind::EmissionGrid ? medium.emissionGrid
+                                                  : -1;
+}
+
+int32_t gridIndexOf(const Scene& scene, std::string_view name) {
     const std::optional<ParsedParameterName> parsed = parseParameterName(name);
-    if (!parsed || parsed->description->kind != ParameterKind::Density) return nullptr;
+    if (!parsed || !isGridKind(parsed->description->kind)) return -1;
     for (const Medium& medium : scene.media) {
-        if (medium.name == parsed->owner && medium.isHeterogeneous()) {
-            return &scene.densityGrids[size_t(medium.densityGrid)].grid;
+        if (medium.name == parsed->owner) {
+            return mediumGridOf(medium, parsed->description->kind);
         }
     }
-    return nullptr;
+    return -1;
+}
+
+const DensityGrid* densityGridOf(const Scene& scene, std::string_view name) {
+    const int32_t grid = gridIndexOf(scene, name);
+    return grid < 0 ? nullptr : &scene.densityGrids[size_t(grid)].grid;
 }
 
 }  // namespace vkdr

@@ -4,6 +4,7 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/parameter_kinds.h"
 #include "scene/scene.h"
 
 namespace vkdr {
@@ -13,11 +14,11 @@ namespace vkdr {
 // materials/<material>/base_color_texture holds 3 floats per texel of the material's
 // base colour texture (linear RGB, rows from the top), if it has one;
 // media/<medium>/density one float per voxel of a density grid medium's grid (its box,
-// x fastest, volume/density_grid.h). Medium boundary
-// materials have no base colour or emission.
+// x fastest, volume/density_grid.h), and media/<medium>/emission_grid the same of a
+// medium's emission grid. Medium boundary materials have no base colour or emission.
 
-// Every parameter of the scene: media in order (sigma_a, sigma_s, g each, and density for
-// a grid medium), then base
+// Every parameter of the scene: media in order (sigma_a, sigma_s, g each, density for a
+// grid medium, emission, and emission_grid where there is one), then base
 // colours, then the emissions of emissive materials, then the punctual lights' intensities.
 std::vector<std::string> parameterNames(const Scene& scene);
 
@@ -34,8 +35,15 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
 // Applies "NAME=v" or "NAME=v,v,v" (the CLI's --set syntax).
 void applyAssignment(Scene& scene, std::string_view assignment);
 
-// The grid that a density parameter (media/<medium>/density) names; null for any other
-// name, or a medium without a grid.
+// The index in Scene::densityGrids of a medium's grid of a grid kind (isGridKind): its
+// density or its emission grid; -1 where it has none, or for another kind.
+int32_t mediumGridOf(const Medium& medium, ParameterKind kind);
+
+// The same for a grid parameter's name (media/<medium>/density or .../emission_grid); -1
+// for any other name, or a medium without that grid.
+int32_t gridIndexOf(const Scene& scene, std::string_view name);
+
+// The grid that a grid parameter names, as gridIndexOf; null where there is none.
 const DensityGrid* densityGridOf(const Scene& scene, std::string_view name);
 
 }  // namespace vkdr

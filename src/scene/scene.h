@@ -43,7 +43,8 @@ struct Material {
 
 // A participating medium; sigma in inverse scene units. Homogeneous, or a density grid
 // medium whose coefficients at a point are sigma_a, sigma_s and emission times the grid's
-// value there.
+// value there. An emission grid (a flame or temperature-like strength) takes the place of
+// the density in the emission: j(x) = emission * strength(x), in either kind of medium.
 struct Medium {
     std::string name;  // parameter prefix is "media/<name>/"
     glm::vec3 sigma_a{0.0f};
@@ -52,12 +53,14 @@ struct Medium {
     // Radiance emitted per unit length, in every direction alike (a source term of the
     // radiative transfer equation, as Cycles' volume emission).
     glm::vec3 emission{0.0f};
-    int32_t densityGrid = -1;  // index into Scene::densityGrids; -1: homogeneous
+    int32_t densityGrid = -1;   // index into Scene::densityGrids; -1: homogeneous
+    int32_t emissionGrid = -1;  // index into Scene::densityGrids; -1: none
     bool isHeterogeneous() const { return densityGrid >= 0; }
+    bool hasEmissionGrid() const { return emissionGrid >= 0; }
     bool isEmissive() const { return emission != glm::vec3(0.0f); }
 };
 
-// A density grid as the scene places it.
+// A scalar grid as the scene places it: a medium's density or emission strength.
 struct SceneDensityGrid {
     std::filesystem::path file;     // the file it was read from
     DensityGrid grid;
@@ -101,7 +104,7 @@ struct Scene {
     std::vector<int32_t> triangleOutsideMedium;
     std::vector<Material> materials;
     std::vector<Medium> media;
-    std::vector<SceneDensityGrid> densityGrids;
+    std::vector<SceneDensityGrid> densityGrids;  // densities and emission strengths
     std::vector<Texture> textures;
     std::vector<Camera> cameras;
     std::vector<PunctualLight> punctualLights;  // in the file's order

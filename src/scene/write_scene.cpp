@@ -83,7 +83,8 @@ void writeParticipatingMedia(json& extension, const Medium& medium) {
     extension["sigma_a"] = rgbJson(medium.sigma_a);
     extension["sigma_s"] = rgbJson(medium.sigma_s);
     extension["g"] = exactJsonNumber(medium.g);
-    if (medium.isEmissive() || extension.contains("emission")) {
+    // With an emission grid, an emission left out would read back as white.
+    if (medium.isEmissive() || medium.hasEmissionGrid() || extension.contains("emission")) {
         extension["emission"] = rgbJson(medium.emission);
     }
 }
@@ -255,28 +256,38 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
     }
 }
 
-// Density grids are parameters too: each medium's grid, with its current voxels, is
-// written beside `out` as <stem>.materials<i>.density.vdb (a material's medium) or
-// <stem>.density.vdb (the scene medium), and its "density" refers to that file.
+// Grids are parameters too: each medium's density and emission grid, with its current
+// voxels, is written beside `out` as <stem>.materials<i>.density.vdb (a material's medium)
+// or <stem>.density.vdb (the scene medium), and .emission_grid.vdb, and the medium's
+// "density" and "emissionGrid" refer to those files.
 void writeDensityGrids(json& document, const Scene& scene, const std::filesystem::path& out) {
-    auto writeGrid = [&](json& owner, int32_t medium, const std::string& suffix) {
-        if (medium < 0 || !scene.media[size_t(medium)].isHeterogeneous() || !owner.contains("extensions") ||
-            !owner["extensions"].contains(kMediumExtension) || !owner["extensions"][kMediumExtension].contains("density")) {
+    auto writeGrid = [&](json& owner, int32_t grid, const char* key, const char* defaultName,
+                         const std::string& stem) {
+        if (grid < 0 || !owner.contains("extensions") || !owner["extensions"].contains(kMediumExtension) ||
+            !owner["extensions"][kMediumExtension].contains(key)) {
             return;
         }
-        const DensityGrid& grid = scene.densityGrids[size_t(scene.media[size_t(medium)].densityGrid)].grid;
-        const std::string file = out.stem().string() + suffix + ".density.vdb";
-        writeDensityGridVdb(out.parent_path() / file, grid);
-        json& density = owner["extensions"][kMediumExtension]["density"];
-        density["uri"] = encodeUriPath(file);
-        density["grid"] = grid.name.empty() ? "density" : grid.name;
+        const DensityGrid& values = scene.densityGrids[size_t(grid)].grid;
+        const std::string file = stem + ".vdb";
+        writeDensityGridVdb(out.parent_path() / file, values);
+        json& reference = owner["extensions"][kMediumExtension][key];
+        reference["uri"] = encodeUriPath(file);
+        reference["grid"] = values.name.empty() ? defaultName : values.name;
+    };
+    auto writeGrids = [&](json& owner, int32_t medium, const std::string& suffix) {
+        if (medium < 0) {
+            return;
+        }
+        const std::string stem = out.stem().string() + suffix;
+        writeGrid(owner, scene.media[size_t(medium)].densityGrid, "density", "density", stem + ".density");
+        writeGrid(owner, scene.media[size_t(medium)].emissionGrid, "emissionGrid", "flame", stem + ".emission_grid");
     };
     if (document.contains("materials") && document["materials"].is_array()) {
         for (size_t i = 0; i < document["materials"].size() && i < scene.materials.size(); ++i) {
-            writeGrid(document["materials"][i], scene.materials[i].interiorMedium, ".materials" + std::to_string(i));
+            writeGrids(document["materials"][i], scene.materials[i].interiorMedium, ".materials" + std::to_string(i));
         }
     }
-    writeGrid(document, scene.sceneMedium, "");
+    writeGrids(document, scene.sceneMedium, "");
 }
 
 void writeBinaryChunkBeside(json& document, const GltfSource& source, const std::filesystem::path& original,

@@ -1,7 +1,8 @@
 // Emissive media against closed forms. A segment gathers the emission along it,
 // int_0^s T(t) j(t) dt = emission (1 - T(s)) / sigma_t (emission times the density's
 // integral where sigma_t is 0), exactly in a homogeneous medium and with ratio tracking's
-// transmittance in a density grid. And furnaces: walls that emit Le and reflect albedo
+// transmittance in a density grid; with an emission grid, whose strength replaces the
+// density in the emission, from points along the segment. And furnaces: walls that emit Le and reflect albedo
 // rho hold the radiance L* = Le / (1 - rho) everywhere when every medium inside emits
 // exactly what it absorbs there, j = sigma_a L*, whatever it scatters: a homogeneous fog
 // around a nested smoke plume, and a grid whose loose majorant makes free flight pause.
@@ -59,6 +60,52 @@ TEST_F(EmissiveMediumTest, EmissionFollowingADensityRampMatchesTheClosedForm) {
     const auto pixel = pixelOverSeeds(fog.scene().write(dir, "glow"), {.spp = 1024, .maxDepth = 0}, 16);
     const double densityIntegral = kBoxDepth * fog.densityAt(glm::dvec3(0.0, 0.0, 2.25));
     expectPixelNear(pixel, emittedAlong(fog.emission, fog.sigmaA + fog.sigmaS, densityIntegral));
+}
+
+// e int_0^L T(s) (A + B s) ds with T(s) = exp(-k s), per channel.
+glm::dvec3 emittedAlongRamp(glm::dvec3 emission, glm::dvec3 k, double length, double a, double b) {
+    glm::dvec3 out;
+    for (int c = 0; c < 3; ++c) {
+        const double kl = k[c] * length;
+        out[c] = emission[c] * (k[c] > 0.0 ? a * -std::expm1(-kl) / k[c] +
+                                                 b * (-std::expm1(-kl) - kl * std::exp(-kl)) / (k[c] * k[c])
+                                           : a * length + b * length * length / 2.0);
+    }
+    return out;
+}
+
+// An emission grid's strength f(z) = 0.2 + 0.6 z takes the place of the density in the
+// emission, j = emission f, in a homogeneous medium and in a grid of constant density
+// (ratio tracking's running transmittance at the emission's points); blue attenuates
+// nowhere. The grid reaches beyond the box, whose faces bound what is gathered.
+TEST_F(EmissiveMediumTest, EmissionGridRampMatchesTheClosedForm) {
+    for (bool densityGrid : {false, true}) {
+        FogSetup fog = glowingBox();
+        fog.sigmaA = glm::dvec3(0.2, 0.5, 0.0);
+        fog.sigmaS = glm::dvec3(0.3, 0.0, 0.0);
+        const double density = densityGrid ? 0.8 : 1.0;
+        if (densityGrid) {
+            fog.density = FogSetup::LinearDensity{density, 0.0, "density.vdb"};
+        }
+        FogSetup ramp = fog;
+        ramp.density = FogSetup::LinearDensity{0.2, 0.6, "flame.vdb"};
+        const std::filesystem::path dir = tempDir();
+        if (densityGrid) {
+            writeDensityGridVdb(dir / fog.density->uri, linearDensityGrid(fog, 0.25));
+        }
+        writeDensityGridVdb(dir / ramp.density->uri, linearDensityGrid(ramp, 0.25));
+        TestGltf g = fog.scene();
+        g.materials.back()["extensions"]["VKDR_participating_media"]["emissionGrid"] = {{"uri", "flame.vdb"},
+                                                                                         {"grid", "density"}};
+        const auto pixel = pixelOverSeeds(g.write(dir, "glow"), {.spp = 1024, .maxDepth = 0}, 16);
+        const double z0 = fog.enclosure->lo.z;
+        expectPixelNear(pixel, emittedAlongRamp(fog.emission, density * (fog.sigmaA + fog.sigmaS), kBoxDepth,
+                                                ramp.densityAt(glm::dvec3(0.0, 0.0, z0)), ramp.density->b));
+        if (HasFailure()) {
+            ADD_FAILURE() << (densityGrid ? "in a density grid" : "in a homogeneous medium");
+            return;
+        }
+    }
 }
 
 const glm::vec3 kRho(0.5f);
