@@ -319,17 +319,17 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
     overrides.smoothness =
         command->add_option("--smoothness", options->optimize.smoothness,
                             "Add this weight times the mean squared difference between face-neighbouring voxels of "
-                            "every density grid optimised to the loss (0: none)")
+                            "every grid optimised (density or emission grid) to the loss (0: none)")
             ->default_val(options->optimize.smoothness)->check(finiteNumberIn(0.0, 1e12));
     overrides.sparsity =
         command->add_option("--sparsity", options->optimize.sparsity,
-                            "Add this weight times the mean density of every density grid optimised to the loss, "
-                            "emptying what the images do not ask to fill (0: none)")
+                            "Add this weight times the mean value of every grid optimised (density or emission grid) to the "
+                            "loss, emptying what the images do not ask to fill (0: none)")
             ->default_val(options->optimize.sparsity)->check(finiteNumberIn(0.0, 1e12));
     overrides.gridLevels =
         command
             ->add_option("--grid-levels", options->optimize.gridLevels,
-                         "Fit density grids coarse to fine in N equal parts of the run: the first restricts the steps "
+                         "Fit grids (density or emission) coarse to fine in N equal parts of the run: the first restricts the steps "
                          "to a grid 2^(N-1) times coarser, each next halves that (1: the grid's own voxels)")
             ->default_val(options->optimize.gridLevels)
             ->transform(integerIn(1, kMostGridLevels));

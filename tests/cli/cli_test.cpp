@@ -247,13 +247,13 @@ TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
 
     RunResult refused = run(optimize + " --param media/plume/sigma_s --overwrite");
     EXPECT_EQ(refused.exitCode, 2);
-    EXPECT_NE(refused.err.find("error: a smoothness weight is given, but no density grid"), std::string::npos)
+    EXPECT_NE(refused.err.find("error: a smoothness weight is given, but no grid (media/<medium>/density or"), std::string::npos)
         << refused.err;
     std::string levels = optimize;
     levels.replace(levels.find(" --smoothness 0.5"), 17, " --grid-levels 2");
     refused = run(levels + " --param media/plume/sigma_s --overwrite");
     EXPECT_EQ(refused.exitCode, 2);
-    EXPECT_NE(refused.err.find("error: coarse-to-fine grid levels are given, but no density grid"), std::string::npos)
+    EXPECT_NE(refused.err.find("error: coarse-to-fine grid levels are given, but no grid (media/<medium>/density or"), std::string::npos)
         << refused.err;
     EXPECT_TRUE(fs::is_regular_file(out / "params.json")) << "the refused run left the earlier one as it was";
 }

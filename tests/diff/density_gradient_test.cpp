@@ -1,6 +1,7 @@
 // Per-voxel density gradients against central finite differences with common random
 // numbers: a small grid in a box, lit from behind (where the transmittance's derivative
-// dominates), from the side (the scattering's) or by its own emission, at voxels inside
+// dominates), from the side (the scattering's) or by its own emission (following the
+// density, or an emission grid, whose voxels are tested too), at voxels inside
 // the medium, on its
 // face, and one of zero
 // density between denser ones. The loss is L1 against a target brighter than every
@@ -24,7 +25,6 @@ namespace {
 constexpr int kSide = 8;
 constexpr int kVoxels = 6;
 constexpr uint32_t kSeeds = 32;
-const char* const kParameter = "media/smoke/density";
 
 // Voxel centres span the medium's box: x, y in [-0.6, 0.6], z in [1, 2.2].
 DensityGrid smokeGrid() {
@@ -44,12 +44,25 @@ DensityGrid smokeGrid() {
     return grid;
 }
 
+// A strength over the same voxels, 0 at the middle one.
+DensityGrid flameGrid() {
+    DensityGrid grid = smokeGrid();
+    grid.name = "flame";
+    for (size_t i = 0; i < grid.values.size(); ++i) {
+        grid.values[i] = 0.2f + 1.2f * float((i * 23) % 7) / 6.0f;
+    }
+    grid.values[size_t(2 + kVoxels * (2 + kVoxels * 2))] = 0.0f;
+    return grid;
+}
+
 struct Lighting {
     const char* label;
     float back;  // radiance of the emitter behind the medium
     float side;  // radiance of the emitter beside it
     float sigma;  // scales sigma_a and sigma_s: a thin medium shows its in-scattering
     float glow = 0.0f;  // scales the medium's emission
+    const char* parameter = "media/smoke/density";
+    bool flame = false;  // an emission grid (flameGrid) multiplies the emission instead of the density
 };
 
 void PrintTo(const Lighting& lighting, std::ostream* os) {
@@ -63,6 +76,9 @@ TestGltf smokeScene(const Lighting& lighting) {
     smoke["extensions"]["VKDR_participating_media"]["density"] = {{"uri", "smoke.vdb"}};
     smoke["extensions"]["VKDR_participating_media"]["emission"] = {lighting.glow, 0.6f * lighting.glow,
                                                                    0.3f * lighting.glow};
+    if (lighting.flame) {
+        smoke["extensions"]["VKDR_participating_media"]["emissionGrid"] = {{"uri", "flame.vdb"}};
+    }
     g.materials = {emissiveMaterial("back", lighting.back * glm::vec3(1.0f, 0.8f, 0.6f), false),
                    emissiveMaterial("side", glm::vec3(lighting.side), false), smoke};
     TestMesh side = quadZ(0.0f, 0.0f, 0.4f, 0.0f, true, 1);
@@ -84,8 +100,11 @@ class DensityGradientTest : public RenderTest, public ::testing::WithParamInterf
 
 TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
     const std::filesystem::path dir = tempDir();
+    const Lighting& lighting = GetParam();
+    const char* const kParameter = lighting.parameter;
     writeDensityGridVdb(dir / "smoke.vdb", smokeGrid());
-    Scene scene = loadScene(smokeScene(GetParam()).write(dir, "smoke")).scene;
+    writeDensityGridVdb(dir / "flame.vdb", flameGrid());
+    Scene scene = loadScene(smokeScene(lighting).write(dir, "smoke")).scene;
     Image bright{kSide, kSide, std::vector<float>(kSide * kSide * 3, 10.0f)};
     RenderedLossGradient lg(testContext(), scene, {{"", bright}}, {kParameter}, {.spp = 64, .maxDepth = 3},
                             LossKind::L1);
@@ -93,6 +112,7 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
 
     const std::vector<float> values = getParameter(scene, kParameter);
     for (glm::ivec3 voxel : {glm::ivec3(2, 2, 2), glm::ivec3(1, 2, 3), glm::ivec3(0, 3, 3), glm::ivec3(3, 1, 4)}) {
+        // (1, 2, 3) has zero density, and (2, 2, 2) zero strength in flameGrid.
         const size_t index = voxelIndex(voxel);
         const double value = values[index];
         const double h = value > 0.0 ? 0.2 * value : 0.5;
@@ -121,7 +141,13 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
 
 INSTANTIATE_TEST_SUITE_P(Lightings, DensityGradientTest,
                          ::testing::Values(Lighting{"BackLit", 1.0f, 0.0f, 1.0f}, Lighting{"SideLit", 0.0f, 20.0f, 0.25f},
-                                           Lighting{"Glowing", 0.0f, 0.0f, 0.5f, 2.0f}),
+                                           Lighting{"Glowing", 0.0f, 0.0f, 0.5f, 2.0f},
+                                           // With an emission grid: the density's voxels, and the emission grid's
+                                           // (the first voxel is the one of zero strength).
+                                           Lighting{"GlowingFlameDensity", 0.3f, 0.0f, 1.5f, 2.0f,
+                                                    "media/smoke/density", true},
+                                           Lighting{"GlowingFlameStrength", 0.0f, 0.0f, 0.5f, 2.0f,
+                                                    "media/smoke/emission_grid", true}),
                          [](const ::testing::TestParamInfo<Lighting>& info) { return std::string(info.param.label); });
 
 }  // namespace

@@ -1,14 +1,15 @@
 // Gradients of what emissive media gather, against finite differences with common random
 // numbers: a medium's emission and sigma_a, homogeneous (absorbing only, and scattering)
-// and in a density grid, and the emission of a channel that nothing attenuates, in front of an emitter and lit from the side. The loss is L1
+// and in a density grid, the emission of a channel that nothing attenuates, and each of
+// these with an emission grid, in front of an emitter and lit from the side. The loss is L1
 // against a target brighter than every pixel, so it is linear in the image: the finite
 // difference estimates the gradient of the expected loss exactly as the adjoint does,
 // and the tolerance is 5 of their combined standard errors over seeds. The difference is
 // the Richardson extrapolation (4 D(h) - D(2h)) / 3 of central differences D at the
 // kind's step h and 2h, whose truncation error is O(h^4): a medium that only absorbs
 // renders without noise, and D(h)'s own O(h^2) error (0.1 % for sigma_a) would exceed
-// the standard errors. The voxels' gradients with an emissive grid are in
-// density_gradient_test.cpp.
+// the standard errors. The voxels' gradients with an emissive grid, and an emission
+// grid's, are in density_gradient_test.cpp.
 #include <cmath>
 
 #include "diff/gradient_over_seeds.h"
@@ -32,6 +33,7 @@ struct GlowCase {
     glm::vec3 sigmaS;
     bool grid;  // the box holds a 4^3 density grid instead of density 1
     const char* parameter;
+    bool flame = false;  // an emission grid (flameGrid) multiplies the emission instead of the density
 };
 
 void PrintTo(const GlowCase& c, std::ostream* os) {
@@ -53,12 +55,25 @@ DensityGrid glowGrid() {
     return grid;
 }
 
+// A strength over the same box, 0 at every seventh voxel, up to 1.6.
+DensityGrid flameGrid() {
+    DensityGrid grid = glowGrid();
+    grid.name = "flame";
+    for (int i = 0; i < 64; ++i) {
+        grid.values[size_t(i)] = i % 7 == 3 ? 0.0f : 0.1f + 1.5f * float((i * 17) % 11) / 10.0f;
+    }
+    return grid;
+}
+
 TestGltf glowScene(const GlowCase& c) {
     TestGltf g;
     nlohmann::json glow = vkdrMediumMaterial("glow", c.sigmaA, c.sigmaS, 0.3f);
     glow["extensions"]["VKDR_participating_media"]["emission"] = {0.8, 0.5, 1.2};
     if (c.grid) {
         glow["extensions"]["VKDR_participating_media"]["density"] = {{"uri", "glow.vdb"}};
+    }
+    if (c.flame) {
+        glow["extensions"]["VKDR_participating_media"]["emissionGrid"] = {{"uri", "flame.vdb"}};
     }
     g.materials = {emissiveMaterial("back", glm::vec3(0.5f, 0.4f, 0.3f), false),
                    emissiveMaterial("side", glm::vec3(6.0f), false), glow};
@@ -79,6 +94,9 @@ TEST_P(MediumEmissionGradientTest, AdjointMatchesFiniteDifferences) {
     const std::filesystem::path dir = tempDir();
     if (c.grid) {
         writeDensityGridVdb(dir / "glow.vdb", glowGrid());
+    }
+    if (c.flame) {
+        writeDensityGridVdb(dir / "flame.vdb", flameGrid());
     }
     Scene scene = loadScene(glowScene(c).write(dir, "glow")).scene;
     Image bright{kSide, kSide, std::vector<float>(kSide * kSide * 3, 20.0f)};
@@ -174,7 +192,12 @@ INSTANTIATE_TEST_SUITE_P(
                       GlowCase{"UnattenuatedBlueEmission", kAbsorbingRedGreen, glm::vec3(0.0f), false,
                                "media/glow/emission"},
                       GlowCase{"GridUnattenuatedBlueEmission", kAbsorbingRedGreen, glm::vec3(0.0f), true,
-                               "media/glow/emission"}),
+                               "media/glow/emission"},
+                      // An emission grid in place of the density in the emission.
+                      GlowCase{"FlameEmission", kAbsorbingRedGreen, kScattering, false, "media/glow/emission", true},
+                      GlowCase{"FlameSigmaA", kAbsorbing, kScattering, false, "media/glow/sigma_a", true},
+                      GlowCase{"GridFlameEmission", kAbsorbing, kScattering, true, "media/glow/emission", true},
+                      GlowCase{"GridFlameSigmaA", kAbsorbing, kScattering, true, "media/glow/sigma_a", true}),
     [](const ::testing::TestParamInfo<GlowCase>& info) { return std::string(info.param.label); });
 
 }  // namespace

@@ -190,17 +190,17 @@ TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndGridSettingsWithoutAGrid) 
     experiment["smoothness"] = -1.0;
     expectReadError(scratch, experiment, {"smoothness", "expected a finite number >= 0"});
     experiment["smoothness"] = 0.5;
-    expectPrepareError(scratch, experiment, {"smoothness", "no density grid"});
+    expectPrepareError(scratch, experiment, {"smoothness", "no grid (media/<medium>/density or"});
 
     experiment = fogExperiment(scratch.path());
     experiment["sparsity"] = "a lot";
     expectReadError(scratch, experiment, {"sparsity", "expected a finite number >= 0"});
     experiment["sparsity"] = 2.0;
-    expectPrepareError(scratch, experiment, {"sparsity", "no density grid"});
+    expectPrepareError(scratch, experiment, {"sparsity", "no grid (media/<medium>/density or"});
 
     experiment = fogExperiment(scratch.path());
     experiment["grid_levels"] = 3;
-    expectPrepareError(scratch, experiment, {"grid_levels", "no density grid"});
+    expectPrepareError(scratch, experiment, {"grid_levels", "no grid (media/<medium>/density or"});
     experiment["grid_levels"] = 11;
     expectReadError(scratch, experiment, {"grid_levels", "[1, 10]"});
 }

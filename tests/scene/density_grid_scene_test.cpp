@@ -115,5 +115,82 @@ TEST(DensityGridScene, BadReferencesNameTheField) {
     expectLoadError(write({{"uri", "../smoke.vdb"}}), {field + ".uri", "outside"});
 }
 
+// An emission grid: its own entry among the grids, white emission unless given, its own
+// parameter, written back beside the scene with its fitted voxels; a scene medium that
+// attenuates nothing may emit through it; bad references name its field.
+DensityGrid flameGrid() {
+    DensityGrid grid = smallGrid();
+    grid.name = "flame";
+    grid.values = {1.0f, 0.0f, 0.5f, 2.0f, 0.0f, 4.0f};
+    return grid;
+}
+
+TEST(DensityGridScene, EmissionGridMultipliesTheEmissionAndIsWrittenBack) {
+    TemporaryDirectory directory;
+    std::filesystem::create_directories(directory / "in");
+    std::filesystem::create_directories(directory / "out");
+    writeDensityGridVdb(directory / "in" / "smoke.vdb", smallGrid());
+    writeDensityGridVdb(directory / "in" / "fire.vdb", flameGrid());
+    json medium = gridMedium({{"uri", "smoke.vdb"}});
+    medium["extensions"]["VKDR_participating_media"]["emissionGrid"] = {{"uri", "fire.vdb"}, {"node", 1}};
+    std::filesystem::path original = boxScene(medium).writeGltf(directory / "in" / "s.gltf");
+    LoadedScene loaded = loadScene(original);
+    ASSERT_EQ(loaded.scene.densityGrids.size(), 2u);
+    const Medium& smoke = loaded.scene.media[0];
+    EXPECT_EQ(smoke.densityGrid, 0);
+    EXPECT_EQ(smoke.emissionGrid, 1);
+    EXPECT_EQ(smoke.emission, glm::vec3(1.0f)) << "an emission grid without an emission emits white";
+    EXPECT_EQ(loaded.scene.densityGrids[1].grid.values, flameGrid().values);
+    EXPECT_NE(loaded.scene.densityGrids[1].indexToWorld, loaded.scene.densityGrids[0].indexToWorld)
+        << "only the emission grid is placed by the node";
+    const std::vector<std::string> names = parameterNames(loaded.scene);
+    EXPECT_NE(std::find(names.begin(), names.end(), "media/smoke/emission_grid"), names.end());
+    EXPECT_EQ(getParameter(loaded.scene, "media/smoke/emission_grid"), flameGrid().values);
+
+    std::vector<float> fitted = flameGrid().values;
+    fitted[4] = 6.25f;
+    setParameter(loaded.scene, "media/smoke/emission_grid", fitted);
+    setParameter(loaded.scene, "media/smoke/emission", std::vector<float>{0.0f});
+    writeSceneWithParameters(original, loaded.scene, directory / "out" / "scene.gltf");
+    EXPECT_TRUE(std::filesystem::exists(directory / "out" / "scene.materials0.emission_grid.vdb"));
+    LoadedScene again = loadScene(directory / "out" / "scene.gltf");
+    ASSERT_EQ(again.scene.densityGrids.size(), 2u);
+    EXPECT_EQ(again.scene.densityGrids[size_t(again.scene.media[0].emissionGrid)].grid.values, fitted);
+    EXPECT_EQ(again.scene.densityGrids[size_t(again.scene.media[0].emissionGrid)].grid.name, "flame");
+    EXPECT_EQ(again.scene.densityGrids[size_t(again.scene.media[0].emissionGrid)].indexToWorld,
+              loaded.scene.densityGrids[1].indexToWorld);
+    EXPECT_EQ(again.scene.media[0].emission, glm::vec3(0.0f)) << "an emission fitted to 0 must not read back as white";
+}
+
+TEST(DensityGridScene, ASceneMediumClearInAChannelMayEmitThroughAnEmissionGrid) {
+    TemporaryDirectory directory;
+    writeDensityGridVdb(directory / "fire.vdb", flameGrid());
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("floor", floorQuad(1.0f))}});
+    builder.document()["extensions"]["VKDR_participating_media"] = {
+        {"name", "air"}, {"emission", {2.0, 1.0, 0.5}}, {"emissionGrid", {{"uri", "fire.vdb"}}}};
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "air.gltf"));
+    const Medium& air = loaded.scene.media[size_t(loaded.scene.sceneMedium)];
+    EXPECT_FALSE(air.isHeterogeneous());
+    EXPECT_EQ(air.emissionGrid, 0);
+    builder.document()["extensions"]["VKDR_participating_media"].erase("emissionGrid");
+    expectLoadError(builder.writeGltf(directory / "air.gltf"), {"emission[0]", "infinitely bright"});
+}
+
+TEST(DensityGridScene, BadEmissionGridReferencesNameTheField) {
+    TemporaryDirectory directory;
+    writeDensityGridVdb(directory / "smoke.vdb", smallGrid());
+    const std::string field = "materials[0].extensions.VKDR_participating_media.emissionGrid";
+    auto write = [&](json grid) {
+        json medium = gridMedium({{"uri", "smoke.vdb"}});
+        medium["extensions"]["VKDR_participating_media"]["emissionGrid"] = std::move(grid);
+        return boxScene(medium).writeGltf(directory / "bad.gltf");
+    };
+    expectLoadError(write({{"uri", "absent.vdb"}}), {field + ".uri", "absent.vdb"});
+    expectLoadError(write({{"uri", "smoke.vdb"}}), {field, "flame", "density"});
+    expectLoadError(write({{"uri", "smoke.vdb"}, {"grid", "density"}, {"node", 7}}), {field + ".node", "out of range"});
+    expectLoadError(write(2.0), {field, "expected an object"});
+}
+
 }  // namespace
 }  // namespace vkdr::test

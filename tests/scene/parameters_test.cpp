@@ -65,7 +65,7 @@ TEST(Parameters, SetsRgbValuesAndBroadcastsOneValue) {
     EXPECT_EQ(scene.media[1].g, -0.9f);
 }
 
-// sceneWithEverything with a texture on "white" and a density grid in "smoke": an owner
+// sceneWithEverything with a texture on "white" and a density and emission grid in "smoke": an owner
 // for every kind of parameter.
 Scene sceneWithEveryKind() {
     Scene scene = sceneWithEverything();
@@ -79,6 +79,11 @@ Scene sceneWithEveryKind() {
     grid.grid.values = {0.5f, 1.0f, 0.0f};
     scene.densityGrids.push_back(grid);
     scene.media[1].densityGrid = 0;  // "smoke"
+    SceneDensityGrid flame;
+    flame.grid.size = glm::ivec3(2, 2, 1);
+    flame.grid.values = {0.0f, 2.0f, 1.0f, 0.5f};
+    scene.densityGrids.push_back(flame);
+    scene.media[1].emissionGrid = 1;
     return scene;
 }
 
@@ -90,7 +95,8 @@ std::string ownerOf(ParameterKind kind) {
     case ParameterKind::MediumEmission: return "fog";
     case ParameterKind::Emission: return "light";
     case ParameterKind::LightIntensity: return "bulb";
-    case ParameterKind::Density: return "smoke";
+    case ParameterKind::Density:
+    case ParameterKind::EmissionGrid: return "smoke";
     default: return "white";
     }
 }
@@ -150,7 +156,8 @@ TEST(ParameterKinds, ChannelsAreThoseSettingAndGettingUse) {
         const std::string name = parameterName(description.kind, ownerOf(description.kind));
         const size_t groups = description.kind == ParameterKind::BaseColorTexture ? scene.textures[0].texels.size()
                               : description.kind == ParameterKind::Density   ? scene.densityGrids[0].grid.voxelCount()
-                                                                             : 1;
+                              : description.kind == ParameterKind::EmissionGrid ? scene.densityGrids[1].grid.voxelCount()
+                                                                                : 1;
         EXPECT_EQ(getParameter(scene, name).size(), description.channels * groups) << name;
     }
 }

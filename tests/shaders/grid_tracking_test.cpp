@@ -131,6 +131,46 @@ TEST(GridTracking, RatioTrackingIsUnbiasedThroughItsRoulette) {
     expectUnbiasedTransmittance(HostGrid(1.0f), vec3(2.0f, 4.0f, 8.0f));
 }
 
+// The running estimates at points along the walk (what an emission grid's points use):
+// each unbiased for the transmittance to its own distance, the last at the walk's end,
+// through the roulette as well.
+TEST(GridTracking, RatioTrackingsRunningEstimatesAreUnbiasedAtEveryPoint) {
+    const HostGrid grid(1.5f);
+    grid.bind();
+    const vec3 direction = normalize(kEnd - kOrigin);
+    const float length = glm::length(kEnd - kOrigin);
+    const vec3 sigma_t(1.0f, 3.0f, 6.0f);
+    const float fractions[kMaxTransmittancePoints] = {0.1f, 0.35f, 0.7f, 1.0f};
+    constexpr uint kRays = 40000;
+    dvec3 sum[kMaxTransmittancePoints] = {}, sumOfSquares[kMaxTransmittancePoints] = {};
+    for (uint i = 0; i < kRays; ++i) {
+        TrackingRandom random = trackingRandom(i, 0u, 0u, 0u, kTrackingEmission, 5u);
+        uint stepsLeft = kMaxTransmittanceSteps;
+        bool truncated = false;
+        TransmittancePoints points;
+        points.count = kMaxTransmittancePoints;
+        for (uint k = 0; k < kMaxTransmittancePoints; ++k) points.t[k] = fractions[k] * length;
+        const vec3 whole = ratioTrackTransmittanceAt(grid.grid, kOrigin, direction, length, sigma_t, random,
+                                                     stepsLeft, truncated, points);
+        ASSERT_FALSE(truncated);
+        ASSERT_EQ(points.transmittance[kMaxTransmittancePoints - 1], whole);
+        for (uint k = 0; k < kMaxTransmittancePoints; ++k) {
+            sum[k] += dvec3(points.transmittance[k]);
+            sumOfSquares[k] += dvec3(points.transmittance[k]) * dvec3(points.transmittance[k]);
+        }
+    }
+    for (uint k = 0; k < kMaxTransmittancePoints; ++k) {
+        const double integral = densityIntegral(grid, fractions[k] * length);
+        for (int c = 0; c < 3; ++c) {
+            const double mean = sum[k][c] / kRays;
+            const double standardError = std::sqrt((sumOfSquares[k][c] / kRays - mean * mean) / (kRays - 1));
+            EXPECT_GT(standardError, 0.0);
+            EXPECT_NEAR(mean, std::exp(-double(sigma_t[c]) * integral), 5.0 * standardError)
+                << "point " << k << ", channel " << c;
+        }
+    }
+}
+
 TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
     const HostGrid grid(1.5f);
     grid.bind();
