@@ -21,6 +21,24 @@ bool passesThroughAbsorbing(GpuMedium m) {
     return m.sigma_s == vec3(0.0f) && P.sampleNonScatteringMedia == 0u;
 }
 
+// A collision in a medium with an albedo grid scatters a(x) of what it would otherwise,
+// and absorbs the rest: the extinction, and with it the free flight, are unchanged. The
+// adjoint pass adds delta * L_rem * w_v / a_c(x) to channel c of each voxel v that x
+// blends (w_v its trilinear weight); where a_c(x) is 0 the path ends in that channel and
+// the gradient is missed (docs/density-grids.md, "Albedo grids").
+void scatterByAlbedoGrid(uint slot, GpuMedium m, vec3 position, inout vec3 beta) {
+    if (!kDensityGrids || m.albedoGrid == kNoDensityGrid) {
+        return;
+    }
+    GpuDensityGrid grid = P.densityGrids.v[m.albedoGrid];
+    vec3 index = gridRay(grid, position, vec3(0.0f)).origin;
+    vec3 albedo = gridAlbedo(grid, index);
+    if (kAdjoint && gradientWanted(kGradientKindAlbedoGrid)) {
+        addTrilinearRgbGradient(grid, index, factorGradient(slot, logDerivativeOfLinear(albedo)));
+    }
+    beta *= albedo;
+}
+
 // Free flight through a density grid medium along [0, tHit) (grid_tracking.glsl): the
 // medium vertex of a real collision, a pause where tracking reached its step bound, or
 // the surface. A medium that scatters nowhere is passed with its ratio-tracked
@@ -51,6 +69,7 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
         beta *= heroMisWeight(sigma_t, flight.tentative, flight.majorantIntegral);
         if (flight.collided) {
             beta *= scatteringAlbedo(m.sigma_s, sigma_t);
+            scatterByAlbedoGrid(slot, m, origin + flight.t * direction, beta);
         }
     }
     if (kAdjoint && gridGradientsWanted()) {
@@ -95,6 +114,7 @@ uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, in
                              factorGradient(slot, logDerivativeOfLinear(m.sigma_s) - t));
         }
         beta = multiplyByParameter(beta, m.sigma_s, perUnitScattering, kTargetMediumScattering, medium);
+        scatterByAlbedoGrid(slot, m, P.rayOrigin.v[slot].xyz + t * P.rayDirection.v[slot].xyz, beta);
         P.hit.v[slot].x = t;
         return kVertexMedium;
     }

@@ -72,7 +72,8 @@ const uint kGradientKindLightIntensity = 6u;
 const uint kGradientKindDensity = 7u;
 const uint kGradientKindMediumEmission = 8u;
 const uint kGradientKindEmissionGrid = 9u;
-const uint kEveryGradientKind = 0x3ffu;
+const uint kGradientKindAlbedoGrid = 10u;
+const uint kEveryGradientKind = 0x7ffu;
 
 // Derivative-mode targets of the adjoint pass (shaders/lib/adjoint.glsl): the kinds of
 // parameter whose zero-valued factors it follows, where their gradients are wanted.
@@ -212,6 +213,8 @@ struct GpuMedium {
     vec3 emission;             // radiance emitted per unit length (times the density, in a grid medium,
                                // or the emission grid's value where there is one)
     uint emissionGrid;         // index into RenderParams.densityGrids, kNoDensityGrid: none
+    uint albedoGrid;           // index into RenderParams.densityGrids (an RGB grid), kNoDensityGrid: none
+    uint padding[3];           // std430 rounds the struct to 16 bytes
 };
 
 const uint kNoDensityGrid = 0xffffffffu;
@@ -233,7 +236,7 @@ struct GpuDensityGrid {
     ivec4 firstVoxel;          // xyz: index coordinates of the box's first voxel; w: its offset in gridValues
     ivec4 size;                // xyz: voxels along each axis; w: offset of the first cell in gridMajorants
     ivec4 majorantOrigin;      // xyz: index coordinates of the lower corner of cell (0, 0, 0)
-    ivec4 majorantCells;       // xyz: cells along each axis
+    ivec4 majorantCells;       // xyz: cells along each axis (0 for an albedo grid); w: values per voxel
 };
 
 struct GpuTexture {

@@ -30,6 +30,22 @@ void addTrilinearVoxelGradient(GpuDensityGrid grid, vec3 index, float g) {
     }
 }
 
+// The same for an RGB grid: channel c of each voxel gets g[c] times the weight.
+void addTrilinearRgbGradient(GpuDensityGrid grid, vec3 index, vec3 g) {
+    vec3 base = floor(index);
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 offset = trilinearCorner(corner);
+        int voxel = gridVoxelOffset(grid, ivec3(base) + offset);
+        if (voxel >= 0) {
+            vec3 weighted = g * trilinearWeight(index - base, offset);
+            for (int c = 0; c < 3; ++c) {
+                addFixedPointFromOneLane(P.densityGradients,
+                                         subgroupCopyOfSum(P.densityGradientsCopyStride, uint(voxel + c)), weighted[c]);
+            }
+        }
+    }
+}
+
 void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
     if (gradientWanted(kGradientKindDensity)) {
         addTrilinearVoxelGradient(grid, index, g);

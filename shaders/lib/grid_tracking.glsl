@@ -59,6 +59,17 @@ float gridDensity(GpuDensityGrid grid, vec3 index) {
     return density;
 }
 
+// The trilinear RGB of an albedo grid, with gridDensity's weights.
+vec3 gridAlbedo(GpuDensityGrid grid, vec3 index) {
+    vec3 base = floor(index);
+    vec3 albedo = vec3(0.0f);
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 offset = trilinearCorner(corner);
+        albedo += trilinearWeight(index - base, offset) * gridVoxelRgb(grid, ivec3(base) + offset);
+    }
+    return albedo;
+}
+
 // A DDA walk over the majorant cells along a ray: the current cell and where the ray
 // leaves it through each axis's next face.
 struct MajorantWalk {

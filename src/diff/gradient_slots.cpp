@@ -54,13 +54,14 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
         slot.groups = scene.textures[texture].texels.size();
         slot.stride = sumsPerItem;
     } else if (description.accumulator == gpu::GradientAccumulator::densityGradients) {
-        // A grid's parameter is every voxel of it, after the voxels of the grids before it.
+        // A grid's parameter is every voxel of it (its channels one after another), after
+        // the values of the grids before it.
         const size_t grid = size_t(mediumGridOf(scene.media[owner], description.kind));
         for (size_t i = 0; i < grid; ++i) {
-            slot.first += scene.densityGrids[i].grid.voxelCount() * sumsPerItem;
+            slot.first += scene.densityGrids[i].grid.values.size() * sumsPerItem;
         }
         slot.groups = scene.densityGrids[grid].grid.voxelCount();
-        slot.stride = sumsPerItem;
+        slot.stride = sumsPerItem * description.channels;
     } else {
         slot.first = owner * sumsPerItem + description.firstFloat;
     }

@@ -80,7 +80,7 @@ std::map<std::string, GridPriorWeights> gridPriorWeights(const std::vector<std::
                              std::string("a ") + (weights.smoothness != 0.0 ? "smoothness" : "sparsity") + " weight is");
     for (const std::string& name : parameters) {
         const std::optional<ParsedParameterName> parsed = parseParameterName(name);
-        if (parsed && isGridKind(parsed->description->kind)) named[name] = weights;
+        if (parsed && isScalarGridKind(parsed->description->kind)) named[name] = weights;
     }
     return named;
 }

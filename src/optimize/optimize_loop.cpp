@@ -141,7 +141,9 @@ struct GridSlice {
 std::vector<GridSlice> densityGridSlices(const Scene& scene, const ParameterVector& parameters) {
     std::vector<GridSlice> slices;
     for (size_t i = 0; i < parameters.names().size(); ++i) {
-        if (const DensityGrid* grid = densityGridOf(scene, parameters.names()[i])) {
+        // Coarse-to-fine fitting works on grids of one value per voxel.
+        const DensityGrid* grid = densityGridOf(scene, parameters.names()[i]);
+        if (grid && grid->channels == 1) {
             slices.push_back({parameters.offset(i), parameters.count(i), grid->size});
         }
     }

@@ -77,6 +77,7 @@ ParameterInfo SceneSession::parameter(const std::string& name) const {
     }
     if (const DensityGrid* grid = densityGridOf(loaded_.scene, name)) {
         info.shape = {size_t(grid->size.z), size_t(grid->size.y), size_t(grid->size.x)};
+        if (grid->channels > 1) info.shape.push_back(size_t(grid->channels));
     }
     size_t count = 1;
     for (size_t extent : info.shape) count *= extent;

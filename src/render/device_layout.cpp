@@ -7,7 +7,7 @@ namespace vkdr::gpu {
 
 static_assert(sizeof(GpuMaterial) == 48);
 static_assert(offsetof(GpuMaterial, baseColorTexture) == 32);
-static_assert(sizeof(GpuMedium) == 48);
+static_assert(sizeof(GpuMedium) == 64);
 static_assert(offsetof(GpuMedium, g) == 12 && offsetof(GpuMedium, sigma_s) == 16);
 static_assert(offsetof(GpuMedium, densityGrid) == 28 && offsetof(GpuMedium, emission) == 32);
 static_assert(sizeof(GpuDensityGrid) == 112);

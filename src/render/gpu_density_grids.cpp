@@ -27,10 +27,10 @@ void requireFits(const VulkanContext& context, const SceneDensityGrid& placed, u
     }
     const uint64_t budget = context.deviceLocalHeapBytes() / kGridShareOfDeviceMemory;
     const uint64_t fittingVoxels = std::min<uint64_t>(budget / sizeof(float), std::numeric_limits<int32_t>::max());
-    const uint64_t voxels = valuesBefore + placed.grid.voxelCount();
+    const uint64_t voxels = valuesBefore + placed.grid.values.size();
     if (voxels > fittingVoxels) {
         throw Error(placed.file.string() + ": grid '" + placed.grid.name + "' needs " +
-                    std::to_string(voxels) + " voxels on the device (with the grids before it), more than the " +
+                    std::to_string(voxels) + " values on the device (with the grids before it), more than the " +
                     std::to_string(fittingVoxels) + " that fit in half of its " +
                     std::to_string(context.deviceLocalHeapBytes() >> 20) + " MiB; crop or coarsen the grid");
     }
@@ -47,7 +47,7 @@ gpu::GpuDensityGrid deviceGrid(const SceneDensityGrid& placed, const MajorantGri
     grid.firstVoxel = glm::ivec4(placed.grid.firstVoxel, int32_t(firstValue));
     grid.size = glm::ivec4(placed.grid.size, int32_t(firstMajorant));
     grid.majorantOrigin = glm::ivec4(majorants.origin, 0);
-    grid.majorantCells = glm::ivec4(majorants.cells, 0);
+    grid.majorantCells = glm::ivec4(majorants.cells, placed.grid.channels);
     return grid;
 }
 
@@ -59,7 +59,9 @@ void writeDensityGrids(const VulkanContext& context, const Scene& scene, GpuDens
     std::vector<float> maxima;
     for (const SceneDensityGrid& placed : scene.densityGrids) {
         requireFits(context, placed, values.size());
-        const MajorantGrid majorants = buildMajorantGrid(placed.grid);
+        // Tracking walks the majorants of scalar grids only (densities; an emission grid's
+        // also bound the part of a ray that gathers from it).
+        const MajorantGrid majorants = placed.grid.channels == 1 ? buildMajorantGrid(placed.grid) : MajorantGrid{};
         grids.push_back(deviceGrid(placed, majorants, values.size(), maxima.size()));
         values.insert(values.end(), placed.grid.values.begin(), placed.grid.values.end());
         maxima.insert(maxima.end(), majorants.maxima.begin(), majorants.maxima.end());

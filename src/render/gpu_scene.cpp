@@ -41,7 +41,8 @@ std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
     std::vector<gpu::GpuMedium> out;
     for (const Medium& m : scene.media) {
         out.push_back({m.sigma_a, m.g, m.sigma_s, m.isHeterogeneous() ? uint32_t(m.densityGrid) : gpu::kNoDensityGrid,
-                       m.emission, m.hasEmissionGrid() ? uint32_t(m.emissionGrid) : gpu::kNoDensityGrid});
+                       m.emission, m.hasEmissionGrid() ? uint32_t(m.emissionGrid) : gpu::kNoDensityGrid,
+                       m.hasAlbedoGrid() ? uint32_t(m.albedoGrid) : gpu::kNoDensityGrid, {0u, 0u, 0u}});
     }
     return out;
 }

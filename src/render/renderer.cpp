@@ -46,11 +46,11 @@ uint32_t totalTexels(const Scene& scene) {
     return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
 }
 
-// The voxels of every density grid; writeDensityGrids keeps them below 2^31.
+// The values of every grid (a voxel's channels each); writeDensityGrids keeps them below 2^31.
 uint32_t totalVoxels(const Scene& scene) {
     uint64_t count = 0;
     for (const SceneDensityGrid& placed : scene.densityGrids) {
-        count += placed.grid.voxelCount();
+        count += placed.grid.values.size();
     }
     return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
 }

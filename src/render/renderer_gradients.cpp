@@ -79,8 +79,9 @@ void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint6
     compileGradientPipelines(derivativeTargets.kinds);
     adjoint_.reset();  // the old state's memory is free before the new one takes its own
     const bool texels = derivativeTargets.wants(ParameterKind::BaseColorTexture);
-    const bool voxels =
-        derivativeTargets.wants(ParameterKind::Density) || derivativeTargets.wants(ParameterKind::EmissionGrid);
+    const bool voxels = derivativeTargets.wants(ParameterKind::Density) ||
+                        derivativeTargets.wants(ParameterKind::EmissionGrid) ||
+                        derivativeTargets.wants(ParameterKind::AlbedoGrid);
     const uint64_t voxelGradientBytes = uint64_t(voxelCount_) * gpu::kFixedPointWordsPerSum * 8;
     if (voxels && voxelGradientBytes > context_.deviceLocalHeapBytes() / 2) {
         throw Error("the gradients of the grids' " + std::to_string(voxelCount_) + " voxels need " +

@@ -52,11 +52,13 @@ void requireInvertible(const glm::dmat4& indexToWorld, const std::string& field,
     }
 }
 
-// Reads the grid a medium's "density" or "emissionGrid" object references; returns its
-// index in Scene::densityGrids.
+// Reads with `readGrid` the grid a medium's "density", "emissionGrid" or "albedoGrid"
+// object references; returns its index in Scene::densityGrids.
+using ReadGrid = DensityGrid (*)(const std::filesystem::path&, const std::string&);
+
 int32_t readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& density, const std::string& field,
-                       const std::string& defaultGrid, const SceneFiles& files, GltfDiagnostics& diagnostics,
-                       Scene& scene, std::vector<std::filesystem::path>& read) {
+                       const std::string& defaultGrid, ReadGrid readGrid, const SceneFiles& files,
+                       GltfDiagnostics& diagnostics, Scene& scene, std::vector<std::filesystem::path>& read) {
     if (!density.IsObject()) {
         diagnostics.fail(field, "expected an object {\"uri\", \"grid\", \"node\"}");
     }
@@ -83,7 +85,7 @@ int32_t readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& dens
     SceneDensityGrid placed;
     placed.file = resolved.file;
     try {
-        placed.grid = readDensityGrid(resolved.file, gridName);
+        placed.grid = readGrid(resolved.file, gridName);
     } catch (const Error& e) {
         diagnostics.fail(field, e.what());
     }
@@ -104,13 +106,20 @@ void readGridsOf(const tinygltf::Model& model, const tinygltf::ExtensionMap& ext
     }
     const tinygltf::Value& extension = found->second;
     const std::string field = prefix + kMediumExtension;
-    if (extension.Has("density")) {
-        medium.densityGrid = readMediumGrid(model, extension.Get("density"), field + ".density", "density", files,
-                                            diagnostics, scene, read);
-    }
-    if (extension.Has("emissionGrid")) {
-        medium.emissionGrid = readMediumGrid(model, extension.Get("emissionGrid"), field + ".emissionGrid", "flame",
-                                             files, diagnostics, scene, read);
+    struct Reference {
+        const char* key;
+        const char* defaultGrid;
+        ReadGrid readGrid;
+        int32_t& grid;
+    };
+    for (const Reference& reference : {Reference{"density", "density", readDensityGrid, medium.densityGrid},
+                                       Reference{"emissionGrid", "flame", readDensityGrid, medium.emissionGrid},
+                                       Reference{"albedoGrid", "color", readAlbedoGrid, medium.albedoGrid}}) {
+        if (extension.Has(reference.key)) {
+            reference.grid = readMediumGrid(model, extension.Get(reference.key), field + "." + reference.key,
+                                            reference.defaultGrid, reference.readGrid, files, diagnostics, scene,
+                                            read);
+        }
     }
 }
 

@@ -57,7 +57,7 @@ double densityStep(float value) {
     return sigmaStep(value);
 }
 
-constexpr std::array<ParameterDescription, 10> kDescriptions = {{
+constexpr std::array<ParameterDescription, 11> kDescriptions = {{
     {ParameterKind::SigmaA, "media/", "/sigma_a", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
      gpu::GradientAccumulator::mediumGradients, gpu::kMediumGradientSigmaA},
     {ParameterKind::SigmaS, "media/", "/sigma_s", ParameterOwner::Medium, 3, {0.0, kInfinity}, sigmaStep,
@@ -85,6 +85,8 @@ constexpr std::array<ParameterDescription, 10> kDescriptions = {{
     // multiply sigma: the same range and steps.
     {ParameterKind::EmissionGrid, "media/", "/emission_grid", ParameterOwner::Medium, 1, {0.0, kInfinity},
      densityStep, gpu::GradientAccumulator::densityGradients, 0},
+    {ParameterKind::AlbedoGrid, "media/", "/albedo_grid", ParameterOwner::Medium, 3, {0.0, 1.0}, albedoStep,
+     gpu::GradientAccumulator::densityGradients, 0},
 }};
 
 // describe() indexes the table by kind.

@@ -31,10 +31,18 @@ enum class ParameterKind : uint32_t {
     // media/<medium>/emission_grid: every voxel of a medium's emission grid (the strength
     // that multiplies its emission), one value each
     EmissionGrid = gpu::kGradientKindEmissionGrid,
+    // media/<medium>/albedo_grid: every voxel of a medium's albedo grid, RGB each
+    AlbedoGrid = gpu::kGradientKindAlbedoGrid,
 };
 
 // Whether a kind's parameter is every voxel of one of the scene's grids.
 constexpr bool isGridKind(ParameterKind kind) {
+    return kind == ParameterKind::Density || kind == ParameterKind::EmissionGrid || kind == ParameterKind::AlbedoGrid;
+}
+
+// Whether it is every voxel of a grid of one value per voxel (what the grid priors and
+// coarse-to-fine fitting work on).
+constexpr bool isScalarGridKind(ParameterKind kind) {
     return kind == ParameterKind::Density || kind == ParameterKind::EmissionGrid;
 }
 

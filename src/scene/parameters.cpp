@@ -63,7 +63,8 @@ auto findStorage(SceneType& scene, std::string_view name) {
                 storage = mediumStorage<Float>(medium, kind);
             } else if (int32_t grid = mediumGridOf(medium, kind); grid >= 0) {
                 auto& values = scene.densityGrids[size_t(grid)].grid.values;
-                storage = ParameterStorage<Float>{values.data(), values.size(), parsed->description, 1};
+                storage = ParameterStorage<Float>{values.data(), values.size(), parsed->description,
+                                                  parsed->description->channels};
             }
         }
         return storage;
@@ -116,6 +117,9 @@ std::vector<std::string> parameterNames(const Scene& scene) {
         names.push_back(parameterName(ParameterKind::MediumEmission, medium.name));
         if (medium.hasEmissionGrid()) {
             names.push_back(parameterName(ParameterKind::EmissionGrid, medium.name));
+        }
+        if (medium.hasAlbedoGrid()) {
+            names.push_back(parameterName(ParameterKind::AlbedoGrid, medium.name));
         }
     }
     for (const Material& material : scene.materials) {
@@ -202,9 +206,12 @@ void applyAssignment(Scene& scene, std::string_view assignment) {
 }
 
 int32_t mediumGridOf(const Medium& medium, ParameterKind kind) {
-    return kind == ParameterKind::Density ? medium.densityGrid
-           : kind == ParameterKind::EmissionGrid ? medium.emissionGrid
-                                                  : -1;
+    switch (kind) {
+    case ParameterKind::Density: return medium.densityGrid;
+    case ParameterKind::EmissionGrid: return medium.emissionGrid;
+    case ParameterKind::AlbedoGrid: return medium.albedoGrid;
+    default: return -1;
+    }
 }
 
 int32_t gridIndexOf(const Scene& scene, std::string_view name) {

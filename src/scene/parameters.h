@@ -15,10 +15,11 @@ namespace vkdr {
 // base colour texture (linear RGB, rows from the top), if it has one;
 // media/<medium>/density one float per voxel of a density grid medium's grid (its box,
 // x fastest, volume/density_grid.h), and media/<medium>/emission_grid the same of a
-// medium's emission grid. Medium boundary materials have no base colour or emission.
+// medium's emission grid, and media/<medium>/albedo_grid 3 (RGB) per voxel of its albedo
+// grid. Medium boundary materials have no base colour or emission.
 
 // Every parameter of the scene: media in order (sigma_a, sigma_s, g each, density for a
-// grid medium, emission, and emission_grid where there is one), then base
+// grid medium, emission, and emission_grid and albedo_grid where there are), then base
 // colours, then the emissions of emissive materials, then the punctual lights' intensities.
 std::vector<std::string> parameterNames(const Scene& scene);
 
@@ -39,7 +40,7 @@ void applyAssignment(Scene& scene, std::string_view assignment);
 // density or its emission grid; -1 where it has none, or for another kind.
 int32_t mediumGridOf(const Medium& medium, ParameterKind kind);
 
-// The same for a grid parameter's name (media/<medium>/density or .../emission_grid); -1
+// The same for a grid parameter's name (media/<medium>/density, .../emission_grid or .../albedo_grid); -1
 // for any other name, or a medium without that grid.
 int32_t gridIndexOf(const Scene& scene, std::string_view name);
 

@@ -45,6 +45,9 @@ struct Material {
 // medium whose coefficients at a point are sigma_a, sigma_s and emission times the grid's
 // value there. An emission grid (a flame or temperature-like strength) takes the place of
 // the density in the emission: j(x) = emission * strength(x), in either kind of medium.
+// An albedo grid a(x) (RGB, in [0, 1]) scales the scattering and turns the rest into
+// absorption, keeping the extinction: sigma_s(x) = a(x) sigma_s d(x) and sigma_a(x) =
+// (sigma_a + (1 - a(x)) sigma_s) d(x).
 struct Medium {
     std::string name;  // parameter prefix is "media/<name>/"
     glm::vec3 sigma_a{0.0f};
@@ -55,12 +58,14 @@ struct Medium {
     glm::vec3 emission{0.0f};
     int32_t densityGrid = -1;   // index into Scene::densityGrids; -1: homogeneous
     int32_t emissionGrid = -1;  // index into Scene::densityGrids; -1: none
+    int32_t albedoGrid = -1;    // index into Scene::densityGrids (an RGB grid); -1: none
     bool isHeterogeneous() const { return densityGrid >= 0; }
     bool hasEmissionGrid() const { return emissionGrid >= 0; }
+    bool hasAlbedoGrid() const { return albedoGrid >= 0; }
     bool isEmissive() const { return emission != glm::vec3(0.0f); }
 };
 
-// A scalar grid as the scene places it: a medium's density or emission strength.
+// A grid as the scene places it: a medium's density, emission strength or albedo.
 struct SceneDensityGrid {
     std::filesystem::path file;     // the file it was read from
     DensityGrid grid;
@@ -104,7 +109,7 @@ struct Scene {
     std::vector<int32_t> triangleOutsideMedium;
     std::vector<Material> materials;
     std::vector<Medium> media;
-    std::vector<SceneDensityGrid> densityGrids;  // densities and emission strengths
+    std::vector<SceneDensityGrid> densityGrids;  // densities, emission strengths and albedos
     std::vector<Texture> textures;
     std::vector<Camera> cameras;
     std::vector<PunctualLight> punctualLights;  // in the file's order

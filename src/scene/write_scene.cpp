@@ -256,10 +256,11 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
     }
 }
 
-// Grids are parameters too: each medium's density and emission grid, with its current
-// voxels, is written beside `out` as <stem>.materials<i>.density.vdb (a material's medium)
-// or <stem>.density.vdb (the scene medium), and .emission_grid.vdb, and the medium's
-// "density" and "emissionGrid" refer to those files.
+// Grids are parameters too: each medium's density, emission and albedo grid, with its
+// current voxels, is written beside `out` as <stem>.materials<i>.density.vdb (a
+// material's medium) or <stem>.density.vdb (the scene medium), .emission_grid.vdb and
+// .albedo_grid.vdb, and the medium's "density", "emissionGrid" and "albedoGrid" refer to
+// those files.
 void writeDensityGrids(json& document, const Scene& scene, const std::filesystem::path& out) {
     auto writeGrid = [&](json& owner, int32_t grid, const char* key, const char* defaultName,
                          const std::string& stem) {
@@ -281,6 +282,7 @@ void writeDensityGrids(json& document, const Scene& scene, const std::filesystem
         const std::string stem = out.stem().string() + suffix;
         writeGrid(owner, scene.media[size_t(medium)].densityGrid, "density", "density", stem + ".density");
         writeGrid(owner, scene.media[size_t(medium)].emissionGrid, "emissionGrid", "flame", stem + ".emission_grid");
+        writeGrid(owner, scene.media[size_t(medium)].albedoGrid, "albedoGrid", "color", stem + ".albedo_grid");
     };
     if (document.contains("materials") && document["materials"].is_array()) {
         for (size_t i = 0; i < document["materials"].size() && i < scene.materials.size(); ++i) {

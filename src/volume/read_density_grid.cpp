@@ -46,12 +46,46 @@ float densityOf(ValueT value, const openvdb::Coord& voxel) {
     return density;
 }
 
+// One channel of an albedo: in [0, 1].
+float albedoOf(double value, const openvdb::Coord& voxel) {
+    if (!(value >= 0.0 && value <= 1.0)) {
+        throw Error(formatText("voxel (%d, %d, %d) holds %g; an albedo must be in [0, 1]", voxel.x(), voxel.y(),
+                               voxel.z(), value));
+    }
+    return float(value);
+}
+
+// How a grid's values become the DensityGrid's: `channels` floats per value.
+struct DensityValues {
+    static constexpr int channels = 1;
+    static constexpr const char* expected = "scalar densities (float or double)";
+    template <typename ValueT>
+    static void convert(ValueT value, const openvdb::Coord& voxel, float* out) {
+        out[0] = densityOf(value, voxel);
+    }
+};
+
+// An RGB albedo from a vector grid, or a grey one from a scalar grid.
+struct AlbedoValues {
+    static constexpr int channels = 3;
+    static constexpr const char* expected = "albedos (float or double, scalar or 3-vector)";
+    template <typename ValueT>
+    static void convert(ValueT value, const openvdb::Coord& voxel, float* out) {
+        if constexpr (openvdb::VecTraits<ValueT>::IsVec) {
+            for (int c = 0; c < 3; ++c) out[c] = albedoOf(double(value[c]), voxel);
+        } else {
+            out[0] = out[1] = out[2] = albedoOf(double(value), voxel);
+        }
+    }
+};
+
 // The dense box of `grid`'s active voxels, active tiles filled in voxel by voxel.
-template <typename GridT>
+template <typename Values, typename GridT>
 DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dmat4& indexToLocal) {
     DensityGrid dense;
     dense.name = name;
     dense.indexToLocal = indexToLocal;
+    dense.channels = Values::channels;
     const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
     if (box.empty()) return dense;
     const glm::i64vec3 extent = glm::i64vec3(box.max().x(), box.max().y(), box.max().z()) -
@@ -65,24 +99,29 @@ DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dm
     }
     dense.firstVoxel = glm::ivec3(box.min().x(), box.min().y(), box.min().z());
     dense.size = glm::ivec3(extent);
-    dense.values.assign(count, 0.0f);
+    dense.values.assign(count * size_t(Values::channels), 0.0f);
     const openvdb::Coord first = box.min();
     const size_t sizeX = size_t(dense.size.x), sizeY = size_t(dense.size.y);
     for (auto value = grid.cbeginValueOn(); value; ++value) {
         const openvdb::CoordBBox cells = value.getBoundingBox();  // one voxel, or all of a tile's
-        const float density = densityOf(*value, cells.min());
-        if (density == 0.0f) continue;
+        float converted[Values::channels];
+        Values::convert(*value, cells.min(), converted);
+        if (std::all_of(converted, converted + Values::channels, [](float v) { return v == 0.0f; })) continue;
         for (int z = cells.min().z(); z <= cells.max().z(); ++z) {
             for (int y = cells.min().y(); y <= cells.max().y(); ++y) {
                 const size_t row = (size_t(z - first.z()) * sizeY + size_t(y - first.y())) * sizeX;
-                std::fill_n(dense.values.begin() + ptrdiff_t(row + size_t(cells.min().x() - first.x())),
-                            cells.max().x() - cells.min().x() + 1, density);
+                for (int x = cells.min().x(); x <= cells.max().x(); ++x) {
+                    const size_t voxel = row + size_t(x - first.x());
+                    std::copy_n(converted, Values::channels,
+                                dense.values.begin() + ptrdiff_t(voxel * size_t(Values::channels)));
+                }
             }
         }
     }
     return dense;
 }
 
+template <typename Values>
 DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridName) {
     initializeOpenVdb();
     openvdb::io::File vdb(file.string());
@@ -95,15 +134,28 @@ DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridNa
     const openvdb::GridBase::Ptr grid = vdb.readGrid(gridName);
     vdb.close();
     const bool isFloat = grid->isType<openvdb::FloatGrid>(), isDouble = grid->isType<openvdb::DoubleGrid>();
-    if (!isFloat && !isDouble) {
-        throw Error("the grid holds " + grid->valueType() + " values, not scalar densities (float or double)");
+    const bool isVector =
+        Values::channels == 3 && (grid->isType<openvdb::Vec3SGrid>() || grid->isType<openvdb::Vec3DGrid>());
+    if (!isFloat && !isDouble && !isVector) {
+        throw Error("the grid holds " + grid->valueType() + " values, not " + Values::expected);
     }
     const openvdb::math::Transform& transform = grid->transform();
     if (!transform.isLinear()) throw Error("the transform is not affine (it is a " + transform.mapType() + ")");
     const glm::dmat4 indexToLocal = toGlm(transform.baseMap()->getAffineMap()->getMat4());
     requireUsableTransform(indexToLocal);
-    if (isFloat) return denseBoxOf(*openvdb::gridConstPtrCast<openvdb::FloatGrid>(grid), gridName, indexToLocal);
-    return denseBoxOf(*openvdb::gridConstPtrCast<openvdb::DoubleGrid>(grid), gridName, indexToLocal);
+    if (isFloat) {
+        return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::FloatGrid>(grid), gridName, indexToLocal);
+    }
+    if (isDouble) {
+        return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::DoubleGrid>(grid), gridName, indexToLocal);
+    }
+    if constexpr (Values::channels == 3) {
+        if (grid->isType<openvdb::Vec3SGrid>()) {
+            return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::Vec3SGrid>(grid), gridName, indexToLocal);
+        }
+        return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::Vec3DGrid>(grid), gridName, indexToLocal);
+    }
+    throw Error("unreachable: a vector grid read as scalars");
 }
 
 // NanoVDB keeps the 3x3 part of the map transposed against OpenVDB's (Map::set): it maps
@@ -119,16 +171,17 @@ glm::dmat4 indexToLocalOf(const nanovdb::Map& map) {
     return indexToLocal;
 }
 
-template <typename ValueT>
+template <typename Values, typename ValueT>
 DensityGrid denseBoxOfNanoGrid(const nanovdb::NanoGrid<ValueT>* grid, const std::string& gridName) {
     if (grid == nullptr) throw Error("the grid's header and its contents disagree on its value type");
     const std::string damage = nanovdb::GridValidator<ValueT>::check(*grid, true);
     if (!damage.empty()) throw Error("the grid is damaged (" + damage + ")");
     const glm::dmat4 indexToLocal = indexToLocalOf(grid->map());
     requireUsableTransform(indexToLocal);
-    return denseBoxOf(*nanovdb::nanoToOpenVDB(*grid), gridName, indexToLocal);
+    return denseBoxOf<Values>(*nanovdb::nanoToOpenVDB(*grid), gridName, indexToLocal);
 }
 
+template <typename Values>
 DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gridName) {
     initializeOpenVdb();
     const std::vector<nanovdb::io::GridMetaData> grids = nanovdb::io::readGridMetaData(file.string());
@@ -140,13 +193,17 @@ DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gr
     }
     if (found == nullptr) throw Error(noGridNamed(gridName, names));
     const nanovdb::GridType type = found->gridType;
-    if (type != nanovdb::GridType::Float && type != nanovdb::GridType::Double) {
-        throw Error(std::string("the grid holds ") + nanovdb::toStr(type) +
-                    " values, not scalar densities (float or double)");
+    const bool isVector = Values::channels == 3 && type == nanovdb::GridType::Vec3f;
+    if (type != nanovdb::GridType::Float && type != nanovdb::GridType::Double && !isVector) {
+        throw Error(std::string("the grid holds ") + nanovdb::toStr(type) + " values, not " + Values::expected);
     }
     const nanovdb::GridHandle<nanovdb::HostBuffer> handle = nanovdb::io::readGrid(file.string(), gridName);
-    if (type == nanovdb::GridType::Float) return denseBoxOfNanoGrid(handle.grid<float>(), gridName);
-    return denseBoxOfNanoGrid(handle.grid<double>(), gridName);
+    if (type == nanovdb::GridType::Float) return denseBoxOfNanoGrid<Values>(handle.grid<float>(), gridName);
+    if (type == nanovdb::GridType::Double) return denseBoxOfNanoGrid<Values>(handle.grid<double>(), gridName);
+    if constexpr (Values::channels == 3) {
+        return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Vec3f>(), gridName);
+    }
+    throw Error("unreachable: a vector grid read as scalars");
 }
 
 void requireReadableFile(const std::filesystem::path& file) {
@@ -156,17 +213,17 @@ void requireReadableFile(const std::filesystem::path& file) {
     if (!probe) throw Error(std::strerror(errno));
 }
 
-}  // namespace
-
-DensityGrid readDensityGrid(const std::filesystem::path& file, const std::string& gridName) {
-    const std::string context = "cannot read density grid '" + gridName + "' from '" + file.string() + "': ";
+template <typename Values>
+DensityGrid readGrid(const std::filesystem::path& file, const std::string& gridName, const char* kind) {
+    const std::string context =
+        std::string("cannot read ") + kind + " grid '" + gridName + "' from '" + file.string() + "': ";
     const std::optional<GridFileType> type = gridFileTypeOf(file);
     if (!type) {
         throw Error(context + "unknown extension '" + file.extension().string() + "' (expected .vdb or .nvdb)");
     }
     try {
         requireReadableFile(file);
-        return *type == GridFileType::Vdb ? readVdb(file, gridName) : readNanoVdb(file, gridName);
+        return *type == GridFileType::Vdb ? readVdb<Values>(file, gridName) : readNanoVdb<Values>(file, gridName);
     } catch (const std::bad_alloc&) {
         throw;
     } catch (const Error& error) {
@@ -175,6 +232,16 @@ DensityGrid readDensityGrid(const std::filesystem::path& file, const std::string
         // OpenVDB's and NanoVDB's own complaints about the file (not a VDB file, truncated, ...).
         throw Error(context + error.what());
     }
+}
+
+}  // namespace
+
+DensityGrid readDensityGrid(const std::filesystem::path& file, const std::string& gridName) {
+    return readGrid<DensityValues>(file, gridName, "density");
+}
+
+DensityGrid readAlbedoGrid(const std::filesystem::path& file, const std::string& gridName) {
+    return readGrid<AlbedoValues>(file, gridName, "albedo");
 }
 
 }  // namespace vkdr

@@ -19,9 +19,10 @@ namespace vkdr {
 namespace {
 
 void requireWritable(const DensityGrid& grid) {
-    if (glm::any(glm::lessThan(grid.size, glm::ivec3(0))) || grid.values.size() != grid.voxelCount()) {
-        throw Error(formatText("the grid's %zu values do not fill its %d x %d x %d box", grid.values.size(),
-                               grid.size.x, grid.size.y, grid.size.z));
+    if (glm::any(glm::lessThan(grid.size, glm::ivec3(0))) || (grid.channels != 1 && grid.channels != 3) ||
+        grid.values.size() != grid.voxelCount() * size_t(grid.channels)) {
+        throw Error(formatText("the grid's %zu values do not fill its %d x %d x %d box with %d channels",
+                               grid.values.size(), grid.size.x, grid.size.y, grid.size.z, grid.channels));
     }
     for (size_t i = 0; i < grid.values.size(); ++i) {
         if (!(grid.values[i] >= 0.0f) || !std::isfinite(grid.values[i])) {
@@ -32,9 +33,12 @@ void requireWritable(const DensityGrid& grid) {
     if (!problem.empty()) throw Error(problem);
 }
 
-openvdb::FloatGrid::Ptr openVdbGridOf(const DensityGrid& grid) {
+// The grid as an OpenVDB grid of ValueT (float, or Vec3s for 3 channels).
+template <typename GridT>
+typename GridT::Ptr openVdbGridOf(const DensityGrid& grid) {
+    using ValueT = typename GridT::ValueType;
     initializeOpenVdb();
-    openvdb::FloatGrid::Ptr vdb = openvdb::FloatGrid::create(0.0f);
+    typename GridT::Ptr vdb = GridT::create(ValueT(0.0f));
     vdb->setName(grid.name.empty() ? "density" : grid.name);
     vdb->setGridClass(openvdb::GRID_FOG_VOLUME);
     vdb->setTransform(exactTransform(grid.indexToLocal));
@@ -42,10 +46,11 @@ openvdb::FloatGrid::Ptr openVdbGridOf(const DensityGrid& grid) {
     const glm::ivec3 last = grid.firstVoxel + grid.size - 1;
     const openvdb::CoordBBox box(openvdb::Coord(grid.firstVoxel.x, grid.firstVoxel.y, grid.firstVoxel.z),
                                  openvdb::Coord(last.x, last.y, last.z));
-    // LayoutXYZ: x varies fastest, as in DensityGrid::values. Voxels equal to the
-    // background (tolerance 0: exactly 0) stay inactive.
-    const openvdb::tools::Dense<const float, openvdb::tools::LayoutXYZ> dense(box, grid.values.data());
-    openvdb::tools::copyFromDense(dense, *vdb, 0.0f);
+    // LayoutXYZ: x varies fastest, as in DensityGrid::values (whose channels are a Vec3s's
+    // components). Voxels equal to the background (tolerance 0: exactly 0) stay inactive.
+    const openvdb::tools::Dense<const ValueT, openvdb::tools::LayoutXYZ> dense(
+        box, reinterpret_cast<const ValueT*>(grid.values.data()));
+    openvdb::tools::copyFromDense(dense, *vdb, ValueT(0.0f));
     // The box's two extreme corners are active whatever their values, so that the box
     // (and with it a fitted grid's parameter) reads back unchanged.
     vdb->tree().setValueOn(box.min());
@@ -53,9 +58,16 @@ openvdb::FloatGrid::Ptr openVdbGridOf(const DensityGrid& grid) {
     return vdb;
 }
 
+static_assert(sizeof(openvdb::Vec3s) == 3 * sizeof(float));
+
+openvdb::GridBase::Ptr openVdbGridOf(const DensityGrid& grid) {
+    if (grid.channels == 3) return openVdbGridOf<openvdb::Vec3SGrid>(grid);
+    return openVdbGridOf<openvdb::FloatGrid>(grid);
+}
+
 void write(const std::filesystem::path& file, const DensityGrid& grid, const std::string& format,
-           const std::function<void(std::ofstream&, const openvdb::FloatGrid::Ptr&)>& writeGrid) {
-    openvdb::FloatGrid::Ptr vdb;
+           const std::function<void(std::ofstream&, const openvdb::GridBase::Ptr&)>& writeGrid) {
+    openvdb::GridBase::Ptr vdb;
     try {
         requireWritable(grid);
         vdb = openVdbGridOf(grid);
@@ -70,14 +82,18 @@ void write(const std::filesystem::path& file, const DensityGrid& grid, const std
 }  // namespace
 
 void writeDensityGridVdb(const std::filesystem::path& file, const DensityGrid& grid) {
-    write(file, grid, "VDB", [](std::ofstream& out, const openvdb::FloatGrid::Ptr& vdb) {
+    write(file, grid, "VDB", [](std::ofstream& out, const openvdb::GridBase::Ptr& vdb) {
         openvdb::io::Stream(out).write(openvdb::GridCPtrVec{vdb});
     });
 }
 
 void writeDensityGridNanoVdb(const std::filesystem::path& file, const DensityGrid& grid) {
-    write(file, grid, "NanoVDB", [](std::ofstream& out, const openvdb::FloatGrid::Ptr& vdb) {
-        nanovdb::io::writeGrid(out, nanovdb::openToNanoVDB(*vdb));
+    write(file, grid, "NanoVDB", [](std::ofstream& out, const openvdb::GridBase::Ptr& vdb) {
+        if (vdb->isType<openvdb::Vec3SGrid>()) {
+            nanovdb::io::writeGrid(out, nanovdb::openToNanoVDB(*openvdb::gridPtrCast<openvdb::Vec3SGrid>(vdb)));
+        } else {
+            nanovdb::io::writeGrid(out, nanovdb::openToNanoVDB(*openvdb::gridPtrCast<openvdb::FloatGrid>(vdb)));
+        }
     });
 }
 

@@ -5,10 +5,10 @@
 
 namespace vkdr {
 
-// Writes `grid` as an OpenVDB FloatGrid of class fog volume named grid.name ("density"
-// when empty), background 0, its non-zero voxels and the two extreme corners of its box
+// Writes `grid` as an OpenVDB FloatGrid (Vec3SGrid for 3 channels) of class fog volume
+// named grid.name ("density" when empty), background 0, its non-zero voxels and the two extreme corners of its box
 // active, with indexToLocal as an affine
-// map: readDensityGrid gives back the same box, values and matrix bit for bit. The file
+// map: readDensityGrid (readAlbedoGrid) gives back the same box, values and matrix bit for bit. The file
 // is written atomically (complete or untouched). Throws vkdr::Error for a grid whose
 // values do not match its size, a negative or non-finite value, or a transform that
 // indexTransformProblem refuses.

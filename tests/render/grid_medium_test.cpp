@@ -41,6 +41,25 @@ TEST_F(GridMediumTest, SingleScatteringInALinearDensityMatchesQuadrature) {
     expectPixelNear(pixelOverSeeds(writeFog(fog, tempDir()), kSettings, 16), singleScattering(fog).radiance);
 }
 
+// An albedo grid whose RGB changes along the view axis scales the scattering (and absorbs
+// the rest), in a homogeneous medium and in a density ramp.
+TEST_F(GridMediumTest, SingleScatteringWithAnAlbedoRampMatchesQuadrature) {
+    for (bool densityGrid : {false, true}) {
+        FogSetup fog = rampFog(0.2, 0.6);
+        if (!densityGrid) {
+            fog.density.reset();
+        }
+        fog.albedo = FogSetup::LinearAlbedo{glm::dvec3(0.9, 0.5, 0.2), glm::dvec3(-0.1, 0.1, 0.15), "albedo.vdb"};
+        const std::filesystem::path dir = tempDir();
+        writeDensityGridVdb(dir / fog.albedo->uri, linearAlbedoGrid(fog, 0.25));
+        expectPixelNear(pixelOverSeeds(writeFog(fog, dir), kSettings, 16), singleScattering(fog).radiance);
+        if (HasFailure()) {
+            ADD_FAILURE() << (densityGrid ? "in a density ramp" : "in a homogeneous medium");
+            return;
+        }
+    }
+}
+
 TEST_F(GridMediumTest, ConstantGridRendersAsTheHomogeneousMedium) {
     constexpr double kDensity = 2.5;
     FogSetup homogeneous = rampFog(1.0, 0.0);

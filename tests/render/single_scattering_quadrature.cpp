@@ -58,6 +58,9 @@ TestGltf FogSetup::scene() const {
         if (density) {
             gltf.materials.back()["extensions"]["VKDR_participating_media"]["density"] = {{"uri", density->uri}};
         }
+        if (albedo) {
+            gltf.materials.back()["extensions"]["VKDR_participating_media"]["albedoGrid"] = {{"uri", albedo->uri}};
+        }
         if (emission != glm::dvec3(0.0)) {
             gltf.materials.back()["extensions"]["VKDR_participating_media"]["emission"] = {emission.x, emission.y,
                                                                                            emission.z};
@@ -94,6 +97,7 @@ SingleScattering singleScattering(const FogSetup& fog) {
             }
             double cameraPath = densityIntegral(fog, glm::dvec3(0.0), direction, t);
             double density = fog.densityAt(x);
+            glm::dvec3 albedo = fog.albedoAt(x);
             for (int j = 0; j < kLightSteps * kLightSteps; ++j) {
                 glm::dvec3 y(fog.lightX, -fog.lightHalf + (j % kLightSteps + 0.5) * cell,
                              fog.lightZ - fog.lightHalf + (j / kLightSteps + 0.5) * cell);
@@ -107,10 +111,10 @@ SingleScattering singleScattering(const FogSetup& fog) {
                 // the density where the light scatters.
                 glm::dvec3 base =
                     fog.le * glm::exp(-sigmaT * d) * (density * hg(mu, fog.g) * (toLight.x / r) / (r * r));
-                glm::dvec3 f = fog.sigmaS * base;
+                glm::dvec3 f = fog.sigmaS * albedo * base;
                 out.radiance += f;
                 out.dSigmaA += -d * f;
-                out.dSigmaS += base * (1.0 - fog.sigmaS * d);
+                out.dSigmaS += albedo * base * (1.0 - fog.sigmaS * d);
                 out.dG += f * hgDLogG(mu, fog.g);
             }
         }
@@ -123,22 +127,43 @@ SingleScattering singleScattering(const FogSetup& fog) {
     return out;
 }
 
-DensityGrid linearDensityGrid(const FogSetup& fog, double voxel) {
+namespace {
+
+// A grid of `channels` values per voxel over the enclosure grown by two voxels of edge
+// `voxel` on each side, each voxel holding value(its centre).
+template <typename Value>
+DensityGrid gridOverEnclosure(const FogSetup& fog, double voxel, const char* name, int channels, Value value) {
     const glm::dvec3 lo = fog.enclosure->lo - 2.0 * voxel;
     const glm::ivec3 size = glm::ivec3(glm::ceil((fog.enclosure->hi - fog.enclosure->lo) / voxel)) + 5;
     DensityGrid grid;
-    grid.name = "density";
+    grid.name = name;
     grid.size = size;
+    grid.channels = channels;
     grid.indexToLocal = glm::dmat4(glm::dvec4(voxel, 0, 0, 0), glm::dvec4(0, voxel, 0, 0), glm::dvec4(0, 0, voxel, 0),
                                    glm::dvec4(lo, 1.0));
     for (int z = 0; z < size.z; ++z) {
         for (int y = 0; y < size.y; ++y) {
             for (int x = 0; x < size.x; ++x) {
-                grid.values.push_back(float(fog.densityAt(lo + voxel * glm::dvec3(x, y, z))));
+                value(lo + voxel * glm::dvec3(x, y, z), grid.values);
             }
         }
     }
     return grid;
+}
+
+}  // namespace
+
+DensityGrid linearDensityGrid(const FogSetup& fog, double voxel) {
+    return gridOverEnclosure(fog, voxel, "density", 1, [&](glm::dvec3 x, std::vector<float>& values) {
+        values.push_back(float(fog.densityAt(x)));
+    });
+}
+
+DensityGrid linearAlbedoGrid(const FogSetup& fog, double voxel) {
+    return gridOverEnclosure(fog, voxel, "color", 3, [&](glm::dvec3 x, std::vector<float>& values) {
+        const glm::dvec3 albedo = fog.albedoAt(x);
+        values.insert(values.end(), {float(albedo.r), float(albedo.g), float(albedo.b)});
+    });
 }
 
 }  // namespace vkdr::test

@@ -37,7 +37,16 @@ struct FogSetup {
     };
     std::optional<LinearDensity> density;
 
+    // With an enclosure: an albedo grid a + b x.z (RGB) scales the scattering, the rest is
+    // absorbed (sigma_t unchanged); from the grid file `uri` (linearAlbedoGrid writes it).
+    struct LinearAlbedo {
+        glm::dvec3 a{1.0}, b{0.0};
+        std::string uri;
+    };
+    std::optional<LinearAlbedo> albedo;
+
     double densityAt(glm::dvec3 x) const { return density ? density->a + density->b * x.z : 1.0; }
+    glm::dvec3 albedoAt(glm::dvec3 x) const { return albedo ? albedo->a + albedo->b * x.z : glm::dvec3(1.0); }
     TestGltf scene() const;
 };
 
@@ -55,5 +64,8 @@ SingleScattering singleScattering(const FogSetup& fog);
 // grown by two voxels of edge `voxel` on each side, so that the trilinear density inside
 // the enclosure is exactly linear; placed in world space by its own transform.
 DensityGrid linearDensityGrid(const FogSetup& fog, double voxel);
+
+// The same for fog.albedo's a + b z, an RGB grid.
+DensityGrid linearAlbedoGrid(const FogSetup& fog, double voxel);
 
 }  // namespace vkdr::test

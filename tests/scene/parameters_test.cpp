@@ -65,7 +65,7 @@ TEST(Parameters, SetsRgbValuesAndBroadcastsOneValue) {
     EXPECT_EQ(scene.media[1].g, -0.9f);
 }
 
-// sceneWithEverything with a texture on "white" and a density and emission grid in "smoke": an owner
+// sceneWithEverything with a texture on "white" and a density, emission and albedo grid in "smoke": an owner
 // for every kind of parameter.
 Scene sceneWithEveryKind() {
     Scene scene = sceneWithEverything();
@@ -84,6 +84,12 @@ Scene sceneWithEveryKind() {
     flame.grid.values = {0.0f, 2.0f, 1.0f, 0.5f};
     scene.densityGrids.push_back(flame);
     scene.media[1].emissionGrid = 1;
+    SceneDensityGrid albedo;
+    albedo.grid.size = glm::ivec3(1, 2, 1);
+    albedo.grid.channels = 3;
+    albedo.grid.values = {0.1f, 0.2f, 0.3f, 1.0f, 0.5f, 0.0f};
+    scene.densityGrids.push_back(albedo);
+    scene.media[1].albedoGrid = 2;
     return scene;
 }
 
@@ -96,7 +102,8 @@ std::string ownerOf(ParameterKind kind) {
     case ParameterKind::Emission: return "light";
     case ParameterKind::LightIntensity: return "bulb";
     case ParameterKind::Density:
-    case ParameterKind::EmissionGrid: return "smoke";
+    case ParameterKind::EmissionGrid:
+    case ParameterKind::AlbedoGrid: return "smoke";
     default: return "white";
     }
 }
@@ -157,6 +164,7 @@ TEST(ParameterKinds, ChannelsAreThoseSettingAndGettingUse) {
         const size_t groups = description.kind == ParameterKind::BaseColorTexture ? scene.textures[0].texels.size()
                               : description.kind == ParameterKind::Density   ? scene.densityGrids[0].grid.voxelCount()
                               : description.kind == ParameterKind::EmissionGrid ? scene.densityGrids[1].grid.voxelCount()
+                              : description.kind == ParameterKind::AlbedoGrid   ? scene.densityGrids[2].grid.voxelCount()
                                                                                 : 1;
         EXPECT_EQ(getParameter(scene, name).size(), description.channels * groups) << name;
     }

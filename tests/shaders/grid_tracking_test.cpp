@@ -41,7 +41,7 @@ struct HostGrid {
         // them out; a cell bounds the voxels its trilinear lookups blend, one more per axis.
         grid.majorantOrigin = grid.firstVoxel - ivec4(1, 1, 1, 0);
         const ivec3 cells = (ivec3(grid.size) + 2 + kMajorantCellVoxels - 1) / kMajorantCellVoxels;
-        grid.majorantCells = ivec4(cells, 0);
+        grid.majorantCells = ivec4(cells, 1);  // one value per voxel
         for (int z = 0; z < cells.z; ++z)
             for (int y = 0; y < cells.y; ++y)
                 for (int x = 0; x < cells.x; ++x) {
