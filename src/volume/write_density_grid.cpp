@@ -40,7 +40,8 @@ typename GridT::Ptr openVdbGridOf(const DensityGrid& grid) {
     initializeOpenVdb();
     typename GridT::Ptr vdb = GridT::create(ValueT(0.0f));
     vdb->setName(grid.name.empty() ? "density" : grid.name);
-    vdb->setGridClass(openvdb::GRID_FOG_VOLUME);
+    // A fog volume is a scalar grid (NanoVDB refuses the class on vectors).
+    vdb->setGridClass(grid.channels == 1 ? openvdb::GRID_FOG_VOLUME : openvdb::GRID_UNKNOWN);
     vdb->setTransform(exactTransform(grid.indexToLocal));
     if (grid.voxelCount() == 0) return vdb;
     const glm::ivec3 last = grid.firstVoxel + grid.size - 1;

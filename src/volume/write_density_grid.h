@@ -5,8 +5,8 @@
 
 namespace vkdr {
 
-// Writes `grid` as an OpenVDB FloatGrid (Vec3SGrid for 3 channels) of class fog volume
-// named grid.name ("density" when empty), background 0, its non-zero voxels and the two extreme corners of its box
+// Writes `grid` as an OpenVDB FloatGrid of class fog volume (a Vec3SGrid of no class for
+// 3 channels) named grid.name ("density" when empty), background 0, its non-zero voxels and the two extreme corners of its box
 // active, with indexToLocal as an affine
 // map: readDensityGrid (readAlbedoGrid) gives back the same box, values and matrix bit for bit. The file
 // is written atomically (complete or untouched). Throws vkdr::Error for a grid whose

@@ -1,7 +1,8 @@
 // Per-voxel density gradients against central finite differences with common random
 // numbers: a small grid in a box, lit from behind (where the transmittance's derivative
 // dominates), from the side (the scattering's) or by its own emission (following the
-// density, or an emission grid, whose voxels are tested too), at voxels inside
+// density, or an emission grid, whose voxels are tested too), and an albedo grid's voxels
+// lit from the side, at voxels inside
 // the medium, on its
 // face, and one of zero
 // density between denser ones. The loss is L1 against a target brighter than every
@@ -15,6 +16,7 @@
 #include "diff/rendered_loss_gradient.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
+#include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
 #include "test_gltf.h"
 #include "volume/write_density_grid.h"
@@ -55,6 +57,20 @@ DensityGrid flameGrid() {
     return grid;
 }
 
+// An RGB albedo over the same voxels, from 0.3 to 0.8 in each channel.
+DensityGrid albedoGrid() {
+    DensityGrid grid = smokeGrid();
+    grid.name = "color";
+    grid.channels = 3;
+    grid.values.clear();
+    for (int i = 0; i < kVoxels * kVoxels * kVoxels; ++i) {
+        for (int c = 0; c < 3; ++c) {
+            grid.values.push_back(0.3f + 0.5f * float((i * 13 + c * 5) % 9) / 8.0f);
+        }
+    }
+    return grid;
+}
+
 struct Lighting {
     const char* label;
     float back;  // radiance of the emitter behind the medium
@@ -63,6 +79,7 @@ struct Lighting {
     float glow = 0.0f;  // scales the medium's emission
     const char* parameter = "media/smoke/density";
     bool flame = false;  // an emission grid (flameGrid) multiplies the emission instead of the density
+    bool albedo = false;  // an albedo grid (albedoGrid) scales the scattering
 };
 
 void PrintTo(const Lighting& lighting, std::ostream* os) {
@@ -78,6 +95,9 @@ TestGltf smokeScene(const Lighting& lighting) {
                                                                    0.3f * lighting.glow};
     if (lighting.flame) {
         smoke["extensions"]["VKDR_participating_media"]["emissionGrid"] = {{"uri", "flame.vdb"}};
+    }
+    if (lighting.albedo) {
+        smoke["extensions"]["VKDR_participating_media"]["albedoGrid"] = {{"uri", "albedo.vdb"}};
     }
     g.materials = {emissiveMaterial("back", lighting.back * glm::vec3(1.0f, 0.8f, 0.6f), false),
                    emissiveMaterial("side", glm::vec3(lighting.side), false), smoke};
@@ -104,6 +124,7 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
     const char* const kParameter = lighting.parameter;
     writeDensityGridVdb(dir / "smoke.vdb", smokeGrid());
     writeDensityGridVdb(dir / "flame.vdb", flameGrid());
+    writeDensityGridVdb(dir / "albedo.vdb", albedoGrid());
     Scene scene = loadScene(smokeScene(lighting).write(dir, "smoke")).scene;
     Image bright{kSide, kSide, std::vector<float>(kSide * kSide * 3, 10.0f)};
     RenderedLossGradient lg(testContext(), scene, {{"", bright}}, {kParameter}, {.spp = 64, .maxDepth = 3},
@@ -111,9 +132,12 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
     const std::vector<std::vector<MeanAndError>> adjoint = gradientOverSeeds(lg, scene, kSeeds);
 
     const std::vector<float> values = getParameter(scene, kParameter);
+    // An RGB grid's voxels are tested in one channel each, a different one from voxel to voxel.
+    const size_t channels = parseParameterName(kParameter)->description->channels;
+    size_t tested = 0;
     for (glm::ivec3 voxel : {glm::ivec3(2, 2, 2), glm::ivec3(1, 2, 3), glm::ivec3(0, 3, 3), glm::ivec3(3, 1, 4)}) {
         // (1, 2, 3) has zero density, and (2, 2, 2) zero strength in flameGrid.
-        const size_t index = voxelIndex(voxel);
+        const size_t index = voxelIndex(voxel) * channels + tested++ % channels;
         const double value = values[index];
         const double h = value > 0.0 ? 0.2 * value : 0.5;
         auto lossAt = [&](double offset, uint32_t seed) {
@@ -133,7 +157,8 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
         const MeanAndError fd = meanAndError(differences);
         const MeanAndError& ad = adjoint[0][index];
         EXPECT_NEAR(ad.mean, fd.mean, 5.0 * std::hypot(ad.error, fd.error))
-            << "voxel " << voxel.x << " " << voxel.y << " " << voxel.z << ": adjoint " << ad.mean << " +- " << ad.error
+            << "voxel " << voxel.x << " " << voxel.y << " " << voxel.z << " value " << index << ": adjoint " << ad.mean
+            << " +- " << ad.error
             << ", finite difference " << fd.mean << " +- " << fd.error;
         EXPECT_GT(std::abs(fd.mean), 3.0 * fd.error) << "voxel " << voxel.x << " " << voxel.y << " " << voxel.z;
     }
@@ -147,7 +172,10 @@ INSTANTIATE_TEST_SUITE_P(Lightings, DensityGradientTest,
                                            Lighting{"GlowingFlameDensity", 0.3f, 0.0f, 1.5f, 2.0f,
                                                     "media/smoke/density", true},
                                            Lighting{"GlowingFlameStrength", 0.0f, 0.0f, 0.5f, 2.0f,
-                                                    "media/smoke/emission_grid", true}),
+                                                    "media/smoke/emission_grid", true},
+                                           // With an albedo grid: its voxels, where the scattering shows.
+                                           Lighting{"SideLitAlbedo", 0.0f, 20.0f, 0.25f, 0.0f,
+                                                    "media/smoke/albedo_grid", false, true}),
                          [](const ::testing::TestParamInfo<Lighting>& info) { return std::string(info.param.label); });
 
 }  // namespace

@@ -1,11 +1,13 @@
-// Density grids referenced from glTF: placement by the grid's own transform and a node's,
-// on materials and the scene medium; the grid files among the files read, and the
-// fitted voxels in the grid a written scene refers to; and one error naming the field for each kind of bad reference.
+// Density, emission and albedo grids referenced from glTF: placement by the grid's own
+// transform and a node's, on materials and the scene medium; the grid files among the
+// files read, and the fitted voxels in the grid a written scene refers to; and one error
+// naming the field for each kind of bad reference.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/error.h"
+#include "expect_error.h"
 #include "gltf_test_files.h"
 #include "scene/load_scene.h"
 #include "scene/parameters.h"
@@ -175,6 +177,75 @@ TEST(DensityGridScene, ASceneMediumClearInAChannelMayEmitThroughAnEmissionGrid) 
     EXPECT_EQ(air.emissionGrid, 0);
     builder.document()["extensions"]["VKDR_participating_media"].erase("emissionGrid");
     expectLoadError(builder.writeGltf(directory / "air.gltf"), {"emission[0]", "infinitely bright"});
+}
+
+DensityGrid colourGrid() {
+    DensityGrid grid = smallGrid();
+    grid.name = "color";
+    grid.channels = 3;
+    grid.values = {0.1f, 0.2f, 0.3f, 1.0f, 0.0f, 0.5f, 0.25f, 0.75f, 1.0f,
+                   0.0f, 0.0f, 0.0f, 0.5f, 0.5f, 0.5f, 0.9f, 0.8f, 0.7f};
+    return grid;
+}
+
+// An albedo grid: RGB from a vector grid (OpenVDB or NanoVDB), grey from a scalar one;
+// its own parameter of 3 values per voxel, written back beside the scene.
+TEST(DensityGridScene, AlbedoGridIsReadAsRgbOrGreyAndWrittenBack) {
+    TemporaryDirectory directory;
+    std::filesystem::create_directories(directory / "in");
+    std::filesystem::create_directories(directory / "out");
+    writeDensityGridVdb(directory / "in" / "smoke.vdb", smallGrid());
+    writeDensityGridNanoVdb(directory / "in" / "colour.nvdb", colourGrid());
+    json medium = gridMedium({{"uri", "smoke.vdb"}});
+    medium["extensions"]["VKDR_participating_media"]["albedoGrid"] = {{"uri", "colour.nvdb"}};
+    std::filesystem::path original = boxScene(medium).writeGltf(directory / "in" / "s.gltf");
+    LoadedScene loaded = loadScene(original);
+    ASSERT_EQ(loaded.scene.media[0].albedoGrid, 1);
+    const DensityGrid& albedo = loaded.scene.densityGrids[1].grid;
+    EXPECT_EQ(albedo.channels, 3);
+    EXPECT_EQ(albedo.values, colourGrid().values);
+    EXPECT_EQ(getParameter(loaded.scene, "media/smoke/albedo_grid"), colourGrid().values);
+    expectErrorMentioning([&] { setParameter(loaded.scene, "media/smoke/albedo_grid", std::vector<float>{1.5f}); },
+                          {"media/smoke/albedo_grid", "must be in [0, 1]"});
+
+    std::vector<float> fitted = colourGrid().values;
+    fitted[4] = 0.625f;
+    setParameter(loaded.scene, "media/smoke/albedo_grid", fitted);
+    writeSceneWithParameters(original, loaded.scene, directory / "out" / "scene.gltf");
+    EXPECT_TRUE(std::filesystem::exists(directory / "out" / "scene.materials0.albedo_grid.vdb"));
+    LoadedScene again = loadScene(directory / "out" / "scene.gltf");
+    EXPECT_EQ(again.scene.densityGrids[size_t(again.scene.media[0].albedoGrid)].grid.values, fitted);
+    EXPECT_EQ(again.scene.densityGrids[size_t(again.scene.media[0].albedoGrid)].grid.name, "color");
+
+    DensityGrid grey = smallGrid();
+    grey.values = {0.0f, 0.5f, 1.0f, 0.25f, 0.75f, 0.125f};
+    writeDensityGridVdb(directory / "in" / "grey.vdb", grey);
+    medium["extensions"]["VKDR_participating_media"]["albedoGrid"] = {{"uri", "grey.vdb"}, {"grid", "density"}};
+    LoadedScene greyScene = loadScene(boxScene(medium).writeGltf(directory / "in" / "grey.gltf"));
+    const DensityGrid& greyAlbedo = greyScene.scene.densityGrids[1].grid;
+    ASSERT_EQ(greyAlbedo.values.size(), 18u);
+    for (size_t i = 0; i < grey.values.size(); ++i) {
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(greyAlbedo.values[3 * i + size_t(c)], grey.values[i]);
+    }
+}
+
+TEST(DensityGridScene, BadAlbedoGridsNameTheFieldAndTheVoxel) {
+    TemporaryDirectory directory;
+    writeDensityGridVdb(directory / "smoke.vdb", smallGrid());
+    writeDensityGridVdb(directory / "colour.vdb", colourGrid());
+    const std::string field = "materials[0].extensions.VKDR_participating_media";
+    auto write = [&](json grid, const char* key) {
+        json medium = gridMedium({{"uri", "smoke.vdb"}});
+        medium["extensions"]["VKDR_participating_media"][key] = std::move(grid);
+        return boxScene(medium).writeGltf(directory / "bad.gltf");
+    };
+    // smallGrid holds 2 and 3: not albedos.
+    expectLoadError(write({{"uri", "smoke.vdb"}, {"grid", "density"}}, "albedoGrid"),
+                    {field + ".albedoGrid", "voxel", "an albedo must be in [0, 1]"});
+    expectLoadError(write({{"uri", "smoke.vdb"}}, "albedoGrid"), {field + ".albedoGrid", "color", "density"});
+    // A vector grid is no density.
+    expectLoadError(write({{"uri", "colour.vdb"}, {"grid", "color"}}, "emissionGrid"),
+                    {field + ".emissionGrid", "vec3s", "not scalar densities"});
 }
 
 TEST(DensityGridScene, BadEmissionGridReferencesNameTheField) {
