@@ -65,13 +65,18 @@ std::optional<int> parseResolution(const std::string& text) {
     return value;
 }
 
-// Puts a procedural plume of resolution^3 voxels in place of each of the scene's grids,
+// Puts a procedural plume of resolution^3 voxels in place of each medium's density grid,
 // keeping the node's placement: the plume fills the box the old grid filled.
 void replaceGridsWithPlume(Scene& scene, const BenchSceneSource& source) {
-    if (scene.densityGrids.empty()) {
+    std::vector<size_t> densities;
+    for (const Medium& medium : scene.media) {
+        if (medium.isHeterogeneous()) densities.push_back(size_t(medium.densityGrid));
+    }
+    if (densities.empty()) {
         throw Error("scene " + source.name + ": " + source.file.string() + " has no density grid to replace");
     }
-    for (SceneDensityGrid& placed : scene.densityGrids) {
+    for (size_t index : densities) {
+        SceneDensityGrid& placed = scene.densityGrids[index];
         DensityGrid plume = makeSmokePlume(source.plumeResolution, kPlumeSeed);
         plume.name = placed.grid.name;
         const glm::dmat4 nodeToWorld = placed.indexToWorld * glm::inverse(placed.grid.indexToLocal);

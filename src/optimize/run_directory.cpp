@@ -17,10 +17,11 @@ constexpr std::array<const char*, 9> kRunFiles = {"log.jsonl", "checkpoint.json"
                                                   "diff.png",  "loss.svg",        "report.html"};
 constexpr std::array<const char*, 2> kExperimentFiles = {"target.exr", "target.png"};
 // What scene.gltf refers to beside it (scene/write_scene.h): a .glb's binary chunk,
-// base colour textures, density grids, and copies of external files from outside the
-// directory.
+// base colour textures, density, emission and albedo grids, and copies of external files
+// from outside the directory.
 const std::regex kSceneCompanion(
-    R"(scene\.(bin|image[0-9]+\.png|(materials[0-9]+\.)?density\.vdb|(buffers|images)[0-9]+(\.[A-Za-z0-9]+)?))");
+    R"(scene\.(bin|image[0-9]+\.png|(materials[0-9]+\.)?(density|emission_grid|albedo_grid)\.vdb|)"
+    R"((buffers|images)[0-9]+(\.[A-Za-z0-9]+)?))");
 
 bool present(const fs::path& file) {
     std::error_code error;

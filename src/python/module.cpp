@@ -218,8 +218,8 @@ void bindParameter(py::module_& m) {
         .def_readonly("name", &ParameterInfo::name, "media/<medium>/sigma_a and so on")
         .def_property_readonly(
             "shape", [](const ParameterInfo& p) { return py::tuple(py::cast(p.shape)); },
-            "(3,) for RGB, (1,) for g, (height, width, 3) for a base colour texture, (z, y, x) for a density "
-            "grid's voxels")
+            "(3,) for RGB, (1,) for g, (height, width, 3) for a base colour texture, (z, y, x) for a density or "
+            "emission grid's voxels, (z, y, x, 3) for an albedo grid's")
         .def_property_readonly(
             "lower", [](const ParameterInfo& p) { return p.range.lower; }, "the smallest valid value")
         .def_property_readonly(

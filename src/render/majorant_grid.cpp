@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/error.h"
 #include "device_types.h"
 
 namespace vkdr {
@@ -12,6 +13,10 @@ namespace vkdr {
 // sits on a cell's lower face, the cell below too.
 MajorantGrid buildMajorantGrid(const DensityGrid& grid) {
     constexpr int k = gpu::kMajorantCellVoxels;
+    if (grid.channels != 1) {
+        throw Error("grid '" + grid.name + "' has " + std::to_string(grid.channels) +
+                    " values per voxel; majorants bound a grid of one");
+    }
     MajorantGrid majorants;
     if (grid.voxelCount() == 0) {
         return majorants;

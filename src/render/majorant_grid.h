@@ -22,6 +22,7 @@ struct MajorantGrid {
     }
 };
 
+// For a grid of one value per voxel; vkdr::Error for any other.
 MajorantGrid buildMajorantGrid(const DensityGrid& grid);
 
 }  // namespace vkdr

@@ -26,7 +26,8 @@ void requireWritable(const DensityGrid& grid) {
     }
     for (size_t i = 0; i < grid.values.size(); ++i) {
         if (!(grid.values[i] >= 0.0f) || !std::isfinite(grid.values[i])) {
-            throw Error(formatText("value %zu is %g; a density must be finite and >= 0", i, double(grid.values[i])));
+            throw Error(formatText("value %zu is %g; a grid's values must be finite and >= 0", i,
+                                   double(grid.values[i])));
         }
     }
     const std::string problem = indexTransformProblem(grid.indexToLocal);

@@ -1,9 +1,12 @@
 """Test scenes built with bpy (run inside Blender): a diffuse box lit by an area light,
-seen from its open front, and variants with a volume cube (one of them emissive), a world fog, a point light,
+seen from its open front, and variants with a volume cube (one of them emissive), a smoke plume read from an OpenVDB
+file as a Volume object, a world fog, a point light,
 a smooth sphere and Principled BSDF walls. Also the emissive mesh that stands in for an
 area light where Cycles' area lights and the exported emitter differ (docs/blender.md).
 The Cycles settings come from tools/blender/cycles_reference.py; the tests reach them as
 scenes.configure_cycles."""
+import pathlib
+
 import bpy
 from cycles_reference import configure_cycles, front_only_emission  # noqa: F401
 
@@ -13,10 +16,15 @@ PRINCIPLED = {"Color": (0.7, 0.5, 0.3, 1.0), "Density": 2.0, "Absorption Color":
 ABSORPTION = {"Color": (0.35, 0.6, 0.85, 1.0), "Density": 2.5}
 GLOWING = {"Color": (0.6, 0.5, 0.4, 1.0), "Density": 1.5, "Absorption Color": (0.3, 0.5, 0.7, 1.0),
            "Anisotropy": 0.2, "Emission Color": (1.0, 0.5, 0.2, 1.0), "Emission Strength": 2.0}
+PLUME = {"Color": (0.8, 0.7, 0.6, 1.0), "Density": 10.0, "Absorption Color": (0.3, 0.4, 0.5, 1.0),
+         "Anisotropy": 0.3}
+# The shipped 64^3 smoke plume (vkdr-make-plume --resolution 64 --seed 1), rising along
+# the file's +y through [-0.5, 0.5]^3.
+PLUME_VDB = pathlib.Path(__file__).resolve().parents[2] / "scenes" / "cornell_plume.vdb"
 FOG = {"Color": (0.9, 0.9, 0.9, 1.0), "Density": 0.12, "Absorption Color": (0.0, 0.0, 0.0, 1.0),
        "Anisotropy": 0.2}
 SCENES = ("box_area", "principled_cube", "glowing_cube", "absorption_cube", "world_fog", "point_light",
-          "smooth_sphere", "principled_walls", "principled_walls_specular")
+          "smooth_sphere", "principled_walls", "principled_walls_specular", "vdb_plume")
 
 
 def reset():
@@ -140,6 +148,19 @@ def add_cube(name, material, location=(0, 0.1, -0.35), size=0.9):
     return obj
 
 
+def add_vdb_volume(name, path, material, location, scale):
+    """A Volume object reading an OpenVDB file, turned so that the file's +y is up (+z)."""
+    volume = bpy.data.volumes.new(name)
+    volume.filepath = str(path)
+    volume.materials.append(material)
+    obj = bpy.data.objects.new(name, volume)
+    obj.location = location
+    obj.rotation_euler = (1.5707963, 0.0, 0.4)
+    obj.scale = (scale, scale, scale)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
 def build(name):
     """Builds the named test scene in a fresh file and returns the bpy scene."""
     scene = reset()
@@ -150,6 +171,9 @@ def build(name):
         add_cube("smoke", volume_material("smoke", "ShaderNodeVolumePrincipled", PRINCIPLED))
     elif name == "glowing_cube":
         add_cube("glow", volume_material("glow", "ShaderNodeVolumePrincipled", GLOWING))
+    elif name == "vdb_plume":
+        add_vdb_volume("plume", PLUME_VDB, volume_material("plume", "ShaderNodeVolumePrincipled", PLUME),
+                       (0.0, 0.1, -0.35), 1.2)
     elif name == "absorption_cube":
         add_cube("ink", volume_material("ink", "ShaderNodeVolumeAbsorption", ABSORPTION))
     elif name == "world_fog":

@@ -131,7 +131,8 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
     // beside it included.
     for (const char* name : {"log.jsonl", "checkpoint.json", "params.json", "scene.gltf", "final.exr", "final.png",
                              "diff.png", "loss.svg", "report.html", "scene.bin", "scene.image0.png",
-                             "scene.buffers2.bin"}) {
+                             "scene.buffers2.bin", "scene.density.vdb", "scene.materials3.emission_grid.vdb",
+                             "scene.materials0.albedo_grid.vdb"}) {
         fs::path other = dir_ / "other";
         fs::create_directories(other);
         std::ofstream(other / name) << "another run";
@@ -151,9 +152,11 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
 
     // --overwrite removes only the run's files: a scene.blend or notes are the user's.
     std::ofstream(out / "scene.bin") << "old run";
+    std::ofstream(out / "scene.materials1.emission_grid.vdb") << "old run";
     std::ofstream(out / "scene.blend") << "mine";
     ASSERT_EQ(run(optimizeCommand(target, 1) + " --overwrite --out " + out.string()).exitCode, 0);
     EXPECT_FALSE(fs::exists(out / "scene.bin"));
+    EXPECT_FALSE(fs::exists(out / "scene.materials1.emission_grid.vdb"));
     EXPECT_EQ(slurp(out / "scene.blend"), "mine");
 }
 

@@ -150,10 +150,9 @@ TEST(GridTracking, RatioTrackingsRunningEstimatesAreUnbiasedAtEveryPoint) {
         TransmittancePoints points;
         points.count = kMaxTransmittancePoints;
         for (uint k = 0; k < kMaxTransmittancePoints; ++k) points.t[k] = fractions[k] * length;
-        const vec3 whole = ratioTrackTransmittanceAt(grid.grid, kOrigin, direction, length, sigma_t, random,
-                                                     stepsLeft, truncated, points);
+        ratioTrackTransmittanceAt(grid.grid, kOrigin, direction, length, sigma_t, random, stepsLeft, truncated,
+                                  points);
         ASSERT_FALSE(truncated);
-        ASSERT_EQ(points.transmittance[kMaxTransmittancePoints - 1], whole);
         for (uint k = 0; k < kMaxTransmittancePoints; ++k) {
             sum[k] += dvec3(points.transmittance[k]);
             sumOfSquares[k] += dvec3(points.transmittance[k]) * dvec3(points.transmittance[k]);

@@ -9,6 +9,8 @@ versions."""
 import json
 import math
 import os
+import re
+import shutil
 
 import bpy
 import mathutils
@@ -203,6 +205,72 @@ def add_area_lights(doc, scene, warnings):
         gltf_json.use_extension(doc, "KHR_materials_emissive_strength")
 
 
+# Blender's Z-up world in glTF's Y-up one: (x, y, z) -> (x, z, -y), as blender_to_gltf.
+Z_UP_TO_Y_UP = mathutils.Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, -1, 0, 0), (0, 0, 0, 1)))
+
+# A box's corners (x fastest, then y, then z) and its 12 triangles wound counter-clockwise
+# seen from outside, so that their normals point out of the medium.
+BOX_TRIANGLES = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4),
+                 (2, 6, 7), (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
+
+
+def volume_box(obj):
+    """World-space corners of the object-space box around a volume object's grids, grown
+    by a voxel on every side so that the density's trilinear fade-out lies inside."""
+    corners = [mathutils.Vector(c) for c in obj.bound_box]
+    low = mathutils.Vector([min(c[i] for c in corners) for i in range(3)])
+    high = mathutils.Vector([max(c[i] for c in corners) for i in range(3)])
+    voxel = max((max(grid.matrix_object.col[i].xyz.length for i in range(3)) for grid in obj.data.grids),
+                default=0.0)
+    low -= mathutils.Vector((voxel, voxel, voxel))
+    high += mathutils.Vector((voxel, voxel, voxel))
+    box = [mathutils.Vector((high.x if i & 1 else low.x, high.y if i & 2 else low.y, high.z if i & 4 else low.z))
+           for i in range(8)]
+    return [tuple(obj.matrix_world @ c) for c in box]
+
+
+def add_volume_objects(doc, scene, filepath, warnings):
+    """Volume objects (an OpenVDB file, such as a smoke simulation's cache) become media:
+    a box around their grids as the boundary, the grid their Principled Volume's Density
+    Attribute names as its density grid, placed by the object's transform (the file's own
+    transform inside it, as in Blender). The file of the current frame is copied beside
+    the scene, which may only read files in its own directory."""
+    directory = os.path.dirname(os.path.abspath(filepath))
+    stem = os.path.splitext(os.path.basename(filepath))[0]
+    for obj in scene.objects:
+        if obj.type != "VOLUME" or obj.hide_render:
+            continue
+        what = f"volume '{obj.name}'"
+        material = obj.active_material
+        medium = node_graph.medium_of(material, warnings, what)
+        if medium is None:
+            warnings.append(f"{what}: has no volume material that vkdiffrender can read; skipped")
+            continue
+        volume = obj.data
+        if not volume.grids.load():
+            warnings.append(f"{what}: its grids do not load ({volume.grids.error_message}); skipped")
+            continue
+        source = bpy.path.abspath(volume.grids.frame_filepath)
+        node = node_graph.material_volume_node(material)
+        grid = getattr(node, "density_attribute", "density") if node is not None else "density"
+        if not os.path.isfile(source) or grid not in volume.grids:
+            warnings.append(f"{what}: no grid '{grid}' in a file on disk (a volume generated in memory, or a "
+                            f"Density Attribute the file lacks); skipped")
+            continue
+        copy = f"{stem}.{re.sub(r'[^A-Za-z0-9_.-]', '_', obj.name)}.vdb"
+        shutil.copyfile(source, os.path.join(directory, copy))
+        placement = Z_UP_TO_Y_UP @ obj.matrix_world
+        nodes = doc.setdefault("nodes", [])
+        nodes.append({"name": obj.name + ".grid", "matrix": [placement[row][column] for column in range(4)
+                                                              for row in range(4)]})
+        entry = medium_json(medium)
+        entry["density"] = {"uri": copy, "grid": grid, "node": len(nodes) - 1}
+        names = {m.get("name") for m in doc.get("materials", [])}
+        name = material.name if material.name not in names else f"{material.name}.{obj.name}"
+        corners = [blender_to_gltf(p) for p in volume_box(obj)]
+        gltf_json.add_mesh_node(doc, obj.name, corners, BOX_TRIANGLES, {"name": name, "extensions": {EXTENSION: entry}})
+
+
 def warn_bounce_limits(scene, warnings):
     """vkdiffrender has one limit on scattering vertices (--max-depth, which the Fit sets
     to Max Bounces + 1); Cycles also stops a path at its per-kind limits, and its default
@@ -232,6 +300,7 @@ def export_scene(context, filepath):
     add_world(doc, scene, warnings)
     set_punctual_lights(doc, scene, warnings)
     add_area_lights(doc, scene, warnings)
+    add_volume_objects(doc, scene, filepath, warnings)
     warn_bounce_limits(scene, warnings)
     if EXTENSION in json.dumps(doc):
         gltf_json.use_extension(doc, EXTENSION)

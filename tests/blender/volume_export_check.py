@@ -1,0 +1,33 @@
+"""Run inside Blender for test_volume_export.py: build the box with the smoke plume read
+from an OpenVDB file as a Volume object (scenes.py, "vdb_plume"), export OUT/scene.gltf
+with the add-on, and write the export's warnings to OUT/warnings.json and the Volume
+object's world matrix (glTF's Y-up) to OUT/placement.json.
+
+  blender -b --factory-startup --python volume_export_check.py -- --out DIR"""
+import argparse
+import json
+import pathlib
+import sys
+
+import bpy
+
+HERE = pathlib.Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parents[1] / "tools" / "blender")]
+import scenes  # noqa: E402
+from vkdiffrender_blender import export_scene  # noqa: E402
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--out", required=True)
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    out = pathlib.Path(args.out)
+    scenes.build("vdb_plume")
+    warnings = export_scene.export_scene(bpy.context, str(out / "scene.gltf"))
+    (out / "warnings.json").write_text(json.dumps(warnings))
+    placement = export_scene.Z_UP_TO_Y_UP @ bpy.data.objects["plume"].matrix_world
+    (out / "placement.json").write_text(json.dumps([list(row) for row in placement]))
+
+
+if __name__ == "__main__":
+    main()
