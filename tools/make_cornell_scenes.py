@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes scenes/cornell_box.gltf, cornell_fog.gltf, cornell_smoke.gltf and cornell_plume.gltf.
+"""Writes scenes/cornell_box.gltf, cornell_fog.gltf, cornell_smoke.gltf, cornell_plume.gltf and
+cornell_fire.gltf.
 
 The geometry is the published Cornell box data (https://www.graphics.cornell.edu/online/box/data.html),
 kept in millimetres in the buffer and scaled to metres by the root node, so the box is
@@ -8,7 +9,10 @@ that its front face points into the room (walls), out of the block (blocks), or 
 (the light); the script checks this rather than trusting the data's vertex order.
 
 cornell_plume.gltf reads the density grid cornell_plume.vdb beside it, which
-`vkdr-make-plume --resolution 64 --seed 1 scenes/cornell_plume.vdb` writes.
+`vkdr-make-plume --resolution 64 --seed 1 scenes/cornell_plume.vdb` writes;
+cornell_fire.gltf the same smoke burning at its base, its emission following the flame
+grid cornell_fire_flame.vdb (`vkdr-make-plume --resolution 64 --seed 1 --flame
+scenes/cornell_fire_flame.vdb`).
 
 Usage: tools/make_cornell_scenes.py [OUTPUT_DIR]   (default: scenes/ next to tools/)
 """
@@ -67,6 +71,7 @@ SMOKE_BOX = ("smoke_box", "smoke", box_quads((293.5, 1, 276.5), (443.5, 251, 426
 # Where the tall block stood, taller: the smoke plume's medium, 150 x 400 x 150 mm.
 PLUME_LO, PLUME_HI = (293.5, 1, 276.5), (443.5, 401, 426.5)
 PLUME_BOX = ("plume_box", "plume", box_quads(PLUME_LO, PLUME_HI), "out")
+FIRE_BOX = ("fire_box", "fire", box_quads(PLUME_LO, PLUME_HI), "out")
 
 MATERIALS = {
     "white": {"pbrMetallicRoughness": {"baseColorFactor": [0.725, 0.71, 0.68, 1.0], "metallicFactor": 0.0}},
@@ -83,6 +88,12 @@ MATERIALS = {
     "plume": {"extensions": {"VKDR_participating_media": {
         "sigma_a": [2.0, 2.0, 2.0], "sigma_s": [150.0, 150.0, 150.0], "g": 0.3,
         "density": {"uri": "cornell_plume.vdb", "grid": "density"}}}},
+    # The same smoke, thinner, burning at its base: the emission (radiance per metre at a
+    # flame strength of 1) follows the flame grid.
+    "fire": {"extensions": {"VKDR_participating_media": {
+        "sigma_a": [1.0, 1.0, 1.0], "sigma_s": [60.0, 60.0, 60.0], "g": 0.3, "emission": [40.0, 12.0, 2.5],
+        "density": {"uri": "cornell_plume.vdb", "grid": "density"},
+        "emissionGrid": {"uri": "cornell_fire_flame.vdb", "grid": "flame"}}}},
 }
 # The plume grid's cube [-0.5, 0.5]^3 placed on the plume's box, in scene units (the
 # root node scales millimetres by 0.01).
@@ -193,9 +204,10 @@ def with_plume_placement(gltf):
     gltf["nodes"].append(PLUME_PLACEMENT)
     gltf["scenes"][0]["nodes"].append(node)
     for material in gltf["materials"]:
-        density = material.get("extensions", {}).get("VKDR_participating_media", {}).get("density")
-        if density is not None:
-            density["node"] = node
+        medium = material.get("extensions", {}).get("VKDR_participating_media", {})
+        for grid in ("density", "emissionGrid"):
+            if grid in medium:
+                medium[grid]["node"] = node
     return gltf
 
 
@@ -222,6 +234,7 @@ def main():
         "cornell_fog.gltf": build(box, {"VKDR_participating_media": FOG}),
         "cornell_smoke.gltf": build(WALLS + [LIGHT, SHORT_BLOCK, SMOKE_BOX], None),
         "cornell_plume.gltf": with_plume_placement(build(WALLS + [LIGHT, SHORT_BLOCK, PLUME_BOX], None)),
+        "cornell_fire.gltf": with_plume_placement(build(WALLS + [LIGHT, SHORT_BLOCK, FIRE_BOX], None)),
     }
     for name, gltf in scenes.items():
         (out / name).write_text(to_text(gltf) + "\n")

@@ -180,4 +180,21 @@ DensityGrid makeSmokePlume(int resolution, uint32_t seed) {
     return grid;
 }
 
+DensityGrid flameOfPlume(const DensityGrid& plume) {
+    DensityGrid flame = plume;
+    flame.name = "flame";
+    const size_t rowLength = size_t(plume.size.x);
+    for (int k = 0; k < plume.size.z; ++k) {
+        for (int j = 0; j < plume.size.y; ++j) {
+            // The voxel's height above the cube's bottom (local y + 0.5).
+            const float h = float((plume.indexToLocal * glm::dvec4(0.0, double(plume.firstVoxel.y + j), 0.0, 1.0)).y) +
+                            0.5f;
+            const float heat = 1.0f - smoothstep(kSourceHeight, kSourceHeight + 0.45f, h);
+            float* row = flame.values.data() + (size_t(k) * size_t(plume.size.y) + size_t(j)) * rowLength;
+            for (size_t i = 0; i < rowLength; ++i) row[i] *= heat;
+        }
+    }
+    return flame;
+}
+
 }  // namespace vkdr

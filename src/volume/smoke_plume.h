@@ -14,4 +14,9 @@ namespace vkdr {
 // resolution below 2 or one whose voxels a dense grid cannot hold (above 1290).
 DensityGrid makeSmokePlume(int resolution, uint32_t seed);
 
+// The flame of such a plume, a fire's emission strength (as the `flame` grid of Blender's
+// fire simulations): the plume's density where it is hot, fading from the column's source
+// to 0 some 0.45 higher. Same box and placement; values in [0, 1]; named "flame".
+DensityGrid flameOfPlume(const DensityGrid& plume);
+
 }  // namespace vkdr

@@ -60,6 +60,14 @@ TEST(MakePlume, WritesTheGeneratedPlume) {
     }
 }
 
+TEST(MakePlume, FlameWritesTheFlameGrid) {
+    ScratchDirectory directory;
+    const PlumeRun run = makePlume(directory, "--resolution 24 --seed 5 --flame " + (directory / "fire.vdb").string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.out.find("grid 'flame'"), std::string::npos) << run.out;
+    expectPlume(readDensityGrid(directory / "fire.vdb", "flame"), flameOfPlume(makeSmokePlume(24, 5)));
+}
+
 TEST(MakePlume, RefusesBadArguments) {
     ScratchDirectory directory;
     const std::string output = (directory / "plume.vdb").string();

@@ -134,6 +134,39 @@ Slab slabOf(const DensityGrid& plume, double lowHeight, double highHeight) {
 }
 
 // It rises from near the bottom, widening with height, and stops short of the top face.
+// The flame is the plume's density near the column's source, fading out within 0.45 above
+// it (the source at height 0.14 of the unit cube): never more than the density, all of
+// it at the bottom, none high up.
+TEST(SmokePlume, FlameIsTheDensityNearTheSource) {
+    const DensityGrid plume = makeSmokePlume(64, 1);
+    const DensityGrid flame = flameOfPlume(plume);
+    EXPECT_EQ(flame.name, "flame");
+    EXPECT_EQ(flame.size, plume.size);
+    EXPECT_EQ(flame.indexToLocal, plume.indexToLocal);
+    double lowPlume = 0.0, lowFlame = 0.0;
+    for (int k = 0; k < 64; ++k) {
+        for (int j = 0; j < 64; ++j) {
+            const double height = (j + 0.5) / 64.0;
+            for (int i = 0; i < 64; ++i) {
+                const float d = plume.at({i, j, k}), f = flame.at({i, j, k});
+                ASSERT_GE(f, 0.0f);
+                ASSERT_LE(f, d);
+                if (height >= 0.14 + 0.45) {
+                    ASSERT_EQ(f, 0.0f) << "voxel " << i << " " << j << " " << k;
+                }
+                if (height <= 0.14) {
+                    ASSERT_EQ(f, d);
+                }
+                if (height < 0.25) {
+                    lowPlume += d;
+                    lowFlame += f;
+                }
+            }
+        }
+    }
+    EXPECT_GT(lowFlame, 0.8 * lowPlume) << "the flame burns where the smoke rises from";
+}
+
 TEST(SmokePlume, RisesAndWidens) {
     for (uint32_t seed : {1u, 2u, 3u}) {
         const DensityGrid plume = makeSmokePlume(64, seed);

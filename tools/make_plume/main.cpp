@@ -1,5 +1,5 @@
 // vkdr-make-plume: writes a procedural smoke plume density grid as .vdb or .nvdb.
-//   vkdr-make-plume --resolution N --seed S [--grid NAME] [--overwrite] OUTPUT.vdb|OUTPUT.nvdb
+//   vkdr-make-plume --resolution N --seed S [--flame] [--grid NAME] [--overwrite] OUTPUT.vdb|OUTPUT.nvdb
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -19,7 +19,8 @@ namespace {
 struct PlumeOptions {
     int resolution = 0;
     uint32_t seed = 0;
-    std::string grid = "density";
+    std::string grid;  // default: "density", or "flame" with --flame
+    bool flame = false;  // write the plume's flame instead of its density
     std::filesystem::path output;
     bool overwrite = false;  // replace an existing OUTPUT
 };
@@ -38,7 +39,8 @@ void checkOutput(const PlumeOptions& options) {
 int makePlume(const PlumeOptions& options) {
     checkOutput(options);
     vkdr::DensityGrid plume = vkdr::makeSmokePlume(options.resolution, options.seed);
-    plume.name = options.grid;
+    if (options.flame) plume = vkdr::flameOfPlume(plume);
+    if (!options.grid.empty()) plume.name = options.grid;
     vkdr::writeDensityGrid(options.output, plume);
     const size_t active = size_t(std::count_if(plume.values.begin(), plume.values.end(), [](float v) { return v > 0.0f; }));
     std::printf("%s: grid '%s', %d x %d x %d voxels, %zu active (%.1f %%)\n", options.output.string().c_str(),
@@ -60,7 +62,10 @@ int main(int argc, char** argv) {
         ->required()
         ->check(CLI::Range(2, 1290));
     app.add_option("--seed", options.seed, "seed of the plume's noise, 0 to 4294967295")->required();
-    app.add_option("--grid", options.grid, "name of the grid in the file")->capture_default_str();
+    app.add_option("--grid", options.grid, "name of the grid in the file (default: density, or flame with --flame)");
+    app.add_flag("--flame", options.flame,
+                 "write the plume's flame instead: its density where it is hot, near the column's source, as the "
+                 "emission strength of a fire (an emission grid)");
     app.add_flag("--overwrite", options.overwrite, "replace OUTPUT if it exists (refused otherwise)");
     app.add_option("OUTPUT", options.output, "the file to write: .vdb or .nvdb")->required();
     try {
