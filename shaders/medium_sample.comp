@@ -27,7 +27,7 @@ bool passesThroughAbsorbing(GpuMedium m) {
 // blends (w_v its trilinear weight); where a_c(x) is 0 the path ends in that channel and
 // the gradient is missed (docs/density-grids.md, "Albedo grids").
 void scatterByAlbedoGrid(uint slot, GpuMedium m, vec3 position, inout vec3 beta) {
-    if (!kDensityGrids || m.albedoGrid == kNoDensityGrid) {
+    if (!kAlbedoGrids || m.albedoGrid == kNoDensityGrid) {
         return;
     }
     GpuDensityGrid grid = P.densityGrids.v[m.albedoGrid];

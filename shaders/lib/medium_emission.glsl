@@ -188,7 +188,7 @@ void gatherMediumEmission(uint slot, uint medium, float tHit, vec3 beta) {
     if (!mediumEmissionWanted(m)) {
         return;
     }
-    if (kDensityGrids && m.emissionGrid != kNoDensityGrid) {
+    if (kEmissionGrids && m.emissionGrid != kNoDensityGrid) {
         gatherEmissionGrid(slot, medium, m, tHit, beta);
     } else if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
         gatherGridEmission(slot, medium, m, tHit, beta);

@@ -36,6 +36,10 @@ layout(constant_id = 2) const bool kDensityGrids = true;
 // Whether a medium of the scene emits (or, in the adjoint pipelines, the gradient of a
 // medium's emission is wanted): without, gathering media's emission is compiled out.
 layout(constant_id = 3) const bool kEmissiveMedia = true;
+// Whether a medium of the scene has an emission grid, or an albedo grid: without, what
+// reads them is compiled out.
+layout(constant_id = 4) const bool kEmissionGrids = true;
+layout(constant_id = 5) const bool kAlbedoGrids = true;
 
 #define P params.p
 

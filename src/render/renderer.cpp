@@ -81,7 +81,10 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       punctualLightCount_(static_cast<uint32_t>(scene.punctualLights.size())),
       texelCount_(totalTexels(scene)),
       voxelCount_(totalVoxels(scene)),
-      media_{.densityGrids = !scene.densityGrids.empty(), .emission = scene.anyMediumEmits()},
+      media_{.densityGrids = !scene.densityGrids.empty(),
+             .emission = scene.anyMediumEmits(),
+             .emissionGrids = scene.anyMedium(&Medium::hasEmissionGrid),
+             .albedoGrids = scene.anyMedium(&Medium::hasAlbedoGrid)},
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context, media_),
       lossKind_(LossKind::L2) {

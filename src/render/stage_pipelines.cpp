@@ -26,7 +26,7 @@ namespace {
 
 // The pipeline of a stage; of a stage with an adjoint variant, the primal or the adjoint one
 // for the gradients of `gradientKinds`, for the media features `media` (specialization
-// constants 0 to 3 of shaders/lib/stage_common.glsl). The dispatch timer's scope, not
+// constants 0 to 5 of shaders/lib/stage_common.glsl). The dispatch timer's scope, not
 // the name, tells the variants apart.
 ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false,
                               uint32_t gradientKinds = 0, MediaFeatures media = {}) {
@@ -34,7 +34,9 @@ ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool ad
     assert(info.hasAdjointVariant || !adjoint);
     std::vector<uint32_t> specialization;
     if (info.hasAdjointVariant) {
-        specialization = {adjoint ? 1u : 0u, gradientKinds, media.densityGrids ? 1u : 0u, media.emission ? 1u : 0u};
+        specialization = {adjoint ? 1u : 0u,           gradientKinds,
+                          media.densityGrids ? 1u : 0u,  media.emission ? 1u : 0u,
+                          media.emissionGrids ? 1u : 0u, media.albedoGrids ? 1u : 0u};
     }
     return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);
 }

@@ -13,6 +13,8 @@ class VulkanContext;
 struct MediaFeatures {
     bool densityGrids = false;  // tracking through density grid media
     bool emission = false;      // gathering the emission of media (and its gradients)
+    bool emissionGrids = false; // media whose emission follows an emission grid
+    bool albedoGrids = false;   // media whose scattering an albedo grid colours
 
     bool operator==(const MediaFeatures&) const = default;
 };

@@ -117,9 +117,11 @@ struct Scene {
     int32_t sceneMedium = kNoMedium;            // fills all space outside enclosed media
     glm::vec3 background{0.0f};                 // radiance of rays that escape the scene
 
-    bool anyMediumEmits() const {
+    bool anyMediumEmits() const { return anyMedium(&Medium::isEmissive); }
+
+    bool anyMedium(bool (Medium::*property)() const) const {
         for (const Medium& medium : media) {
-            if (medium.isEmissive()) return true;
+            if ((medium.*property)()) return true;
         }
         return false;
     }
