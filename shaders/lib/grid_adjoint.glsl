@@ -15,30 +15,18 @@ bool gridGradientsWanted() {
 }
 
 // Adds g times each of the point's trilinear weights (gridDensity's footprint) to the
-// gradient of its voxel, in any grid (a density or an emission grid). Voxels outside the
-// grid's box are not parameters. The lanes of a subgroup seldom add to the same voxel,
-// so each adds alone (addFixedPointFromOneLane) into its subgroup's copy of the sums.
-void addTrilinearVoxelGradient(GpuDensityGrid grid, vec3 index, float g) {
-    vec3 base = floor(index);
-    for (int corner = 0; corner < 8; ++corner) {
-        ivec3 offset = trilinearCorner(corner);
-        int voxel = gridVoxelOffset(grid, ivec3(base) + offset);
-        if (voxel >= 0) {
-            addFixedPointFromOneLane(P.densityGradients, subgroupCopyOfSum(P.densityGradientsCopyStride, uint(voxel)),
-                                     g * trilinearWeight(index - base, offset));
-        }
-    }
-}
-
-// The same for an RGB grid: channel c of each voxel gets g[c] times the weight.
-void addTrilinearRgbGradient(GpuDensityGrid grid, vec3 index, vec3 g) {
+// gradient of its voxel, in any grid (a density, emission or albedo grid): channel c of
+// each voxel gets g[c] times the weight, for the grid's channels (1 or 3). Voxels outside
+// the grid's box are not parameters. The lanes of a subgroup seldom add to the same
+// voxel, so each adds alone (addFixedPointFromOneLane) into its subgroup's copy of the sums.
+void addTrilinearGradient(GpuDensityGrid grid, vec3 index, vec3 g) {
     vec3 base = floor(index);
     for (int corner = 0; corner < 8; ++corner) {
         ivec3 offset = trilinearCorner(corner);
         int voxel = gridVoxelOffset(grid, ivec3(base) + offset);
         if (voxel >= 0) {
             vec3 weighted = g * trilinearWeight(index - base, offset);
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < grid.majorantCells.w; ++c) {
                 addFixedPointFromOneLane(P.densityGradients,
                                          subgroupCopyOfSum(P.densityGradientsCopyStride, uint(voxel + c)), weighted[c]);
             }
@@ -48,7 +36,7 @@ void addTrilinearRgbGradient(GpuDensityGrid grid, vec3 index, vec3 g) {
 
 void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
     if (gradientWanted(kGradientKindDensity)) {
-        addTrilinearVoxelGradient(grid, index, g);
+        addTrilinearGradient(grid, index, vec3(g));
     }
 }
 

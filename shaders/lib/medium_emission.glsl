@@ -157,8 +157,8 @@ void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
     }
     if (gradientWanted(kGradientKindEmissionGrid)) {
         for (uint k = 0u; k < kEmissionGridPoints; ++k) {
-            addTrilinearVoxelGradient(strength, ray.origin + points.t[k] * ray.direction,
-                                      length * dot(g, m.emission * points.transmittance[k]));
+            addTrilinearGradient(strength, ray.origin + points.t[k] * ray.direction,
+                                 vec3(length * dot(g, m.emission * points.transmittance[k])));
         }
     }
     if (!gridGradientsWanted()) {

@@ -146,16 +146,16 @@ DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridNa
     if (isFloat) {
         return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::FloatGrid>(grid), gridName, indexToLocal);
     }
-    if (isDouble) {
-        return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::DoubleGrid>(grid), gridName, indexToLocal);
-    }
     if constexpr (Values::channels == 3) {
         if (grid->isType<openvdb::Vec3SGrid>()) {
             return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::Vec3SGrid>(grid), gridName, indexToLocal);
         }
-        return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::Vec3DGrid>(grid), gridName, indexToLocal);
+        if (grid->isType<openvdb::Vec3DGrid>()) {
+            return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::Vec3DGrid>(grid), gridName, indexToLocal);
+        }
     }
-    throw Error("unreachable: a vector grid read as scalars");
+    // The type checks above leave only a double grid.
+    return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::DoubleGrid>(grid), gridName, indexToLocal);
 }
 
 // NanoVDB keeps the 3x3 part of the map transposed against OpenVDB's (Map::set): it maps
@@ -199,11 +199,11 @@ DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gr
     }
     const nanovdb::GridHandle<nanovdb::HostBuffer> handle = nanovdb::io::readGrid(file.string(), gridName);
     if (type == nanovdb::GridType::Float) return denseBoxOfNanoGrid<Values>(handle.grid<float>(), gridName);
-    if (type == nanovdb::GridType::Double) return denseBoxOfNanoGrid<Values>(handle.grid<double>(), gridName);
     if constexpr (Values::channels == 3) {
-        return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Vec3f>(), gridName);
+        if (isVector) return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Vec3f>(), gridName);
     }
-    throw Error("unreachable: a vector grid read as scalars");
+    // The type checks above leave only a double grid.
+    return denseBoxOfNanoGrid<Values>(handle.grid<double>(), gridName);
 }
 
 void requireReadableFile(const std::filesystem::path& file) {

@@ -35,6 +35,13 @@ json gridMedium(json density) {
 
 // A box enclosing the medium of `material`, and an empty node placed at (1, 2, 3),
 // scaled by 2 and turned a quarter about y (node 1).
+// gridMedium of smoke.vdb with one more grid reference under `key` (emissionGrid, albedoGrid).
+json smokeMediumWith(const char* key, json reference) {
+    json medium = gridMedium({{"uri", "smoke.vdb"}});
+    medium["extensions"]["VKDR_participating_media"][key] = std::move(reference);
+    return medium;
+}
+
 GltfBuilder boxScene(json material, double placementScale = 2.0) {
     GltfBuilder builder;
     int index = builder.addMaterial(std::move(material));
@@ -133,9 +140,8 @@ TEST(DensityGridScene, EmissionGridMultipliesTheEmissionAndIsWrittenBack) {
     std::filesystem::create_directories(directory / "out");
     writeDensityGridVdb(directory / "in" / "smoke.vdb", smallGrid());
     writeDensityGridVdb(directory / "in" / "fire.vdb", flameGrid());
-    json medium = gridMedium({{"uri", "smoke.vdb"}});
-    medium["extensions"]["VKDR_participating_media"]["emissionGrid"] = {{"uri", "fire.vdb"}, {"node", 1}};
-    std::filesystem::path original = boxScene(medium).writeGltf(directory / "in" / "s.gltf");
+    std::filesystem::path original =
+        boxScene(smokeMediumWith("emissionGrid", {{"uri", "fire.vdb"}, {"node", 1}})).writeGltf(directory / "in" / "s.gltf");
     LoadedScene loaded = loadScene(original);
     ASSERT_EQ(loaded.scene.densityGrids.size(), 2u);
     const Medium& smoke = loaded.scene.media[0];
@@ -196,9 +202,8 @@ TEST(DensityGridScene, AlbedoGridIsReadAsRgbOrGreyAndWrittenBack) {
     std::filesystem::create_directories(directory / "out");
     writeDensityGridVdb(directory / "in" / "smoke.vdb", smallGrid());
     writeDensityGridNanoVdb(directory / "in" / "colour.nvdb", colourGrid());
-    json medium = gridMedium({{"uri", "smoke.vdb"}});
-    medium["extensions"]["VKDR_participating_media"]["albedoGrid"] = {{"uri", "colour.nvdb"}};
-    std::filesystem::path original = boxScene(medium).writeGltf(directory / "in" / "s.gltf");
+    std::filesystem::path original =
+        boxScene(smokeMediumWith("albedoGrid", {{"uri", "colour.nvdb"}})).writeGltf(directory / "in" / "s.gltf");
     LoadedScene loaded = loadScene(original);
     ASSERT_EQ(loaded.scene.media[0].albedoGrid, 1);
     const DensityGrid& albedo = loaded.scene.densityGrids[1].grid;
@@ -220,8 +225,8 @@ TEST(DensityGridScene, AlbedoGridIsReadAsRgbOrGreyAndWrittenBack) {
     DensityGrid grey = smallGrid();
     grey.values = {0.0f, 0.5f, 1.0f, 0.25f, 0.75f, 0.125f};
     writeDensityGridVdb(directory / "in" / "grey.vdb", grey);
-    medium["extensions"]["VKDR_participating_media"]["albedoGrid"] = {{"uri", "grey.vdb"}, {"grid", "density"}};
-    LoadedScene greyScene = loadScene(boxScene(medium).writeGltf(directory / "in" / "grey.gltf"));
+    LoadedScene greyScene = loadScene(boxScene(smokeMediumWith("albedoGrid", {{"uri", "grey.vdb"}, {"grid", "density"}}))
+                                          .writeGltf(directory / "in" / "grey.gltf"));
     const DensityGrid& greyAlbedo = greyScene.scene.densityGrids[1].grid;
     ASSERT_EQ(greyAlbedo.values.size(), 18u);
     for (size_t i = 0; i < grey.values.size(); ++i) {
@@ -235,9 +240,7 @@ TEST(DensityGridScene, BadAlbedoGridsNameTheFieldAndTheVoxel) {
     writeDensityGridVdb(directory / "colour.vdb", colourGrid());
     const std::string field = "materials[0].extensions.VKDR_participating_media";
     auto write = [&](json grid, const char* key) {
-        json medium = gridMedium({{"uri", "smoke.vdb"}});
-        medium["extensions"]["VKDR_participating_media"][key] = std::move(grid);
-        return boxScene(medium).writeGltf(directory / "bad.gltf");
+        return boxScene(smokeMediumWith(key, std::move(grid))).writeGltf(directory / "bad.gltf");
     };
     // smallGrid holds 2 and 3: not albedos.
     expectLoadError(write({{"uri", "smoke.vdb"}, {"grid", "density"}}, "albedoGrid"),
@@ -253,9 +256,7 @@ TEST(DensityGridScene, BadEmissionGridReferencesNameTheField) {
     writeDensityGridVdb(directory / "smoke.vdb", smallGrid());
     const std::string field = "materials[0].extensions.VKDR_participating_media.emissionGrid";
     auto write = [&](json grid) {
-        json medium = gridMedium({{"uri", "smoke.vdb"}});
-        medium["extensions"]["VKDR_participating_media"]["emissionGrid"] = std::move(grid);
-        return boxScene(medium).writeGltf(directory / "bad.gltf");
+        return boxScene(smokeMediumWith("emissionGrid", std::move(grid))).writeGltf(directory / "bad.gltf");
     };
     expectLoadError(write({{"uri", "absent.vdb"}}), {field + ".uri", "absent.vdb"});
     expectLoadError(write({{"uri", "smoke.vdb"}}), {field, "flame", "density"});
