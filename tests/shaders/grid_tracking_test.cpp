@@ -11,79 +11,29 @@
 
 #include <gtest/gtest.h>
 
-#include "glsl_host.h"
+#include "host_density_grid.h"
 #include "statistics.h"
 
 namespace vkdr::test {
 namespace {
 
-using namespace glsl;
-
 constexpr float kVoxelsPerUnit = 10.0f;
 
 // A random grid of 12 x 10 x 9 voxels, about a third of them 0, at index = 10 world,
 // with majorant cells that bound its trilinear density times `looseness`.
-struct HostGrid {
-    GpuDensityGrid grid{};
+HostDensityGrid randomGrid(float looseness) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     std::vector<float> voxels;
-    std::vector<float> majorants;
-
-    explicit HostGrid(float looseness) {
-        grid.worldToIndex[0] = vec4(kVoxelsPerUnit, 0.0f, 0.0f, 0.0f);
-        grid.worldToIndex[1] = vec4(0.0f, kVoxelsPerUnit, 0.0f, 0.0f);
-        grid.worldToIndex[2] = vec4(0.0f, 0.0f, kVoxelsPerUnit, 0.0f);
-        grid.firstVoxel = ivec4(2, 1, 0, 0);
-        grid.size = ivec4(12, 10, 9, 0);
-        std::mt19937 random(11);
-        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-        for (int i = 0; i < 12 * 10 * 9; ++i) voxels.push_back(unit(random) < 0.3f ? 0.0f : unit(random));
-        // Cells of kMajorantCellVoxels from one voxel before the box, as the renderer lays
-        // them out; a cell bounds the voxels its trilinear lookups blend, one more per axis.
-        grid.majorantOrigin = grid.firstVoxel - ivec4(1, 1, 1, 0);
-        const ivec3 cells = (ivec3(grid.size) + 2 + kMajorantCellVoxels - 1) / kMajorantCellVoxels;
-        grid.majorantCells = ivec4(cells, 1);  // one value per voxel
-        for (int z = 0; z < cells.z; ++z)
-            for (int y = 0; y < cells.y; ++y)
-                for (int x = 0; x < cells.x; ++x) {
-                    const ivec3 low = ivec3(grid.majorantOrigin) + ivec3(x, y, z) * kMajorantCellVoxels;
-                    float largest = 0.0f;
-                    for (int k = low.z; k <= low.z + kMajorantCellVoxels; ++k)
-                        for (int j = low.y; j <= low.y + kMajorantCellVoxels; ++j)
-                            for (int i = low.x; i <= low.x + kMajorantCellVoxels; ++i) largest = std::max(largest, voxel({i, j, k}));
-                    majorants.push_back(looseness * largest);
-                }
-    }
-
-    float voxel(ivec3 index) const {
-        const ivec3 local = index - ivec3(grid.firstVoxel);
-        if (any(lessThan(local, ivec3(0))) || any(greaterThanEqual(local, ivec3(grid.size)))) return 0.0f;
-        return voxels[size_t((local.z * grid.size.y + local.y) * grid.size.x + local.x)];
-    }
-
-    // The trilinear density at world point p, voxel centres at integer index coordinates.
-    double density(dvec3 p) const {
-        const dvec3 index = p * double(kVoxelsPerUnit);
-        const dvec3 base = floor(index), f = index - base;
-        double sum = 0.0;
-        for (int corner = 0; corner < 8; ++corner) {
-            const ivec3 c(corner & 1, (corner >> 1) & 1, corner >> 2);
-            const double w = (c.x ? f.x : 1.0 - f.x) * (c.y ? f.y : 1.0 - f.y) * (c.z ? f.z : 1.0 - f.z);
-            sum += w * voxel(ivec3(base) + c);
-        }
-        return sum;
-    }
-
-    void bind() const {
-        P.gridValues.v = voxels.data();
-        P.gridMajorants.v = majorants.data();
-    }
-};
+    for (int i = 0; i < 12 * 10 * 9; ++i) voxels.push_back(unit(random) < 0.3f ? 0.0f : unit(random));
+    return HostDensityGrid(ivec3(2, 1, 0), ivec3(12, 10, 9), std::move(voxels), kVoxelsPerUnit, looseness);
+}
 
 const vec3 kOrigin(0.05f, 0.02f, -0.1f);
 const vec3 kEnd(1.55f, 1.15f, 1.0f);
 
 // The integral of the density from the ray's origin to distance t, by the midpoint rule.
-double densityIntegral(const HostGrid& grid, double t) {
+double densityIntegral(const HostDensityGrid& grid, double t) {
     const dvec3 direction = normalize(dvec3(kEnd - kOrigin));
     constexpr int kSteps = 20000;
     double sum = 0.0;
@@ -91,7 +41,7 @@ double densityIntegral(const HostGrid& grid, double t) {
     return sum * t / kSteps;
 }
 
-void expectUnbiasedTransmittance(const HostGrid& grid, vec3 sigma_t) {
+void expectUnbiasedTransmittance(const HostDensityGrid& grid, vec3 sigma_t) {
     grid.bind();
     const vec3 direction = normalize(kEnd - kOrigin);
     const float length = glm::length(kEnd - kOrigin);
@@ -119,23 +69,23 @@ void expectUnbiasedTransmittance(const HostGrid& grid, vec3 sigma_t) {
 }
 
 TEST(GridTracking, RatioTrackingIsUnbiasedWithATightMajorant) {
-    expectUnbiasedTransmittance(HostGrid(1.0f), vec3(0.5f, 1.5f, 3.0f));
+    expectUnbiasedTransmittance(randomGrid(1.0f), vec3(0.5f, 1.5f, 3.0f));
 }
 
 TEST(GridTracking, RatioTrackingIsUnbiasedWithALooseMajorant) {
-    expectUnbiasedTransmittance(HostGrid(2.5f), vec3(0.5f, 1.5f, 3.0f));
+    expectUnbiasedTransmittance(randomGrid(2.5f), vec3(0.5f, 1.5f, 3.0f));
 }
 
 // Transmittances down to about 0.004: the roulette below 0.05 ends most such estimates.
 TEST(GridTracking, RatioTrackingIsUnbiasedThroughItsRoulette) {
-    expectUnbiasedTransmittance(HostGrid(1.0f), vec3(2.0f, 4.0f, 8.0f));
+    expectUnbiasedTransmittance(randomGrid(1.0f), vec3(2.0f, 4.0f, 8.0f));
 }
 
 // The running estimates at points along the walk (what an emission grid's points use):
 // each unbiased for the transmittance to its own distance, the last at the walk's end,
 // through the roulette as well.
 TEST(GridTracking, RatioTrackingsRunningEstimatesAreUnbiasedAtEveryPoint) {
-    const HostGrid grid(1.5f);
+    const HostDensityGrid grid = randomGrid(1.5f);
     grid.bind();
     const vec3 direction = normalize(kEnd - kOrigin);
     const float length = glm::length(kEnd - kOrigin);
@@ -171,7 +121,7 @@ TEST(GridTracking, RatioTrackingsRunningEstimatesAreUnbiasedAtEveryPoint) {
 }
 
 TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
-    const HostGrid grid(1.5f);
+    const HostDensityGrid grid = randomGrid(1.5f);
     grid.bind();
     const vec3 direction = normalize(kEnd - kOrigin);
     const float length = glm::length(kEnd - kOrigin);
