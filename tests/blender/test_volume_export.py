@@ -3,9 +3,12 @@ cache) in headless Blender: the file is copied beside the scene, its Principled
 Volume's Density Attribute names the density grid, placed by a node holding the
 object's world matrix, inside a closed box that holds the grid; vkdiffrender loads and
 renders the exported scene with the plume in view. docs/blender.md gives the figures of
-the same scene against Cycles."""
+the same scene against Cycles. A burning variant (a file with density and flame grids)
+exports the grids its Color Attribute, Emission Strength attribute and Density Attribute
+name as albedo, emission and density grids, and renders."""
 import json
 import pathlib
+import shutil
 import subprocess
 
 import numpy as np
@@ -63,3 +66,41 @@ def test_exported_plume_renders(exported, cli):
     assert grad.returncode == 0, grad.stderr
     assert "warning" not in grad.stderr
     assert json.loads(grad.stdout)["loss"] > 1e-4, "the plume changes the image"
+
+
+@pytest.fixture(scope="module")
+def fire(blender, tmp_path_factory):
+    """The plume with its flame (the shipped cornell_fire scene's two grids) in one file,
+    as a fire simulation's cache holds them, exported burning."""
+    vdb_tool = shutil.which("vdb_tool")
+    if vdb_tool is None:
+        pytest.skip("vdb_tool (Debian's libopenvdb-tools) is not on PATH")
+    out = tmp_path_factory.mktemp("fire")
+    scenes = HERE.parents[1] / "scenes"
+    subprocess.run([vdb_tool, "-read", str(scenes / "cornell_plume.vdb"), str(scenes / "cornell_fire_flame.vdb"),
+                    "-write", str(out / "fire.vdb")], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
+                    str(HERE / "volume_export_check.py"), "--", "--out", str(out), "--fire", str(out / "fire.vdb")],
+                   check=True, stdout=subprocess.DEVNULL)
+    return out
+
+
+def test_grid_attributes_become_albedo_and_emission_grids(fire, cli):
+    assert [w for w in json.loads((fire / "warnings.json").read_text()) if "bounce limits" not in w] == []
+    medium = plume_medium(json.loads((fire / "scene.gltf").read_text()))
+    assert medium["density"]["grid"] == "density"
+    assert medium["albedoGrid"]["grid"] == "flame"
+    assert medium["emissionGrid"]["grid"] == "flame"
+    assert {medium[k]["uri"] for k in ("density", "albedoGrid", "emissionGrid")} == {medium["density"]["uri"]}
+    assert {medium[k]["node"] for k in ("density", "albedoGrid", "emissionGrid")} == {medium["density"]["node"]}
+    # Emission Color x the attribute: the colour alone, the grid giving the strength.
+    assert medium["emission"] == pytest.approx([1.0, 0.5, 0.1], rel=1e-6)
+    # Absorption Color black: Color (0.8, 0.7, 0.6) x Density 10 scatters, the rest absorbs.
+    assert medium["sigma_s"] == pytest.approx([8.0, 7.0, 6.0], rel=1e-6)
+    assert medium["sigma_a"] == pytest.approx([2.0, 3.0, 4.0], rel=1e-6)
+    swapped = plume_medium(json.loads((fire / "swapped" / "scene.gltf").read_text()))
+    assert swapped["density"]["grid"] == "flame", "the Density Attribute names the density grid"
+    render = subprocess.run([cli, "render", str(fire / "scene.gltf"), "-o", str(fire / "fire.exr"), "--spp", "2",
+                             "--width", "16", "--height", "16", "--max-depth", "2"], capture_output=True, text=True)
+    assert render.returncode == 0, render.stderr
+    assert "warning" not in render.stderr

@@ -229,12 +229,40 @@ def volume_box(obj):
     return [tuple(obj.matrix_world @ c) for c in box]
 
 
+def volume_grid_attributes(node, volume, what, warnings):
+    """What a Volume object's grids carry besides its density, read from its Principled
+    Volume: the grid its Color Attribute names (an albedo grid: Cycles multiplies Color by
+    it) and the scalar grid an Attribute node feeding Emission Strength names (an emission
+    grid). Returns (albedo grid or None, emission grid or None, constant() overrides)."""
+    if node is None or node.bl_idname != "ShaderNodeVolumePrincipled":
+        return None, None, {}
+    albedo = node.inputs["Color Attribute"].default_value
+    if albedo not in volume.grids:
+        albedo = None  # Cycles ignores an attribute the volume lacks (or none named)
+    elif max(node.inputs["Absorption Color"].default_value[:3]) > 0.0:
+        warnings.append(f"{what}: '{node.name}' Color Attribute with an Absorption Color other than black: "
+                        f"vkdiffrender's albedo grid scatters Color x attribute and absorbs the rest, which "
+                        f"differs from Cycles where the attribute is below 1")
+    emission = node_graph.attribute_input(node, "Emission Strength")
+    if emission is None:
+        return albedo, None, {}
+    if emission not in volume.grids:
+        return albedo, None, {"Emission Strength": 0.0}  # a missing attribute reads 0 in Cycles
+    if volume.grids[emission].channels != 1:
+        warnings.append(f"{what}: Emission Strength reads the vector grid '{emission}', and an emission grid "
+                        f"must be scalar; the input's unlinked value is used")
+        return albedo, None, {"Emission Strength": node.inputs["Emission Strength"].default_value}
+    return albedo, emission, {"Emission Strength": 1.0}
+
+
 def add_volume_objects(doc, scene, filepath, warnings):
     """Volume objects (an OpenVDB file, such as a smoke simulation's cache) become media:
     a box around their grids as the boundary, the grid their Principled Volume's Density
-    Attribute names as its density grid, placed by the object's transform (the file's own
-    transform inside it, as in Blender). The file of the current frame is copied beside
-    the scene, which may only read files in its own directory."""
+    Attribute names as its density grid (with an albedo and an emission grid where its
+    Color Attribute or Emission Strength read grids: volume_grid_attributes), placed by the
+    object's transform (the file's own transform inside it, as in Blender). The file of
+    the current frame is copied beside the scene, which may only read files in its own
+    directory."""
     directory = os.path.dirname(os.path.abspath(filepath))
     stem = os.path.splitext(os.path.basename(filepath))[0]
     for obj in scene.objects:
@@ -242,17 +270,19 @@ def add_volume_objects(doc, scene, filepath, warnings):
             continue
         what = f"volume '{obj.name}'"
         material = obj.active_material
-        medium = node_graph.medium_of(material, warnings, what)
-        if medium is None:
-            warnings.append(f"{what}: has no volume material that vkdiffrender can read; skipped")
-            continue
         volume = obj.data
         if not volume.grids.load():
             warnings.append(f"{what}: its grids do not load ({volume.grids.error_message}); skipped")
             continue
-        source = bpy.path.abspath(volume.grids.frame_filepath)
         node = node_graph.material_volume_node(material)
-        grid = getattr(node, "density_attribute", "density") if node is not None else "density"
+        albedo, emission, overrides = volume_grid_attributes(node, volume, what, warnings)
+        medium = node_graph.medium_of(material, warnings, what, overrides)
+        if medium is None:
+            warnings.append(f"{what}: has no volume material that vkdiffrender can read; skipped")
+            continue
+        source = bpy.path.abspath(volume.grids.frame_filepath)
+        grid = node.inputs["Density Attribute"].default_value if node is not None and \
+            node.bl_idname == "ShaderNodeVolumePrincipled" else "density"
         if not os.path.isfile(source) or grid not in volume.grids:
             warnings.append(f"{what}: no grid '{grid}' in a file on disk (a volume generated in memory, or a "
                             f"Density Attribute the file lacks); skipped")
@@ -264,7 +294,12 @@ def add_volume_objects(doc, scene, filepath, warnings):
         nodes.append({"name": obj.name + ".grid", "matrix": [placement[row][column] for column in range(4)
                                                               for row in range(4)]})
         entry = medium_json(medium)
-        entry["density"] = {"uri": copy, "grid": grid, "node": len(nodes) - 1}
+        reference = {"uri": copy, "node": len(nodes) - 1}
+        entry["density"] = {**reference, "grid": grid}
+        if albedo is not None:
+            entry["albedoGrid"] = {**reference, "grid": albedo}
+        if emission is not None and "emission" in entry:
+            entry["emissionGrid"] = {**reference, "grid": emission}
         names = {m.get("name") for m in doc.get("materials", [])}
         name = material.name if material.name not in names else f"{material.name}.{obj.name}"
         corners = [blender_to_gltf(p) for p in volume_box(obj)]

@@ -17,9 +17,21 @@ def linked_node(socket):
     return socket.links[0].from_node if socket.is_linked and socket.links else None
 
 
-def constant(node, name, warnings, what):
+def attribute_input(node, name):
+    """The attribute name an input reads when a geometry Attribute node's Fac feeds it
+    directly (a volume grid of that name, in a Volume object), else None."""
+    source = linked_node(node.inputs[name])
+    if source is None or source.bl_idname != "ShaderNodeAttribute" or source.attribute_type != "GEOMETRY":
+        return None
+    return source.attribute_name if node.inputs[name].links[0].from_socket.name == "Fac" else None
+
+
+def constant(node, name, warnings, what, overrides=None):
     """A node input's value; a linked input (texture, attribute) varies in space and cannot
-    be expressed, so its unlinked value is used with a warning."""
+    be expressed, so its unlinked value is used with a warning. `overrides` gives the
+    values of inputs whose variation the caller exports otherwise (as a grid)."""
+    if overrides and name in overrides:
+        return overrides[name]
     socket = node.inputs[name]
     if socket.is_linked:
         warnings.append(f"{what}: '{node.name}' input '{name}' is linked (a texture or attribute); "
@@ -28,9 +40,10 @@ def constant(node, name, warnings, what):
     return tuple(value) if hasattr(value, "__len__") else float(value)
 
 
-def volume_medium(node, warnings, what):
+def volume_medium(node, warnings, what, overrides=None):
     """The medium of the closure tree under a Volume socket: Principled Volume, Volume
-    Absorption, Volume Scatter, summed by Add Shader and weighted by Mix Shader."""
+    Absorption, Volume Scatter, summed by Add Shader and weighted by Mix Shader.
+    `overrides` as for constant(), for a Principled Volume's inputs."""
     if node is None:
         return None
     if node.bl_idname == "ShaderNodeVolumePrincipled":
@@ -38,10 +51,9 @@ def volume_medium(node, warnings, what):
         if blackbody.is_linked or blackbody.default_value > 0.0:
             warnings.append(f"{what}: '{node.name}' Blackbody Intensity: blackbody emission is not supported "
                             f"by vkdiffrender and is dropped")
-        return mappings.principled_volume_to_medium(
-            constant(node, "Color", warnings, what), constant(node, "Density", warnings, what),
-            constant(node, "Absorption Color", warnings, what), constant(node, "Anisotropy", warnings, what),
-            constant(node, "Emission Color", warnings, what), constant(node, "Emission Strength", warnings, what))
+        inputs = ("Color", "Density", "Absorption Color", "Anisotropy", "Emission Color", "Emission Strength")
+        return mappings.principled_volume_to_medium(*(constant(node, name, warnings, what, overrides)
+                                                      for name in inputs))
     if node.bl_idname == "ShaderNodeVolumeAbsorption":
         return mappings.volume_absorption_to_medium(constant(node, "Color", warnings, what),
                                                     constant(node, "Density", warnings, what))
@@ -50,7 +62,7 @@ def volume_medium(node, warnings, what):
                                                  constant(node, "Density", warnings, what),
                                                  constant(node, "Anisotropy", warnings, what))
     if node.bl_idname == "ShaderNodeAddShader":
-        parts = [volume_medium(linked_node(s), warnings, what) for s in node.inputs]
+        parts = [volume_medium(linked_node(s), warnings, what, overrides) for s in node.inputs]
         medium, exact = mappings.add_media([p for p in parts if p is not None])
         if not exact:
             warnings.append(f"{what}: '{node.name}' adds scattering of different anisotropies; "
@@ -58,7 +70,7 @@ def volume_medium(node, warnings, what):
         return medium
     if node.bl_idname == "ShaderNodeMixShader":
         fac = min(max(constant(node, "Fac", warnings, what), 0.0), 1.0)
-        parts = [volume_medium(linked_node(node.inputs[i]), warnings, what) for i in (1, 2)]
+        parts = [volume_medium(linked_node(node.inputs[i]), warnings, what, overrides) for i in (1, 2)]
         weighted = [mappings.scale_medium(p, w) for p, w in zip(parts, (1.0 - fac, fac)) if p is not None]
         medium, exact = mappings.add_media(weighted)
         if not exact:
@@ -80,15 +92,16 @@ def material_volume_node(material):
     return node if node is not None and node.bl_idname in VOLUME_NODES else None
 
 
-def medium_of(owner, warnings, what):
-    """The medium of a material's or world's Volume output, or None."""
+def medium_of(owner, warnings, what, overrides=None):
+    """The medium of a material's or world's Volume output, or None; `overrides` as for
+    volume_medium()."""
     if owner is None or not owner.use_nodes:
         return None
     kind = "OUTPUT_WORLD" if owner.bl_rna.identifier == "World" else "OUTPUT_MATERIAL"
     out = output_node(owner.node_tree, kind)
     if out is None:
         return None
-    medium = volume_medium(linked_node(out.inputs["Volume"]), warnings, what)
+    medium = volume_medium(linked_node(out.inputs["Volume"]), warnings, what, overrides)
     if medium is None:
         return None
     g, clamped = mappings.clamp_g(medium.g)
