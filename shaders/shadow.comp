@@ -18,21 +18,38 @@ const uint kMaxBoundaryCrossings = 64u;
 
 // The media a shadow ray passes through and its length in each. The adjoint needs
 // them once the transmittance is known: d C / d sigma_m = -length_m C for every medium
-// m on the way. A ray through more distinct media than are kept is traced a second
-// time to add its gradients.
+// m on the way. Where a grid's voxel gradients are wanted, it keeps the segments through
+// grids instead, whose points (densityIntegralAdjoint) need the contribution's weight. A
+// ray through more distinct media or grid segments than are kept is traced a second time
+// to add its gradients.
 const uint kRecordedMedia = 2u;
+const uint kRecordedGridSegments = 2u;
 struct MediumLengths {
     uint medium[kRecordedMedia];
     float inMedium[kRecordedMedia];  // length of the ray in medium[i]
     uint count;
-    bool complete;  // false: through more media than were kept, or a grid whose voxel gradients are wanted
+    uint gridMedium[kRecordedGridSegments];
+    vec4 gridSegment[kRecordedGridSegments];  // xyz: where the segment starts; w: its length
+    uint gridSegments;
+    bool complete;  // false: through more media or grid segments than were kept
 };
 
 MediumLengths noMediumLengths() {
     MediumLengths lengths;
     lengths.count = 0u;
+    lengths.gridSegments = 0u;
     lengths.complete = true;
     return lengths;
+}
+
+void addGridSegment(inout MediumLengths lengths, uint medium, vec3 origin, float length) {
+    if (lengths.gridSegments == kRecordedGridSegments) {
+        lengths.complete = false;
+        return;
+    }
+    lengths.gridMedium[lengths.gridSegments] = medium;
+    lengths.gridSegment[lengths.gridSegments] = vec4(origin, length);
+    ++lengths.gridSegments;
 }
 
 void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
@@ -80,6 +97,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             // length, or in a grid the density's integral along it.
             float opticalLength = segment;
             bool unbounded = toInfinity && hit.triangle == kNoHit;
+            bool awaitsWeight = false;  // a grid segment whose gradients backpropagateNextEvent adds
             if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
                 GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
                 if (!forGradientsOnly) {
@@ -94,10 +112,10 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                 if (kAdjoint && gridGradientsWanted()) {
                     if (gradientWanted(kGradientKindDensity) && !forGradientsOnly) {
                         // Voxel gradients need the contribution's weight, known once the
-                        // whole ray is: backpropagateNextEvent traces it again with the
-                        // weight and adds every medium's gradients then, so the density's
-                        // integral is not estimated here.
-                        lengths.complete = false;
+                        // whole ray is: backpropagateNextEvent estimates the density's
+                        // integral along the segment then, with the weight.
+                        addGridSegment(lengths, medium, origin, segment);
+                        awaitsWeight = true;
                     } else {
                         opticalLength = densityIntegralAdjoint(grid, origin, direction, segment,
                                                                nextTrackingRandom(gradientPoints).x,
@@ -107,7 +125,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             } else {
                 tr *= transmittance(sigmaT(m), segment);
             }
-            if (kAdjoint && !unbounded) {
+            if (kAdjoint && !unbounded && !awaitsWeight) {
                 addMediumLength(lengths, medium, opticalLength);
                 if (forGradientsOnly) {
                     addSigmaTGradient(medium, -opticalLength * gradientWeight);
@@ -152,6 +170,17 @@ void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr, MediumLengths
         if (lengths.complete) {
             for (uint i = 0u; i < lengths.count; ++i) {
                 addSigmaTGradient(lengths.medium[i], -lengths.inMedium[i] * weight);
+            }
+            // The kept grid segments' points, drawn in the order a second trace would draw them.
+            TrackingRandom gradientPoints = shadowRandom(slot, kTrackingShadowGradient);
+            vec3 direction = P.shadowDirection.v[slot].xyz;
+            for (uint i = 0u; i < lengths.gridSegments; ++i) {
+                GpuMedium m = P.media.v[lengths.gridMedium[i]];
+                float opticalLength =
+                    densityIntegralAdjoint(P.densityGrids.v[m.densityGrid], lengths.gridSegment[i].xyz, direction,
+                                           lengths.gridSegment[i].w, nextTrackingRandom(gradientPoints).x,
+                                           dot(weight, sigmaT(m)));
+                addSigmaTGradient(lengths.gridMedium[i], -opticalLength * weight);
             }
         } else {
             vec4 origin = P.shadowOrigin.v[slot];
