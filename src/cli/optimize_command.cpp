@@ -65,6 +65,7 @@ struct ExperimentOverrides {
     CLI::Option* optimizer;
     CLI::Option* smoothness;
     CLI::Option* sparsity;
+    CLI::Option* totalVariation;
     CLI::Option* gridLevels;
     CLI::Option* spp;
     CLI::Option* maxDepth;
@@ -190,7 +191,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     requireRunWritesNoInput(options.out, false, filesTheSceneReads(loaded));
     Scene& scene = loaded.scene;
     requireOptimisableParameters(scene, options.optimize.parameters);
-    gridPriorWeights(options.optimize.parameters, {options.optimize.smoothness, options.optimize.sparsity});
+    gridPriorWeights(options.optimize.parameters, gridPriorWeightsOf(options.optimize));
     if (options.optimize.gridLevels > 1) {
         requireADensityGridAmong(options.optimize.parameters, "coarse-to-fine grid levels are");
     }
@@ -232,6 +233,7 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
     if (given.smoothness->count()) experiment.optimize.smoothness = options.optimize.smoothness;
     if (given.sparsity->count()) experiment.optimize.sparsity = options.optimize.sparsity;
+    if (given.totalVariation->count()) experiment.optimize.totalVariation = options.optimize.totalVariation;
     if (given.gridLevels->count()) experiment.optimize.gridLevels = options.optimize.gridLevels;
     if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
     if (given.spp->count()) experiment.render.spp = options.settings.spp;
@@ -326,6 +328,12 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
                             "Add this weight times the mean value of every grid optimised (density or emission grid) to the "
                             "loss, emptying what the images do not ask to fill (0: none)")
             ->default_val(options->optimize.sparsity)->check(finiteNumberIn(0.0, 1e12));
+    overrides.totalVariation =
+        command->add_option("--total-variation", options->optimize.totalVariation,
+                            "Add this weight times the mean absolute difference between face-neighbouring voxels of "
+                            "every grid optimised (density or emission grid) to the loss: smooths like --smoothness but "
+                            "keeps edges sharp (0: none)")
+            ->default_val(options->optimize.totalVariation)->check(finiteNumberIn(0.0, 1e12));
     overrides.gridLevels =
         command
             ->add_option("--grid-levels", options->optimize.gridLevels,

@@ -26,7 +26,7 @@ using Json = nlohmann::ordered_json;  // keeps "start" in file order: the defaul
 const std::set<std::string> kKeys = {"scene", "views", "cameras", "width", "height", "spp", "target_spp",
                                      "max_depth", "seed", "iterations", "optimizer", "learning_rate",
                                      "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "log_parameters", "adam_epsilon", "loss", "true", "start",
-                                     "parameters", "smoothness", "sparsity", "grid_levels", "held_out_views"};
+                                     "parameters", "smoothness", "sparsity", "total_variation", "grid_levels", "held_out_views"};
 const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees"};
 
 // Reads one experiment file, prefixing every error with the file and the key at fault.
@@ -193,7 +193,8 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
         }
         options.learningRateDecayStart = start.get<double>();
     }
-    for (auto [key, weight] : {std::pair{"smoothness", &options.smoothness}, std::pair{"sparsity", &options.sparsity}}) {
+    for (auto [key, weight] : {std::pair{"smoothness", &options.smoothness}, std::pair{"sparsity", &options.sparsity},
+                               std::pair{"total_variation", &options.totalVariation}}) {
         if (!document.contains(key)) continue;
         const Json& value = document[key];
         if (!value.is_number() || !(value.get<double>() >= 0.0) || !std::isfinite(value.get<double>())) {
@@ -329,10 +330,9 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
         reader.fail("grid_levels", e.what());
     }
     try {
-        gridPriorWeights(experiment.optimize.parameters,
-                         {experiment.optimize.smoothness, experiment.optimize.sparsity});
+        gridPriorWeights(experiment.optimize.parameters, gridPriorWeightsOf(experiment.optimize));
     } catch (const Error& e) {
-        reader.fail(experiment.optimize.smoothness != 0.0 ? "smoothness" : "sparsity", e.what());
+        reader.fail(firstWeightName(gridPriorWeightsOf(experiment.optimize)), e.what());
     }
     for (const auto& [name, rate] : experiment.optimize.learningRates) {
         const std::vector<std::string>& names = experiment.optimize.parameters;

@@ -1,5 +1,7 @@
 #include "optimize/grid_priors.h"
 
+#include <cmath>
+
 #include "core/error.h"
 #include "optimize/density_grid_options.h"
 #include "scene/parameter_kinds.h"
@@ -7,13 +9,12 @@
 
 namespace vkdr {
 
-double gridSmoothness(const DensityGrid& grid, double weight, std::vector<double>* gradient) {
-    const size_t voxels = grid.voxelCount();
-    if (voxels == 0) {
-        return 0.0;
-    }
-    const double scale = weight / double(voxels);
-    double sum = 0.0;
+namespace {
+
+// Calls visit(i, j) for every pair of face-neighbouring voxels of the grid (indices into
+// its values), each pair once.
+template <typename Visit>
+void forEachFaceNeighbourPair(const DensityGrid& grid, Visit visit) {
     const size_t strides[3] = {1, size_t(grid.size.x), size_t(grid.size.x) * size_t(grid.size.y)};
     for (int z = 0; z < grid.size.z; ++z) {
         for (int y = 0; y < grid.size.y; ++y) {
@@ -21,21 +22,51 @@ double gridSmoothness(const DensityGrid& grid, double weight, std::vector<double
                 const glm::ivec3 voxel(x, y, z);
                 const size_t i = x * strides[0] + y * strides[1] + z * strides[2];
                 for (int axis = 0; axis < 3; ++axis) {
-                    if (voxel[axis] + 1 >= grid.size[axis]) {
-                        continue;
-                    }
-                    const size_t j = i + strides[axis];
-                    const double difference = double(grid.values[i]) - grid.values[j];
-                    sum += difference * difference;
-                    if (gradient) {
-                        (*gradient)[i] += 2.0 * scale * difference;
-                        (*gradient)[j] -= 2.0 * scale * difference;
-                    }
+                    if (voxel[axis] + 1 < grid.size[axis]) visit(i, i + strides[axis]);
                 }
             }
         }
     }
+}
+
+// weight / voxels * sum over face-neighbour pairs of penalty(d_i - d_j), adding
+// weight / voxels * penalty'(d_i - d_j) to gradient[i] and its negative to gradient[j].
+template <typename Penalty, typename Derivative>
+double neighbourPenalty(const DensityGrid& grid, double weight, std::vector<double>* gradient, Penalty penalty,
+                        Derivative derivative) {
+    const size_t voxels = grid.voxelCount();
+    if (voxels == 0) {
+        return 0.0;
+    }
+    const double scale = weight / double(voxels);
+    double sum = 0.0;
+    forEachFaceNeighbourPair(grid, [&](size_t i, size_t j) {
+        const double difference = double(grid.values[i]) - grid.values[j];
+        sum += penalty(difference);
+        if (gradient) {
+            (*gradient)[i] += scale * derivative(difference);
+            (*gradient)[j] -= scale * derivative(difference);
+        }
+    });
     return scale * sum;
+}
+
+}  // namespace
+
+const char* firstWeightName(const GridPriorWeights& weights) {
+    if (weights.smoothness != 0.0) return "smoothness";
+    return weights.sparsity != 0.0 ? "sparsity" : "total_variation";
+}
+
+double gridSmoothness(const DensityGrid& grid, double weight, std::vector<double>* gradient) {
+    return neighbourPenalty(
+        grid, weight, gradient, [](double d) { return d * d; }, [](double d) { return 2.0 * d; });
+}
+
+double gridTotalVariation(const DensityGrid& grid, double weight, std::vector<double>* gradient) {
+    return neighbourPenalty(
+        grid, weight, gradient, [](double d) { return std::abs(d); },
+        [](double d) { return d > 0.0 ? 1.0 : d < 0.0 ? -1.0 : 0.0; });
 }
 
 double gridSparsity(const DensityGrid& grid, double weight, std::vector<double>* gradient) {
@@ -68,6 +99,7 @@ GradientResult GridPriorLossGradient::evaluate(const Scene& scene, uint32_t seed
         }
         result.loss += gridSmoothness(*grid, weight.smoothness, gradient);
         result.loss += gridSparsity(*grid, weight.sparsity, gradient);
+        result.loss += gridTotalVariation(*grid, weight.totalVariation, gradient);
     }
     return result;
 }
@@ -75,9 +107,8 @@ GradientResult GridPriorLossGradient::evaluate(const Scene& scene, uint32_t seed
 std::map<std::string, GridPriorWeights> gridPriorWeights(const std::vector<std::string>& parameters,
                                                          GridPriorWeights weights) {
     std::map<std::string, GridPriorWeights> named;
-    if (weights.smoothness == 0.0 && weights.sparsity == 0.0) return named;
-    requireADensityGridAmong(parameters,
-                             std::string("a ") + (weights.smoothness != 0.0 ? "smoothness" : "sparsity") + " weight is");
+    if (!weights.any()) return named;
+    requireADensityGridAmong(parameters, std::string("a ") + firstWeightName(weights) + " weight is");
     for (const std::string& name : parameters) {
         const std::optional<ParsedParameterName> parsed = parseParameterName(name);
         if (parsed && isScalarGridKind(parsed->description->kind)) named[name] = weights;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "diff/loss_gradient.h"
+#include "optimize/optimize_loop.h"
 
 namespace vkdr {
 
@@ -18,6 +19,12 @@ struct GridPriorWeights {
     // w * (1 / voxels) * sum of d_i, the mean density (its L1 norm, densities being >= 0):
     // empties what the images do not ask to fill, as smoke leaves most of its box empty.
     double sparsity = 0.0;
+    // w * (1 / voxels) * sum over pairs of face-neighbouring voxels |d_i - d_j| (the grid's
+    // anisotropic total variation): like smoothness it ties neighbours together, but a
+    // step costs its height, not its square, so edges stay sharp.
+    double totalVariation = 0.0;
+
+    bool any() const { return smoothness != 0.0 || sparsity != 0.0 || totalVariation != 0.0; }
 };
 
 // A LossGradient plus the priors of each named density parameter (media/<medium>/density).
@@ -32,14 +39,24 @@ private:
     std::map<std::string, GridPriorWeights> weights_;
 };
 
-// `weights` for each density grid among `parameters`; none when both weights are 0.
+// The weights `options` gives.
+inline GridPriorWeights gridPriorWeightsOf(const OptimizeOptions& options) {
+    return {options.smoothness, options.sparsity, options.totalVariation};
+}
+
+// `weights` for each density grid among `parameters`; none when every weight is 0.
 // Throws vkdr::Error when a weight is not 0 but no density grid is among them.
+// firstWeightName(weights) names the weight such an error is about.
 std::map<std::string, GridPriorWeights> gridPriorWeights(const std::vector<std::string>& parameters,
                                                          GridPriorWeights weights);
 
 // Each term of one grid, and (when `gradient` is not null, sized as the grid's values) its
 // gradient added to *gradient.
+const char* firstWeightName(const GridPriorWeights& weights);
+
 double gridSmoothness(const DensityGrid& grid, double weight, std::vector<double>* gradient);
 double gridSparsity(const DensityGrid& grid, double weight, std::vector<double>* gradient);
+// Where two neighbours are equal, the gradient of |d_i - d_j| is taken as 0 (a subgradient).
+double gridTotalVariation(const DensityGrid& grid, double weight, std::vector<double>* gradient);
 
 }  // namespace vkdr

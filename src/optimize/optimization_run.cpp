@@ -133,7 +133,7 @@ std::vector<Image> startImages(LossGradient& lossGradient, Scene& scene, const O
 OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(const IterationRecord&)>& progress) {
     std::map<std::string, GridPriorWeights> priors =
-        gridPriorWeights(job.options.parameters, {job.options.smoothness, job.options.sparsity});
+        gridPriorWeights(job.options.parameters, gridPriorWeightsOf(job.options));
     std::optional<GridPriorLossGradient> withPriors;
     if (!priors.empty()) withPriors.emplace(imageLossGradient, std::move(priors));
     LossGradient& lossGradient = withPriors ? static_cast<LossGradient&>(*withPriors) : imageLossGradient;

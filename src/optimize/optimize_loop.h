@@ -35,6 +35,7 @@ struct OptimizeOptions {
     // density grid optimised; 0 for none.
     double smoothness = 0.0;
     double sparsity = 0.0;
+    double totalVariation = 0.0;
     // Coarse-to-fine levels for density grids (optimize/coarse_grid_gradient.h): the run
     // is split into this many equal parts, the first restricting each grid's steps to a
     // grid 2^(levels - 1) times coarser, each next part halving that; 1: the grid's own

@@ -62,6 +62,8 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
     identity["adam_epsilon"] = numberText(options.adamEpsilon);
     identity["smoothness"] = numberText(options.smoothness);
     identity["sparsity"] = numberText(options.sparsity);
+    // Only where set, so that the runs of the versions before it keep their identity.
+    if (options.totalVariation != 0.0) identity["total_variation"] = numberText(options.totalVariation);
     identity["grid_levels"] = std::to_string(options.gridLevels);
     identity["iterations"] = std::to_string(options.iterations);
     identity["seed"] = std::to_string(options.seed);

@@ -44,6 +44,10 @@ std::vector<std::pair<std::string, std::string>> settings(const OptimizationJob&
         rows.push_back({"sparsity", formatText("%g times the mean density, on every density grid (in the loss)",
                                                options.sparsity)});
     }
+    if (options.totalVariation != 0.0) {
+        rows.push_back({"total variation", formatText("%g times the mean absolute difference of face neighbours, on "
+                                                      "every density grid (in the loss)", options.totalVariation)});
+    }
     if (options.gridLevels > 1) {
         rows.push_back({"coarse-to-fine", formatText("%u levels: density grid steps restricted to a grid %u times "
                                                      "coarser at first, halved every %g iterations",

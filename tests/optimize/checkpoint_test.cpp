@@ -187,6 +187,10 @@ TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
     }
     EXPECT_EQ(command.size(), 19u);
     EXPECT_EQ(experiment.size(), 18u);
+    // A total variation weight joins the identity only where set: runs without one keep theirs.
+    EXPECT_EQ(command.count("total_variation"), 0u);
+    job.options.totalVariation = 0.25;
+    EXPECT_EQ(runIdentity(job.sceneFile, job.options, job.loss, {target, {}, {}, 4, 6}).at("total_variation"), "0.25");
 }
 
 TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {

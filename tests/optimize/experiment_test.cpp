@@ -199,6 +199,12 @@ TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndGridSettingsWithoutAGrid) 
     expectPrepareError(scratch, experiment, {"sparsity", "no grid (media/<medium>/density or"});
 
     experiment = fogExperiment(scratch.path());
+    experiment["total_variation"] = -0.5;
+    expectReadError(scratch, experiment, {"total_variation", "expected a finite number >= 0"});
+    experiment["total_variation"] = 0.5;
+    expectPrepareError(scratch, experiment, {"total_variation", "no grid (media/<medium>/density or"});
+
+    experiment = fogExperiment(scratch.path());
     experiment["grid_levels"] = 3;
     expectPrepareError(scratch, experiment, {"grid_levels", "no grid (media/<medium>/density or"});
     experiment["grid_levels"] = 11;

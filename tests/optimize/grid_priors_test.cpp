@@ -1,9 +1,10 @@
-// The priors on density grids: the smoothness and sparsity terms' values on grids whose
-// sums are known by hand, the smoothness gradient against central differences of its
-// value, GridPriorLossGradient adding both to the inner LossGradient's, and the weights
-// refused without a grid to put them on.
+// The priors on density grids: the smoothness, sparsity and total variation terms' values
+// on grids whose sums are known by hand, the smoothness and total variation gradients
+// against central differences of their values, GridPriorLossGradient adding them to the
+// inner LossGradient's, and the weights refused without a grid to put them on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "core/error.h"
@@ -48,6 +49,37 @@ TEST(GridSmoothness, GradientMatchesCentralDifferences) {
     }
 }
 
+TEST(GridTotalVariation, ValueSumsAbsoluteDifferencesOfFaceNeighbours) {
+    EXPECT_EQ(gridTotalVariation(gridOf({2, 2, 2}, std::vector<float>(8, 0.7f)), 3.0, nullptr), 0.0);
+    EXPECT_DOUBLE_EQ(gridTotalVariation(gridOf({2, 1, 1}, {4.0f, 1.0f}), 2.0, nullptr), 2.0 / 2.0 * 3.0);
+    // A 2x2x1 grid: pairs (0,1) and (2,3) along x differ by 1, (0,2) and (1,3) along y by 2.
+    EXPECT_DOUBLE_EQ(gridTotalVariation(gridOf({2, 2, 1}, {0.0f, 1.0f, 2.0f, 3.0f}), 1.0, nullptr),
+                     (1.0 + 1.0 + 2.0 + 2.0) / 4.0);
+}
+
+// Random values have no equal neighbours, and a step smaller than every difference keeps
+// each term on one side of its kink, where |d| is linear: the central difference is exact.
+TEST(GridTotalVariation, GradientMatchesCentralDifferences) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> value(0.0f, 2.0f);
+    DensityGrid grid = gridOf({3, 2, 4}, {});
+    for (size_t i = 0; i < grid.voxelCount(); ++i) {
+        grid.values.push_back(value(random));
+    }
+    std::vector<double> gradient(grid.voxelCount(), 0.0);
+    gridTotalVariation(grid, 1.5, &gradient);
+    constexpr float h = 1.0f / 4096.0f;
+    for (size_t i = 0; i < grid.voxelCount(); ++i) {
+        DensityGrid up = grid, down = grid;
+        up.values[i] += h;
+        down.values[i] -= h;
+        const double difference =
+            (gridTotalVariation(up, 1.5, nullptr) - gridTotalVariation(down, 1.5, nullptr)) / (2.0 * h);
+        EXPECT_NEAR(gradient[i], difference, 1e-3) << "voxel " << i;
+    }
+    EXPECT_GT(*std::max_element(gradient.begin(), gradient.end()), 0.0);
+}
+
 // A LossGradient returning zero loss and gradients, to see what the smoothing adds.
 class ZeroLossGradient : public LossGradient {
 public:
@@ -83,6 +115,13 @@ TEST(GridPriors, GridPriorLossGradientAddsTheTermsAndTheirGradients) {
     EXPECT_DOUBLE_EQ(result.parameters[0].gradient[0], -6.0 + 0.25);
     EXPECT_DOUBLE_EQ(result.parameters[0].gradient[1], 6.0 + 0.25);
 
+    // Total variation 3: the loss gains 3 * |1 - 4| / 2, the voxels' gradients -/+ 3 / 2.
+    GridPriorLossGradient edges(inner, {{"media/smoke/density", {.totalVariation = 3.0}}});
+    result = edges.evaluate(scene, 0);
+    EXPECT_DOUBLE_EQ(result.loss, 4.5);
+    EXPECT_DOUBLE_EQ(result.parameters[0].gradient[0], -1.5);
+    EXPECT_DOUBLE_EQ(result.parameters[0].gradient[1], 1.5);
+
     GridPriorLossGradient wrong(inner, {{"media/smoke/sigma_s", {.smoothness = 2.0}}});
     EXPECT_THROW(wrong.evaluate(scene, 0), Error);
 }
@@ -95,6 +134,8 @@ TEST(GridPriors, WeightsGoToEveryGridAndNeedOne) {
     EXPECT_TRUE(gridPriorWeights({"media/fog/sigma_s"}, {}).empty());
     EXPECT_THROW(gridPriorWeights({"media/fog/sigma_s"}, {.sparsity = 0.5}), Error);
     EXPECT_THROW(gridPriorWeights({"media/fog/sigma_s"}, {.smoothness = 0.5}), Error);
+    EXPECT_THROW(gridPriorWeights({"media/fog/sigma_s"}, {.totalVariation = 0.5}), Error);
+    EXPECT_EQ(gridPriorWeights(names, {.totalVariation = 0.25})["media/smoke/density"].totalVariation, 0.25);
 }
 
 }  // namespace
