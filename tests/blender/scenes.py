@@ -1,11 +1,16 @@
 """Test scenes built with bpy (run inside Blender): a diffuse box lit by an area light,
 seen from its open front, and variants with a volume cube (one of them emissive), a smoke plume read from an OpenVDB
-file as a Volume object, a world fog, a point light,
+file as a Volume object (and the same plume burning, its material reading the file's flame and density grids as
+emission strength and colour), a world fog, a point light,
 a smooth sphere and Principled BSDF walls. Also the emissive mesh that stands in for an
 area light where Cycles' area lights and the exported emitter differ (docs/blender.md).
 The Cycles settings come from tools/blender/cycles_reference.py; the tests reach them as
 scenes.configure_cycles."""
+import atexit
 import pathlib
+import shutil
+import subprocess
+import tempfile
 
 import bpy
 from cycles_reference import configure_cycles, front_only_emission  # noqa: F401
@@ -21,10 +26,16 @@ PLUME = {"Color": (0.8, 0.7, 0.6, 1.0), "Density": 10.0, "Absorption Color": (0.
 # The shipped 64^3 smoke plume (vkdr-make-plume --resolution 64 --seed 1), rising along
 # the file's +y through [-0.5, 0.5]^3.
 PLUME_VDB = pathlib.Path(__file__).resolve().parents[2] / "scenes" / "cornell_plume.vdb"
+# The plume burning: its Color Attribute reads the density (a darker smoke where it is
+# thin), an Attribute node feeding Emission Strength reads the flame; Absorption Color
+# black, where vkdiffrender's albedo grid is exact.
+FIRE = {"Color": (0.8, 0.7, 0.6, 1.0), "Color Attribute": "density", "Density": 10.0,
+        "Absorption Color": (0.0, 0.0, 0.0, 1.0), "Anisotropy": 0.3, "Emission Color": (1.0, 0.5, 0.1, 1.0)}
+FLAME_VDB = PLUME_VDB.parent / "cornell_fire_flame.vdb"
 FOG = {"Color": (0.9, 0.9, 0.9, 1.0), "Density": 0.12, "Absorption Color": (0.0, 0.0, 0.0, 1.0),
        "Anisotropy": 0.2}
 SCENES = ("box_area", "principled_cube", "glowing_cube", "absorption_cube", "world_fog", "point_light",
-          "smooth_sphere", "principled_walls", "principled_walls_specular", "vdb_plume")
+          "smooth_sphere", "principled_walls", "principled_walls_specular", "vdb_plume", "vdb_fire")
 
 
 def reset():
@@ -161,6 +172,29 @@ def add_vdb_volume(name, path, material, location, scale):
     return obj
 
 
+def fire_vdb():
+    """The plume's density and flame grids in one file, as a fire simulation's cache holds
+    them: the shipped cornell_fire grids merged by vdb_tool (Debian's libopenvdb-tools)
+    into a new temporary directory, removed when Blender exits."""
+    directory = tempfile.mkdtemp(prefix="vkdiffrender_fire")
+    atexit.register(shutil.rmtree, directory, True)
+    path = pathlib.Path(directory) / "fire.vdb"
+    subprocess.run([shutil.which("vdb_tool") or "vdb_tool", "-read", str(PLUME_VDB), str(FLAME_VDB), "-write",
+                    str(path)], check=True, stdout=subprocess.DEVNULL)
+    return path
+
+
+def burning_material(name):
+    material = volume_material(name, "ShaderNodeVolumePrincipled", FIRE)
+    tree = material.node_tree
+    node = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeVolumePrincipled")
+    flame = tree.nodes.new("ShaderNodeAttribute")
+    flame.attribute_type = "GEOMETRY"
+    flame.attribute_name = "flame"
+    tree.links.new(flame.outputs["Fac"], node.inputs["Emission Strength"])
+    return material
+
+
 def build(name):
     """Builds the named test scene in a fresh file and returns the bpy scene."""
     scene = reset()
@@ -174,6 +208,8 @@ def build(name):
     elif name == "vdb_plume":
         add_vdb_volume("plume", PLUME_VDB, volume_material("plume", "ShaderNodeVolumePrincipled", PLUME),
                        (0.0, 0.1, -0.35), 1.2)
+    elif name == "vdb_fire":
+        add_vdb_volume("plume", fire_vdb(), burning_material("fire"), (0.0, 0.1, -0.35), 1.2)
     elif name == "absorption_cube":
         add_cube("ink", volume_material("ink", "ShaderNodeVolumeAbsorption", ABSORPTION))
     elif name == "world_fog":

@@ -3,12 +3,11 @@ from an OpenVDB file as a Volume object (scenes.py, "vdb_plume"), export OUT/sce
 with the add-on, and write the export's warnings to OUT/warnings.json and the Volume
 object's world matrix (glTF's Y-up) to OUT/placement.json.
 
-With --fire FILE (an OpenVDB file holding the grids "density" and "flame") the volume
-reads FILE instead, and its Principled Volume burns: Color Attribute "flame", Emission
-Strength from an Attribute node "flame", Emission Color orange, Absorption Color black.
-It is exported a second time, to OUT/swapped/scene.gltf, with Density Attribute "flame".
+With --fire the scene is "vdb_fire" instead (the plume burning, its material reading the
+file's density and flame grids as colour and emission strength), exported a second time
+to OUT/swapped/scene.gltf with Density Attribute "flame".
 
-  blender -b --factory-startup --python volume_export_check.py -- --out DIR [--fire FILE]"""
+  blender -b --factory-startup --python volume_export_check.py -- --out DIR [--fire]"""
 import argparse
 import json
 import pathlib
@@ -25,27 +24,17 @@ from vkdiffrender_blender import export_scene  # noqa: E402
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--out", required=True)
-    parser.add_argument("--fire")
+    parser.add_argument("--fire", action="store_true")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     out = pathlib.Path(args.out)
-    scenes.build("vdb_plume")
+    scenes.build("vdb_fire" if args.fire else "vdb_plume")
     plume = bpy.data.objects["plume"]
-    if args.fire:
-        plume.data.filepath = args.fire
-        tree = plume.active_material.node_tree
-        node = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeVolumePrincipled")
-        node.inputs["Color Attribute"].default_value = "flame"
-        node.inputs["Absorption Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-        node.inputs["Emission Color"].default_value = (1.0, 0.5, 0.1, 1.0)
-        flame = tree.nodes.new("ShaderNodeAttribute")
-        flame.attribute_type = "GEOMETRY"
-        flame.attribute_name = "flame"
-        tree.links.new(flame.outputs["Fac"], node.inputs["Emission Strength"])
     warnings = export_scene.export_scene(bpy.context, str(out / "scene.gltf"))
     (out / "warnings.json").write_text(json.dumps(warnings))
     placement = export_scene.Z_UP_TO_Y_UP @ plume.matrix_world
     (out / "placement.json").write_text(json.dumps([list(row) for row in placement]))
     if args.fire:
+        node = next(n for n in plume.active_material.node_tree.nodes if n.bl_idname == "ShaderNodeVolumePrincipled")
         node.inputs["Density Attribute"].default_value = "flame"
         (out / "swapped").mkdir()
         export_scene.export_scene(bpy.context, str(out / "swapped" / "scene.gltf"))
