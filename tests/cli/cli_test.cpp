@@ -225,9 +225,10 @@ TEST_F(CliTest, GradOfADensityGridSummarisesItsVoxels) {
     EXPECT_NE(check.err.find("error: --check: media/plume/density has 262144 values"), std::string::npos) << check.err;
 }
 
-// optimize fits a grid with a smoothness term, summarises its voxels in what it prints
-// and writes the fitted grid as a .vdb that the written scene loads; a smoothness weight
-// or grid levels without a grid are refused before anything renders or is removed.
+// optimize fits a grid with smoothness and total variation terms, summarises its voxels
+// in what it prints and writes the fitted grid as a .vdb that the written scene loads; a
+// smoothness or total variation weight or grid levels without a grid are refused before
+// anything renders or is removed.
 TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
     fs::path target = dir_ / "plume.exr";
     ASSERT_EQ(run("render " + scene("cornell_plume.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string())
@@ -236,7 +237,7 @@ TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
     const fs::path out = dir_ / "fit";
     const std::string optimize = "optimize " + scene("cornell_plume.gltf") + " --target " + target.string() +
                                  " --iters 2 --spp 2 --lr 0.001 --smoothness 0.5 --out " + out.string();
-    RunResult fit = run(optimize + " --param media/plume/density");
+    RunResult fit = run(optimize + " --total-variation 0.25 --param media/plume/density");
     ASSERT_EQ(fit.exitCode, 0) << fit.err;
     EXPECT_NE(fit.out.find("over 262144 values"), std::string::npos) << fit.out;
     EXPECT_EQ(nlohmann::json::parse(slurp(out / "params.json"))["media/plume/density"]["count"], 262144);
@@ -248,6 +249,12 @@ TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
     RunResult refused = run(optimize + " --param media/plume/sigma_s --overwrite");
     EXPECT_EQ(refused.exitCode, 2);
     EXPECT_NE(refused.err.find("error: a smoothness weight is given, but no grid (media/<medium>/density or"), std::string::npos)
+        << refused.err;
+    std::string variation = optimize;
+    variation.replace(variation.find(" --smoothness 0.5"), 17, " --total-variation 0.5");
+    refused = run(variation + " --param media/plume/sigma_s --overwrite");
+    EXPECT_EQ(refused.exitCode, 2);
+    EXPECT_NE(refused.err.find("error: a total_variation weight is given, but no grid"), std::string::npos)
         << refused.err;
     std::string levels = optimize;
     levels.replace(levels.find(" --smoothness 0.5"), 17, " --grid-levels 2");
