@@ -246,22 +246,19 @@ TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
                              (dir_ / "fitted.exr").string());
     EXPECT_EQ(rendered.exitCode, 0) << rendered.err;
 
-    RunResult refused = run(optimize + " --param media/plume/sigma_s --overwrite");
-    EXPECT_EQ(refused.exitCode, 2);
-    EXPECT_NE(refused.err.find("error: a smoothness weight is given, but no grid (media/<medium>/density or"), std::string::npos)
-        << refused.err;
-    std::string variation = optimize;
-    variation.replace(variation.find(" --smoothness 0.5"), 17, " --total-variation 0.5");
-    refused = run(variation + " --param media/plume/sigma_s --overwrite");
-    EXPECT_EQ(refused.exitCode, 2);
-    EXPECT_NE(refused.err.find("error: a total_variation weight is given, but no grid"), std::string::npos)
-        << refused.err;
-    std::string levels = optimize;
-    levels.replace(levels.find(" --smoothness 0.5"), 17, " --grid-levels 2");
-    refused = run(levels + " --param media/plume/sigma_s --overwrite");
-    EXPECT_EQ(refused.exitCode, 2);
-    EXPECT_NE(refused.err.find("error: coarse-to-fine grid levels are given, but no grid (media/<medium>/density or"), std::string::npos)
-        << refused.err;
+    // The fit's options with its smoothness replaced by `option`, on a parameter that is no grid.
+    auto expectRefused = [&](const std::string& option, const std::string& message) {
+        std::string command = optimize;
+        command.replace(command.find(" --smoothness 0.5"), 17, option);
+        RunResult refused = run(command + " --param media/plume/sigma_s --overwrite");
+        EXPECT_EQ(refused.exitCode, 2) << option;
+        EXPECT_NE(refused.err.find("error: " + message + " given, but no grid (media/<medium>/density or"),
+                  std::string::npos)
+            << refused.err;
+    };
+    expectRefused(" --smoothness 0.5", "a smoothness weight is");
+    expectRefused(" --total-variation 0.5", "a total_variation weight is");
+    expectRefused(" --grid-levels 2", "coarse-to-fine grid levels are");
     EXPECT_TRUE(fs::is_regular_file(out / "params.json")) << "the refused run left the earlier one as it was";
 }
 
