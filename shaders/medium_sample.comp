@@ -34,7 +34,7 @@ void scatterByAlbedoGrid(uint slot, GpuMedium m, vec3 position, inout vec3 beta)
     vec3 index = gridRay(grid, position, vec3(0.0f)).origin;
     vec3 albedo = gridAlbedo(grid, index);
     if (kAdjoint && gradientWanted(kGradientKindAlbedoGrid)) {
-        addTrilinearGradient(grid, index, factorGradient(slot, logDerivativeOfLinear(albedo)));
+        addTrilinearGradient(grid, index, factorGradient(slot, logDerivativeOfLinear(albedo)), 3u);
     }
     beta *= albedo;
 }

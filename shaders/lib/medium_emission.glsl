@@ -158,7 +158,7 @@ void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
     if (gradientWanted(kGradientKindEmissionGrid)) {
         for (uint k = 0u; k < kEmissionGridPoints; ++k) {
             addTrilinearGradient(strength, ray.origin + points.t[k] * ray.direction,
-                                 vec3(length * dot(g, m.emission * points.transmittance[k])));
+                                 vec3(length * dot(g, m.emission * points.transmittance[k])), 1u);
         }
     }
     if (!gridGradientsWanted()) {
