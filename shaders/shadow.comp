@@ -68,6 +68,16 @@ void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
     ++lengths.count;
 }
 
+// The density's integral along a grid medium's segment, estimated at the next of the
+// shadow ray's own points; adds -voxelWeight . sigma_t times its voxel derivatives
+// (densityIntegralAdjoint). The first trace and backpropagateNextEvent draw the points of
+// a ray's grid segments in the same order.
+float gridSegmentOpticalLength(GpuMedium m, vec3 origin, vec3 direction, float length, vec3 voxelWeight,
+                               inout TrackingRandom gradientPoints) {
+    return densityIntegralAdjoint(P.densityGrids.v[m.densityGrid], origin, direction, length,
+                                  nextTrackingRandom(gradientPoints).x, dot(voxelWeight, sigmaT(m)));
+}
+
 // Transmittance from the shadow ray's origin to its end, zero when something opaque
 // is in the way. In the adjoint pass it also records the length in each medium, and
 // with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
@@ -117,9 +127,8 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                         addGridSegment(lengths, medium, origin, segment);
                         awaitsWeight = true;
                     } else {
-                        opticalLength = densityIntegralAdjoint(grid, origin, direction, segment,
-                                                               nextTrackingRandom(gradientPoints).x,
-                                                               dot(gradientWeight, sigmaT(m)));
+                        opticalLength =
+                            gridSegmentOpticalLength(m, origin, direction, segment, gradientWeight, gradientPoints);
                     }
                 }
             } else {
@@ -171,15 +180,12 @@ void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr, MediumLengths
             for (uint i = 0u; i < lengths.count; ++i) {
                 addSigmaTGradient(lengths.medium[i], -lengths.inMedium[i] * weight);
             }
-            // The kept grid segments' points, drawn in the order a second trace would draw them.
             TrackingRandom gradientPoints = shadowRandom(slot, kTrackingShadowGradient);
             vec3 direction = P.shadowDirection.v[slot].xyz;
             for (uint i = 0u; i < lengths.gridSegments; ++i) {
-                GpuMedium m = P.media.v[lengths.gridMedium[i]];
-                float opticalLength =
-                    densityIntegralAdjoint(P.densityGrids.v[m.densityGrid], lengths.gridSegment[i].xyz, direction,
-                                           lengths.gridSegment[i].w, nextTrackingRandom(gradientPoints).x,
-                                           dot(weight, sigmaT(m)));
+                float opticalLength = gridSegmentOpticalLength(P.media.v[lengths.gridMedium[i]],
+                                                               lengths.gridSegment[i].xyz, direction,
+                                                               lengths.gridSegment[i].w, weight, gradientPoints);
                 addSigmaTGradient(lengths.gridMedium[i], -opticalLength * weight);
             }
         } else {
