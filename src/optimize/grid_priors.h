@@ -46,14 +46,15 @@ inline GridPriorWeights gridPriorWeightsOf(const OptimizeOptions& options) {
 
 // `weights` for each density grid among `parameters`; none when every weight is 0.
 // Throws vkdr::Error when a weight is not 0 but no density grid is among them.
-// firstWeightName(weights) names the weight such an error is about.
 std::map<std::string, GridPriorWeights> gridPriorWeights(const std::vector<std::string>& parameters,
                                                          GridPriorWeights weights);
 
-// Each term of one grid, and (when `gradient` is not null, sized as the grid's values) its
-// gradient added to *gradient.
+// The experiment key of the first weight that is not 0 (the weight gridPriorWeights'
+// error is about).
 const char* firstWeightName(const GridPriorWeights& weights);
 
+// Each term of one grid, and (when `gradient` is not null, sized as the grid's values) its
+// gradient added to *gradient.
 double gridSmoothness(const DensityGrid& grid, double weight, std::vector<double>* gradient);
 double gridSparsity(const DensityGrid& grid, double weight, std::vector<double>* gradient);
 // Where two neighbours are equal, the gradient of |d_i - d_j| is taken as 0 (a subgradient).

@@ -230,12 +230,14 @@ def volume_box(obj):
 
 
 def volume_grid_attributes(node, volume, what, warnings):
-    """What a Volume object's grids carry besides its density, read from its Principled
-    Volume: the grid its Color Attribute names (an albedo grid: Cycles multiplies Color by
-    it) and the scalar grid an Attribute node feeding Emission Strength names (an emission
-    grid). Returns (albedo grid or None, emission grid or None, constant() overrides)."""
+    """The grids a Volume object's Principled Volume reads: the one its Density Attribute
+    names (the density; `density` for other volume nodes), the one its Color Attribute
+    names (an albedo grid: Cycles multiplies Color by it) and the scalar grid an Attribute
+    node feeding Emission Strength names (an emission grid). Returns (density grid, albedo
+    grid or None, emission grid or None, constant() overrides)."""
     if node is None or node.bl_idname != "ShaderNodeVolumePrincipled":
-        return None, None, {}
+        return "density", None, None, {}
+    density = node.inputs["Density Attribute"].default_value
     albedo = node.inputs["Color Attribute"].default_value
     if albedo not in volume.grids:
         albedo = None  # Cycles ignores an attribute the volume lacks (or none named)
@@ -245,14 +247,14 @@ def volume_grid_attributes(node, volume, what, warnings):
                         f"differs from Cycles where the attribute is below 1")
     emission = node_graph.attribute_input(node, "Emission Strength")
     if emission is None:
-        return albedo, None, {}
+        return density, albedo, None, {}
     if emission not in volume.grids:
-        return albedo, None, {"Emission Strength": 0.0}  # a missing attribute reads 0 in Cycles
+        return density, albedo, None, {"Emission Strength": 0.0}  # a missing attribute reads 0 in Cycles
     if volume.grids[emission].channels != 1:
         warnings.append(f"{what}: Emission Strength reads the vector grid '{emission}', and an emission grid "
                         f"must be scalar; the input's unlinked value is used")
-        return albedo, None, {"Emission Strength": node.inputs["Emission Strength"].default_value}
-    return albedo, emission, {"Emission Strength": 1.0}
+        return density, albedo, None, {"Emission Strength": node.inputs["Emission Strength"].default_value}
+    return density, albedo, emission, {"Emission Strength": 1.0}
 
 
 def add_volume_objects(doc, scene, filepath, warnings):
@@ -275,14 +277,12 @@ def add_volume_objects(doc, scene, filepath, warnings):
             warnings.append(f"{what}: its grids do not load ({volume.grids.error_message}); skipped")
             continue
         node = node_graph.material_volume_node(material)
-        albedo, emission, overrides = volume_grid_attributes(node, volume, what, warnings)
+        grid, albedo, emission, overrides = volume_grid_attributes(node, volume, what, warnings)
         medium = node_graph.medium_of(material, warnings, what, overrides)
         if medium is None:
             warnings.append(f"{what}: has no volume material that vkdiffrender can read; skipped")
             continue
         source = bpy.path.abspath(volume.grids.frame_filepath)
-        grid = node.inputs["Density Attribute"].default_value if node is not None and \
-            node.bl_idname == "ShaderNodeVolumePrincipled" else "density"
         if not os.path.isfile(source) or grid not in volume.grids:
             warnings.append(f"{what}: no grid '{grid}' in a file on disk (a volume generated in memory, or a "
                             f"Density Attribute the file lacks); skipped")
