@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 #include "core/fixed_point_value.h"
 #include "vk/context.h"
@@ -56,9 +59,13 @@ std::vector<int64_t> GradientCopies::roomForCopies() const {
 std::vector<float> GradientCopies::sumOfCopies(std::span<const int64_t> words) const {
     std::vector<float> values(sums);
     const size_t copyWords = size_t(copyStride) * gpu::kFixedPointWordsPerSum;
-    for (uint32_t i = 0; i < sums; ++i) {
-        values[i] = float(fixedPointValue(words.subspan(size_t(i) * gpu::kFixedPointWordsPerSum), copies, copyWords));
-    }
+    // A grid's voxels have millions of sums, read back in every iteration of a fit.
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, sums, 4096), [&](const tbb::blocked_range<uint32_t>& range) {
+        for (uint32_t i = range.begin(); i < range.end(); ++i) {
+            values[i] = float(
+                fixedPointValue(words.subspan(size_t(i) * gpu::kFixedPointWordsPerSum), copies, copyWords));
+        }
+    });
     return values;
 }
 
