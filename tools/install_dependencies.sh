@@ -14,7 +14,7 @@ packages=(
   libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libglm-dev libtbb-dev libcli11-dev
-  libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev
+  libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev libboost-dev
   libgtest-dev
   pybind11-dev python3-dev python3-numpy python3-torch python3-pytest
   blender chromium

@@ -334,6 +334,8 @@ struct RenderParams {
 #define VKDR_DECLARE_ACCUMULATOR(name, field, floats, copies, items) VKDR_BUFFER(Int64Buffer) name;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_ACCUMULATOR)
 #undef VKDR_DECLARE_ACCUMULATOR
+    VKDR_BUFFER(UintBuffer) gradientValues;         // the float bits of every accumulator's sums
+                                                    // (gradient_values.comp), accumulator after accumulator
     uint pathCapacity;
     uint lightCount;
     uint maxDepth;
@@ -356,6 +358,11 @@ struct RenderParams {
 #define VKDR_DECLARE_COPY_STRIDE(name, field, floats, copies, items) uint name##CopyStride;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_COPY_STRIDE)
 #undef VKDR_DECLARE_COPY_STRIDE
+    // Where each accumulator's sums lie in gradientValues, and how many there are in all.
+#define VKDR_DECLARE_VALUE_RANGE(name, field, floats, copies, items) uint name##FirstValue; uint name##ValueCount;
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_VALUE_RANGE)
+#undef VKDR_DECLARE_VALUE_RANGE
+    uint gradientValueCount;
 };
 
 // Per dispatch values, in push constants next to the RenderParams address.

@@ -5,6 +5,7 @@
 // by the unit tests too.
 #ifndef VKDR_FIXED_POINT_GLSL
 #define VKDR_FIXED_POINT_GLSL
+#include "constants.glsl"
 
 // x = mantissa * 2^exponent exactly (mantissa < 2^24), placed at bit
 // exponent - kFixedPointLowestBit of the sum: it spans at most two 32-bit words.
@@ -68,6 +69,116 @@ const int64_t kFixedPointCarryAt = int64_t(1) << 52;
 int64_t fixedPointCarry(int64_t before, int64_t after) {
     bool crossed = abs(after) >= kFixedPointCarryAt && abs(before) < kFixedPointCarryAt;
     return crossed ? after >> 32 : int64_t(0);
+}
+
+// The exact total of fixed-point sums (the copies of one accumulator), gathered word by
+// word: each word's low 32 bits go to its part and the rest to the next one's, so that a
+// part stays below 2^39 for up to 64 sums, and the flags of all of them.
+struct FixedPointTotal {
+    int64_t parts[kFixedPointWords + 1u];  // parts[kFixedPointWords]: above the top word
+    uint flags;
+};
+
+FixedPointTotal fixedPointTotalOfNothing() {
+    FixedPointTotal total;
+    for (uint k = 0u; k <= kFixedPointWords; ++k) {
+        total.parts[k] = int64_t(0);
+    }
+    total.flags = 0u;
+    return total;
+}
+
+void addFixedPointWord(INOUT(FixedPointTotal) total, uint k, int64_t word) {
+    total.parts[k] += word & int64_t(0xffffffffu);
+    total.parts[k + 1u] += word >> 32;
+}
+
+// 64 bits of the number whose 32-bit digits are `digits`, from bit `lowest` (which may be
+// negative: zeros below bit 0), and whether any bit below `lowest` is set.
+uint64_t fixedPointWindow(uint digits[kFixedPointWords], int lowest, INOUT(bool) anyBelow) {
+    uint64_t window = uint64_t(0);
+    anyBelow = false;
+    for (uint k = 0u; k < kFixedPointWords; ++k) {
+        int shift = int(32u * k) - lowest;
+        uint64_t digit = uint64_t(digits[k]);
+        if (shift >= 0 && shift < 64) {
+            window |= digit << uint(shift);
+        } else if (shift < 0 && shift > -32) {
+            window |= digit >> uint(-shift);
+            anyBelow = anyBelow || (digit & ((uint64_t(1) << uint(-shift)) - uint64_t(1))) != uint64_t(0);
+        } else if (shift <= -32) {
+            anyBelow = anyBelow || digit != uint64_t(0);
+        }
+    }
+    return window;
+}
+
+// The bits of the float nearest to `total` (ties to even): one rounding of the exact
+// value, so every device and the host give the same bits. NaN if a term was NaN or both
+// signs overflowed, an infinity if one did or the total is beyond float range. The
+// lowest bit, 2^-96, is far above float's subnormals, so every non-zero total is normal.
+uint fixedPointFloatBits(FixedPointTotal total) {
+    bool positiveOverflow = (total.flags & kFixedPointPositiveOverflow) != 0u;
+    bool negativeOverflow = (total.flags & kFixedPointNegativeOverflow) != 0u;
+    if ((total.flags & kFixedPointNaN) != 0u || (positiveOverflow && negativeOverflow)) {
+        return 0x7fc00000u;
+    }
+    if (positiveOverflow || negativeOverflow) {
+        return positiveOverflow ? 0x7f800000u : 0xff800000u;
+    }
+    // Carry-propagate into 32-bit digits and a signed part above them, then take the
+    // magnitude (two's complement of all of it when negative).
+    uint digits[kFixedPointWords];
+    int64_t carry = int64_t(0);
+    for (uint k = 0u; k < kFixedPointWords; ++k) {
+        int64_t part = total.parts[k] + carry;
+        digits[k] = uint(part & int64_t(0xffffffffu));
+        carry = part >> 32;
+    }
+    int64_t above = total.parts[kFixedPointWords] + carry;
+    uint sign = 0u;
+    if (above < int64_t(0)) {
+        sign = 0x80000000u;
+        uint64_t increment = uint64_t(1);
+        for (uint k = 0u; k < kFixedPointWords; ++k) {
+            uint64_t digit = uint64_t(~digits[k]) + increment;
+            digits[k] = uint(digit & uint64_t(0xffffffffu));
+            increment = digit >> 32;
+        }
+        above = ~above + int64_t(increment);
+    }
+    if (above != int64_t(0)) {
+        return sign | 0x7f800000u;  // at least 2^(32 kFixedPointWords + kFixedPointLowestBit)
+    }
+    int highest = -1;
+    for (uint k = 0u; k < kFixedPointWords; ++k) {
+        if (digits[k] != 0u) {
+            highest = int(32u * k) + findMSB(digits[k]);
+        }
+    }
+    if (highest < 0) {
+        return 0u;
+    }
+    // The window's top 24 bits are the significand, the next one decides the rounding
+    // with every bit below it.
+    int lowest = highest - 63;
+    bool anyBelow;
+    uint64_t window = fixedPointWindow(digits, lowest, anyBelow);
+    uint significand = uint(window >> 40);
+    bool roundBit = ((window >> 39) & uint64_t(1)) != uint64_t(0);
+    bool sticky = anyBelow || (window & ((uint64_t(1) << 39) - uint64_t(1))) != uint64_t(0);
+    int exponent = highest + kFixedPointLowestBit;  // of the significand's top bit
+    if (roundBit && (sticky || (significand & 1u) != 0u)) {
+        ++significand;
+        if (significand == 0x1000000u) {
+            significand >>= 1;
+            ++exponent;
+        }
+    }
+    if (exponent > 127) {
+        return sign | 0x7f800000u;
+    }
+    return sign | (uint(exponent + 127) << 23) | (significand & 0x7fffffu);
 }
 
 #endif

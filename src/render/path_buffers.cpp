@@ -2,11 +2,7 @@
 
 #include <algorithm>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "core/error.h"
-#include "core/fixed_point_value.h"
 #include "vk/context.h"
 
 namespace vkdr {
@@ -52,23 +48,6 @@ GradientCopies::GradientCopies(const VulkanContext& context, uint32_t sumsPerCop
       buffer(context, (uint64_t(copyCount - 1) * copyStride + sumsPerCopy) * kBytesPerSum, MemoryUse::Device,
              name) {}
 
-std::vector<int64_t> GradientCopies::roomForCopies() const {
-    return std::vector<int64_t>(buffer.size() / 8);
-}
-
-std::vector<float> GradientCopies::sumOfCopies(std::span<const int64_t> words) const {
-    std::vector<float> values(sums);
-    const size_t copyWords = size_t(copyStride) * gpu::kFixedPointWordsPerSum;
-    // A grid's voxels have millions of sums, read back in every iteration of a fit.
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, sums, 4096), [&](const tbb::blocked_range<uint32_t>& range) {
-        for (uint32_t i = range.begin(); i < range.end(); ++i) {
-            values[i] = float(
-                fixedPointValue(words.subspan(size_t(i) * gpu::kFixedPointWordsPerSum), copies, copyWords));
-        }
-    });
-    return values;
-}
-
 #define VKDR_ALLOCATE_PATH_ARRAY(name, Type) name(perPath<gpu::Type>(context, capacity, #name)),
 
 PathBuffers::PathBuffers(const VulkanContext& context, uint32_t capacity, uint32_t pixelCount)
@@ -108,6 +87,12 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
       filmBaseline(context, uint64_t(pixelCount) * 16, MemoryUse::Device, "film baseline"),
       VKDR_GRADIENT_ACCUMULATORS(VKDR_ALLOCATE_ACCUMULATOR)
       keptRadiance() {
+#define VKDR_PLACE_VALUES(name, ...)      \
+    name.firstValue = gradientValueCount; \
+    gradientValueCount += name.sums;
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_PLACE_VALUES)
+#undef VKDR_PLACE_VALUES
+    gradientValues = Buffer(context, uint64_t(gradientValueCount) * 4, MemoryUse::Device, "gradient values");
     if (keptPaths > 0) {
         keptRadiance = Buffer(context, keptPaths * 16, MemoryUse::Device, "kept radiance");
     }
@@ -117,16 +102,21 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
 
 uint64_t AdjointBuffers::deviceBytes() const {
     return uint64_t(capacity) * kBytesPerPath + target.size() + imageAdjoint.size() +
-           filmBaseline.size() VKDR_GRADIENT_ACCUMULATORS(VKDR_ACCUMULATOR_BYTES) + keptRadiance.size();
+           filmBaseline.size() VKDR_GRADIENT_ACCUMULATORS(VKDR_ACCUMULATOR_BYTES) + gradientValues.size() +
+           keptRadiance.size();
 }
 
-#define VKDR_SET_ACCUMULATOR(name, ...) \
-    params.name = name.buffer.address(); \
-    params.name##CopyStride = name.copyStride;
+#define VKDR_SET_ACCUMULATOR(name, ...)         \
+    params.name = name.buffer.address();         \
+    params.name##CopyStride = name.copyStride;   \
+    params.name##FirstValue = name.firstValue;   \
+    params.name##ValueCount = name.sums;
 
 void AdjointBuffers::setAddresses(gpu::RenderParams& params) const {
     VKDR_ADJOINT_PATH_ARRAYS(VKDR_SET_ADDRESS)
     VKDR_GRADIENT_ACCUMULATORS(VKDR_SET_ACCUMULATOR)
+    params.gradientValues = gradientValues.address();
+    params.gradientValueCount = gradientValueCount;
     params.target = target.address();
     params.imageAdjoint = imageAdjoint.address();
     params.lossSum = lossSum.address();

@@ -35,19 +35,17 @@ struct PathBuffers {
 };
 
 // gpu::kGradientCopies copies (or one) of `sums` fixed-point gradient sums, `copyStride`
-// sums apart (device_types.h): subgroups add to different copies, and the host sums them.
+// sums apart (device_types.h): subgroups add to different copies, and the
+// gradient_values stage reads their total as a float at `firstValue` of the adjoint's
+// gradientValues.
 struct GradientCopies {
     GradientCopies(const VulkanContext& context, uint32_t sumsPerCopy, uint32_t copyCount, const char* name);
 
     uint32_t sums;
     uint32_t copies;
     uint32_t copyStride;  // 0 for a single copy
+    uint32_t firstValue = 0;
     Buffer buffer;
-
-    // Room on the host for the words of all the copies (for downloadBuffers), and the
-    // `sums` values that they total to.
-    std::vector<int64_t> roomForCopies() const;
-    std::vector<float> sumOfCopies(std::span<const int64_t> words) const;
 };
 
 // What the adjoint pass adds: per path slot its replay state (VKDR_ADJOINT_PATH_ARRAYS),
@@ -65,6 +63,8 @@ struct AdjointBuffers {
 #define VKDR_GRADIENT_ACCUMULATOR_MEMBER(name, field, floats, copies, items) GradientCopies name;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_GRADIENT_ACCUMULATOR_MEMBER)
 #undef VKDR_GRADIENT_ACCUMULATOR_MEMBER
+    Buffer gradientValues;  // the float bits of every accumulator's sums, in the order of the list
+    uint32_t gradientValueCount = 0;
     Buffer keptRadiance;  // 16 bytes per kept path; empty (size 0) when none are kept
 
     static constexpr uint64_t kBytesPerPath = 0 VKDR_ADJOINT_PATH_ARRAYS(VKDR_PATH_ARRAY_BYTES);

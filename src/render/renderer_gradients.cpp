@@ -150,21 +150,27 @@ void Renderer::recordClearAccumulators(CommandRecorder& recorder) {
 }
 
 SceneGradients Renderer::downloadGradients(std::vector<Download> alsoDownload) {
-    // Every copy of every accumulator, in the order of VKDR_GRADIENT_ACCUMULATORS; the
-    // spans in the downloads point into each vector's own storage, which stays put as
-    // `copies` grows.
-    std::vector<std::vector<int64_t>> copies;
-#define VKDR_DOWNLOAD_ACCUMULATOR(name, ...)                                               \
-    copies.push_back(adjoint_->name.roomForCopies());                                      \
-    alsoDownload.push_back({&adjoint_->name.buffer, std::as_writable_bytes(std::span(copies.back()))});
-    VKDR_GRADIENT_ACCUMULATORS(VKDR_DOWNLOAD_ACCUMULATOR)
-#undef VKDR_DOWNLOAD_ACCUMULATOR
+    // The device reads every sum as a float (gradient_values.comp), and the host
+    // downloads those, in the order of VKDR_GRADIENT_ACCUMULATORS.
+    {
+        CommandRecorder recorder(context_, timer_);
+        if (timer_) {
+            timer_->setScope("gradient_values");
+        }
+        PushConstants push{params_.address(), gpu::PassConstants{}};
+        recorder.dispatch(pipelines_.gradient->gradientValues,
+                          std::min(adjoint_->gradientValueCount, kMaxDispatchThreads), push.bytes());
+        recorder.submitAndWait();
+    }
+    std::vector<float> values(adjoint_->gradientValueCount);
+    alsoDownload.push_back({&adjoint_->gradientValues, std::as_writable_bytes(std::span(values))});
     downloadBuffers(context_, alsoDownload);
     SceneGradients gradients;
-    auto copiesOf = copies.begin();
-#define VKDR_SUM_ACCUMULATOR(name, field, ...) gradients.field = adjoint_->name.sumOfCopies(*copiesOf++);
-    VKDR_GRADIENT_ACCUMULATORS(VKDR_SUM_ACCUMULATOR)
-#undef VKDR_SUM_ACCUMULATOR
+#define VKDR_TAKE_VALUES(name, field, ...)                                      \
+    gradients.field.assign(values.begin() + adjoint_->name.firstValue,          \
+                           values.begin() + adjoint_->name.firstValue + adjoint_->name.sums);
+    VKDR_GRADIENT_ACCUMULATORS(VKDR_TAKE_VALUES)
+#undef VKDR_TAKE_VALUES
     return gradients;
 }
 

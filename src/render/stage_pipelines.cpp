@@ -18,6 +18,7 @@ std::span<const uint32_t> stageSpirv(Stage stage) {
     case Stage::QueuePrepare: return spirv::queuePrepareSpirv();
     case Stage::Film: return spirv::filmSpirv();
     case Stage::Loss: return spirv::lossSpirv();
+    case Stage::GradientValues: return spirv::gradientValuesSpirv();
     }
     return {};
 }
@@ -51,7 +52,8 @@ PathStages::PathStages(const VulkanContext& context, bool adjoint, uint32_t grad
 
 GradientPipelines::GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media)
     : kinds(gradientKinds), media(media), adjoint(context, true, gradientKinds, media),
-      loss(stagePipeline(context, Stage::Loss)) {}
+      loss(stagePipeline(context, Stage::Loss)),
+      gradientValues(stagePipeline(context, Stage::GradientValues)) {}
 
 StagePipelines::StagePipelines(const VulkanContext& context, MediaFeatures media)
     : primal(context, false, 0, media),

@@ -40,6 +40,7 @@ struct GradientPipelines {
     MediaFeatures media;
     PathStages adjoint;
     ComputePipeline loss;
+    ComputePipeline gradientValues;
 };
 
 // One pipeline per wavefront stage, named after it.

@@ -5,8 +5,9 @@
 
 namespace vkdr {
 
-// The wavefront stages, in the order a pass runs them, loss last.
-enum class Stage { Generate, Intersect, MediumSample, Shade, Shadow, QueuePrepare, Film, Loss };
+// The wavefront stages, in the order a pass runs them, then the loss and the reading of
+// the gradients.
+enum class Stage { Generate, Intersect, MediumSample, Shade, Shadow, QueuePrepare, Film, Loss, GradientValues };
 
 // Each stage once. Its name is its shader file's stem (shaders/<name>.comp) and is used
 // for it everywhere: the pipeline's debug name, the dispatch timer's and the bench's
@@ -19,7 +20,7 @@ struct StageInfo {
     bool hasAdjointVariant;
 };
 
-inline constexpr std::array<StageInfo, 8> kStages{{
+inline constexpr std::array<StageInfo, 9> kStages{{
     {Stage::Generate, "generate", true},
     {Stage::Intersect, "intersect", false},
     {Stage::MediumSample, "medium_sample", true},
@@ -28,6 +29,7 @@ inline constexpr std::array<StageInfo, 8> kStages{{
     {Stage::QueuePrepare, "queue_prepare", false},
     {Stage::Film, "film", false},
     {Stage::Loss, "loss", false},
+    {Stage::GradientValues, "gradient_values", false},
 }};
 
 // stageInfo() indexes the table by stage.

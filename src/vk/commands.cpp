@@ -12,8 +12,8 @@
 namespace vkdr {
 
 constexpr uint32_t kWorkgroupSize = 64;
-// Vulkan guarantees at least this many workgroups per dispatch dimension.
-constexpr uint32_t kMaxWorkgroups = 65535;
+static_assert(kMaxDispatchThreads % kWorkgroupSize == 0);
+constexpr uint32_t kMaxWorkgroups = kMaxDispatchThreads / kWorkgroupSize;
 
 CommandRecorder::CommandRecorder(const VulkanContext& context, DispatchTimer* timer)
     : context_(context), timer_(timer), slot_(context.commandSlots().acquire()), commands_(slot_.commands) {

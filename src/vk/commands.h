@@ -12,6 +12,10 @@ class Buffer;
 class ComputePipeline;
 class DispatchTimer;
 
+// The most threads one dispatch may have: Vulkan guarantees at least 65535 workgroups per
+// dispatch dimension, of the stages' 64 threads.
+inline constexpr uint32_t kMaxDispatchThreads = 65535u * 64u;
+
 // Records one command buffer on the compute queue and submits it. Stages are separated
 // by full compute barriers: each stage reads what the previous one wrote, and buffers
 // are reached by address, so finer-grained barriers would buy nothing.

@@ -2,13 +2,16 @@
 // src/core/fixed_point_value.h: a float is held exactly (or, below the lowest bit, to
 // within it), a sum is the same in any order of its terms and with carries moved at any
 // time, it equals the exact sum even beyond float range, and infinities and NaNs read
-// back as such.
+// back as such; and the device's reading of sums as floats (fixedPointFloatBits) is the
+// nearest float to their exact total.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
 
+#include <boost/multiprecision/cpp_int.hpp>
 #include <gtest/gtest.h>
 
 #include "core/fixed_point_value.h"
@@ -126,6 +129,116 @@ TEST(FixedPoint, HoldsSumsBeyondFloatRangeAndFlagsInfinitiesAndNaN) {
     EXPECT_EQ(sumOf({1.0f, infinity}), INFINITY);
     EXPECT_EQ(sumOf({1.0f, -infinity}), -INFINITY);
     EXPECT_TRUE(std::isnan(sumOf({infinity, -infinity})));
+}
+
+// The float that the device reads a sum (or `count` copies of one, `stride` words
+// apart) as.
+float deviceFloat(const Words& words, size_t count = 1, size_t stride = gpu::kFixedPointWordsPerSum) {
+    glsl::FixedPointTotal total = glsl::fixedPointTotalOfNothing();
+    for (size_t i = 0; i < count; ++i) {
+        for (uint32_t k = 0; k < gpu::kFixedPointWords; ++k) glsl::addFixedPointWord(total, k, words[i * stride + k]);
+        total.flags |= uint32_t(words[i * stride + gpu::kFixedPointFlagsWord]);
+    }
+    return std::bit_cast<float>(glsl::fixedPointFloatBits(total));
+}
+
+// The nearest float to the exact total of `count` sums, ties to even, by big-integer
+// arithmetic: the reference for the device's one rounding (the host's long double reading
+// rounds twice, which near a tie can give the other neighbour).
+float nearestFloat(const Words& words, size_t count) {
+    using boost::multiprecision::cpp_int;
+    cpp_int total = 0;
+    for (size_t i = 0; i < count; ++i) {
+        for (uint32_t k = 0; k < gpu::kFixedPointWords; ++k) {
+            total += cpp_int(words[i * gpu::kFixedPointWordsPerSum + k]) << (32 * k);
+        }
+    }
+    if (total == 0) return 0.0f;
+    const bool negative = total < 0;
+    const cpp_int magnitude = negative ? cpp_int(-total) : total;
+    const int bits = int(boost::multiprecision::msb(magnitude)) + 1;
+    const int dropped = std::max(0, bits - 24);
+    cpp_int significand = magnitude >> dropped;
+    if (dropped > 0) {
+        const cpp_int rest = magnitude - (significand << dropped), half = cpp_int(1) << (dropped - 1);
+        if (rest > half || (rest == half && (significand & 1) != 0)) ++significand;
+    }
+    const double value = std::ldexp(double(significand.convert_to<uint64_t>()), dropped + gpu::kFixedPointLowestBit);
+    const float rounded = value > double(std::numeric_limits<float>::max()) ? INFINITY : float(value);
+    return negative ? -rounded : rounded;
+}
+
+// Random words as the device leaves them: any magnitude below the carry threshold in any
+// word, either sign (runs of borrows make totals near ties), and the top words mostly
+// empty so that most totals are floats.
+TEST(FixedPoint, DeviceFloatsAreTheNearestFloatsToTheExactTotals) {
+    std::mt19937_64 random(11);
+    std::uniform_int_distribution<int> words(1, int(gpu::kFixedPointWords));
+    std::uniform_int_distribution<int> bits(0, 52);
+    std::uniform_int_distribution<int> copies(1, int(gpu::kGradientCopies));
+    int infinite = 0, finite = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const size_t count = size_t(copies(random));
+        Words sums(count * gpu::kFixedPointWordsPerSum, 0);
+        const int used = words(random);
+        for (size_t i = 0; i < count; ++i) {
+            for (int k = 0; k < used; ++k) {
+                const int64_t magnitude = int64_t(random() >> (63 - bits(random)));
+                sums[i * gpu::kFixedPointWordsPerSum + k] = (random() & 1) ? magnitude : -magnitude;
+            }
+        }
+        const float expected = nearestFloat(sums, count);
+        const float device = deviceFloat(sums, count);
+        ASSERT_EQ(std::bit_cast<uint32_t>(device), std::bit_cast<uint32_t>(expected))
+            << "trial " << trial << ": " << device << " against " << expected;
+        (std::isinf(expected) ? infinite : finite)++;
+    }
+    // Both kinds of total were met.
+    EXPECT_GT(infinite, 100);
+    EXPECT_GT(finite, 10000);
+}
+
+// Words holding n * 2^shift exactly (n below 2^63, shift a multiple of 32), or -n * 2^shift.
+Words wordsOf(uint64_t n, uint32_t word, bool negative = false) {
+    Words words(gpu::kFixedPointWordsPerSum, 0);
+    const int64_t sign = negative ? -1 : 1;
+    words[word] = sign * int64_t(n & 0xffffffffu);
+    words[word + 1] = sign * int64_t(n >> 32);
+    return words;
+}
+
+TEST(FixedPoint, DeviceFloatsRoundTiesToEvenAndOverflowToInfinity) {
+    // 24 significant bits, then the rounding bit: ties go to the even significand.
+    const double unit = std::ldexp(1.0, gpu::kFixedPointLowestBit + 32);  // word 1's weight
+    for (bool negative : {false, true}) {
+        const double sign = negative ? -1.0 : 1.0;
+        EXPECT_EQ(deviceFloat(wordsOf((0x800001ull << 1) | 1, 1, negative)), float(sign * 0x800002 * 2 * unit));
+        EXPECT_EQ(deviceFloat(wordsOf((0x800002ull << 1) | 1, 1, negative)), float(sign * 0x800002 * 2 * unit));
+        // Below a tie, a bit far down in word 0 rounds away from zero.
+        Words justAbove = wordsOf((0x800002ull << 1) | 1, 1, negative);
+        justAbove[0] = negative ? -1 : 1;
+        EXPECT_EQ(deviceFloat(justAbove), float(sign * 0x800003 * 2 * unit));
+        // Exactly representable: no rounding at all.
+        EXPECT_EQ(deviceFloat(wordsOf(0xabcdefull, 1, negative)), float(sign * 0xabcdef * unit));
+    }
+    // The largest float, and its tie with 2^128, which rounds to infinity.
+    const float largest = std::numeric_limits<float>::max();
+    const uint32_t topWord = uint32_t((127 - 23 - gpu::kFixedPointLowestBit) / 32);
+    const int shift = 127 - 23 - gpu::kFixedPointLowestBit - 32 * int(topWord);
+    EXPECT_EQ(deviceFloat(wordsOf(0xffffffull << shift, topWord)), largest);
+    EXPECT_EQ(deviceFloat(wordsOf(((0xffffffull << 1) | 1) << (shift - 1), topWord)), INFINITY);
+    EXPECT_EQ(deviceFloat(wordsOf(((0xffffffull << 1) | 1) << (shift - 1), topWord, true)), -INFINITY);
+    EXPECT_EQ(deviceFloat(Words(gpu::kFixedPointWordsPerSum, 0)), 0.0f);
+    // Flags: NaN, and an overflow of either sign or both.
+    Words flagged(gpu::kFixedPointWordsPerSum, 0);
+    flagged[gpu::kFixedPointFlagsWord] = gpu::kFixedPointNaN;
+    EXPECT_TRUE(std::isnan(deviceFloat(flagged)));
+    flagged[gpu::kFixedPointFlagsWord] = gpu::kFixedPointPositiveOverflow;
+    EXPECT_EQ(deviceFloat(flagged), INFINITY);
+    flagged[gpu::kFixedPointFlagsWord] = gpu::kFixedPointNegativeOverflow;
+    EXPECT_EQ(deviceFloat(flagged), -INFINITY);
+    flagged[gpu::kFixedPointFlagsWord] = gpu::kFixedPointPositiveOverflow | gpu::kFixedPointNegativeOverflow;
+    EXPECT_TRUE(std::isnan(deviceFloat(flagged)));
 }
 
 }  // namespace
