@@ -15,7 +15,7 @@ namespace {
 // the loss and the adjoint-mode passes as a whole first, as the JSON has always listed
 // them, then the rest.
 constexpr const char* kStages[] = {"generate", "intersect", "medium_sample", "shade",  "shadow",
-                                   "loss",     "adjoint",   "queue_prepare", "film",   "replay"};
+                                   "loss",     "adjoint",   "queue_prepare", "film",   "replay", "gradient_values"};
 constexpr const char* kAdjointStages[] = {"generate", "intersect", "medium_sample", "shade", "shadow",
                                           "queue_prepare"};
 

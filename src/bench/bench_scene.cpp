@@ -31,13 +31,13 @@ constexpr const char* kPlumeScene = "cornell_plume";
 constexpr uint32_t kPlumeSeed = 1;  // the shipped grid's
 // Peaks per voxel of a plume, with about a third as margin over what bench measures
 // (plume_64 to plume_192, docs/performance.md). On the device 8.5 bytes while the grid
-// is uploaded (its values and their staging copy), and 148 once the density gradient is
-// downloaded: the values, the gradient's fixed-point sums (72 bytes) and their staging
-// copy (72). On the host 80 besides: the downloaded sums, the scene's values and the
+// is uploaded (its values and their staging copy), and 84 once the density gradient is
+// read: the values, the gradient's fixed-point sums (72 bytes), their floats and the
+// floats' staging copy (4 each). On the host 17 besides: the scene's values and the
 // gradient's floats.
-constexpr uint64_t kHostBytesPerVoxel = 110;
+constexpr uint64_t kHostBytesPerVoxel = 24;
 constexpr uint64_t kForwardDeviceBytesPerVoxel = 12;
-constexpr uint64_t kGradientDeviceBytesPerVoxel = 192;
+constexpr uint64_t kGradientDeviceBytesPerVoxel = 108;
 
 // "10k" -> 10000, "1m" -> 1000000; nothing for anything else or too large to multiply.
 std::optional<uint64_t> parseCount(const std::string& text) {

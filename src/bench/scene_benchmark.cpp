@@ -51,6 +51,7 @@ StageTimes stageTimes(const DispatchTimer::Milliseconds& timed) {
     out.stages["loss"] = sum(scope("loss"));
     out.stages["replay"] = sum(scope("replay"));
     out.stages["adjoint"] = sum(scope("adjoint"));
+    out.stages["gradient_values"] = sum(scope("gradient_values"));
     return out;
 }
 

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 
 namespace vkdr {
@@ -20,13 +23,17 @@ void AdamOptimizer::step(std::span<double> values, std::span<const double> gradi
     // m and v start at 0, so early averages are biased towards 0 by (1 - beta^t).
     double meanCorrection = 1.0 - std::pow(moments_.beta1, double(steps_));
     double meanSquareCorrection = 1.0 - std::pow(moments_.beta2, double(steps_));
-    for (size_t i = 0; i < values.size(); ++i) {
-        mean_[i] = moments_.beta1 * mean_[i] + (1.0 - moments_.beta1) * gradients[i];
-        meanSquare_[i] = moments_.beta2 * meanSquare_[i] + (1.0 - moments_.beta2) * gradients[i] * gradients[i];
-        double meanHat = mean_[i] / meanCorrection;
-        double meanSquareHat = meanSquare_[i] / meanSquareCorrection;
-        values[i] -= learningRateScale_ * learningRates_[i] * meanHat / (std::sqrt(meanSquareHat) + moments_.epsilon);
-    }
+    // Each value on its own: a grid's millions of voxels step in parallel, with the same bits.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, values.size()), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            mean_[i] = moments_.beta1 * mean_[i] + (1.0 - moments_.beta1) * gradients[i];
+            meanSquare_[i] = moments_.beta2 * meanSquare_[i] + (1.0 - moments_.beta2) * gradients[i] * gradients[i];
+            const double meanHat = mean_[i] / meanCorrection;
+            const double meanSquareHat = meanSquare_[i] / meanSquareCorrection;
+            values[i] -=
+                learningRateScale_ * learningRates_[i] * meanHat / (std::sqrt(meanSquareHat) + moments_.epsilon);
+        }
+    });
 }
 
 void AdamOptimizer::restore(const OptimizerState& state) {

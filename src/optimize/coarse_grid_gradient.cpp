@@ -4,8 +4,13 @@
 #include <cmath>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace vkdr {
 namespace {
+
+size_t voxelCount(glm::ivec3 size) { return size_t(size.x) * size_t(size.y) * size_t(size.z); }
 
 // The two coarse voxels a fine voxel interpolates along one axis, and the second's weight.
 struct AxisFootprint {
@@ -23,38 +28,54 @@ AxisFootprint axisFootprint(int fine, uint32_t divisor, int coarseCount) {
     return footprint;
 }
 
-// Calls visit(fineIndex, coarseIndex, weight) for each of the (up to) eight coarse voxels
-// of each fine voxel.
-template <typename Visit>
-void forEachWeight(glm::ivec3 size, uint32_t divisor, Visit visit) {
+std::vector<AxisFootprint> axisFootprints(int axis, glm::ivec3 size, uint32_t divisor) {
     const glm::ivec3 coarse = coarseGridSize(size, divisor);
-    std::vector<AxisFootprint> axes[3];
-    for (int axis = 0; axis < 3; ++axis) {
-        for (int i = 0; i < size[axis]; ++i) axes[axis].push_back(axisFootprint(i, divisor, coarse[axis]));
-    }
-    size_t fine = 0;
-    for (int z = 0; z < size.z; ++z) {
-        for (int y = 0; y < size.y; ++y) {
-            for (int x = 0; x < size.x; ++x, ++fine) {
-                const AxisFootprint& fx = axes[0][size_t(x)];
-                const AxisFootprint& fy = axes[1][size_t(y)];
-                const AxisFootprint& fz = axes[2][size_t(z)];
-                for (int corner = 0; corner < 8; ++corner) {
-                    const bool hx = corner & 1, hy = corner & 2, hz = corner & 4;
-                    const double weight = (hx ? fx.weight : 1.0 - fx.weight) * (hy ? fy.weight : 1.0 - fy.weight) *
-                                          (hz ? fz.weight : 1.0 - fz.weight);
-                    if (weight == 0.0) continue;
-                    const size_t index = (size_t(hz ? fz.high : fz.low) * size_t(coarse.y) +
-                                          size_t(hy ? fy.high : fy.low)) * size_t(coarse.x) +
-                                         size_t(hx ? fx.high : fx.low);
-                    visit(fine, index, weight);
+    std::vector<AxisFootprint> footprints;
+    for (int i = 0; i < size[axis]; ++i) footprints.push_back(axisFootprint(i, divisor, coarse[axis]));
+    return footprints;
+}
+
+glm::ivec3 withAxis(glm::ivec3 size, int axis, int count) {
+    size[axis] = count;
+    return size;
+}
+
+// Trilinear interpolation is separable, U = U_z U_y U_x, so U and U^T apply one axis at a
+// time: along `axis`, every line of voxels of `in` (inSize) becomes the line of `out`
+// (the same size but along `axis`). U takes a line of coarse values to fine ones,
+// U^T (`transposed`) adds each fine value into its two coarse ones. Lines are
+// independent, so they run in parallel, and each is summed in one order: the same bits
+// on any number of threads.
+void applyAlongAxis(int axis, const std::vector<AxisFootprint>& footprints, bool transposed, glm::ivec3 inSize,
+                    std::span<const double> in, glm::ivec3 outSize, std::span<double> out) {
+    const auto strides = [](glm::ivec3 s) { return glm::u64vec3(1, uint64_t(s.x), uint64_t(s.x) * uint64_t(s.y)); };
+    const glm::u64vec3 inStride = strides(inSize), outStride = strides(outSize);
+    const int across = (axis + 1) % 3, other = (axis + 2) % 3;
+    const size_t lines = size_t(inSize[across]) * size_t(inSize[other]);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, lines), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t line = range.begin(); line != range.end(); ++line) {
+            const size_t a = line % size_t(inSize[across]), b = line / size_t(inSize[across]);
+            const size_t inBase = a * inStride[across] + b * inStride[other];
+            const size_t outBase = a * outStride[across] + b * outStride[other];
+            const size_t inStep = inStride[axis], outStep = outStride[axis];
+            if (transposed) {
+                for (int c = 0; c < outSize[axis]; ++c) out[outBase + size_t(c) * outStep] = 0.0;
+                for (size_t i = 0; i < footprints.size(); ++i) {
+                    const AxisFootprint& f = footprints[i];
+                    const double value = in[inBase + i * inStep];
+                    out[outBase + size_t(f.low) * outStep] += (1.0 - f.weight) * value;
+                    out[outBase + size_t(f.high) * outStep] += f.weight * value;
+                }
+            } else {
+                for (size_t i = 0; i < footprints.size(); ++i) {
+                    const AxisFootprint& f = footprints[i];
+                    out[outBase + i * outStep] = (1.0 - f.weight) * in[inBase + size_t(f.low) * inStep] +
+                                                 f.weight * in[inBase + size_t(f.high) * inStep];
                 }
             }
         }
-    }
+    });
 }
-
-size_t voxelCount(glm::ivec3 size) { return size_t(size.x) * size_t(size.y) * size_t(size.z); }
 
 }  // namespace
 
@@ -64,14 +85,33 @@ glm::ivec3 coarseGridSize(glm::ivec3 size, uint32_t divisor) {
 }
 
 void prolongGrid(glm::ivec3 size, uint32_t divisor, std::span<const double> coarse, std::span<double> fine) {
-    std::fill(fine.begin(), fine.end(), 0.0);
-    forEachWeight(size, divisor, [&](size_t f, size_t c, double weight) { fine[f] += weight * coarse[c]; });
+    // Coarse to fine along x, then y, then z.
+    glm::ivec3 from = coarseGridSize(size, divisor);
+    std::vector<double> values(coarse.begin(), coarse.end()), next;
+    for (int axis = 0; axis < 3; ++axis) {
+        const glm::ivec3 to = withAxis(from, axis, size[axis]);
+        next.resize(voxelCount(to));
+        applyAlongAxis(axis, axisFootprints(axis, size, divisor), false, from, values, to, next);
+        values.swap(next);
+        from = to;
+    }
+    std::copy(values.begin(), values.end(), fine.begin());
 }
 
 void prolongGridTransposed(glm::ivec3 size, uint32_t divisor, std::span<const double> fine,
                            std::span<double> coarse) {
-    std::fill(coarse.begin(), coarse.end(), 0.0);
-    forEachWeight(size, divisor, [&](size_t f, size_t c, double weight) { coarse[c] += weight * fine[f]; });
+    // Fine to coarse along x, then y, then z.
+    const glm::ivec3 coarseSize = coarseGridSize(size, divisor);
+    glm::ivec3 from = size;
+    std::vector<double> values(fine.begin(), fine.end()), next;
+    for (int axis = 0; axis < 3; ++axis) {
+        const glm::ivec3 to = withAxis(from, axis, coarseSize[axis]);
+        next.resize(voxelCount(to));
+        applyAlongAxis(axis, axisFootprints(axis, size, divisor), true, from, values, to, next);
+        values.swap(next);
+        from = to;
+    }
+    std::copy(values.begin(), values.end(), coarse.begin());
 }
 
 void coarsenGridGradient(glm::ivec3 size, uint32_t divisor, std::span<double> gradient) {

@@ -1,6 +1,10 @@
 #include "optimize/grid_priors.h"
 
 #include <cmath>
+#include <functional>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/error.h"
 #include "optimize/density_grid_options.h"
@@ -11,44 +15,44 @@ namespace vkdr {
 
 namespace {
 
-// Calls visit(i, j) for every pair of face-neighbouring voxels of the grid (indices into
-// its values), each pair once.
-template <typename Visit>
-void forEachFaceNeighbourPair(const DensityGrid& grid, Visit visit) {
-    const size_t strides[3] = {1, size_t(grid.size.x), size_t(grid.size.x) * size_t(grid.size.y)};
-    for (int z = 0; z < grid.size.z; ++z) {
-        for (int y = 0; y < grid.size.y; ++y) {
-            for (int x = 0; x < grid.size.x; ++x) {
-                const glm::ivec3 voxel(x, y, z);
-                const size_t i = x * strides[0] + y * strides[1] + z * strides[2];
-                for (int axis = 0; axis < 3; ++axis) {
-                    if (voxel[axis] + 1 < grid.size[axis]) visit(i, i + strides[axis]);
-                }
-            }
-        }
-    }
-}
-
-// weight / voxels * sum over face-neighbour pairs of penalty(d_i - d_j), adding
-// weight / voxels * penalty'(d_i - d_j) to gradient[i] and its negative to gradient[j].
+// weight / voxels * sum over face-neighbour pairs of penalty(d_i - d_j), adding to each
+// voxel's gradient weight / voxels * the sum over its face neighbours j of
+// penalty'(d_i - d_j) (penalty' is odd: the pair's derivative by d_j is penalty'(d_j - d_i)).
+// Layers of voxels run in parallel, each gathering into its own voxels' gradients, and
+// the layers' penalties add up in a fixed tree: the same bits on any number of threads.
 template <typename Penalty, typename Derivative>
 double neighbourPenalty(const DensityGrid& grid, double weight, std::vector<double>* gradient, Penalty penalty,
                         Derivative derivative) {
     const size_t voxels = grid.voxelCount();
-    if (voxels == 0) {
+    if (voxels == 0 || weight == 0.0) {
         return 0.0;
     }
     const double scale = weight / double(voxels);
-    double sum = 0.0;
-    forEachFaceNeighbourPair(grid, [&](size_t i, size_t j) {
-        const double difference = double(grid.values[i]) - grid.values[j];
-        sum += penalty(difference);
-        if (gradient) {
-            (*gradient)[i] += scale * derivative(difference);
-            (*gradient)[j] -= scale * derivative(difference);
+    const size_t strides[3] = {1, size_t(grid.size.x), size_t(grid.size.x) * size_t(grid.size.y)};
+    const auto layers = [&](const tbb::blocked_range<int>& range, double sum) {
+        for (int z = range.begin(); z != range.end(); ++z) {
+            for (int y = 0; y < grid.size.y; ++y) {
+                for (int x = 0; x < grid.size.x; ++x) {
+                    const glm::ivec3 voxel(x, y, z);
+                    const size_t i = x * strides[0] + y * strides[1] + z * strides[2];
+                    const double value = grid.values[i];
+                    double slope = 0.0;
+                    for (int axis = 0; axis < 3; ++axis) {
+                        if (voxel[axis] + 1 < grid.size[axis]) {
+                            const double difference = value - grid.values[i + strides[axis]];
+                            sum += penalty(difference);
+                            slope += derivative(difference);
+                        }
+                        if (voxel[axis] > 0) slope += derivative(value - grid.values[i - strides[axis]]);
+                    }
+                    if (gradient) (*gradient)[i] += scale * slope;
+                }
+            }
         }
-    });
-    return scale * sum;
+        return sum;
+    };
+    return scale * tbb::parallel_deterministic_reduce(tbb::blocked_range<int>(0, grid.size.z, 1), 0.0, layers,
+                                                      std::plus<double>());
 }
 
 }  // namespace
@@ -71,7 +75,7 @@ double gridTotalVariation(const DensityGrid& grid, double weight, std::vector<do
 
 double gridSparsity(const DensityGrid& grid, double weight, std::vector<double>* gradient) {
     const size_t voxels = grid.voxelCount();
-    if (voxels == 0) {
+    if (voxels == 0 || weight == 0.0) {
         return 0.0;
     }
     const double scale = weight / double(voxels);

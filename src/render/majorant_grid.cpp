@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 #include "device_types.h"
 
@@ -31,17 +33,24 @@ MajorantGrid buildMajorantGrid(const DensityGrid& grid) {
         int low = offset % k == 0 ? std::max(offset / k - 1, 0) : high;
         return glm::ivec2(low, high);
     };
-    for (int z = 0; z < grid.size.z; ++z) {
-        glm::ivec2 cz = cellsOf(z + 1, 2);
-        for (int y = 0; y < grid.size.y; ++y) {
-            glm::ivec2 cy = cellsOf(y + 1, 1);
-            for (int x = 0; x < grid.size.x; ++x) {
-                float value = grid.values[(size_t(z) * size_t(grid.size.y) + size_t(y)) * size_t(grid.size.x) + size_t(x)];
-                if (value <= 0.0f) {
-                    continue;
-                }
-                glm::ivec2 cx = cellsOf(x + 1, 0);
-                for (int j = cz.x; j <= cz.y; ++j) {
+    // Each layer of cells gathers from the voxel layers that touch it, so the layers fill
+    // in parallel; a maximum is the same in any order.
+    tbb::parallel_for(0, majorants.cells.z, [&](int j) {
+        const int firstZ = std::max(k * j - 1, 0), lastZ = std::min(k * (j + 1), grid.size.z - 1);
+        for (int z = firstZ; z <= lastZ; ++z) {
+            const glm::ivec2 cz = cellsOf(z + 1, 2);
+            if (j < cz.x || j > cz.y) {
+                continue;
+            }
+            for (int y = 0; y < grid.size.y; ++y) {
+                const glm::ivec2 cy = cellsOf(y + 1, 1);
+                for (int x = 0; x < grid.size.x; ++x) {
+                    const float value =
+                        grid.values[(size_t(z) * size_t(grid.size.y) + size_t(y)) * size_t(grid.size.x) + size_t(x)];
+                    if (value <= 0.0f) {
+                        continue;
+                    }
+                    const glm::ivec2 cx = cellsOf(x + 1, 0);
                     for (int i = cy.x; i <= cy.y; ++i) {
                         for (int h = cx.x; h <= cx.y; ++h) {
                             float& cell = majorants.maxima[(size_t(j) * size_t(majorants.cells.y) + size_t(i)) *
@@ -52,7 +61,7 @@ MajorantGrid buildMajorantGrid(const DensityGrid& grid) {
                 }
             }
         }
-    }
+    });
     return majorants;
 }
 
