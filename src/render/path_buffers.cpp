@@ -93,6 +93,8 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
     VKDR_GRADIENT_ACCUMULATORS(VKDR_PLACE_VALUES)
 #undef VKDR_PLACE_VALUES
     gradientValues = Buffer(context, uint64_t(gradientValueCount) * 4, MemoryUse::Device, "gradient values");
+    gradientValuesReadback =
+        Buffer(context, uint64_t(gradientValueCount) * 4, MemoryUse::Readback, "gradient values (readback)");
     if (keptPaths > 0) {
         keptRadiance = Buffer(context, keptPaths * 16, MemoryUse::Device, "kept radiance");
     }

@@ -64,6 +64,7 @@ struct AdjointBuffers {
     VKDR_GRADIENT_ACCUMULATORS(VKDR_GRADIENT_ACCUMULATOR_MEMBER)
 #undef VKDR_GRADIENT_ACCUMULATOR_MEMBER
     Buffer gradientValues;  // the float bits of every accumulator's sums, in the order of the list
+    Buffer gradientValuesReadback;  // their copy for the host, kept: a grid's is read in every iteration
     uint32_t gradientValueCount = 0;
     Buffer keptRadiance;  // 16 bytes per kept path; empty (size 0) when none are kept
 

@@ -188,8 +188,9 @@ private:
     // call requires its own, since the two set the samples' split apart.
     enum class AdjointUse { None, Loss, ImageAdjoint };
     void requireAdjointUse(AdjointUse use, const char* call) const;
-    // Downloads the gradient accumulators, together with `alsoDownload`, in one go.
-    SceneGradients downloadGradients(std::vector<Download> alsoDownload);
+    // Reads the gradient accumulators as floats on the device (gradient_values) and
+    // downloads those and `alsoDownload`.
+    SceneGradients downloadGradients(std::span<const Download> alsoDownload);
     // One segment of every path alive: closest hits, free flights, vertices, shadow rays.
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
                        uint32_t currentRays);

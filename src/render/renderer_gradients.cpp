@@ -149,9 +149,9 @@ void Renderer::recordClearAccumulators(CommandRecorder& recorder) {
 #undef VKDR_CLEAR_ACCUMULATOR
 }
 
-SceneGradients Renderer::downloadGradients(std::vector<Download> alsoDownload) {
-    // The device reads every sum as a float (gradient_values.comp), and the host
-    // downloads those, in the order of VKDR_GRADIENT_ACCUMULATORS.
+SceneGradients Renderer::downloadGradients(std::span<const Download> alsoDownload) {
+    // The device reads every sum as a float (gradient_values.comp) and copies those to the
+    // adjoint's read-back buffer, in the order of VKDR_GRADIENT_ACCUMULATORS.
     {
         CommandRecorder recorder(context_, timer_);
         if (timer_) {
@@ -160,15 +160,17 @@ SceneGradients Renderer::downloadGradients(std::vector<Download> alsoDownload) {
         PushConstants push{params_.address(), gpu::PassConstants{}};
         recorder.dispatch(pipelines_.gradient->gradientValues,
                           std::min(adjoint_->gradientValueCount, kMaxDispatchThreads), push.bytes());
+        recorder.barrier();
+        recorder.copy(adjoint_->gradientValues, adjoint_->gradientValuesReadback, adjoint_->gradientValues.size());
         recorder.submitAndWait();
     }
-    std::vector<float> values(adjoint_->gradientValueCount);
-    alsoDownload.push_back({&adjoint_->gradientValues, std::as_writable_bytes(std::span(values))});
-    downloadBuffers(context_, alsoDownload);
+    if (!alsoDownload.empty()) {
+        downloadBuffers(context_, alsoDownload);
+    }
+    const float* values = static_cast<const float*>(adjoint_->gradientValuesReadback.mapped());
     SceneGradients gradients;
-#define VKDR_TAKE_VALUES(name, field, ...)                                      \
-    gradients.field.assign(values.begin() + adjoint_->name.firstValue,          \
-                           values.begin() + adjoint_->name.firstValue + adjoint_->name.sums);
+#define VKDR_TAKE_VALUES(name, field, ...) \
+    gradients.field.assign(values + adjoint_->name.firstValue, values + adjoint_->name.firstValue + adjoint_->name.sums);
     VKDR_GRADIENT_ACCUMULATORS(VKDR_TAKE_VALUES)
 #undef VKDR_TAKE_VALUES
     return gradients;
@@ -263,7 +265,7 @@ GradientEvaluation Renderer::renderAndBackpropagateLoss(bool alone) {
     std::vector<Download> imageAndLoss{{&paths_->film, std::as_writable_bytes(std::span(film))},
                                        {&adjoint_->lossSum, std::as_writable_bytes(std::span(lossWords))}};
     if (alone) {
-        result.gradients = downloadGradients(std::move(imageAndLoss));
+        result.gradients = downloadGradients(imageAndLoss);
     } else {
         downloadBuffers(context_, imageAndLoss);
     }

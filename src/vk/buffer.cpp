@@ -68,7 +68,8 @@ Buffer::Buffer(const VulkanContext& context, VkDeviceSize size, MemoryUse use, c
     VkMemoryAllocateInfo allocation{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     allocation.pNext = &flags;
     allocation.allocationSize = requirements.size;
-    allocation.memoryTypeIndex = context.memoryTypeIndex(requirements.memoryTypeBits, properties);
+    allocation.memoryTypeIndex = context.memoryTypeIndex(
+        requirements.memoryTypeBits, properties, use == MemoryUse::Readback ? VK_MEMORY_PROPERTY_HOST_CACHED_BIT : 0);
     VkDeviceMemory memory;
     checkVk(vkAllocateMemory(device, &allocation, nullptr, &memory),
             ("allocating " + std::to_string(size_ >> 20) + " MiB for " + name).c_str());

@@ -14,7 +14,8 @@ class VulkanContext;
 
 enum class MemoryUse {
     Device,    // device-local; filled by transfers or shaders
-    Readback,  // host-visible and coherent; the device copies into it for the host to read
+    Readback,  // host-visible and coherent, and cached where the device offers it (a GPU's
+               // uncached host memory is slow to read); the device copies into it for the host
     Upload,    // host-visible and coherent; the host writes, the device copies from it
 };
 

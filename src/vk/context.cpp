@@ -269,10 +269,13 @@ const Buffer& VulkanContext::keptStagingBuffer(MemoryUse use, VkDeviceSize bytes
     return *staging;
 }
 
-uint32_t VulkanContext::memoryTypeIndex(uint32_t allowedTypes, VkMemoryPropertyFlags required) const {
-    for (uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i) {
-        if ((allowedTypes & (1u << i)) && (memoryProperties_.memoryTypes[i].propertyFlags & required) == required) {
-            return i;
+uint32_t VulkanContext::memoryTypeIndex(uint32_t allowedTypes, VkMemoryPropertyFlags required,
+                                        VkMemoryPropertyFlags preferred) const {
+    for (VkMemoryPropertyFlags wanted : {required | preferred, required}) {
+        for (uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i) {
+            if ((allowedTypes & (1u << i)) && (memoryProperties_.memoryTypes[i].propertyFlags & wanted) == wanted) {
+                return i;
+            }
         }
     }
     throw Error("the device has no memory type with the needed properties");

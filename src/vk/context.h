@@ -48,7 +48,10 @@ public:
     ValidationMode validation() const { return validation_; }
     // Number of validation-layer messages (warnings and errors) seen so far.
     uint32_t validationMessageCount() const { return validationMessages_.load(); }
-    uint32_t memoryTypeIndex(uint32_t allowedTypes, VkMemoryPropertyFlags required) const;
+    // The first allowed memory type with the `required` properties, one that also has the
+    // `preferred` ones if there is such.
+    uint32_t memoryTypeIndex(uint32_t allowedTypes, VkMemoryPropertyFlags required,
+                             VkMemoryPropertyFlags preferred = 0) const;
     uint64_t deviceLocalHeapBytes() const;
     // Device memory held by this context's buffers (Buffer reports to it).
     AllocationCounter& allocations() const { return allocations_; }
