@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
 #include <optional>
@@ -9,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/format_text.h"
+#include "device_types.h"
 #include "procedural/room_scene.h"
 #include "scene/load_scene.h"
 #include "volume/index_transform.h"
@@ -134,16 +136,19 @@ BenchSceneSource resolveBenchScene(const std::string& name, const std::filesyste
 BenchMemoryEstimate estimateBenchMemory(const BenchSceneSource& source) {
     const uint64_t voxels = uint64_t(source.plumeResolution) * uint64_t(source.plumeResolution) *
                             uint64_t(source.plumeResolution);
-    return {source.roomTriangles * kHostBytesPerTriangle + voxels * kHostBytesPerVoxel,
-            source.roomTriangles * kDeviceBytesPerTriangle +
-                voxels * (kForwardDeviceBytesPerVoxel + kGradientDeviceBytesPerVoxel)};
+    BenchMemoryEstimate estimate;
+    estimate.hostBytes = source.roomTriangles * kHostBytesPerTriangle + voxels * kHostBytesPerVoxel;
+    estimate.deviceBytes = source.roomTriangles * kDeviceBytesPerTriangle +
+                           voxels * (kForwardDeviceBytesPerVoxel + kGradientDeviceBytesPerVoxel);
+    estimate.deviceHeapBytes = std::max(estimate.deviceBytes, 2 * voxels * gpu::kFixedPointWordsPerSum * 8);
+    return estimate;
 }
 
 std::optional<std::string> whyTooLarge(const BenchSceneSource& source, uint64_t availableHostBytes,
                                        uint64_t deviceHeapBytes, bool deviceIsHost) {
     const BenchMemoryEstimate estimate = estimateBenchMemory(source);
     const uint64_t host = estimate.hostBytes + (deviceIsHost ? estimate.deviceBytes : 0);
-    const uint64_t device = estimate.deviceBytes;
+    const uint64_t device = estimate.deviceHeapBytes;
     auto gib = [](uint64_t bytes) { return formatText("%.1f GiB", double(bytes) / double(1ull << 30)); };
     if (host > availableHostBytes) {
         return "needs about " + gib(host) + " of host memory, " + gib(availableHostBytes) + " available";

@@ -36,6 +36,9 @@ BenchSceneSource resolveBenchScene(const std::string& name, const std::filesyste
 struct BenchMemoryEstimate {
     uint64_t hostBytes = 0;    // besides the device's
     uint64_t deviceBytes = 0;  // our buffers, staging buffers included
+    // The device heap that runs it: deviceBytes, and at least twice the density
+    // gradient's fixed-point sums, since the renderer allows those half the heap.
+    uint64_t deviceHeapBytes = 0;
 };
 BenchMemoryEstimate estimateBenchMemory(const BenchSceneSource& source);
 
