@@ -77,6 +77,23 @@ void applyAlongAxis(int axis, const std::vector<AxisFootprint>& footprints, bool
     });
 }
 
+// U (coarse to fine) or U^T (`transposed`: fine to coarse) along x, then y, then z.
+void applyAxisByAxis(glm::ivec3 size, uint32_t divisor, bool transposed, std::span<const double> in,
+                     std::span<double> out) {
+    const glm::ivec3 coarse = coarseGridSize(size, divisor);
+    const glm::ivec3 target = transposed ? coarse : size;
+    glm::ivec3 from = transposed ? size : coarse;
+    std::vector<double> values(in.begin(), in.end()), next;
+    for (int axis = 0; axis < 3; ++axis) {
+        const glm::ivec3 to = withAxis(from, axis, target[axis]);
+        next.resize(voxelCount(to));
+        applyAlongAxis(axis, axisFootprints(axis, size, divisor), transposed, from, values, to, next);
+        values.swap(next);
+        from = to;
+    }
+    std::copy(values.begin(), values.end(), out.begin());
+}
+
 }  // namespace
 
 glm::ivec3 coarseGridSize(glm::ivec3 size, uint32_t divisor) {
@@ -85,33 +102,12 @@ glm::ivec3 coarseGridSize(glm::ivec3 size, uint32_t divisor) {
 }
 
 void prolongGrid(glm::ivec3 size, uint32_t divisor, std::span<const double> coarse, std::span<double> fine) {
-    // Coarse to fine along x, then y, then z.
-    glm::ivec3 from = coarseGridSize(size, divisor);
-    std::vector<double> values(coarse.begin(), coarse.end()), next;
-    for (int axis = 0; axis < 3; ++axis) {
-        const glm::ivec3 to = withAxis(from, axis, size[axis]);
-        next.resize(voxelCount(to));
-        applyAlongAxis(axis, axisFootprints(axis, size, divisor), false, from, values, to, next);
-        values.swap(next);
-        from = to;
-    }
-    std::copy(values.begin(), values.end(), fine.begin());
+    applyAxisByAxis(size, divisor, false, coarse, fine);
 }
 
 void prolongGridTransposed(glm::ivec3 size, uint32_t divisor, std::span<const double> fine,
                            std::span<double> coarse) {
-    // Fine to coarse along x, then y, then z.
-    const glm::ivec3 coarseSize = coarseGridSize(size, divisor);
-    glm::ivec3 from = size;
-    std::vector<double> values(fine.begin(), fine.end()), next;
-    for (int axis = 0; axis < 3; ++axis) {
-        const glm::ivec3 to = withAxis(from, axis, coarseSize[axis]);
-        next.resize(voxelCount(to));
-        applyAlongAxis(axis, axisFootprints(axis, size, divisor), true, from, values, to, next);
-        values.swap(next);
-        from = to;
-    }
-    std::copy(values.begin(), values.end(), coarse.begin());
+    applyAxisByAxis(size, divisor, true, fine, coarse);
 }
 
 void coarsenGridGradient(glm::ivec3 size, uint32_t divisor, std::span<double> gradient) {
