@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -138,9 +139,9 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
     warnOfCutPaths(result.truncatedPaths, "the renders of the iterations run");
     std::printf("%s", parameterTable(report.parameters).c_str());
     double iterations = double(result.losses.size());
-    std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint\n",
+    std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint, %.1f ms in all\n",
                 result.losses.back(), result.losses.size(), result.forwardMs / iterations,
-                result.adjointMs / iterations);
+                result.adjointMs / iterations, result.iterationMs / std::max(1u, result.iterationsRun));
     if (!result.lastMetrics.empty()) std::printf("last iteration%s\n", metricsText(result.lastMetrics).c_str());
     std::printf("diff.png: white is an absolute difference of %.4g\n", double(report.largestDifference));
     std::printf("wrote log.jsonl, params.json, scene.gltf, final.exr, final.png, diff.png, loss.svg, report.html "

@@ -57,6 +57,7 @@ std::string iterationJsonLine(const IterationRecord& record) {
     }
     line["forward_ms"] = record.forwardMs;
     line["adjoint_ms"] = record.adjointMs;
+    line["iteration_ms"] = record.iterationMs;
     return line.dump();
 }
 

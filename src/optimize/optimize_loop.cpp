@@ -1,6 +1,7 @@
 #include "optimize/optimize_loop.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -217,6 +218,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
                          result.adjointMs};
     };
     for (uint32_t iteration = first; iteration < options.iterations; ++iteration) {
+        const auto started = std::chrono::steady_clock::now();
         GradientResult evaluation;
         try {
             throwIfInterrupted();
@@ -239,15 +241,20 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         parameters.project();
         requireFiniteSteps(parameters, iteration);
         parameters.writeTo(scene);
+        const double iterationMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
 
         result.losses.push_back(evaluation.loss);
+        result.iterationMs += iterationMs;
+        ++result.iterationsRun;
         result.forwardMs += evaluation.forwardMs;
         result.adjointMs += evaluation.adjointMs;
         result.truncatedPaths += evaluation.truncatedPaths;
         result.lastMetrics = metrics;
         if (callbacks.iterationDone) {
             callbacks.iterationDone(IterationRecord{iteration, evaluation.loss, evaluation.parameters,
-                                                    std::move(metrics), evaluation.forwardMs, evaluation.adjointMs});
+                                                    std::move(metrics), evaluation.forwardMs, evaluation.adjointMs,
+                                                    iterationMs});
         }
         if (iteration == 0) result.firstImages = evaluation.images;
         result.lastImages = std::move(evaluation.images);

@@ -75,6 +75,9 @@ struct IterationRecord {
     std::vector<Metric> metrics;                // from OptimizeCallbacks::measure
     double forwardMs = 0.0;
     double adjointMs = 0.0;
+    // Wall clock: the evaluation, the metrics, the step and the scene's update, host work
+    // included (for a large grid most of it).
+    double iterationMs = 0.0;
 };
 
 struct OptimizeCallbacks {
@@ -95,6 +98,8 @@ struct OptimizeResult {
     std::vector<Metric> lastMetrics; // the last iteration's (OptimizeCallbacks::measure)
     double forwardMs = 0.0;         // all iterations together
     double adjointMs = 0.0;
+    double iterationMs = 0.0;       // the iterations this call ran (not a resumed run's earlier ones), wall clock
+    uint32_t iterationsRun = 0;
     uint64_t truncatedPaths = 0;    // paths cut by the segment limit in the iterations run (should be 0)
 };
 

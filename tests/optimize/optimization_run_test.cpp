@@ -54,7 +54,7 @@ TEST(OptimizationRun, WritesEveryOutputFile) {
     for (size_t i = 0; i < log.size(); ++i) {
         json line = json::parse(log[i]);
         EXPECT_EQ(line["iteration"], i);
-        for (const char* key : {"loss", "parameters", "gradients", "forward_ms", "adjoint_ms"}) {
+        for (const char* key : {"loss", "parameters", "gradients", "forward_ms", "adjoint_ms", "iteration_ms"}) {
             EXPECT_TRUE(line.contains(key)) << key;
         }
         EXPECT_EQ(line["parameters"]["media/fog/sigma_a"].size(), 3u);

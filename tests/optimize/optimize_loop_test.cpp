@@ -1,6 +1,8 @@
 // The optimiser loop against an analytic loss: convergence, constraints, seeds, and
 // stopping on a non-finite gradient.
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -42,6 +44,25 @@ TEST(OptimizeLoop, AdamFindsTheMinimumOfAQuadraticInSigmaAndG) {
     ASSERT_EQ(result.losses.size(), 400u);
     EXPECT_LT(result.losses.back(), 1e-4 * result.losses.front());
     ASSERT_EQ(result.lastImages.size(), 1u);
+}
+
+// An iteration's wall clock covers its metrics (and evaluation and step): a metric that
+// takes 3 ms makes every iteration at least that long.
+TEST(OptimizeLoop, IterationTimesIncludeTheMetrics) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/sigma_s", {0.7, 0.6, 0.5}}});
+    OptimizeCallbacks callbacks;
+    callbacks.measure = [](const Scene&, uint32_t) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(3));
+        return std::vector<Metric>{};
+    };
+    std::vector<double> times;
+    callbacks.iterationDone = [&](const IterationRecord& record) { times.push_back(record.iterationMs); };
+    OptimizeResult result = optimize(loss, scene, optionsFor({"media/fog/sigma_s"}, OptimizerKind::Sgd, 0.1, 4), callbacks);
+    ASSERT_EQ(times.size(), 4u);
+    for (double ms : times) EXPECT_GE(ms, 3.0);
+    EXPECT_EQ(result.iterationsRun, 4u);
+    EXPECT_GE(result.iterationMs, 12.0);
 }
 
 TEST(OptimizeLoop, SgdFindsTheMinimumOfAQuadratic) {
