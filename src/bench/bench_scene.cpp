@@ -35,7 +35,7 @@ constexpr uint32_t kPlumeSeed = 1;  // the shipped grid's
 // (plume_64 to plume_192, docs/performance.md). On the device 8.5 bytes while the grid
 // is uploaded (its values and their staging copy), and 84 once the density gradient is
 // read: the values, the gradient's fixed-point sums (72 bytes), their floats and the
-// floats' staging copy (4 each). On the host 17 besides: the scene's values and the
+// floats' staging copy (4 each). On the host 9 to 17 besides: the scene's values and the
 // gradient's floats.
 constexpr uint64_t kHostBytesPerVoxel = 24;
 constexpr uint64_t kForwardDeviceBytesPerVoxel = 12;
