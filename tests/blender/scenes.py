@@ -175,12 +175,14 @@ def add_vdb_volume(name, path, material, location, scale):
 def fire_vdb():
     """The plume's density and flame grids in one file, as a fire simulation's cache holds
     them: the shipped cornell_fire grids merged by vdb_tool (Debian's libopenvdb-tools)
-    into a new temporary directory, removed when Blender exits."""
+    into a new temporary directory, removed when Blender exits. The file also holds the
+    density's gradient, a vector grid (`grad_density`), for the exports that must refuse
+    a vector grid where a scalar one is read."""
     directory = tempfile.mkdtemp(prefix="vkdiffrender_fire")
     atexit.register(shutil.rmtree, directory, True)
     path = pathlib.Path(directory) / "fire.vdb"
-    subprocess.run([shutil.which("vdb_tool") or "vdb_tool", "-read", str(PLUME_VDB), str(FLAME_VDB), "-write",
-                    str(path)], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([shutil.which("vdb_tool") or "vdb_tool", "-read", str(PLUME_VDB), str(FLAME_VDB),
+                    "-grad", "vdb=1", "keep=1", "-write", str(path)], check=True, stdout=subprocess.DEVNULL)
     return path
 
 

@@ -96,6 +96,18 @@ def test_grid_attributes_become_albedo_and_emission_grids(fire, cli):
     assert medium["sigma_a"] == pytest.approx([2.0, 3.0, 4.0], rel=1e-6)
     swapped = plume_medium(json.loads((fire / "swapped" / "scene.gltf").read_text()))
     assert swapped["density"]["grid"] == "flame", "the Density Attribute names the density grid"
+    # A Color Attribute beside a non-black Absorption Color is exported, with a warning that
+    # the albedo grid differs from Cycles there.
+    absorbing = plume_medium(json.loads((fire / "absorbing" / "scene.gltf").read_text()))
+    assert absorbing["albedoGrid"]["grid"] == "density"
+    absorbing_warnings = json.loads((fire / "absorbing" / "warnings.json").read_text())
+    assert any("Absorption Color other than black" in w for w in absorbing_warnings), absorbing_warnings
+    # Emission Strength reading a vector grid: no emission grid, the input's unlinked value.
+    vector = plume_medium(json.loads((fire / "vector_emission" / "scene.gltf").read_text()))
+    assert "emissionGrid" not in vector
+    assert vector["emission"] == pytest.approx([2.0, 1.0, 0.2], rel=1e-6)
+    vector_warnings = json.loads((fire / "vector_emission" / "warnings.json").read_text())
+    assert any("vector grid 'grad_density'" in w for w in vector_warnings), vector_warnings
     render = subprocess.run([cli, "render", str(fire / "scene.gltf"), "-o", str(fire / "fire.exr"), "--spp", "2",
                              "--width", "16", "--height", "16", "--max-depth", "2"], capture_output=True, text=True)
     assert render.returncode == 0, render.stderr

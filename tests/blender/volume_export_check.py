@@ -4,8 +4,11 @@ with the add-on, and write the export's warnings to OUT/warnings.json and the Vo
 object's world matrix (glTF's Y-up) to OUT/placement.json.
 
 With --fire the scene is "vdb_fire" instead (the plume burning, its material reading the
-file's density and flame grids as colour and emission strength), exported a second time
-to OUT/swapped/scene.gltf with Density Attribute "flame".
+file's density and flame grids as colour and emission strength), exported again to
+OUT/<case>/scene.gltf (warnings in OUT/<case>/warnings.json) with one change each:
+"swapped", Density Attribute "flame"; "absorbing", a grey Absorption Color beside the
+Color Attribute; "vector_emission", Emission Strength reading the vector grid
+`grad_density` (its unlinked value 2).
 
   blender -b --factory-startup --python volume_export_check.py -- --out DIR [--fire]"""
 import argparse
@@ -34,10 +37,28 @@ def main():
     placement = export_scene.Z_UP_TO_Y_UP @ plume.matrix_world
     (out / "placement.json").write_text(json.dumps([list(row) for row in placement]))
     if args.fire:
-        node = next(n for n in plume.active_material.node_tree.nodes if n.bl_idname == "ShaderNodeVolumePrincipled")
-        node.inputs["Density Attribute"].default_value = "flame"
-        (out / "swapped").mkdir()
-        export_scene.export_scene(bpy.context, str(out / "swapped" / "scene.gltf"))
+        tree = plume.active_material.node_tree
+        node = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeVolumePrincipled")
+        attribute = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeAttribute")
+
+        def export_case(case, change, undo):
+            change()
+            (out / case).mkdir()
+            case_warnings = export_scene.export_scene(bpy.context, str(out / case / "scene.gltf"))
+            (out / case / "warnings.json").write_text(json.dumps(case_warnings))
+            undo()
+
+        export_case("swapped", lambda: setattr(node.inputs["Density Attribute"], "default_value", "flame"),
+                    lambda: setattr(node.inputs["Density Attribute"], "default_value", "density"))
+        export_case("absorbing",
+                    lambda: setattr(node.inputs["Absorption Color"], "default_value", (0.2, 0.2, 0.2, 1.0)),
+                    lambda: setattr(node.inputs["Absorption Color"], "default_value", (0.0, 0.0, 0.0, 1.0)))
+
+        def read_vector_grid():
+            attribute.attribute_name = "grad_density"
+            node.inputs["Emission Strength"].default_value = 2.0
+
+        export_case("vector_emission", read_vector_grid, lambda: None)
 
 
 if __name__ == "__main__":
