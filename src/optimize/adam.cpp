@@ -4,7 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
@@ -24,15 +23,12 @@ void AdamOptimizer::step(std::span<double> values, std::span<const double> gradi
     double meanCorrection = 1.0 - std::pow(moments_.beta1, double(steps_));
     double meanSquareCorrection = 1.0 - std::pow(moments_.beta2, double(steps_));
     // Each value on its own: a grid's millions of voxels step in parallel, with the same bits.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, values.size()), [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            mean_[i] = moments_.beta1 * mean_[i] + (1.0 - moments_.beta1) * gradients[i];
-            meanSquare_[i] = moments_.beta2 * meanSquare_[i] + (1.0 - moments_.beta2) * gradients[i] * gradients[i];
-            const double meanHat = mean_[i] / meanCorrection;
-            const double meanSquareHat = meanSquare_[i] / meanSquareCorrection;
-            values[i] -=
-                learningRateScale_ * learningRates_[i] * meanHat / (std::sqrt(meanSquareHat) + moments_.epsilon);
-        }
+    tbb::parallel_for(size_t(0), values.size(), [&](size_t i) {
+        mean_[i] = moments_.beta1 * mean_[i] + (1.0 - moments_.beta1) * gradients[i];
+        meanSquare_[i] = moments_.beta2 * meanSquare_[i] + (1.0 - moments_.beta2) * gradients[i] * gradients[i];
+        const double meanHat = mean_[i] / meanCorrection;
+        const double meanSquareHat = meanSquare_[i] / meanSquareCorrection;
+        values[i] -= learningRateScale_ * learningRates_[i] * meanHat / (std::sqrt(meanSquareHat) + moments_.epsilon);
     });
 }
 

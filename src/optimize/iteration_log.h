@@ -11,10 +11,10 @@ namespace vkdr {
 
 // One line of log.jsonl: {"iteration", "loss", "parameters": {name: [values]},
 // "gradients": {name: [dLoss/dvalue]}, "metrics": {name: value} (only when the record
-// has any), "forward_ms", "adjoint_ms", "iteration_ms"}, no newline. A parameter of more values than
-// kMostValuesListed (optimize/value_summary.h) is logged as {"count", "mean", "min",
-// "max"} and its gradient as {"count", "l2_norm", "largest"} (the value of largest
-// magnitude).
+// has any), "forward_ms", "adjoint_ms", "iteration_ms"}, no newline. A parameter of more
+// values than kMostValuesListed (optimize/value_summary.h) is logged as {"count", "mean",
+// "min", "max"} and its gradient as {"count", "l2_norm", "largest"} (the value of
+// largest magnitude).
 std::string iterationJsonLine(const IterationRecord& record);
 
 // log.jsonl, one line per iteration. The whole file is rewritten (atomically) after

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
@@ -35,22 +34,18 @@ LogSpace::LogSpace(const ParameterVector& parameters, const std::vector<std::str
 
 // Value by value, in parallel: a grid's millions of voxels cross in every iteration.
 void LogSpace::enter(std::span<double> values, std::span<double> gradient) const {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, values.size()), [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            if (logValue_[i]) {
-                gradient[i] *= values[i];
-                values[i] = std::log(values[i]);
-            }
+    tbb::parallel_for(size_t(0), values.size(), [&](size_t i) {
+        if (logValue_[i]) {
+            gradient[i] *= values[i];
+            values[i] = std::log(values[i]);
         }
     });
 }
 
 void LogSpace::leave(std::span<double> values) const {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, values.size()), [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            if (logValue_[i]) {
-                values[i] = std::exp(values[i]);
-            }
+    tbb::parallel_for(size_t(0), values.size(), [&](size_t i) {
+        if (logValue_[i]) {
+            values[i] = std::exp(values[i]);
         }
     });
 }

@@ -2,6 +2,7 @@
 #include <cstddef>
 
 #include "device_types.h"
+#include "vk/commands.h"
 
 namespace vkdr::gpu {
 
@@ -30,5 +31,6 @@ constexpr size_t kAddresses = 15 + 3 + 5 + 0 VKDR_PATH_ARRAYS(VKDR_COUNT) VKDR_A
     VKDR_GRADIENT_ACCUMULATORS(VKDR_COUNT);
 static_assert(offsetof(RenderParams, pathCapacity) == offsetof(RenderParams, triangleVertices) + kAddresses * 8);
 static_assert(sizeof(PassConstants) == 32);
+static_assert(kWorkgroupSize == vkdr::kWorkgroupSize, "the stages' workgroups and the dispatches' sizes agree");
 
 }  // namespace vkdr::gpu

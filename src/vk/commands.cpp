@@ -11,8 +11,6 @@
 
 namespace vkdr {
 
-constexpr uint32_t kWorkgroupSize = 64;
-static_assert(kMaxDispatchThreads % kWorkgroupSize == 0);
 constexpr uint32_t kMaxWorkgroups = kMaxDispatchThreads / kWorkgroupSize;
 
 CommandRecorder::CommandRecorder(const VulkanContext& context, DispatchTimer* timer)

@@ -12,9 +12,11 @@ class Buffer;
 class ComputePipeline;
 class DispatchTimer;
 
-// The most threads one dispatch may have: Vulkan guarantees at least 65535 workgroups per
-// dispatch dimension, of the stages' 64 threads.
-inline constexpr uint32_t kMaxDispatchThreads = 65535u * 64u;
+// The threads of a workgroup in every stage (gpu::kWorkgroupSize, device_types.h), and
+// the most threads one dispatch may have: Vulkan guarantees at least 65535 workgroups
+// per dispatch dimension.
+inline constexpr uint32_t kWorkgroupSize = 64;
+inline constexpr uint32_t kMaxDispatchThreads = 65535u * kWorkgroupSize;
 
 // Records one command buffer on the compute queue and submits it. Stages are separated
 // by full compute barriers: each stage reads what the previous one wrote, and buffers
