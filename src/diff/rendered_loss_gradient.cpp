@@ -1,6 +1,7 @@
 #include "diff/rendered_loss_gradient.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "bvh/bvh.h"
 #include "core/error.h"
@@ -141,7 +142,8 @@ GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed)
         }
     }
     for (size_t i = 0; i < impl_->slots.size(); ++i) {
-        result.parameters.push_back({impl_->slots[i].name, getParameter(scene, impl_->slots[i].name), gradients[i]});
+        result.parameters.push_back({impl_->slots[i].name, getParameter(scene, impl_->slots[i].name),
+                                     std::move(gradients[i])});
     }
     return result;
 }

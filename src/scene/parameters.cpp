@@ -1,6 +1,8 @@
 #include "scene/parameters.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <optional>
 #include <type_traits>
 
@@ -26,6 +28,10 @@ struct ParameterStorage {
         const size_t channels = description->channels;
         return values[(i / channels) * stride + i % channels];
     }
+
+    // Values stored back to back (no texel's fourth channel between them), which a grid's
+    // millions of voxels are: they copy in one go instead of one index at a time.
+    bool isContiguous() const { return stride == description->channels; }
 };
 
 template <typename Float>
@@ -146,6 +152,9 @@ std::vector<float> getParameter(const Scene& scene, std::string_view name) {
     if (!storage) {
         failUnknown(scene, name);
     }
+    if (storage->isContiguous()) {
+        return std::vector<float>(storage->values, storage->values + storage->size);
+    }
     std::vector<float> values(storage->size);
     for (size_t i = 0; i < storage->size; ++i) {
         values[i] = (*storage)[i];
@@ -163,10 +172,15 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
                     (storage->size == 1 ? std::string("1 value") : "1 or " + std::to_string(storage->size) + " values") +
                     ", got " + std::to_string(values.size()));
     }
-    for (float value : values) {
-        if (std::string problem = valueProblem(*storage->description, value); !problem.empty()) {
-            throw Error("parameter " + std::string(name) + ": " + problem);
-        }
+    const ValueRange& range = storage->description->range;
+    auto invalid = std::find_if(values.begin(), values.end(),
+                                [&](float value) { return !std::isfinite(value) || !range.contains(value); });
+    if (invalid != values.end()) {
+        throw Error("parameter " + std::string(name) + ": " + valueProblem(*storage->description, *invalid));
+    }
+    if (values.size() == storage->size && storage->isContiguous()) {
+        std::copy(values.begin(), values.end(), storage->values);
+        return;
     }
     for (size_t i = 0; i < storage->size; ++i) {
         (*storage)[i] = values.size() == 1 ? values[0] : values[i];

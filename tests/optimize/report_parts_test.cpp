@@ -191,6 +191,45 @@ TEST(ValueSummary, GivesCountMeanAndRangeAndTheRelativeL2Error) {
     EXPECT_TRUE(isSummarised(kMostValuesListed + 1));
 }
 
+// A grid's summaries are reduced over blocks in parallel; they must still be a grid's
+// summaries: the first of tied largest magnitudes, sums as one loop gives them (to
+// rounding), and the same bits every time.
+TEST(ValueSummary, SummarisesAGridOfManyBlocksAsOneLoopWould) {
+    const size_t count = 1'000'003;  // many blocks, the last one partial
+    std::vector<float> values(count), truth(count);
+    std::vector<double> gradient(count);
+    for (size_t i = 0; i < count; ++i) {
+        values[i] = float((i * 7919) % 1000) / 100.0f;
+        truth[i] = values[i] + float(i % 3) - 1.0f;
+        gradient[i] = std::sin(double(i));
+    }
+    gradient[123'456] = -5.0;  // tied in magnitude with the later ones, in an earlier block
+    gradient[700'000] = 5.0;
+    gradient[999'999] = -5.0;
+    long double sum = 0.0L, squares = 0.0L, error = 0.0L, norm = 0.0L;
+    for (size_t i = 0; i < count; ++i) {
+        sum += values[i];
+        squares += gradient[i] * gradient[i];
+        const long double difference = (long double)values[i] - (long double)truth[i];
+        error += difference * difference;
+        norm += (long double)truth[i] * truth[i];
+    }
+    const ValueSummary summary = summarise(values);
+    EXPECT_EQ(summary.count, count);
+    EXPECT_NEAR(summary.mean, double(sum / count), 1e-12 * double(sum / count));
+    EXPECT_EQ(summary.minimum, 0.0);
+    EXPECT_EQ(summary.maximum, 9.99f);
+    const GradientSummary gradientSummary = summariseGradient(gradient);
+    EXPECT_EQ(gradientSummary.largestAt, 123'456u);
+    EXPECT_EQ(gradientSummary.largest, -5.0);
+    EXPECT_NEAR(gradientSummary.l2Norm, std::sqrt(double(squares)), 1e-12 * std::sqrt(double(squares)));
+    EXPECT_NEAR(*relativeL2Error(values, truth), std::sqrt(double(error / norm)), 1e-12);
+    for (int repeat = 0; repeat < 3; ++repeat) {
+        EXPECT_EQ(summarise(values).mean, summary.mean);
+        EXPECT_EQ(summariseGradient(gradient).l2Norm, gradientSummary.l2Norm);
+    }
+}
+
 TEST(ParameterTable, SummarisesAParameterOfManyValuesWithItsRelativeError) {
     std::vector<float> truth(64, 1.0f), fitted(64, 1.0f);
     fitted[0] = 9.0f;  // ||fitted - truth|| = 8, ||truth|| = 8
