@@ -10,6 +10,7 @@
 #include "bvh/bvh.h"
 #include "core/milliseconds_of.h"
 #include "render/renderer.h"
+#include "scene/parameter_kinds.h"
 #include "vk/context.h"
 #include "vk/dispatch_timer.h"
 
@@ -85,8 +86,14 @@ private:
     double done_ = 0.0;
 };
 
-// The forward, gradient, stage and memory figures of `result`, from one renderer;
-// returns the target image its gradient iterations used.
+bool hasDensityGridMedium(const Scene& scene) {
+    return std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) { return m.isHeterogeneous(); });
+}
+
+// The forward, gradient, stage and memory figures of `result`, from one renderer, and
+// then, for a scene with a density grid, gradient iterations of its density alone (the
+// memory figures are those of every parameter's gradient); returns the target image its
+// gradient iterations used.
 Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bvh& bvh, const BenchSettings& settings,
                       uint32_t iterations, Progress& steps, SceneBenchmark& result) {
     context.allocations().resetPeak();
@@ -148,6 +155,17 @@ Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bv
     result.peakAllocatedDeviceBytes = context.allocations().peak();
     result.peakDriverDeviceBytes = driverPeak;
     result.peakHostBytes = peakHostResidentBytes();
+
+    if (hasDensityGridMedium(scene)) {
+        renderer.enableGradients(target, LossKind::L2, DerivativeTargets::of({ParameterKind::Density}));
+        gradientIteration();  // warm-up: compiles the density-only adjoint pipelines
+        std::vector<double> densityMs;
+        for (uint32_t i = 0; i < iterations; ++i) {
+            densityMs.push_back(millisecondsOf(gradientIteration));
+            steps.step();
+        }
+        result.densityGradientMs = median(densityMs);
+    }
     return target;
 }
 
@@ -161,7 +179,8 @@ SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& n
                               const BenchSettings& settings, const std::function<void(double)>& progress) {
     const uint32_t iterations = std::max(1u, settings.iterations);
     const uint32_t gradientSeeds = benchGradientParameter(scene) ? settings.gradientSeeds : 0;
-    Progress steps(progress, 4 * iterations + 3 + gradientSeeds);
+    const uint32_t densitySteps = hasDensityGridMedium(scene) ? iterations : 0;
+    Progress steps(progress, 4 * iterations + 3 + densitySteps + gradientSeeds);
     SceneBenchmark result;
     result.name = name;
     result.triangles = scene.triangles.size();

@@ -32,6 +32,9 @@ struct SceneBenchmark {
     std::optional<DensityGridFigures> densityGrids;  // nullopt for a scene without grids
     double forwardMs = 0.0;   // Renderer::render(), wall clock
     double gradientMs = 0.0;  // Renderer::renderWithGradients(), wall clock
+    // The same with the adjoint set up for the density grids' voxels alone, as a grid fit
+    // runs it (the other kinds' additions compiled out); nullopt without a density grid.
+    std::optional<double> densityGradientMs;
     uint64_t paths = 0;       // of one forward pass
     uint64_t rays = 0;        // closest-hit and shadow rays of one forward pass
     // The forward passes' per-pixel relative noise (bench/image_noise.h), from the last
@@ -54,6 +57,9 @@ struct SceneBenchmark {
     double pathsPerSecond() const { return forwardMs > 0.0 ? double(paths) / (forwardMs * 1e-3) : 0.0; }
     double raysPerSecond() const { return forwardMs > 0.0 ? double(rays) / (forwardMs * 1e-3) : 0.0; }
     double gradientToForward() const { return forwardMs > 0.0 ? gradientMs / forwardMs : 0.0; }
+    std::optional<double> densityGradientToForward() const {
+        return densityGradientMs && forwardMs > 0.0 ? std::optional(*densityGradientMs / forwardMs) : std::nullopt;
+    }
     // 1 / (noise^2 x forward seconds); 0 without a noise figure.
     double efficiency() const;
 };
@@ -64,7 +70,8 @@ struct SceneBenchmark {
 // (alternating between two seeds, for the noise figure),
 // gradient iterations (as RenderedLossGradient runs them), and gradient iterations
 // with a DispatchTimer attached for the stage times, so that the timestamps do not
-// slow the wall-clock figures. The memory figures end there; with that renderer gone,
+// slow the wall-clock figures. The memory figures end there; a scene with a density
+// grid then times `iterations` gradient iterations of the density alone. With that renderer gone,
 // benchmarkGradient measures the gradient noise against the same target.
 // `progress` gets the fraction done.
 SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
