@@ -71,8 +71,8 @@ struct SceneBenchmark {
 // gradient iterations (as RenderedLossGradient runs them), and gradient iterations
 // with a DispatchTimer attached for the stage times, so that the timestamps do not
 // slow the wall-clock figures. The memory figures end there; a scene with a density
-// grid then times `iterations` gradient iterations of the density alone. With that renderer gone,
-// benchmarkGradient measures the gradient noise against the same target.
+// grid then times `iterations` gradient iterations of the density alone. With that
+// renderer gone, benchmarkGradient measures the gradient noise against the same target.
 // `progress` gets the fraction done.
 SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
                               const BenchSettings& settings, const std::function<void(double)>& progress);
