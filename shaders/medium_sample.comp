@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Stage 3: free-flight sampling in the medium the ray travels through. The segment
-// first gathers the medium's emission along it (medium_emission.glsl). A distance
+// first gathers the medium's emission along it (medium_emission.glsl) and, in a
+// scattering homogeneous medium, the next event from a point sampled towards a light
+// (equiangular_next_event.glsl). A distance
 // before the surface hit becomes a medium vertex; otherwise the surface is the next
 // vertex. Rays that leave the scene collect the background and end here. The adjoint
 // pass adds delta * L_rem * d log(segment weight) to the medium's sigma gradients.
@@ -13,6 +15,7 @@
 #include "lib/adjoint.glsl"
 #include "lib/grid_adjoint.glsl"
 #include "lib/medium_emission.glsl"
+#include "lib/equiangular_next_event.glsl"
 
 // Whether a ray through the medium can go straight to the surface, weighted by its
 // transmittance: nothing scatters, and no path needs a collision to find the gradient of
@@ -90,7 +93,7 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
     if (!(flight.collided || flight.paused)) {
         return kVertexSurface;
     }
-    P.hit.v[slot].x = flight.t;
+    P.hit.v[slot].xy = vec2(flight.t, tHit);
     return flight.collided ? kVertexMedium : kVertexPause;
 }
 
@@ -115,7 +118,9 @@ uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, in
         }
         beta = multiplyByParameter(beta, m.sigma_s, perUnitScattering, kTargetMediumScattering, medium);
         scatterByAlbedoGrid(slot, m, P.rayOrigin.v[slot].xyz + t * P.rayDirection.v[slot].xyz, beta);
-        P.hit.v[slot].x = t;
+        // The segment's end too: the vertex's next event weighs itself against
+        // equiangular sampling over the same segment (distance_mis.glsl).
+        P.hit.v[slot].xy = vec2(t, tHit);
         return kVertexMedium;
     }
     // Surface vertex (or escape): weight T(t_hit) / P(t > t_hit), where P is 1 when
@@ -150,6 +155,7 @@ void main() {
         // same surface, by the segment that paused.
         if (vertex.y != kVertexPause) {
             gatherMediumEmission(slot, medium, tHit, beta);
+            equiangularNextEvent(slot, medium, tHit, beta);
         }
         vertexKind = sampleFreeFlightVertex(slot, medium, tHit, escaped, beta);
     }

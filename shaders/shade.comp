@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Stage 4: one vertex per path. Surfaces: pass through medium boundaries, add emission
 // (MIS against the BSDF pdf), next-event estimation, cosine sampling of the Lambertian
-// BSDF. Medium vertices: next-event estimation, exact Henyey-Greenstein sampling.
+// BSDF. Medium vertices: next-event estimation (weighted against equiangular sampling,
+// distance_mis.glsl), exact Henyey-Greenstein sampling.
 // Pauses of tracking through a density grid: the same ray again from where it stopped.
 // Then Russian roulette and the next ray. The adjoint pass replays the same decisions,
 // passes each contribution, and records the continuation factor's log-derivative for
@@ -14,6 +15,7 @@
 #include "lib/lights.glsl"
 #include "lib/phase_hg.glsl"
 #include "lib/adjoint.glsl"
+#include "lib/distance_mis.glsl"
 
 uint nextRayQueue() {
     return pass.currentRays == kQueueRays0 ? kQueueRays1 : kQueueRays0;
@@ -158,13 +160,16 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
     }
     ++info.depth;
     vec3 position = origin + direction * hit.x;
-    float g = P.media.v[medium].g;
+    GpuMedium m = P.media.v[medium];
+    float g = m.g;
     if (P.lightCount > 0u) {
         LightArrival light = sampleLightFor(info, position);
         float mu = dot(direction, light.wi);
         float phase = hgPhase(mu, g);
-        nextEvent(slot, NextEventQuery(position, medium, beta, kVertexMedium, medium), light, vec3(phase), phase,
-                  vec3(0.0f), hgPhaseDLogG(mu, g));
+        // hit.y: where the segment that found this collision ends.
+        float distanceWeight = freeFlightNextEventWeight(m, origin, direction, hit.y, hit.x, light.wi, light.distance);
+        nextEvent(slot, NextEventQuery(position, medium, beta * distanceWeight, kVertexMedium, medium), light,
+                  vec3(phase), phase, vec3(0.0f), hgPhaseDLogG(mu, g));
     }
     vec4 u = segmentRandom(info, kDimScatter);
     vec3 wi = sampleHg(direction, g, u.xy);

@@ -11,7 +11,8 @@ const uint kDimCamera = 0u;      // pixel jitter (segment 0 only)
 const uint kDimFreeFlight = 1u;  // hero channel, distance
 const uint kDimLight = 2u;       // emitter choice, point on the emitter
 const uint kDimScatter = 3u;     // BSDF / phase direction, Russian roulette
-const uint kDimGroupsPerSegment = 4u;
+const uint kDimEquiangular = 4u; // emitter choice, point on it, distance along the segment towards it
+const uint kDimGroupsPerSegment = 5u;
 
 // pcg4d from Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 9(3), 2020:
 // a 4D-to-4D bijection with good avalanche, so neighbouring keys are independent.

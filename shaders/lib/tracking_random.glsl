@@ -12,7 +12,9 @@ const uint kTrackingFreeFlightGradient = 2u;  // the adjoint's own points, indep
 const uint kTrackingShadowGradient = 3u;
 const uint kTrackingEmission = 4u;            // a medium's emission along the segment (medium_emission.glsl)
 const uint kTrackingEmissionGradient = 5u;
-const uint kTrackingPurposes = 6u;
+const uint kTrackingEquiangularShadow = 6u;   // the shadow ray of a segment's equiangular next event
+const uint kTrackingEquiangularShadowGradient = 7u;
+const uint kTrackingPurposes = 8u;
 struct TrackingRandom {
     uvec4 key;
     uint counter;

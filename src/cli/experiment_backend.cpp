@@ -17,7 +17,7 @@ namespace {
 std::string rendererKey(const RenderSettings& settings) {
     return settings.camera + ' ' + std::to_string(settings.width) + 'x' + std::to_string(settings.height) + ' ' +
            std::to_string(settings.spp) + ' ' + std::to_string(settings.maxDepth) + ' ' +
-           std::to_string(settings.pathsPerPass);
+           std::to_string(settings.pathsPerPass) + (settings.equiangularSampling ? "" : " no-equiangular");
 }
 
 struct RenderersOfRepeatedViews {

@@ -239,6 +239,7 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
     if (given.spp->count()) experiment.render.spp = options.settings.spp;
     if (given.maxDepth->count()) experiment.render.maxDepth = options.settings.maxDepth;
+    experiment.render.equiangularSampling = options.settings.equiangularSampling;
     if (given.loss->count()) experiment.loss = parseLossKind(options.loss);
 }
 

@@ -22,6 +22,9 @@ SamplingOptions addSamplingOptions(CLI::App& command, RenderSettings& settings) 
     options.seed = command.add_option("--seed", settings.seed, "Random seed; the same seed gives the same image")
                        ->default_val(settings.seed)
                        ->transform(integerIn(0, kMaxSeed, "a 32-bit unsigned integer (0.." + std::to_string(kMaxSeed) + ")"));
+    command.add_flag_callback("--no-equiangular", [&settings] { settings.equiangularSampling = false; },
+                              "Estimate direct light in homogeneous media from distance-sampled collisions "
+                              "only, without equiangular sampling towards the lights (a baseline for comparisons)");
     command.add_option("--paths-per-pass", settings.pathsPerPass,
                        "Paths in flight per pass (default: up to 2^21 on a GPU, 2^20 on a CPU, as device memory allows)")
         ->transform(integerIn(1, 1u << 21));

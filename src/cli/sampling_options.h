@@ -12,7 +12,8 @@ struct SamplingOptions {
     CLI::Option* seed;
 };
 
-// --spp, --max-depth, --seed and --paths-per-pass, with their ranges in one place.
+// --spp, --max-depth, --seed, --no-equiangular and --paths-per-pass, with their ranges in
+// one place.
 SamplingOptions addSamplingOptions(CLI::App& command, RenderSettings& settings);
 
 }  // namespace vkdr

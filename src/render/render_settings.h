@@ -23,6 +23,10 @@ struct RenderSettings {
     // (16 bytes a path) instead of rendering them again (Renderer::renderWithGradients);
     // at most an eighth of the device's memory is used whatever this says.
     uint64_t keptRadianceBytes = uint64_t(256) << 20;
+    // Next-event estimation in scattering homogeneous media also samples distances towards
+    // the light (equiangular sampling, combined with the free flight's by MIS). Off: only the
+    // free flight's collisions estimate direct light, as a check and a baseline.
+    bool equiangularSampling = true;
 };
 
 }  // namespace vkdr

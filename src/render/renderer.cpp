@@ -161,6 +161,7 @@ void Renderer::uploadParams() {
     // render() keeps all samples in one stratified stream.
     p.secondStreamFrom = splitHalves_ ? settings_.spp / 2 : 0u;
     p.firstStream = replayingIndependently_ ? gpu::kReplayStream : gpu::kImageStream;
+    p.equiangularSampling = settings_.equiangularSampling ? 1u : 0u;
     p.segmentLimit = segmentLimit(settings_.maxDepth);
     p.rayEpsilon = scene_.rayEpsilon;
     p.filmScale = 1.0f / float(settings_.spp);

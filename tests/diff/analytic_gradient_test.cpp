@@ -4,7 +4,7 @@
 // within five of its standard errors. Also with sigma_s = 0 in every channel and in one,
 // where only the derivative mode of the replay can find the gradient, and with the
 // medium enclosed in a box that the camera ray enters and every shadow ray leaves, and
-// with a density grid in that box.
+// with a density grid in that box, and with the emitter close to the ray.
 #include <cmath>
 
 #include "diff/rendered_loss_gradient.h"
@@ -26,6 +26,8 @@ struct FogGradientCase {
     double g;
     std::optional<FogSetup::Box> enclosure = std::nullopt;
     std::optional<FogSetup::LinearDensity> density = std::nullopt;  // a density grid medium
+    double lightX = FogSetup().lightX;  // the emitter's distance from the camera ray
+    double lightHalf = FogSetup().lightHalf;
 };
 
 void PrintTo(const FogGradientCase& c, std::ostream* os) {
@@ -40,6 +42,8 @@ TEST_P(FogGradientTest, MatchesQuadrature) {
     fog.g = GetParam().g;
     fog.enclosure = GetParam().enclosure;
     fog.density = GetParam().density;
+    fog.lightX = GetParam().lightX;
+    fog.lightHalf = GetParam().lightHalf;
     const std::filesystem::path dir = tempDir();
     if (fog.density) {
         writeDensityGridVdb(dir / fog.density->uri, linearDensityGrid(fog, 0.25));
@@ -78,7 +82,11 @@ INSTANTIATE_TEST_SUITE_P(
                       // Density rising along the camera ray, from a grid: the factors are
                       // estimated by delta and ratio tracking, their derivatives at points.
                       FogGradientCase{"DensityGrid", {0.3, 0.5, 0.8}, 0.4, FogSetup::Box{{-1.0, -1.0, 1.0}, {1.0, 1.0, 4.0}},
-                                      FogSetup::LinearDensity{0.3, 0.5, "density.vdb"}}),
+                                      FogSetup::LinearDensity{0.3, 0.5, "density.vdb"}},
+                      // A small emitter 0.1 from the ray: most of the light comes from
+                      // equiangular sampling's next events (docs/design.md).
+                      FogGradientCase{"NearTheLight", {0.3, 0.5, 0.8}, 0.4, std::nullopt, std::nullopt, 0.1,
+                                      0.05}),
     [](const ::testing::TestParamInfo<FogGradientCase>& info) { return std::string(info.param.label); });
 
 }  // namespace

@@ -34,6 +34,7 @@ HostRenderParams P;
 #include "sampling.glsl"
 #include "phase_hg.glsl"
 #include "medium.glsl"
+#include "equiangular.glsl"
 #include "fixed_point.glsl"
 #include "tracking_random.glsl"
 #include "density_grid.glsl"

@@ -1,0 +1,182 @@
+// The transmittance of a shadow ray through the media on its way (homogeneous media and
+// density grids, across medium boundaries), and its adjoint: shared by the shadow stage
+// and by next-event estimation from points sampled along a segment (medium_sample).
+#ifndef VKDR_SHADOW_TRANSMITTANCE_GLSL
+#define VKDR_SHADOW_TRANSMITTANCE_GLSL
+#include "bvh_traverse.glsl"
+#include "medium.glsl"
+#include "adjoint.glsl"
+#include "grid_adjoint.glsl"
+
+// A shadow ray crossing more boundaries than this is treated as blocked.
+const uint kMaxBoundaryCrossings = 64u;
+
+// The media a shadow ray passes through and its length in each. The adjoint needs
+// them once the transmittance is known: d C / d sigma_m = -length_m C for every medium
+// m on the way. Where a grid's voxel gradients are wanted, it keeps the segments through
+// grids instead, whose points (densityIntegralAdjoint) need the contribution's weight. A
+// ray through more distinct media or grid segments than are kept is traced a second time
+// to add its gradients.
+const uint kRecordedMedia = 2u;
+const uint kRecordedGridSegments = 2u;
+struct MediumLengths {
+    uint medium[kRecordedMedia];
+    float inMedium[kRecordedMedia];  // length of the ray in medium[i]
+    uint count;
+    uint gridMedium[kRecordedGridSegments];
+    vec4 gridSegment[kRecordedGridSegments];  // xyz: where the segment starts; w: its length
+    uint gridSegments;
+    bool complete;  // false: through more media or grid segments than were kept
+};
+
+MediumLengths noMediumLengths() {
+    MediumLengths lengths;
+    lengths.count = 0u;
+    lengths.gridSegments = 0u;
+    lengths.complete = true;
+    return lengths;
+}
+
+void addGridSegment(inout MediumLengths lengths, uint medium, vec3 origin, float length) {
+    if (lengths.gridSegments == kRecordedGridSegments) {
+        lengths.complete = false;
+        return;
+    }
+    lengths.gridMedium[lengths.gridSegments] = medium;
+    lengths.gridSegment[lengths.gridSegments] = vec4(origin, length);
+    ++lengths.gridSegments;
+}
+
+void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
+    for (uint i = 0u; i < lengths.count; ++i) {
+        if (lengths.medium[i] == medium) {
+            lengths.inMedium[i] += length;
+            return;
+        }
+    }
+    if (lengths.count == kRecordedMedia) {
+        lengths.complete = false;
+        return;
+    }
+    lengths.medium[lengths.count] = medium;
+    lengths.inMedium[lengths.count] = length;
+    ++lengths.count;
+}
+
+// The density's integral along a grid medium's segment, estimated at the next of the
+// shadow ray's own points; adds -voxelWeight . sigma_t times its voxel derivatives
+// (densityIntegralAdjoint). The first trace and backpropagateTransmittance draw the points of
+// a ray's grid segments in the same order.
+float gridSegmentOpticalLength(GpuMedium m, vec3 origin, vec3 direction, float length, vec3 voxelWeight,
+                               inout TrackingRandom gradientPoints) {
+    return densityIntegralAdjoint(P.densityGrids.v[m.densityGrid], origin, direction, length,
+                                  nextTrackingRandom(gradientPoints).x, dot(voxelWeight, sigmaT(m)));
+}
+
+// Transmittance from the shadow ray's origin to its end, zero when something opaque
+// is in the way. In the adjoint pass it also records the length in each medium, and
+// with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
+// segment's length, or in a density grid the density's integral along it, estimated at
+// points of its own) to its medium's sigma_t gradient. A ray to a directional light
+// (distance kFar) ends in an unbounded segment, whose transmittance is 0 wherever
+// sigma_t > 0; where sigma_t = 0 its derivative is unbounded and left out, as for a
+// camera ray that escapes.
+vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight,
+                         inout MediumLengths lengths, inout TrackingRandom random,
+                         inout TrackingRandom gradientPoints) {
+    vec3 tr = vec3(1.0f);
+    bool toInfinity = distance >= kFar;
+    // A trace for the gradients alone (a weight is given) needs no transmittance.
+    bool forGradientsOnly = maxComponent(abs(gradientWeight)) > 0.0f;
+    uint trackingStepsLeft = kMaxTransmittanceSteps;
+    bool truncated = false;
+    for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
+        TraceHit hit = traceClosest(origin, direction, distance, true);
+        if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
+            return vec3(0.0f);
+        }
+        float segment = min(hit.t, distance);
+        if (medium != kNoMediumIndex) {
+            GpuMedium m = P.media.v[medium];
+            // d log T / d sigma_t = -(the optical length per unit sigma_t): the segment's
+            // length, or in a grid the density's integral along it.
+            float opticalLength = segment;
+            bool unbounded = toInfinity && hit.triangle == kNoHit;
+            bool awaitsWeight = false;  // a grid segment whose gradients backpropagateTransmittance adds
+            if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
+                GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
+                if (!forGradientsOnly) {
+                    tr *= ratioTrackTransmittance(grid, origin, direction, segment, sigmaT(m), random,
+                                                  trackingStepsLeft, truncated);
+                }
+                if (truncated) {
+                    atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
+                    return vec3(0.0f);
+                }
+                unbounded = false;  // the grid ends
+                if (kAdjoint && gridGradientsWanted()) {
+                    if (gradientWanted(kGradientKindDensity) && !forGradientsOnly) {
+                        // Voxel gradients need the contribution's weight, known once the
+                        // whole ray is: backpropagateTransmittance estimates the density's
+                        // integral along the segment then, with the weight.
+                        addGridSegment(lengths, medium, origin, segment);
+                        awaitsWeight = true;
+                    } else {
+                        opticalLength =
+                            gridSegmentOpticalLength(m, origin, direction, segment, gradientWeight, gradientPoints);
+                    }
+                }
+            } else {
+                tr *= transmittance(sigmaT(m), segment);
+            }
+            if (kAdjoint && !unbounded && !awaitsWeight) {
+                addMediumLength(lengths, medium, opticalLength);
+                if (forGradientsOnly) {
+                    addSigmaTGradient(medium, -opticalLength * gradientWeight);
+                }
+            }
+        }
+        if (hit.triangle == kNoHit) {
+            return tr;
+        }
+        SurfacePoint sp = surfacePoint(hit.triangle, hit.b1, hit.b2);
+        GpuMaterial material = P.materials.v[sp.material];
+        bool entering = dot(direction, sp.normal) < 0.0f;
+        medium = entering ? uint(material.interiorMedium) : sp.outsideMedium;
+        // Step past the boundary along the ray's side of it.
+        vec3 next = sp.position + (entering ? -sp.normal : sp.normal) * P.rayEpsilon;
+        distance -= dot(next - origin, direction);
+        origin = next;
+        if (distance <= 0.0f) {
+            return tr;
+        }
+    }
+    flagTruncatedLoop();
+    return vec3(0.0f);
+}
+
+// Adds weight * d log T / d sigma_t for every medium a shadow ray passed through, T being
+// its transmittance (shadowTransmittance recorded `lengths`). Grid segments take the
+// density's integral at the ray's own gradient points; a ray through more than was
+// recorded is traced again, with the same random numbers, to add its gradients.
+void backpropagateTransmittance(vec3 weight, MediumLengths lengths, vec3 origin, vec3 direction, float distance,
+                                uint medium, TrackingRandom random, TrackingRandom gradientPoints) {
+    if (!(maxComponent(abs(weight)) > 0.0f)) {
+        return;
+    }
+    if (lengths.complete) {
+        for (uint i = 0u; i < lengths.count; ++i) {
+            addSigmaTGradient(lengths.medium[i], -lengths.inMedium[i] * weight);
+        }
+        for (uint i = 0u; i < lengths.gridSegments; ++i) {
+            float opticalLength = gridSegmentOpticalLength(P.media.v[lengths.gridMedium[i]], lengths.gridSegment[i].xyz,
+                                                           direction, lengths.gridSegment[i].w, weight, gradientPoints);
+            addSigmaTGradient(lengths.gridMedium[i], -opticalLength * weight);
+        }
+        return;
+    }
+    MediumLengths retraced = noMediumLengths();
+    shadowTransmittance(origin, direction, distance, medium, weight, retraced, random, gradientPoints);
+}
+
+#endif
