@@ -103,6 +103,7 @@ struct RenderKeywords {
     int64_t spp, seed, width, height, maxDepth;
     std::string camera;
     int64_t pathsPerPass;
+    bool equiangular;
 
     RenderSettings settings() const {
         RenderSettings settings;
@@ -115,20 +116,21 @@ struct RenderKeywords {
         settings.maxDepth = integerIn("max_depth", maxDepth, 0, kMaxScatteringVertices);
         settings.camera = camera;
         settings.pathsPerPass = integerIn("paths_per_pass", pathsPerPass, 0, 1 << 21);
+        settings.equiangularSampling = equiangular;
         return settings;
     }
 };
 
 #define VKDR_RENDER_KEYWORDS                                                                                \
     py::kw_only(), py::arg("spp") = 16, py::arg("seed") = 0, py::arg("width") = 0, py::arg("height") = 0, \
-        py::arg("max_depth") = 8, py::arg("camera") = "", py::arg("paths_per_pass") = 0
+        py::arg("max_depth") = 8, py::arg("camera") = "", py::arg("paths_per_pass") = 0, py::arg("equiangular") = true
 
 #define VKDR_RENDER_KEYWORD_PARAMETERS                                                                 \
     int64_t spp, int64_t seed, int64_t width, int64_t height, int64_t maxDepth, const std::string& camera, \
-        int64_t pathsPerPass
+        int64_t pathsPerPass, bool equiangular
 
 #define VKDR_RENDER_KEYWORD_VALUES \
-    RenderKeywords { spp, seed, width, height, maxDepth, camera, pathsPerPass }
+    RenderKeywords { spp, seed, width, height, maxDepth, camera, pathsPerPass, equiangular }
 
 // Each parameter's gradient, shaped as the parameter, by name in the order asked for.
 py::dict gradientDictionary(const SceneSession& session, std::vector<ParameterGradient>& gradients) {

@@ -29,6 +29,18 @@ def test_render_is_bit_identical_to_the_command_line(cli, fog_scene_file, tmp_pa
     assert np.array_equal(image, scene.render(spp=4, width=24, seed=7, max_depth=5))
 
 
+def test_equiangular_false_is_the_command_lines_no_equiangular(cli, fog_scene_file, tmp_path):
+    out = tmp_path / "cli.exr"
+    subprocess.run([cli, "render", str(fog_scene_file), "-o", str(out), "--spp", "4", "--width", "24",
+                    "--seed", "7", "--max-depth", "5", "--no-equiangular"], check=True, capture_output=True)
+    scene = vkdiffrender.Scene(fog_scene_file)
+    with_equiangular = scene.render(spp=4, width=24, seed=7, max_depth=5)
+    without = scene.render(spp=4, width=24, seed=7, max_depth=5, equiangular=False)
+    assert np.array_equal(without, vkdiffrender.read_image(out))
+    # The kept renderers are told apart by the setting too.
+    assert not np.array_equal(without, with_equiangular)
+
+
 def test_backpropagate_repeats_bit_for_bit(fog_scene_file):
     scene = vkdiffrender.Scene(fog_scene_file)
     adjoint = np.random.default_rng(3).normal(size=(WIDTH, WIDTH, 3)).astype(np.float32)

@@ -19,7 +19,8 @@ import torch
 __all__ = ["render"]
 
 
-def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8, camera="", paths_per_pass=0):
+def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8, camera="", paths_per_pass=0,
+           equiangular=True):
     """Renders `scene` with `parameters` (a dict of parameter name -> tensor) and returns
     an (H, W, 3) float32 tensor, on the device of the first parameter tensor, whose
     gradient flows back to every tensor that requires it.
@@ -28,7 +29,7 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
     element, which sets every channel (and texel); its gradient then sums theirs.
     """
     settings = dict(spp=spp, seed=seed, width=width, height=height, max_depth=max_depth, camera=camera,
-                    paths_per_pass=paths_per_pass)
+                    paths_per_pass=paths_per_pass, equiangular=equiangular)
     names = list(parameters)
     tensors = [torch.as_tensor(parameters[name]) for name in names]
     return _Render.apply(scene, names, settings, *tensors)
