@@ -71,8 +71,8 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
     if (light.pdf <= 0.0f || !(contributes || hasGradient)) {
         return;
     }
-    float weight = (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
-    P.shadowOrigin.v[slot] = vec4(query.position, max(light.distance - 2.0f * P.rayEpsilon, 0.0f));
+    float weight = lightSampleWeight(light, scatterPdf);
+    P.shadowOrigin.v[slot] = vec4(query.position, shadowRayLength(light));
     P.shadowDirection.v[slot] = vec4(light.wi, uintBitsToFloat(query.medium));
     // The segment keys the random numbers of ratio tracking through density grids.
     P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, uintBitsToFloat(P.pathInfo.v[slot].w));

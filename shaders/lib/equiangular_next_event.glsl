@@ -49,15 +49,14 @@ void equiangularNextEvent(uint slot, uint medium, float tEnd, vec3 beta) {
     float mu = dot(direction, light.wi);
     float phase = hgPhase(mu, m.g);
     vec3 sigma_t = sigmaT(m);
-    float weight = (light.isDelta ? 1.0f : powerHeuristic(light.pdf, phase)) *
-                   powerHeuristic(pdfT, freeFlightPdf(sigma_t, t)) / (light.pdf * pdfT);
+    float weight = lightSampleWeight(light, phase) * powerHeuristic(pdfT, freeFlightPdf(sigma_t, t)) / pdfT;
     // Per unit of sigma_s and of the emitter's parameter.
     vec3 perUnit = beta * transmittance(sigma_t, t) * (phase * weight) * light.perUnit;
     vec3 unoccluded = perUnit * m.sigma_s * light.parameter;
     if (!(maxComponent(unoccluded) > 0.0f || (kAdjoint && maxComponent(perUnit) > 0.0f))) {
         return;
     }
-    float shadowDistance = max(light.distance - 2.0f * P.rayEpsilon, 0.0f);
+    float shadowDistance = shadowRayLength(light);
     MediumLengths lengths = noMediumLengths();
     TrackingRandom random = segmentTrackingRandom(info, kTrackingEquiangularShadow);
     TrackingRandom gradientPoints = segmentTrackingRandom(info, kTrackingEquiangularShadowGradient);

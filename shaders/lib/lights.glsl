@@ -74,6 +74,19 @@ struct LightArrival {
     uint emitter;   // the material, or kPunctualEmitter | the punctual light
 };
 
+// The factor of a next event's contribution beta * scatter * Le * this: the power
+// heuristic's weight against the scattering strategy, which would find the light with
+// density `scatterPdf` (none finds a punctual light), over the light sample's density.
+float lightSampleWeight(LightArrival light, float scatterPdf) {
+    return (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
+}
+
+// How far the shadow ray of a light sample goes: short of the emitter by twice the rays'
+// offset, so that it does not hit the emitter itself.
+float shadowRayLength(LightArrival light) {
+    return max(light.distance - 2.0f * P.rayEpsilon, 0.0f);
+}
+
 LightArrival lightArrival(LightSample ls, vec3 from) {
     LightArrival a;
     if (ls.punctual == kNoPunctualLight) {
