@@ -150,7 +150,7 @@ void main() {
     beginReplay(slot);
     applyPendingFactor(slot);
     uint vertexKind = kVertexSurface;
-    if (medium != kNoMediumIndex) {
+    if (kMedia && medium != kNoMediumIndex) {
         // A segment that goes on from a pause has had its emission gathered, up to the
         // same surface, by the segment that paused.
         if (vertex.y != kVertexPause) {

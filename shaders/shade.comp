@@ -195,9 +195,9 @@ void main() {
     vec4 hit = P.hit.v[slot];
     uvec4 vertex = P.vertexInfo.v[slot];
     beginReplay(slot);
-    if (vertex.y == kVertexPause) {
+    if (kDensityGrids && vertex.y == kVertexPause) {
         continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, vertex.x);
-    } else if (vertex.y == kVertexMedium) {
+    } else if (kMedia && vertex.y == kVertexMedium) {
         shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
     } else {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);

@@ -354,8 +354,6 @@ struct RenderParams {
                                                     // halves of a split gradient estimate must
     uint firstStream;                               // the stream of the samples below secondStreamFrom:
                                                     // kReplayStream for paths independent of any image
-    uint equiangularSampling;                       // 1: next-event estimation in scattering homogeneous media
-                                                    // also samples distances towards the light (equiangular.glsl)
     // Fixed-point sums from one copy of each gradient accumulator to the next (0: one copy).
 #define VKDR_DECLARE_COPY_STRIDE(name, field, floats, copies, items) uint name##CopyStride;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_COPY_STRIDE)

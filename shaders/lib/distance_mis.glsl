@@ -17,7 +17,7 @@
 // Whether a segment through medium m samples distances towards the light as well: in a
 // homogeneous medium that scatters with an albedo of its own (no grids).
 bool usesEquiangularSampling(GpuMedium m) {
-    return P.equiangularSampling != 0u && m.densityGrid == kNoDensityGrid && m.albedoGrid == kNoDensityGrid &&
+    return kEquiangularSampling && m.densityGrid == kNoDensityGrid && m.albedoGrid == kNoDensityGrid &&
            maxComponent(m.sigma_s) > 0.0f;
 }
 

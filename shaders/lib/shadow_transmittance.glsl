@@ -96,7 +96,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             return vec3(0.0f);
         }
         float segment = min(hit.t, distance);
-        if (medium != kNoMediumIndex) {
+        if (kMedia && medium != kNoMediumIndex) {
             GpuMedium m = P.media.v[medium];
             // d log T / d sigma_t = -(the optical length per unit sigma_t): the segment's
             // length, or in a grid the density's integral along it.

@@ -40,6 +40,11 @@ layout(constant_id = 3) const bool kEmissiveMedia = true;
 // reads them is compiled out.
 layout(constant_id = 4) const bool kEmissionGrids = true;
 layout(constant_id = 5) const bool kAlbedoGrids = true;
+// Whether the scene has media at all: without, the medium stage only passes rays on.
+layout(constant_id = 6) const bool kMedia = true;
+// Whether next events in homogeneous media also sample distances towards the light
+// (a homogeneous medium scatters, and equiangular sampling is not turned off).
+layout(constant_id = 7) const bool kEquiangularSampling = true;
 
 #define P params.p
 

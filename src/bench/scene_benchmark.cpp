@@ -86,6 +86,18 @@ private:
     double done_ = 0.0;
 };
 
+// The median wall-clock time of `iterations` runs of `run(i)`, with a progress step
+// after each.
+template <typename Run>
+double medianMillisecondsOf(uint32_t iterations, Progress& steps, Run&& run) {
+    std::vector<double> ms;
+    for (uint32_t i = 0; i < iterations; ++i) {
+        ms.push_back(millisecondsOf([&] { run(i); }));
+        steps.step();
+    }
+    return median(ms);
+}
+
 bool hasDensityGridMedium(const Scene& scene) {
     return std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) { return m.isHeterogeneous(); });
 }
@@ -118,31 +130,25 @@ Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bv
     sampleDriverMemory();
     steps.step();
 
-    std::vector<double> forwardMs, gradientMs;
     Image images[2];
-    for (uint32_t i = 0; i < iterations; ++i) {
+    result.forwardMs = medianMillisecondsOf(iterations, steps, [&](uint32_t i) {
         renderer.setSeed(i % 2 == 0 ? kImageSeed : kSecondImageSeed);
-        forwardMs.push_back(millisecondsOf([&] { images[i % 2] = renderer.render(); }));
-        steps.step();
-    }
+        images[i % 2] = renderer.render();
+    });
     renderer.setSeed(kImageSeed);
     result.relativeNoise = relativeNoise(images[0], images[1]);
     result.paths = renderer.stats().paths;
     result.rays = renderer.stats().rays;
-    for (uint32_t i = 0; i < iterations; ++i) {
-        gradientMs.push_back(millisecondsOf(gradientIteration));
-        sampleDriverMemory();
-        steps.step();
-    }
-    result.forwardMs = median(forwardMs);
-    result.gradientMs = median(gradientMs);
+    result.gradientMs = medianMillisecondsOf(iterations, steps, [&](uint32_t) { gradientIteration(); });
 
+    // The driver's memory figure is sampled in these iterations, which are not timed.
     DispatchTimer timer(context);
     renderer.setDispatchTimer(&timer);
     std::vector<std::map<std::string, double>> stages, adjointStages;
     for (uint32_t i = 0; i < iterations; ++i) {
         timer.clear();
         gradientIteration();
+        sampleDriverMemory();
         StageTimes times = stageTimes(timer.milliseconds());
         stages.push_back(times.stages);
         adjointStages.push_back(times.adjointStages);
@@ -159,12 +165,7 @@ Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bv
     if (hasDensityGridMedium(scene)) {
         renderer.enableGradients(target, LossKind::L2, DerivativeTargets::of({ParameterKind::Density}));
         gradientIteration();  // warm-up: compiles the density-only adjoint pipelines
-        std::vector<double> densityMs;
-        for (uint32_t i = 0; i < iterations; ++i) {
-            densityMs.push_back(millisecondsOf(gradientIteration));
-            steps.step();
-        }
-        result.densityGradientMs = median(densityMs);
+        result.densityGradientMs = medianMillisecondsOf(iterations, steps, [&](uint32_t) { gradientIteration(); });
     }
     return target;
 }
@@ -189,12 +190,8 @@ SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& n
 
     Bvh bvh = buildBvh(scene.positions, scene.triangles);  // warm-up: starts the thread pool
     steps.step();
-    std::vector<double> bvhMs;
-    for (uint32_t i = 0; i < iterations; ++i) {
-        bvhMs.push_back(millisecondsOf([&] { bvh = buildBvh(scene.positions, scene.triangles); }));
-        steps.step();
-    }
-    result.bvhBuildMs = median(bvhMs);
+    result.bvhBuildMs = medianMillisecondsOf(iterations, steps,
+                                             [&](uint32_t) { bvh = buildBvh(scene.positions, scene.triangles); });
     result.densityGrids = measureDensityGrids(scene, iterations);
 
     const Image target = measureRenderer(context, scene, bvh, settings, iterations, steps, result);

@@ -55,6 +55,15 @@ uint32_t totalVoxels(const Scene& scene) {
     return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
 }
 
+MediaFeatures mediaFeatures(const Scene& scene, const RenderSettings& settings) {
+    return {.densityGrids = !scene.densityGrids.empty(),
+            .emission = scene.anyMediumEmits(),
+            .emissionGrids = scene.anyMedium(&Medium::hasEmissionGrid),
+            .albedoGrids = scene.anyMedium(&Medium::hasAlbedoGrid),
+            .anyMedium = !scene.media.empty(),
+            .equiangularSampling = settings.equiangularSampling && scene.anyMedium(&Medium::scattersHomogeneously)};
+}
+
 uint32_t bit(uint32_t queue) {
     return 1u << queue;
 }
@@ -81,10 +90,7 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       punctualLightCount_(static_cast<uint32_t>(scene.punctualLights.size())),
       texelCount_(totalTexels(scene)),
       voxelCount_(totalVoxels(scene)),
-      media_{.densityGrids = !scene.densityGrids.empty(),
-             .emission = scene.anyMediumEmits(),
-             .emissionGrids = scene.anyMedium(&Medium::hasEmissionGrid),
-             .albedoGrids = scene.anyMedium(&Medium::hasAlbedoGrid)},
+      media_(mediaFeatures(scene, settings)),
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context, media_),
       lossKind_(LossKind::L2) {
@@ -104,8 +110,11 @@ uint64_t Renderer::pathMemoryBytes() const {
 }
 
 void Renderer::setParameters(const Scene& scene) {
-    if (!media_.emission && scene.anyMediumEmits()) {
-        media_.emission = true;
+    // What new values turn on (a medium that starts to emit or to scatter) is compiled in;
+    // what they turn off stays, skipped at run time.
+    MediaFeatures media = media_ | mediaFeatures(scene, settings_);
+    if (media != media_) {
+        media_ = media;
         pipelines_.primal = PathStages(context_, false, 0, media_);
         if (pipelines_.gradient) {
             compileGradientPipelines(pipelines_.gradient->kinds);
@@ -161,7 +170,6 @@ void Renderer::uploadParams() {
     // render() keeps all samples in one stratified stream.
     p.secondStreamFrom = splitHalves_ ? settings_.spp / 2 : 0u;
     p.firstStream = replayingIndependently_ ? gpu::kReplayStream : gpu::kImageStream;
-    p.equiangularSampling = settings_.equiangularSampling ? 1u : 0u;
     p.segmentLimit = segmentLimit(settings_.maxDepth);
     p.rayEpsilon = scene_.rayEpsilon;
     p.filmScale = 1.0f / float(settings_.spp);

@@ -228,7 +228,8 @@ private:
     uint32_t texelCount_;
     uint32_t voxelCount_;
     // What the primal stages are compiled for: tracking through grids only when the scene
-    // has some, gathering media's emission once a medium emits.
+    // has some, gathering media's emission once a medium emits, equiangular sampling once
+    // a homogeneous medium scatters.
     MediaFeatures media_;
     GpuScene scene_;
     StagePipelines pipelines_;

@@ -27,7 +27,7 @@ namespace {
 
 // The pipeline of a stage; of a stage with an adjoint variant, the primal or the adjoint one
 // for the gradients of `gradientKinds`, for the media features `media` (specialization
-// constants 0 to 5 of shaders/lib/stage_common.glsl). The dispatch timer's scope, not
+// constants 0 to 7 of shaders/lib/stage_common.glsl). The dispatch timer's scope, not
 // the name, tells the variants apart.
 ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false,
                               uint32_t gradientKinds = 0, MediaFeatures media = {}) {
@@ -37,7 +37,8 @@ ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool ad
     if (info.hasAdjointVariant) {
         specialization = {adjoint ? 1u : 0u,           gradientKinds,
                           media.densityGrids ? 1u : 0u,  media.emission ? 1u : 0u,
-                          media.emissionGrids ? 1u : 0u, media.albedoGrids ? 1u : 0u};
+                          media.emissionGrids ? 1u : 0u, media.albedoGrids ? 1u : 0u,
+                          media.anyMedium ? 1u : 0u,     media.equiangularSampling ? 1u : 0u};
     }
     return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);
 }

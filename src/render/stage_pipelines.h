@@ -15,8 +15,20 @@ struct MediaFeatures {
     bool emission = false;      // gathering the emission of media (and its gradients)
     bool emissionGrids = false; // media whose emission follows an emission grid
     bool albedoGrids = false;   // media whose scattering an albedo grid colours
+    bool anyMedium = false;     // free flight, emission and next events in media at all
+    bool equiangularSampling = false;  // next events in scattering homogeneous media also sampled
+                                       // towards the light (RenderSettings::equiangularSampling)
 
     bool operator==(const MediaFeatures&) const = default;
+    // The features either has.
+    MediaFeatures operator|(const MediaFeatures& other) const {
+        return {.densityGrids = densityGrids || other.densityGrids,
+                .emission = emission || other.emission,
+                .emissionGrids = emissionGrids || other.emissionGrids,
+                .albedoGrids = albedoGrids || other.albedoGrids,
+                .anyMedium = anyMedium || other.anyMedium,
+                .equiangularSampling = equiangularSampling || other.equiangularSampling};
+    }
 };
 
 // The stages that follow a path (render/stages.h), compiled once as primal and once as
