@@ -141,7 +141,8 @@ Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bv
     result.rays = renderer.stats().rays;
     result.gradientMs = medianMillisecondsOf(iterations, steps, [&](uint32_t) { gradientIteration(); });
 
-    // The driver's memory figure is sampled in these iterations, which are not timed.
+    // The driver's memory figure is sampled in these iterations, outside the wall-clock
+    // medians above.
     DispatchTimer timer(context);
     renderer.setDispatchTimer(&timer);
     std::vector<std::map<std::string, double>> stages, adjointStages;

@@ -92,7 +92,9 @@ public:
     uint64_t pathMemoryBytes() const;
     int height() const { return int(camera_.height); }
 
-    // New values of the differentiable parameters; the geometry must be the same.
+    // New values of the differentiable parameters; the geometry must be the same. Values
+    // that turn on a feature the stages were compiled without (a medium that starts to
+    // scatter or to emit) compile them again, once.
     void setParameters(const Scene& scene);
     void setSeed(uint32_t seed);
     // Times every later dispatch by stage, in the scopes "forward", "replay", "adjoint"
@@ -227,9 +229,9 @@ private:
     uint32_t punctualLightCount_;
     uint32_t texelCount_;
     uint32_t voxelCount_;
-    // What the primal stages are compiled for: tracking through grids only when the scene
-    // has some, gathering media's emission once a medium emits, equiangular sampling once
-    // a homogeneous medium scatters.
+    // What the primal stages are compiled for: media only when the scene has some, tracking
+    // through grids only when it has grids, gathering media's emission once a medium
+    // emits, equiangular sampling once a homogeneous medium scatters.
     MediaFeatures media_;
     GpuScene scene_;
     StagePipelines pipelines_;

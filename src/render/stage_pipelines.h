@@ -44,7 +44,7 @@ struct PathStages {
 };
 
 // What only differentiation needs; compiled on first use, since a plain render
-// should not pay for it, and again for other kinds of gradient.
+// should not pay for it, and again for other kinds of gradient or media features.
 struct GradientPipelines {
     GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media);
 

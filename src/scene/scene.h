@@ -60,7 +60,8 @@ struct Medium {
     int32_t emissionGrid = -1;  // index into Scene::densityGrids; -1: none
     int32_t albedoGrid = -1;    // index into Scene::densityGrids (an RGB grid); -1: none
     bool isHeterogeneous() const { return densityGrid >= 0; }
-    bool scattersHomogeneously() const { return densityGrid < 0 && sigma_s != glm::vec3(0.0f); }
+    // As the stages' equiangular sampling asks (shaders/lib/distance_mis.glsl).
+    bool scattersHomogeneously() const { return densityGrid < 0 && albedoGrid < 0 && sigma_s != glm::vec3(0.0f); }
     bool hasEmissionGrid() const { return emissionGrid >= 0; }
     bool hasAlbedoGrid() const { return albedoGrid >= 0; }
     bool isEmissive() const { return emission != glm::vec3(0.0f); }

@@ -11,14 +11,19 @@ namespace {
 
 class DeterminismTest : public RenderTest {};
 
-TEST_F(DeterminismTest, SameSeedSameBitsOtherSeedOtherImage) {
+// A block of smoke in a box of glowing walls, seen from inside the box.
+TestGltf smokeInGlowingBox(glm::vec3 sigmaS) {
     TestGltf g;
     g.materials = {emissiveMaterial("walls", glm::vec3(1.0f, 0.8f, 0.6f), true),
-                   vkdrMediumMaterial("smoke", glm::vec3(0.1f), glm::vec3(2.0f), 0.4f)};
+                   vkdrMediumMaterial("smoke", glm::vec3(0.1f), sigmaS, 0.4f)};
     g.materials[0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.6, 0.6, 0.6, 1.0};
     g.meshes = {box(glm::vec3(-1.0f), glm::vec3(1.0f), 0), box(glm::vec3(-0.5f), glm::vec3(0.5f, 0.5f, 0.9f), 1)};
     g.cameraPosition = glm::vec3(0.0f, 0.0f, -0.95f);
-    auto file = g.write(tempDir(), "scene");
+    return g;
+}
+
+TEST_F(DeterminismTest, SameSeedSameBitsOtherSeedOtherImage) {
+    auto file = smokeInGlowingBox(glm::vec3(2.0f)).write(tempDir(), "scene");
     // A small pass size makes the render span several passes and queue orders.
     RenderSettings settings{.width = 16, .height = 12, .spp = 8, .maxDepth = 6, .seed = 7, .pathsPerPass = 500};
     Image a = renderFile(file, settings);
@@ -42,7 +47,7 @@ TEST_F(DeterminismTest, NewParameterValuesRenderAsAFreshRendererDoes) {
                 box(glm::vec3(-0.5f, 0.4f, -0.5f), glm::vec3(0.5f, 0.9f, 0.9f), 2)};
     g.cameraPosition = glm::vec3(0.0f, 0.0f, -0.95f);
     Scene scene = loadScene(g.write(tempDir(), "scene")).scene;
-    scene.media[0].sigma_s = glm::vec3(0.0f);
+    scene.media[0].sigma_s = glm::vec3(0.0f);  // the file's sigma_s comes back below
     Bvh bvh = buildBvh(scene.positions, scene.triangles);
     RenderSettings settings{.width = 16, .height = 12, .spp = 4, .maxDepth = 6, .seed = 3};
     Renderer reused(testContext(), scene, bvh, settings);
@@ -61,6 +66,30 @@ TEST_F(DeterminismTest, NewParameterValuesRenderAsAFreshRendererDoes) {
     expectSameAsFresh(scene);
     scene.materials[0].emission = glm::vec3(0.1f);
     expectSameAsFresh(scene);
+}
+
+// A fit that makes a medium scatter where none did recompiles the adjoint stages with
+// the primal ones (equiangular sampling is compiled in only then): the gradients are a
+// fresh renderer's, bit for bit.
+TEST_F(DeterminismTest, GradientsAfterAMediumStartsToScatterAreAFreshRenderersGradients) {
+    Scene scene = loadScene(smokeInGlowingBox(glm::vec3(0.0f)).write(tempDir(), "scene")).scene;
+    Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    RenderSettings settings{.width = 12, .height = 8, .spp = 4, .maxDepth = 4, .seed = 3};
+    const DerivativeTargets targets = DerivativeTargets::of({ParameterKind::SigmaA, ParameterKind::G});
+    Renderer reused(testContext(), scene, bvh, settings);
+    const Image target = reused.render();
+    reused.enableGradients(target, LossKind::L2, targets);
+    reused.renderWithGradients();
+
+    scene.media[0].sigma_s = glm::vec3(1.5f, 1.0f, 0.5f);
+    reused.setParameters(scene);
+    const GradientEvaluation evaluation = reused.renderWithGradients();
+    Renderer fresh(testContext(), scene, bvh, settings);
+    fresh.enableGradients(target, LossKind::L2, targets);
+    const GradientEvaluation expected = fresh.renderWithGradients();
+    EXPECT_EQ(evaluation.image.rgb, expected.image.rgb);
+    EXPECT_EQ(evaluation.gradients.media, expected.gradients.media);
+    EXPECT_NE(evaluation.gradients.media[gpu::kMediumGradientG], 0.0f);  // the medium scatters
 }
 
 // A medium that does not scatter is passed through by a render and sampled by a gradient
