@@ -24,7 +24,7 @@ SamplingOptions addSamplingOptions(CLI::App& command, RenderSettings& settings) 
                        ->transform(integerIn(0, kMaxSeed, "a 32-bit unsigned integer (0.." + std::to_string(kMaxSeed) + ")"));
     command.add_flag_callback("--no-equiangular", [&settings] { settings.equiangularSampling = false; },
                               "Estimate direct light in homogeneous media from distance-sampled collisions "
-                              "only, without equiangular sampling towards the lights (a baseline for comparisons)");
+                              "only, without equiangular sampling towards the lights: faster, noisier near lights");
     command.add_option("--paths-per-pass", settings.pathsPerPass,
                        "Paths in flight per pass (default: up to 2^21 on a GPU, 2^20 on a CPU, as device memory allows)")
         ->transform(integerIn(1, 1u << 21));
