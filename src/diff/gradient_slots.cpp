@@ -1,6 +1,9 @@
 #include "diff/gradient_slots.h"
 
 #include <algorithm>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "device_types.h"
@@ -83,16 +86,24 @@ std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::ve
 }
 
 std::vector<double> gatherGradient(const GradientSlot& slot, const SceneGradients& gradients) {
+    std::vector<double> gradient(slot.groups * describe(slot.kind).channels, 0.0);
+    addWeightedGradient(slot, gradients, 1.0, gradient);
+    return gradient;
+}
+
+void addWeightedGradient(const GradientSlot& slot, const SceneGradients& gradients, double weight,
+                         std::span<double> sum) {
     const std::vector<float>& accumulator = gradients.*slot.accumulator;
     const size_t channels = describe(slot.kind).channels;
-    std::vector<double> gradient;
-    gradient.reserve(slot.groups * channels);
-    for (size_t group = 0; group < slot.groups; ++group) {
-        for (size_t c = 0; c < channels; ++c) {
-            gradient.push_back(accumulator[slot.first + group * slot.stride + c]);
-        }
+    if (sum.size() != slot.groups * channels) {
+        throw std::logic_error("addWeightedGradient: " + slot.name + " has " + std::to_string(slot.groups * channels) +
+                               " values, the sum " + std::to_string(sum.size()));
     }
-    return gradient;
+    tbb::parallel_for(size_t(0), slot.groups, [&](size_t group) {
+        for (size_t c = 0; c < channels; ++c) {
+            sum[group * channels + c] += weight * double(accumulator[slot.first + group * slot.stride + c]);
+        }
+    });
 }
 
 DerivativeTargets derivativeTargetsOf(const std::vector<GradientSlot>& slots) {

@@ -134,11 +134,9 @@ GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed)
             sum = renderer.downloadGradientSum();
         }
         for (size_t i = 0; i < impl_->slots.size(); ++i) {
-            std::vector<double> values = gatherGradient(impl_->slots[i], sum);
-            gradients[i].resize(values.size(), 0.0);
-            for (size_t k = 0; k < values.size(); ++k) {
-                gradients[i][k] += viewWeight * values[k];
-            }
+            const GradientSlot& slot = impl_->slots[i];
+            gradients[i].resize(slot.groups * describe(slot.kind).channels, 0.0);
+            addWeightedGradient(slot, sum, viewWeight, gradients[i]);
         }
     }
     for (size_t i = 0; i < impl_->slots.size(); ++i) {

@@ -252,7 +252,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         result.truncatedPaths += evaluation.truncatedPaths;
         result.lastMetrics = metrics;
         if (callbacks.iterationDone) {
-            callbacks.iterationDone(IterationRecord{iteration, evaluation.loss, evaluation.parameters,
+            callbacks.iterationDone(IterationRecord{iteration, evaluation.loss, std::move(evaluation.parameters),
                                                     std::move(metrics), evaluation.forwardMs, evaluation.adjointMs,
                                                     iterationMs});
         }
