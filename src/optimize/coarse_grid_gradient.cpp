@@ -83,15 +83,21 @@ void applyAxisByAxis(glm::ivec3 size, uint32_t divisor, bool transposed, std::sp
     const glm::ivec3 coarse = coarseGridSize(size, divisor);
     const glm::ivec3 target = transposed ? coarse : size;
     glm::ivec3 from = transposed ? size : coarse;
-    std::vector<double> values(in.begin(), in.end()), next;
+    // x reads `in` and z writes `out`; y goes between two arrays of its own.
+    std::vector<double> afterX, afterY;
+    std::span<const double> values = in;
     for (int axis = 0; axis < 3; ++axis) {
         const glm::ivec3 to = withAxis(from, axis, target[axis]);
-        next.resize(voxelCount(to));
+        std::span<double> next = out;
+        if (axis < 2) {
+            std::vector<double>& kept = axis == 0 ? afterX : afterY;
+            kept.resize(voxelCount(to));
+            next = kept;
+        }
         applyAlongAxis(axis, axisFootprints(axis, size, divisor), transposed, from, values, to, next);
-        values.swap(next);
+        values = next;
         from = to;
     }
-    std::copy(values.begin(), values.end(), out.begin());
 }
 
 }  // namespace

@@ -4,9 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <span>
 #include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -71,6 +75,18 @@ std::string nonFiniteCause(const ParameterVector& parameters) {
     return "no value is extreme, so the render itself produced it: please report it with the scene and command";
 }
 
+// Whether `holds` is true of every value, checked in parallel: a grid's millions of
+// voxels are checked in every iteration.
+template <typename Predicate>
+bool allValues(std::span<const double> values, Predicate holds) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, values.size()), true,
+        [&](const tbb::blocked_range<size_t>& range, bool all) {
+            return all && std::all_of(values.begin() + long(range.begin()), values.begin() + long(range.end()), holds);
+        },
+        std::logical_and<bool>());
+}
+
 void requireFinite(const GradientResult& result, const ParameterVector& parameters, uint32_t iteration) {
     std::string where = "iteration " + std::to_string(iteration) + ": ";
     const std::string kept = "; no values from this iteration were kept; ";
@@ -85,6 +101,7 @@ void requireFinite(const GradientResult& result, const ParameterVector& paramete
     }
     for (size_t i = 0; i < result.parameters.size(); ++i) {
         const ParameterGradient& parameter = result.parameters[i];
+        if (allValues(parameter.gradient, [](double gradient) { return std::isfinite(gradient); })) continue;
         for (double gradient : parameter.gradient) {
             if (!std::isfinite(gradient)) {
                 std::span<const double> values =
@@ -99,6 +116,7 @@ void requireFinite(const GradientResult& result, const ParameterVector& paramete
 // A finite gradient can still step a value past what a float holds (SGD with a large
 // rate); the scene stores floats, so such a step must not reach it.
 void requireFiniteSteps(const ParameterVector& parameters, uint32_t iteration) {
+    if (allValues(parameters.values(), [](double value) { return std::isfinite(float(value)); })) return;
     for (size_t i = 0; i < parameters.names().size(); ++i) {
         for (size_t c = 0; c < parameters.count(i); ++c) {
             double value = parameters.values()[parameters.offset(i) + c];

@@ -1,6 +1,8 @@
 #include "render/gpu_density_grids.h"
 
 #include <limits>
+#include <span>
+#include <vector>
 
 #include "core/error.h"
 #include "device_types.h"
@@ -55,19 +57,21 @@ gpu::GpuDensityGrid deviceGrid(const SceneDensityGrid& placed, const MajorantGri
 
 void writeDensityGrids(const VulkanContext& context, const Scene& scene, GpuDensityGrids& gpu) {
     std::vector<gpu::GpuDensityGrid> grids;
-    std::vector<float> values;
+    std::vector<std::span<const std::byte>> values;  // each grid's, uploaded one after another
+    size_t valueCount = 0;
     std::vector<float> maxima;
     for (const SceneDensityGrid& placed : scene.densityGrids) {
-        requireFits(context, placed, values.size());
+        requireFits(context, placed, valueCount);
         // Tracking walks the majorants of scalar grids only (densities; an emission grid's
         // also bound the part of a ray that gathers from it).
         const MajorantGrid majorants = placed.grid.channels == 1 ? buildMajorantGrid(placed.grid) : MajorantGrid{};
-        grids.push_back(deviceGrid(placed, majorants, values.size(), maxima.size()));
-        values.insert(values.end(), placed.grid.values.begin(), placed.grid.values.end());
+        grids.push_back(deviceGrid(placed, majorants, valueCount, maxima.size()));
+        values.push_back(std::as_bytes(std::span(placed.grid.values)));
+        valueCount += placed.grid.values.size();
         maxima.insert(maxima.end(), majorants.maxima.begin(), majorants.maxima.end());
     }
     overwriteBuffer(context, gpu.grids, std::as_bytes(std::span(grids)), "density grids");
-    overwriteBuffer(context, gpu.values, std::as_bytes(std::span(values)), "density grid values");
+    overwriteBuffer(context, gpu.values, values, "density grid values");
     overwriteBuffer(context, gpu.majorants, std::as_bytes(std::span(maxima)), "density grid majorants");
 }
 

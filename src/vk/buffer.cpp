@@ -120,18 +120,26 @@ Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> byt
 
 void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<const std::byte> bytes,
                      const std::string& name) {
-    if (buffer.size() != paddedSize(bytes.size())) {
-        buffer = Buffer(context, bytes.size(), MemoryUse::Device, name);
+    overwriteBuffer(context, buffer, std::span(&bytes, 1), name);
+}
+
+void overwriteBuffer(const VulkanContext& context, Buffer& buffer,
+                     std::span<const std::span<const std::byte>> parts, const std::string& name) {
+    size_t total = 0;
+    for (std::span<const std::byte> part : parts) total += part.size();
+    if (buffer.size() != paddedSize(total)) {
+        buffer = Buffer(context, total, MemoryUse::Device, name);
     }
-    // The bytes, then zeros up to the padded size.
+    // The parts, then zeros up to the padded size.
     Staging transfer(context, MemoryUse::Upload, buffer.size(), name + " (staging)");
-    const Buffer& staging = transfer.buffer();
-    std::memset(staging.mapped(), 0, buffer.size());
-    if (!bytes.empty()) {
-        std::memcpy(staging.mapped(), bytes.data(), bytes.size());
+    std::byte* staged = static_cast<std::byte*>(transfer.buffer().mapped());
+    for (std::span<const std::byte> part : parts) {
+        if (!part.empty()) std::memcpy(staged, part.data(), part.size());
+        staged += part.size();
     }
+    std::memset(staged, 0, buffer.size() - total);
     CommandRecorder recorder(context);
-    recorder.copy(staging, buffer, buffer.size());
+    recorder.copy(transfer.buffer(), buffer, buffer.size());
     recorder.submitAndWait();
 }
 

@@ -57,6 +57,11 @@ Buffer uploadBuffer(const VulkanContext& context, std::span<const std::byte> byt
 void overwriteBuffer(const VulkanContext& context, Buffer& buffer, std::span<const std::byte> bytes,
                      const std::string& name);
 
+// overwriteBuffer() with the bytes of `parts` one after another, copied straight into the
+// staging buffer (a density grid's values are not first gathered into one host array).
+void overwriteBuffer(const VulkanContext& context, Buffer& buffer,
+                     std::span<const std::span<const std::byte>> parts, const std::string& name);
+
 template <typename T>
 Buffer uploadVector(const VulkanContext& context, std::span<const T> values, const std::string& name) {
     return uploadBuffer(context, std::as_bytes(values), name);
