@@ -8,6 +8,9 @@
 // Then Russian roulette and the next ray. The adjoint pass replays the same decisions,
 // passes each contribution, and records the continuation factor's log-derivative for
 // the next segment (adjoint.glsl).
+// Each end of the shade queue has a pipeline of its own (kShadeEnd), so that surface
+// vertices do not run the medium vertices' code nor these theirs: a CPU device runs
+// every branch of a shader, taken or not.
 #include "lib/stage_common.glsl"
 #include "lib/queues.glsl"
 #include "lib/path_state.glsl"
@@ -16,6 +19,10 @@
 #include "lib/phase_hg.glsl"
 #include "lib/adjoint.glsl"
 #include "lib/distance_mis.glsl"
+
+// The end of the shade queue this pipeline walks: kShadeMediumEnd (medium vertices and
+// pauses) or kShadeSurfaceEnd.
+layout(constant_id = 8) const uint kShadeEnd = 1u;
 
 uint nextRayQueue() {
     return pass.currentRays == kQueueRays0 ? kQueueRays1 : kQueueRays0;
@@ -184,23 +191,25 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
 }
 
 void main() {
+    const bool mediumEnd = kShadeEnd == kShadeMediumEnd;
     uint index = gl_GlobalInvocationID.x;
-    if (index >= queueSize(kQueueShade)) {
+    uint front = P.queueCounters.c.counts[kQueueShade];
+    if (index >= (mediumEnd ? front : P.queueCounters.c.shadeSurfaces)) {
         return;
     }
-    uint slot = queueItem(kQueueShade, index);
+    uint slot = queueItem(kQueueShade, mediumEnd ? index : front + index);
     PathInfo info = loadPathInfo(slot);
     vec3 beta = P.beta.v[slot].rgb;
     vec3 direction = P.rayDirection.v[slot].xyz;
     vec4 hit = P.hit.v[slot];
     uvec4 vertex = P.vertexInfo.v[slot];
     beginReplay(slot);
-    if (kDensityGrids && vertex.y == kVertexPause) {
-        continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, vertex.x);
-    } else if (kMedia && vertex.y == kVertexMedium) {
-        shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
-    } else {
+    if (!mediumEnd) {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);
+    } else if (kDensityGrids && vertex.y == kVertexPause) {
+        continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, vertex.x);
+    } else {
+        shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
     }
     endReplay(slot);
 }

@@ -175,6 +175,9 @@ const uint kQueueRays1 = 1u;
 const uint kQueueShade = 2u;   // medium vertices from the front, surface vertices from the back
 const uint kQueueShadow = 3u;  // next-event shadow rays
 const uint kQueueCount = 4u;
+// The ends of kQueueShade (QueueCountersData::shadeEnds).
+const uint kShadeMediumEnd = 0u;
+const uint kShadeSurfaceEnd = 1u;
 
 struct GpuMaterial {
     vec4 baseColor;            // rgb: Lambertian albedo factor
@@ -272,6 +275,10 @@ struct DispatchArgs {
 struct QueueCountersData {
     uint counts[kQueueCount];
     DispatchArgs dispatch[kQueueCount];
+    // kQueueShade's two ends, each walked by a shade pipeline of its own (shade.comp):
+    // kShadeMediumEnd its medium vertices, kShadeSurfaceEnd its surface vertices
+    // (dispatch[kQueueShade] is not used).
+    DispatchArgs shadeEnds[2];
     uint truncatedLoops;   // > 0: a loop hit its iteration bound (or lavapipe's silent cap)
     uint truncatedPaths;   // paths ended by the segment limit rather than by the estimator
     uint raysTraced;       // closest-hit and shadow rays since the host last cleared it

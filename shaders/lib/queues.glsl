@@ -4,14 +4,14 @@
 #define VKDR_QUEUES_GLSL
 
 // The shade queue keeps its medium vertices at the front of its array and its surface
-// vertices at the back, so that a dispatch over it meets both kinds of vertex in one
-// subgroup only where the two ends meet. A subgroup of mixed vertices runs both kinds
-// of shading, each with the other kind's lanes idle.
+// vertices at the back, each end walked by a shade pipeline of its own (shade.comp).
+// counts[kQueueShade] is its front's size, shadeSurfaces its back's.
 uint queueSize(uint queue) {
-    uint size = P.queueCounters.c.counts[queue];
-    return queue == kQueueShade ? size + P.queueCounters.c.shadeSurfaces : size;
+    return P.queueCounters.c.counts[queue];
 }
 
+// The queue's item `index`; for the shade queue, indices past its front count its back
+// from the end of the array.
 uint queueItem(uint queue, uint index) {
     uint front = P.queueCounters.c.counts[queue];
     uint position = index < front ? index : P.pathCapacity - 1u - (index - front);

@@ -270,15 +270,22 @@ void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages
         recorder.dispatch(pipelines_.queuePrepare, 1, p.bytes());
         recorder.barrier();
     };
-    auto stage = [&](const ComputePipeline& pipeline, uint32_t queue) {
-        recorder.dispatchIndirect(pipeline, counters, dispatchOffset(queue), push.bytes());
+    auto stageAt = [&](const ComputePipeline& pipeline, size_t offset) {
+        recorder.dispatchIndirect(pipeline, counters, offset, push.bytes());
         recorder.barrier();
+    };
+    auto stage = [&](const ComputePipeline& pipeline, uint32_t queue) { stageAt(pipeline, dispatchOffset(queue)); };
+    auto shadeEndOffset = [](uint32_t end) {
+        return offsetof(gpu::QueueCountersData, shadeEnds) + end * sizeof(gpu::DispatchArgs);
     };
     prepare(currentRays, bit(nextRays) | bit(gpu::kQueueShade) | bit(gpu::kQueueShadow));
     stage(pipelines_.intersect, currentRays);
     stage(stages.mediumSample, currentRays);
     prepare(gpu::kQueueShade, 0);
-    stage(stages.shade, gpu::kQueueShade);
+    if (stages.shadeMedia) {
+        stageAt(*stages.shadeMedia, shadeEndOffset(gpu::kShadeMediumEnd));
+    }
+    stageAt(stages.shadeSurfaces, shadeEndOffset(gpu::kShadeSurfaceEnd));
     prepare(gpu::kQueueShadow, 0);
     stage(stages.shadow, gpu::kQueueShadow);
 }

@@ -3,6 +3,7 @@
 #include <cassert>
 #include <vector>
 
+#include "device_types.h"
 #include "render/push_constants.h"
 #include "vkdr_shaders.h"
 
@@ -27,10 +28,12 @@ namespace {
 
 // The pipeline of a stage; of a stage with an adjoint variant, the primal or the adjoint one
 // for the gradients of `gradientKinds`, for the media features `media` (specialization
-// constants 0 to 7 of shaders/lib/stage_common.glsl). The dispatch timer's scope, not
-// the name, tells the variants apart.
+// constants 0 to 7 of shaders/lib/stage_common.glsl), and for shade the end of its queue
+// (constant 8, shade.comp). The dispatch timer's scope, not the name, tells the variants
+// apart.
 ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false,
-                              uint32_t gradientKinds = 0, MediaFeatures media = {}) {
+                              uint32_t gradientKinds = 0, MediaFeatures media = {},
+                              uint32_t shadeEnd = gpu::kShadeSurfaceEnd) {
     const StageInfo& info = stageInfo(stage);
     assert(info.hasAdjointVariant || !adjoint);
     std::vector<uint32_t> specialization;
@@ -38,7 +41,8 @@ ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool ad
         specialization = {adjoint ? 1u : 0u,           gradientKinds,
                           media.densityGrids ? 1u : 0u,  media.emission ? 1u : 0u,
                           media.emissionGrids ? 1u : 0u, media.albedoGrids ? 1u : 0u,
-                          media.anyMedium ? 1u : 0u,     media.equiangularSampling ? 1u : 0u};
+                          media.anyMedium ? 1u : 0u,     media.equiangularSampling ? 1u : 0u,
+                          shadeEnd};
     }
     return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);
 }
@@ -48,8 +52,12 @@ ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool ad
 PathStages::PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media)
     : generate(stagePipeline(context, Stage::Generate, adjoint, gradientKinds, media)),
       mediumSample(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, media)),
-      shade(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media)),
-      shadow(stagePipeline(context, Stage::Shadow, adjoint, gradientKinds, media)) {}
+      shadeSurfaces(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kShadeSurfaceEnd)),
+      shadow(stagePipeline(context, Stage::Shadow, adjoint, gradientKinds, media)) {
+    if (media.anyMedium) {
+        shadeMedia.emplace(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kShadeMediumEnd));
+    }
+}
 
 GradientPipelines::GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media)
     : kinds(gradientKinds), media(media), adjoint(context, true, gradientKinds, media),

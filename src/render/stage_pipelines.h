@@ -1,5 +1,6 @@
 #pragma once
 #include <memory>
+#include <optional>
 
 #include "render/stages.h"
 #include "vk/pipeline.h"
@@ -39,7 +40,8 @@ struct PathStages {
 
     ComputePipeline generate;
     ComputePipeline mediumSample;
-    ComputePipeline shade;
+    ComputePipeline shadeSurfaces;  // the shade queue's surface vertices
+    std::optional<ComputePipeline> shadeMedia;  // its medium vertices, in a scene with media
     ComputePipeline shadow;
 };
 
