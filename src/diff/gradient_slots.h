@@ -1,6 +1,6 @@
 #pragma once
-#include <string>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "render/renderer.h"
