@@ -8,15 +8,19 @@
 void main() {
     uint slot = gl_GlobalInvocationID.x;
     uint pathCount = pass.pixelCount * pass.samplesInPass;
+    GpuCamera camera = P.camera;
+    // Every camera ray starts in the camera's medium: all at the front, or in vacuum all
+    // at the back (queues.glsl).
+    bool atBack = camera.medium == kNoMediumIndex;
     if (slot == 0u) {
-        P.queueCounters.c.counts[kQueueRays0] = pathCount;
+        P.queueCounters.c.counts[kQueueRays0] = atBack ? 0u : pathCount;
+        P.queueCounters.c.backCounts[kQueueRays0] = atBack ? pathCount : 0u;
     }
     if (slot >= pathCount) {
         return;
     }
     PathInfo info = PathInfo(pass.firstPixel + slot % pass.pixelCount,
                              pass.firstSample + slot / pass.pixelCount, 0u, 0u);
-    GpuCamera camera = P.camera;
     uvec2 pixel = uvec2(info.pixel % camera.width, info.pixel / camera.width);
     // Box filter: a uniform position in the pixel's square; row 0 is the top of the image.
     vec2 jitter = segmentRandom(info, kDimCamera).xy;
@@ -38,5 +42,5 @@ void main() {
     }
     P.misVertex.v[slot] = vec4(origin, 0.0f);
     P.vertexInfo.v[slot] = uvec4(camera.medium, kVertexSurface, 0u, 0u);
-    P.queueItems.v[kQueueRays0 * P.pathCapacity + slot] = slot;
+    P.queueItems.v[kQueueRays0 * P.pathCapacity + (atBack ? P.pathCapacity - 1u - slot : slot)] = slot;
 }

@@ -137,10 +137,10 @@ uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, in
 
 void main() {
     uint index = gl_GlobalInvocationID.x;
-    if (index >= queueSize(pass.currentRays)) {
+    if (index >= endSize(pass.currentRays)) {
         return;
     }
-    uint slot = queueItem(pass.currentRays, index);
+    uint slot = endItem(pass.currentRays, index);
     vec4 hit = P.hit.v[slot];
     bool escaped = floatBitsToUint(hit.w) == kNoHit;
     float tHit = escaped ? kFar : hit.x;

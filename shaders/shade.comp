@@ -8,9 +8,9 @@
 // Then Russian roulette and the next ray. The adjoint pass replays the same decisions,
 // passes each contribution, and records the continuation factor's log-derivative for
 // the next segment (adjoint.glsl).
-// Each end of the shade queue has a pipeline of its own (kShadeEnd), so that surface
-// vertices do not run the medium vertices' code nor these theirs: a CPU device runs
-// every branch of a shader, taken or not.
+// Each end of the shade queue has a pipeline of its own (kQueueEnd): medium vertices
+// and pauses at the front, surface vertices at the back, so that neither runs the
+// other's code (a CPU device runs every branch of a shader, taken or not).
 #include "lib/stage_common.glsl"
 #include "lib/queues.glsl"
 #include "lib/path_state.glsl"
@@ -19,10 +19,6 @@
 #include "lib/phase_hg.glsl"
 #include "lib/adjoint.glsl"
 #include "lib/distance_mis.glsl"
-
-// The end of the shade queue this pipeline walks: kShadeMediumEnd (medium vertices and
-// pauses) or kShadeSurfaceEnd.
-layout(constant_id = 8) const uint kShadeEnd = 1u;
 
 uint nextRayQueue() {
     return pass.currentRays == kQueueRays0 ? kQueueRays1 : kQueueRays0;
@@ -38,7 +34,7 @@ void continuePath(uint slot, PathInfo info, vec3 origin, vec3 direction, uint me
     storePathInfo(slot, info);
     storeRay(slot, origin, direction);
     P.vertexInfo.v[slot].x = medium;
-    queuePush(nextRayQueue(), slot);
+    queueRay(nextRayQueue(), slot, medium);
 }
 
 // Russian roulette after the first scattering vertex, as in pbrt: survive with
@@ -191,20 +187,18 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
 }
 
 void main() {
-    const bool mediumEnd = kShadeEnd == kShadeMediumEnd;
     uint index = gl_GlobalInvocationID.x;
-    uint front = P.queueCounters.c.counts[kQueueShade];
-    if (index >= (mediumEnd ? front : P.queueCounters.c.shadeSurfaces)) {
+    if (index >= endSize(kQueueShade)) {
         return;
     }
-    uint slot = queueItem(kQueueShade, mediumEnd ? index : front + index);
+    uint slot = endItem(kQueueShade, index);
     PathInfo info = loadPathInfo(slot);
     vec3 beta = P.beta.v[slot].rgb;
     vec3 direction = P.rayDirection.v[slot].xyz;
     vec4 hit = P.hit.v[slot];
     uvec4 vertex = P.vertexInfo.v[slot];
     beginReplay(slot);
-    if (!mediumEnd) {
+    if (kQueueEnd == kBackEnd) {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);
     } else if (kDensityGrids && vertex.y == kVertexPause) {
         continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, vertex.x);

@@ -172,12 +172,14 @@ constexpr GradientAccumulatorLayout layoutOf(GradientAccumulator accumulator) {
 // Queues: indices into QueueCounters.counts and .dispatch.
 const uint kQueueRays0 = 0u;   // rays to trace this segment (double-buffered with kQueueRays1)
 const uint kQueueRays1 = 1u;
-const uint kQueueShade = 2u;   // medium vertices from the front, surface vertices from the back
+const uint kQueueShade = 2u;   // medium vertices at the front, surface vertices at the back
 const uint kQueueShadow = 3u;  // next-event shadow rays
 const uint kQueueCount = 4u;
-// The ends of kQueueShade (QueueCountersData::shadeEnds).
-const uint kShadeMediumEnd = 0u;
-const uint kShadeSurfaceEnd = 1u;
+// The two ends of a queue's array (queues.glsl): the ray queues hold rays in a medium at
+// the front and rays in vacuum at the back, the shade queue medium vertices at the
+// front and surface vertices at the back.
+const uint kFrontEnd = 0u;
+const uint kBackEnd = 1u;
 
 struct GpuMaterial {
     vec4 baseColor;            // rgb: Lambertian albedo factor
@@ -275,14 +277,13 @@ struct DispatchArgs {
 struct QueueCountersData {
     uint counts[kQueueCount];
     DispatchArgs dispatch[kQueueCount];
-    // kQueueShade's two ends, each walked by a shade pipeline of its own (shade.comp):
-    // kShadeMediumEnd its medium vertices, kShadeSurfaceEnd its surface vertices
-    // (dispatch[kQueueShade] is not used).
-    DispatchArgs shadeEnds[2];
+    // The two ends (kFrontEnd, kBackEnd) of the queue queue_prepare sized last, for the
+    // stages that have a pipeline for each end (medium_sample, shade).
+    DispatchArgs ends[2];
     uint truncatedLoops;   // > 0: a loop hit its iteration bound (or lavapipe's silent cap)
     uint truncatedPaths;   // paths ended by the segment limit rather than by the estimator
     uint raysTraced;       // closest-hit and shadow rays since the host last cleared it
-    uint shadeSurfaces;    // kQueueShade's surface vertices; counts[kQueueShade] its medium ones
+    uint backCounts[kQueueCount];  // the items at each queue's back; counts[] those at its front
     uint truncatedTracking;  // rays whose transmittance tracking through a density grid hit its step bound
 };
 
@@ -380,7 +381,7 @@ struct PassConstants {
     uint samplesInPass;
     uint currentRays;       // kQueueRays0 or kQueueRays1: the queue traced this segment
     uint queueArg;          // queue_prepare: which queue's dispatch to size
-    uint clearMask;         // queue_prepare: bit q set -> counts[q] = 0 (and shadeSurfaces for the shade queue)
+    uint clearMask;         // queue_prepare: bit q set -> counts[q] = backCounts[q] = 0
     uint lossImage;         // loss: kLossImageFilm, kLossImageFilmMinusBaseline or kLossImageHalves
 };
 

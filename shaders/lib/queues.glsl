@@ -3,22 +3,33 @@
 #ifndef VKDR_QUEUES_GLSL
 #define VKDR_QUEUES_GLSL
 
-// The shade queue keeps its medium vertices at the front of its array and its surface
-// vertices at the back, each end walked by a shade pipeline of its own (shade.comp).
-// counts[kQueueShade] is its front's size, shadeSurfaces its back's.
+// A queue's array holds items at both ends: counts[queue] of them from the front and
+// backCounts[queue] from the back (device_types.h: which kind of item goes where).
+// Stages whose work differs by kind have a pipeline for each end (kQueueEnd), so that
+// neither kind runs the other's code.
 uint queueSize(uint queue) {
-    return P.queueCounters.c.counts[queue];
+    return P.queueCounters.c.counts[queue] + P.queueCounters.c.backCounts[queue];
 }
 
-// The queue's item `index`; for the shade queue, indices past its front count its back
-// from the end of the array.
+// The queue's item `index`: its front's items first, then its back's from the end of
+// the array.
 uint queueItem(uint queue, uint index) {
     uint front = P.queueCounters.c.counts[queue];
     uint position = index < front ? index : P.pathCapacity - 1u - (index - front);
     return P.queueItems.v[queue * P.pathCapacity + position];
 }
 
-// Appends a path slot, at the back of the array for the shade queue's surface vertices.
+// The size of the end of the queue that this pipeline walks (kQueueEnd), and its item
+// `index`.
+uint endSize(uint queue) {
+    return kQueueEnd == kFrontEnd ? P.queueCounters.c.counts[queue] : P.queueCounters.c.backCounts[queue];
+}
+
+uint endItem(uint queue, uint index) {
+    return queueItem(queue, kQueueEnd == kFrontEnd ? index : P.queueCounters.c.counts[queue] + index);
+}
+
+// Appends a path slot at the front of the queue's array or at its back.
 // One atomic per subgroup: the lanes that push elect a leader, which reserves room for
 // all of them (3-4x faster than one atomic per lane on lavapipe). All the lanes that
 // push together must agree on atBack.
@@ -28,7 +39,7 @@ void queuePushAt(uint queue, uint slot, bool atBack) {
     uint rank = subgroupBallotExclusiveBitCount(pushing);
     uint base = 0u;
     if (subgroupElect()) {
-        base = atBack ? atomicAdd(P.queueCounters.c.shadeSurfaces, count)
+        base = atBack ? atomicAdd(P.queueCounters.c.backCounts[queue], count)
                       : atomicAdd(P.queueCounters.c.counts[queue], count);
     }
     base = subgroupBroadcastFirst(base);
@@ -47,6 +58,15 @@ void queueShade(uint slot, bool surface) {
         queuePushAt(kQueueShade, slot, true);
     } else {
         queuePushAt(kQueueShade, slot, false);
+    }
+}
+
+// Queues a ray in `medium` (kNoMediumIndex: vacuum) to be traced, the same way.
+void queueRay(uint queue, uint slot, uint medium) {
+    if (medium == kNoMediumIndex) {
+        queuePushAt(queue, slot, true);
+    } else {
+        queuePushAt(queue, slot, false);
     }
 }
 

@@ -45,6 +45,9 @@ layout(constant_id = 6) const bool kMedia = true;
 // Whether next events in homogeneous media also sample distances towards the light
 // (a homogeneous medium scatters, and equiangular sampling is not turned off).
 layout(constant_id = 7) const bool kEquiangularSampling = true;
+// The end of its queue that a stage with a pipeline for each end walks (kFrontEnd or
+// kBackEnd, queues.glsl): medium_sample and shade.
+layout(constant_id = 8) const uint kQueueEnd = 1u;
 
 #define P params.p
 

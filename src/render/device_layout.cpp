@@ -22,7 +22,7 @@ static_assert(sizeof(GpuCamera) == 80);
 static_assert(offsetof(GpuCamera, tanHalfFovY) == 48);
 static_assert(sizeof(DispatchArgs) == 16);
 static_assert(offsetof(QueueCountersData, dispatch) == 16);
-static_assert(sizeof(QueueCountersData) == 132);
+static_assert(sizeof(QueueCountersData) == 144);
 static_assert(offsetof(RenderParams, background) == 80);
 static_assert(offsetof(RenderParams, triangleVertices) == 96);
 // Device addresses, 8 bytes each, then the scalars: no padding between them on either side.

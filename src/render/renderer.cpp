@@ -275,17 +275,21 @@ void Renderer::recordSegment(CommandRecorder& recorder, const PathStages& stages
         recorder.barrier();
     };
     auto stage = [&](const ComputePipeline& pipeline, uint32_t queue) { stageAt(pipeline, dispatchOffset(queue)); };
-    auto shadeEndOffset = [](uint32_t end) {
-        return offsetof(gpu::QueueCountersData, shadeEnds) + end * sizeof(gpu::DispatchArgs);
+    // A stage with a pipeline for each end of the queue prepared last (queues.glsl).
+    auto stageByEnd = [&](const std::optional<ComputePipeline>& front, const ComputePipeline& back) {
+        auto endOffset = [](uint32_t end) {
+            return offsetof(gpu::QueueCountersData, ends) + end * sizeof(gpu::DispatchArgs);
+        };
+        if (front) {
+            stageAt(*front, endOffset(gpu::kFrontEnd));
+        }
+        stageAt(back, endOffset(gpu::kBackEnd));
     };
     prepare(currentRays, bit(nextRays) | bit(gpu::kQueueShade) | bit(gpu::kQueueShadow));
     stage(pipelines_.intersect, currentRays);
-    stage(stages.mediumSample, currentRays);
+    stageByEnd(stages.mediumSampleInMedia, stages.mediumSampleInVacuum);
     prepare(gpu::kQueueShade, 0);
-    if (stages.shadeMedia) {
-        stageAt(*stages.shadeMedia, shadeEndOffset(gpu::kShadeMediumEnd));
-    }
-    stageAt(stages.shadeSurfaces, shadeEndOffset(gpu::kShadeSurfaceEnd));
+    stageByEnd(stages.shadeMedia, stages.shadeSurfaces);
     prepare(gpu::kQueueShadow, 0);
     stage(stages.shadow, gpu::kQueueShadow);
 }
@@ -305,7 +309,7 @@ gpu::QueueCountersData Renderer::recordSegmentsUntilNoRayIsLeft(CommandRecorder&
         recorder.submitAndWait();
         throwIfInterrupted();
         std::memcpy(&counters, paths_->countersReadback.mapped(), sizeof(counters));
-        if (counters.counts[currentRays] == 0) {
+        if (counters.counts[currentRays] + counters.backCounts[currentRays] == 0) {
             break;
         }
     }

@@ -28,12 +28,12 @@ namespace {
 
 // The pipeline of a stage; of a stage with an adjoint variant, the primal or the adjoint one
 // for the gradients of `gradientKinds`, for the media features `media` (specialization
-// constants 0 to 7 of shaders/lib/stage_common.glsl), and for shade the end of its queue
-// (constant 8, shade.comp). The dispatch timer's scope, not the name, tells the variants
-// apart.
+// constants 0 to 7 of shaders/lib/stage_common.glsl), and for the end of its queue it
+// walks (constant 8: medium_sample and shade). The dispatch timer's scope, not the name,
+// tells the variants apart.
 ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false,
                               uint32_t gradientKinds = 0, MediaFeatures media = {},
-                              uint32_t shadeEnd = gpu::kShadeSurfaceEnd) {
+                              uint32_t queueEnd = gpu::kBackEnd) {
     const StageInfo& info = stageInfo(stage);
     assert(info.hasAdjointVariant || !adjoint);
     std::vector<uint32_t> specialization;
@@ -42,7 +42,7 @@ ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool ad
                           media.densityGrids ? 1u : 0u,  media.emission ? 1u : 0u,
                           media.emissionGrids ? 1u : 0u, media.albedoGrids ? 1u : 0u,
                           media.anyMedium ? 1u : 0u,     media.equiangularSampling ? 1u : 0u,
-                          shadeEnd};
+                          queueEnd};
     }
     return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);
 }
@@ -51,11 +51,14 @@ ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool ad
 
 PathStages::PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media)
     : generate(stagePipeline(context, Stage::Generate, adjoint, gradientKinds, media)),
-      mediumSample(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, media)),
-      shadeSurfaces(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kShadeSurfaceEnd)),
+      mediumSampleInVacuum(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, MediaFeatures{},
+                                         gpu::kBackEnd)),
+      shadeSurfaces(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kBackEnd)),
       shadow(stagePipeline(context, Stage::Shadow, adjoint, gradientKinds, media)) {
     if (media.anyMedium) {
-        shadeMedia.emplace(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kShadeMediumEnd));
+        mediumSampleInMedia.emplace(
+            stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, media, gpu::kFrontEnd));
+        shadeMedia.emplace(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kFrontEnd));
     }
 }
 

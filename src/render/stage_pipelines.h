@@ -38,10 +38,14 @@ struct MediaFeatures {
 struct PathStages {
     PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media);
 
+    // medium_sample and shade have a pipeline for each end of their queue (queues.glsl):
+    // the back's (rays in vacuum, surface vertices) always, the front's (rays in a
+    // medium, medium vertices) in a scene with media.
     ComputePipeline generate;
-    ComputePipeline mediumSample;
-    ComputePipeline shadeSurfaces;  // the shade queue's surface vertices
-    std::optional<ComputePipeline> shadeMedia;  // its medium vertices, in a scene with media
+    ComputePipeline mediumSampleInVacuum;  // compiled without media
+    std::optional<ComputePipeline> mediumSampleInMedia;
+    ComputePipeline shadeSurfaces;
+    std::optional<ComputePipeline> shadeMedia;
     ComputePipeline shadow;
 };
 
