@@ -81,13 +81,22 @@ uint subgroupCopyOfSum(uint copyStride, uint first) {
 // Adds the first `channels` of g to the sums first, first + 1, ... of this subgroup's
 // copy (copies `copyStride` sums apart; kGradientCopies in device_types.h), and to those
 // from first + alsoAt on as well unless `alsoAt` is 0. Most lanes of a subgroup add to the
-// same few parameters, so the lanes that share `first` add together (addFixedPoint sums
-// their digits first): the loop peels off one distinct `first` per iteration. A call site
-// must pass one buffer and one `alsoAt` for all its lanes, since the lanes are grouped by
-// `first` alone.
+// same few parameters, so with kSubgroupGradientSums the lanes that share `first` add
+// together (addFixedPoint sums their digits first): the loop peels off one distinct
+// `first` per iteration. A call site must pass one buffer and one `alsoAt` for all its
+// lanes, since the lanes are grouped by `first` alone.
 void addGradient(Int64Buffer gradients, uint copyStride, uint first, uint alsoAt, vec3 g, uint channels) {
     uint sum = subgroupCopyOfSum(copyStride, first);
     uint second = alsoAt == 0u ? kFixedPointNoSum : sum + alsoAt * kFixedPointWordsPerSum;
+    if (!kSubgroupGradientSums) {
+        for (uint c = 0u; c < channels; ++c) {
+            addFixedPointFromOneLane(gradients, sum + c * kFixedPointWordsPerSum, g[c]);
+            if (second != kFixedPointNoSum) {
+                addFixedPointFromOneLane(gradients, second + c * kFixedPointWordsPerSum, g[c]);
+            }
+        }
+        return;
+    }
     for (;;) {
         uint leader = subgroupBroadcastFirst(first);
         if (first == leader) {

@@ -27,6 +27,12 @@ struct RenderSettings {
     // the light (equiangular sampling, combined with the free flight's by MIS). Off: only the
     // free flight's collisions estimate direct light: cheaper, and noisier near lights.
     bool equiangularSampling = true;
+    // How the adjoint pass adds its lanes' gradients to their fixed-point sums; the
+    // gradients have the same bits either way (shaders/lib/stage_common.glsl,
+    // kSubgroupGradientSums). Auto: a subgroup's lanes together on a GPU, each lane alone on
+    // a CPU device, the faster on each.
+    enum class GradientSums { Auto, PerSubgroup, PerLane };
+    GradientSums gradientSums = GradientSums::Auto;
 };
 
 }  // namespace vkdr
