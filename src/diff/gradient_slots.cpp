@@ -86,7 +86,7 @@ std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::ve
 }
 
 std::vector<double> gatherGradient(const GradientSlot& slot, const SceneGradients& gradients) {
-    std::vector<double> gradient(slot.groups * describe(slot.kind).channels, 0.0);
+    std::vector<double> gradient(slot.valueCount(), 0.0);
     addWeightedGradient(slot, gradients, 1.0, gradient);
     return gradient;
 }
@@ -95,8 +95,8 @@ void addWeightedGradient(const GradientSlot& slot, const SceneGradients& gradien
                          std::span<double> sum) {
     const std::vector<float>& accumulator = gradients.*slot.accumulator;
     const size_t channels = describe(slot.kind).channels;
-    if (sum.size() != slot.groups * channels) {
-        throw std::logic_error("addWeightedGradient: " + slot.name + " has " + std::to_string(slot.groups * channels) +
+    if (sum.size() != slot.valueCount()) {
+        throw std::logic_error("addWeightedGradient: " + slot.name + " has " + std::to_string(slot.valueCount()) +
                                " values, the sum " + std::to_string(sum.size()));
     }
     tbb::parallel_for(size_t(0), slot.groups, [&](size_t group) {

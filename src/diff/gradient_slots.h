@@ -19,6 +19,9 @@ struct GradientSlot {
     size_t first = 0;
     size_t groups = 1;
     size_t stride = 0;
+
+    // The parameter's floats: one gradient value each.
+    size_t valueCount() const { return groups * describe(kind).channels; }
 };
 
 // Resolves names like media/fog/sigma_a; an unknown name is a vkdr::Error listing the

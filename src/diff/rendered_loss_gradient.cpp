@@ -135,7 +135,7 @@ GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed)
         }
         for (size_t i = 0; i < impl_->slots.size(); ++i) {
             const GradientSlot& slot = impl_->slots[i];
-            gradients[i].resize(slot.groups * describe(slot.kind).channels, 0.0);
+            gradients[i].resize(slot.valueCount(), 0.0);
             addWeightedGradient(slot, sum, viewWeight, gradients[i]);
         }
     }
