@@ -29,8 +29,9 @@ struct RenderSettings {
     bool equiangularSampling = true;
     // How the adjoint pass adds its lanes' gradients to their fixed-point sums; the
     // gradients have the same bits either way (shaders/lib/stage_common.glsl,
-    // kSubgroupGradientSums). Auto: a subgroup's lanes together on a GPU, each lane alone on
-    // a CPU device, the faster on each.
+    // kSubgroupGradientSums). Auto: a subgroup's lanes together on a GPU, whose lanes would
+    // contend for one address, and each lane alone on a CPU device, where that is faster
+    // (docs/performance.md).
     enum class GradientSums { Auto, PerSubgroup, PerLane };
     GradientSums gradientSums = GradientSums::Auto;
 };

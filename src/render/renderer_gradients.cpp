@@ -14,7 +14,8 @@ namespace vkdr {
 namespace {
 
 // RenderSettings::GradientSums for this device: a subgroup's lanes add together on a
-// GPU, each lane alone on a CPU device (docs/performance.md, "Adding gradients").
+// GPU, each lane alone on a CPU device (docs/performance.md, "What the code does for
+// speed").
 bool addsGradientsPerSubgroup(const VulkanContext& context, RenderSettings::GradientSums sums) {
     if (sums == RenderSettings::GradientSums::Auto) {
         return context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
