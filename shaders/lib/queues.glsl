@@ -30,10 +30,10 @@ uint endItem(uint queue, uint index) {
 }
 
 // Appends a path slot at the front of the queue's array or at its back.
-// One atomic per subgroup: the lanes that push elect a leader, which reserves room for
-// all of them (3-4x faster than one atomic per lane on lavapipe). All the lanes that
-// push together must agree on atBack.
-void queuePushAt(uint queue, uint slot, bool atBack) {
+// One atomic per subgroup and end: the lanes that push to one end elect a leader, which
+// reserves room for all of them (3-4x faster than one atomic per lane on lavapipe). The
+// branch keeps the lanes of the two ends apart.
+void reserveAndPush(uint queue, uint slot, bool atBack) {
     uvec4 pushing = subgroupBallot(true);
     uint count = subgroupBallotBitCount(pushing);
     uint rank = subgroupBallotExclusiveBitCount(pushing);
@@ -47,27 +47,26 @@ void queuePushAt(uint queue, uint slot, bool atBack) {
     P.queueItems.v[queue * P.pathCapacity + position] = slot;
 }
 
+void queuePushAt(uint queue, uint slot, bool atBack) {
+    if (atBack) {
+        reserveAndPush(queue, slot, true);
+    } else {
+        reserveAndPush(queue, slot, false);
+    }
+}
+
 void queuePush(uint queue, uint slot) {
     queuePushAt(queue, slot, false);
 }
 
-// Queues a vertex for shading. The branch keeps the lanes of each kind apart, so each
-// pushes with one atomic of its own.
+// Queues a vertex for shading: surface vertices at the back, medium vertices at the front.
 void queueShade(uint slot, bool surface) {
-    if (surface) {
-        queuePushAt(kQueueShade, slot, true);
-    } else {
-        queuePushAt(kQueueShade, slot, false);
-    }
+    queuePushAt(kQueueShade, slot, surface);
 }
 
-// Queues a ray in `medium` (kNoMediumIndex: vacuum) to be traced, the same way.
+// Queues a ray in `medium` (kNoMediumIndex: vacuum) to be traced: in vacuum at the back.
 void queueRay(uint queue, uint slot, uint medium) {
-    if (medium == kNoMediumIndex) {
-        queuePushAt(queue, slot, true);
-    } else {
-        queuePushAt(queue, slot, false);
-    }
+    queuePushAt(queue, slot, medium == kNoMediumIndex);
 }
 
 void flagTruncatedLoop() {
