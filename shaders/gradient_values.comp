@@ -9,8 +9,8 @@
 #include "lib/stage_common.glsl"
 #include "lib/fixed_point.glsl"
 
-uint floatBitsOfSum(Int64Buffer sums, uint sum, uint copies, uint copyStride) {
-    FixedPointTotal total = fixedPointTotalOfNothing();
+// Adds the words and flags of the `copies` copies of sum `sum` to `total`.
+void addCopies(inout FixedPointTotal total, Int64Buffer sums, uint sum, uint copies, uint copyStride) {
     for (uint c = 0u; c < copies; ++c) {
         uint first = (sum + c * copyStride) * kFixedPointWordsPerSum;
         for (uint k = 0u; k < kFixedPointWords; ++k) {
@@ -18,7 +18,6 @@ uint floatBitsOfSum(Int64Buffer sums, uint sum, uint copies, uint copyStride) {
         }
         total.flags |= uint(sums.v[first + kFixedPointFlagsWord]);
     }
-    return fixedPointFloatBits(total);
 }
 
 void main() {
@@ -37,6 +36,14 @@ void main() {
         }
         VKDR_GRADIENT_ACCUMULATORS(VKDR_FIND_ACCUMULATOR)
 #undef VKDR_FIND_ACCUMULATOR
-        P.gradientValues.v[i] = floatBitsOfSum(sums, sum, copies, copyStride);
+        FixedPointTotal total = fixedPointTotalOfNothing();
+        addCopies(total, sums, sum, copies, copyStride);
+        // A medium's sigma_a and sigma_s also hold what their sigma_t sums share
+        // (addSigmaTGradient in lib/adjoint.glsl): 64 sums in all, the most a total holds.
+        uint component = sum % kMediumGradientStride;
+        if (i - P.mediumGradientsFirstValue < P.mediumGradientsValueCount && component < kMediumGradientG) {
+            addCopies(total, sums, sum - component + kMediumGradientSigmaT + component % 3u, copies, copyStride);
+        }
+        P.gradientValues.v[i] = fixedPointFloatBits(total);
     }
 }

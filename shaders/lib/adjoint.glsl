@@ -79,36 +79,31 @@ uint subgroupCopyOfSum(uint copyStride, uint first) {
 }
 
 // Adds the first `channels` of g to the sums first, first + 1, ... of this subgroup's
-// copy (copies `copyStride` sums apart; kGradientCopies in device_types.h), and to those
-// from first + alsoAt on as well unless `alsoAt` is 0. Most lanes of a subgroup add to the
-// same few parameters, so with kSubgroupGradientSums the lanes that share `first` add
-// together (addFixedPoint sums their digits first): the loop peels off one distinct
-// `first` per iteration. A call site must pass one buffer and one `alsoAt` for all its
-// lanes, since the lanes are grouped by `first` alone.
-void addGradient(Int64Buffer gradients, uint copyStride, uint first, uint alsoAt, vec3 g, uint channels) {
+// copy (copies `copyStride` sums apart; kGradientCopies in device_types.h). Most lanes of
+// a subgroup add to the same few parameters, so with kSubgroupGradientSums the lanes that
+// share `first` add together (addFixedPoint sums their digits first): the loop peels off
+// one distinct `first` per iteration. A call site must pass one buffer for all its lanes,
+// since the lanes are grouped by `first` alone.
+void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec3 g, uint channels) {
     uint sum = subgroupCopyOfSum(copyStride, first);
-    uint second = alsoAt == 0u ? kFixedPointNoSum : sum + alsoAt * kFixedPointWordsPerSum;
     if (!kSubgroupGradientSums) {
         for (uint c = 0u; c < channels; ++c) {
             addFixedPointFromOneLane(gradients, sum + c * kFixedPointWordsPerSum, g[c]);
-            if (second != kFixedPointNoSum) {
-                addFixedPointFromOneLane(gradients, second + c * kFixedPointWordsPerSum, g[c]);
-            }
         }
         return;
     }
     for (;;) {
         uint leader = subgroupBroadcastFirst(first);
         if (first == leader) {
-            addFixedPoint(gradients, sum, second, g, channels);
+            addFixedPoint(gradients, sum, g, channels);
             break;
         }
     }
 }
 
-void addMediumGradient(uint medium, uint firstComponent, uint alsoAt, vec3 g, uint channels) {
-    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent,
-                alsoAt, g, channels);
+void addMediumGradient(uint medium, uint firstComponent, vec3 g, uint channels) {
+    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent, g,
+                channels);
 }
 
 // Whether the pipelines add gradients of this kind (kGradientKind* in device_types.h).
@@ -119,23 +114,25 @@ bool gradientWanted(uint kind) {
 
 void addSigmaSGradient(uint medium, vec3 dSigmaS) {
     if (gradientWanted(kGradientKindSigmaS)) {
-        addMediumGradient(medium, kMediumGradientSigmaS, 0u, dSigmaS, 3u);
+        addMediumGradient(medium, kMediumGradientSigmaS, dSigmaS, 3u);
     }
 }
 
 void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
     if (gradientWanted(kGradientKindSigmaA)) {
-        addMediumGradient(medium, kMediumGradientSigmaA, 0u, dSigmaA, 3u);
+        addMediumGradient(medium, kMediumGradientSigmaA, dSigmaA, 3u);
     }
     addSigmaSGradient(medium, dSigmaS);
 }
 
-// A gradient with respect to sigma_t = sigma_a + sigma_s, which both share: summed once,
-// added to each of the two that is wanted.
+// A gradient with respect to sigma_t = sigma_a + sigma_s, which both share: where both
+// are wanted, summed once into the sigma_t sums, which gradient_values.comp adds to each
+// (the same total, bit for bit, as adding every term to both, at half the additions).
 void addSigmaTGradient(uint medium, vec3 dSigmaT) {
-    if (gradientWanted(kGradientKindSigmaA)) {
-        uint alsoAt = gradientWanted(kGradientKindSigmaS) ? kMediumGradientSigmaS - kMediumGradientSigmaA : 0u;
-        addMediumGradient(medium, kMediumGradientSigmaA, alsoAt, dSigmaT, 3u);
+    if (gradientWanted(kGradientKindSigmaA) && gradientWanted(kGradientKindSigmaS)) {
+        addMediumGradient(medium, kMediumGradientSigmaT, dSigmaT, 3u);
+    } else if (gradientWanted(kGradientKindSigmaA)) {
+        addMediumGradient(medium, kMediumGradientSigmaA, dSigmaT, 3u);
     } else {
         addSigmaSGradient(medium, dSigmaT);
     }
@@ -143,32 +140,31 @@ void addSigmaTGradient(uint medium, vec3 dSigmaT) {
 
 void addPhaseGGradient(uint medium, float g) {
     if (gradientWanted(kGradientKindG)) {
-        addMediumGradient(medium, kMediumGradientG, 0u, vec3(g, 0.0f, 0.0f), 1u);
+        addMediumGradient(medium, kMediumGradientG, vec3(g, 0.0f, 0.0f), 1u);
     }
 }
 
 void addMediumEmissionGradient(uint medium, vec3 g) {
     if (gradientWanted(kGradientKindMediumEmission)) {
-        addMediumGradient(medium, kMediumGradientEmission, 0u, g, 3u);
+        addMediumGradient(medium, kMediumGradientEmission, g, 3u);
     }
 }
 
 void addBaseColorGradient(uint material, vec3 g) {
     if (gradientWanted(kGradientKindBaseColor)) {
-        addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * kColorGradientStride, 0u, g,
-                    3u);
+        addGradient(P.baseColorGradients, P.baseColorGradientsCopyStride, material * kColorGradientStride, g, 3u);
     }
 }
 
 void addEmissionGradient(uint material, vec3 g) {
     if (gradientWanted(kGradientKindEmission)) {
-        addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * kColorGradientStride, 0u, g, 3u);
+        addGradient(P.emissionGradients, P.emissionGradientsCopyStride, material * kColorGradientStride, g, 3u);
     }
 }
 
 void addLightIntensityGradient(uint light, vec3 g) {
     if (gradientWanted(kGradientKindLightIntensity)) {
-        addGradient(P.lightGradients, P.lightGradientsCopyStride, light * kColorGradientStride, 0u, g, 3u);
+        addGradient(P.lightGradients, P.lightGradientsCopyStride, light * kColorGradientStride, g, 3u);
     }
 }
 
@@ -186,7 +182,7 @@ void addEmitterGradient(uint emitter, vec3 g) {
 void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
     BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
     for (int corner = 0; corner < 4; ++corner) {
-        addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * kColorGradientStride, 0u,
+        addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * kColorGradientStride,
                     g * footprint.weight[corner], 3u);
     }
 }

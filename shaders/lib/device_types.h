@@ -86,7 +86,10 @@ const uint kMediumGradientSigmaA = 0u;  // rgb
 const uint kMediumGradientSigmaS = 3u;  // rgb
 const uint kMediumGradientG = 6u;       // one value
 const uint kMediumGradientEmission = 7u;  // rgb
-const uint kMediumGradientStride = 10u;
+// rgb: a gradient with respect to sigma_t = sigma_a + sigma_s, when both are wanted, is
+// summed here once; gradient_values.comp reads it as part of each of the two.
+const uint kMediumGradientSigmaT = 10u;
+const uint kMediumGradientStride = 13u;
 // A base colour, emission or texel gradient: rgb.
 const uint kColorGradientStride = 3u;
 

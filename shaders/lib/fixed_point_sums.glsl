@@ -26,13 +26,10 @@ void addToWord(Int64Buffer sums, uint sum, uint k, int64_t value) {
 }
 
 // Adds the first `channels` components of x to the sums at `sum`, `sum` +
-// kFixedPointWordsPerSum, ... (the index of each one's first word) and, unless `alsoAt`
-// is kFixedPointNoSum, to those at `alsoAt` too. Every active lane of the subgroup must
-// call it with the same `sum` and `alsoAt`: the lanes' digits are added up first with
+// kFixedPointWordsPerSum, ... (the index of each one's first word). Every active lane of
+// the subgroup must call it with the same `sum`: the lanes' digits are added up first with
 // integer subgroup sums, exact in any grouping, so one lane adds each word's total.
-const uint kFixedPointNoSum = 0xffffffffu;
-
-void addFixedPoint(Int64Buffer sums, uint sum, uint alsoAt, vec3 x, uint channels) {
+void addFixedPoint(Int64Buffer sums, uint sum, vec3 x, uint channels) {
     FixedPointTerm terms[3] = FixedPointTerm[3](fixedPointTerm(x.x), fixedPointTerm(x.y), fixedPointTerm(x.z));
     uvec3 flags = subgroupOr(uvec3(terms[0].flags, terms[1].flags, terms[2].flags));
     uint lowest = kFixedPointWords;
@@ -52,9 +49,6 @@ void addFixedPoint(Int64Buffer sums, uint sum, uint alsoAt, vec3 x, uint channel
             for (uint c = 0u; c < channels; ++c) {
                 if (digits[c] != int64_t(0)) {
                     addToWord(sums, sum + c * kFixedPointWordsPerSum, k, digits[c]);
-                    if (alsoAt != kFixedPointNoSum) {
-                        addToWord(sums, alsoAt + c * kFixedPointWordsPerSum, k, digits[c]);
-                    }
                 }
             }
         }
@@ -63,9 +57,6 @@ void addFixedPoint(Int64Buffer sums, uint sum, uint alsoAt, vec3 x, uint channel
         for (uint c = 0u; c < channels; ++c) {
             if (flags[c] != 0u) {
                 atomicOr(sums.v[sum + c * kFixedPointWordsPerSum + kFixedPointFlagsWord], int64_t(flags[c]));
-                if (alsoAt != kFixedPointNoSum) {
-                    atomicOr(sums.v[alsoAt + c * kFixedPointWordsPerSum + kFixedPointFlagsWord], int64_t(flags[c]));
-                }
             }
         }
     }

@@ -170,12 +170,13 @@ float nearestFloat(const Words& words, size_t count) {
 
 // Random words as the device leaves them: any magnitude below the carry threshold in any
 // word, either sign (runs of borrows make totals near ties), and the top words mostly
-// empty so that most totals are floats.
+// empty so that most totals are floats. Up to twice kGradientCopies sums: a medium's
+// sigma_a and sigma_s are read together with the copies of its sigma_t sums.
 TEST(FixedPoint, DeviceFloatsAreTheNearestFloatsToTheExactTotals) {
     std::mt19937_64 random(11);
     std::uniform_int_distribution<int> words(1, int(gpu::kFixedPointWords));
     std::uniform_int_distribution<int> bits(0, 52);
-    std::uniform_int_distribution<int> copies(1, int(gpu::kGradientCopies));
+    std::uniform_int_distribution<int> copies(1, 2 * int(gpu::kGradientCopies));
     int infinite = 0, finite = 0;
     for (int trial = 0; trial < 20000; ++trial) {
         const size_t count = size_t(copies(random));
