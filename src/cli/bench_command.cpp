@@ -41,6 +41,13 @@ int runBench(BenchOptions options) {
     for (const std::string& name : options.scenes) {
         sources.push_back(resolveBenchScene(name, options.scenesDirectory));
     }
+    if (!options.json.empty()) {
+        std::vector<std::filesystem::path> sceneFiles;
+        for (const BenchSceneSource& source : sources) {
+            if (!source.file.empty()) sceneFiles.push_back(source.file);
+        }
+        requireOutputsAreNotInputs({{"--json", options.json}}, sceneFiles, "a scene bench reads");
+    }
 
     VulkanContext context(ContextOptions{options.device});
     BenchReport report;

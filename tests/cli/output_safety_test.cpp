@@ -228,6 +228,16 @@ TEST_F(OutputSafety, NoOutputIsAFileTheSceneReads) {
     EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
 }
 
+TEST_F(OutputSafety, BenchNeverWritesItsReportOverAScene) {
+    const fs::path scene = dir_ / "scene.gltf";
+    fs::copy_file(std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf", scene);
+    const std::string before = slurp(scene);
+    expectRefused("bench " + scene.string() + " --width 8 --spp 1 --iters 1 --gradient-seeds 0 --json " +
+                      (dir_ / "." / "scene.gltf").string(),
+                  "a scene bench reads");
+    EXPECT_EQ(slurp(scene), before);
+}
+
 TEST_F(OutputSafety, NumericOptionsMustBeFiniteAndInRange) {
     fs::path out = dir_ / "out";
     const std::string command = "optimize " + noScene() + " --target t.exr --param media/fog/sigma_a --out " + out.string();
