@@ -71,6 +71,12 @@ Medium readVolumeAttenuation(const tinygltf::Value& volume, const std::string& f
             diagnostics.fail(colorField, "must be in (0, 1], got " + formatNumber(color[c]));
         }
         medium.sigma_a[c] = std::isinf(distance) ? 0.0f : float(-std::log(double(color[c])) / distance);
+        if (std::string problem = valueProblem(describe(ParameterKind::SigmaA), medium.sigma_a[c]);
+            !problem.empty()) {
+            diagnostics.fail(field + ".attenuationDistance",
+                             "too small for attenuationColor " + formatNumber(color[c]) +
+                                 ": sigma_a = -ln(attenuationColor) / attenuationDistance " + problem);
+        }
     }
     return medium;
 }

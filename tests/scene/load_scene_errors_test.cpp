@@ -189,6 +189,17 @@ TEST(LoadSceneErrors, ZeroAttenuationColorMeansInfiniteAbsorption) {
                     {"materials[0].extensions.KHR_materials_volume.attenuationColor[1]", "infinite absorption"});
 }
 
+TEST(LoadSceneErrors, AttenuationDistanceTooSmallForAFloatAbsorption) {
+    TemporaryDirectory directory;
+    json ink = {{"extensions",
+                 {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                  {"KHR_materials_ior", {{"ior", 1.0}}},
+                  {"KHR_materials_volume", {{"attenuationColor", {0.5, 0.5, 0.5}}, {"attenuationDistance", 1e-45}}}}}};
+    expectLoadError(boxWithMaterial(ink).writeGltf(directory / "ink.gltf"),
+                    {"materials[0].extensions.KHR_materials_volume.attenuationDistance", "too small",
+                     "must be finite"});
+}
+
 TEST(LoadSceneErrors, OpenMediumBoundary) {
     TemporaryDirectory directory;
     GltfBuilder builder;
