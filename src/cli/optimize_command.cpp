@@ -358,8 +358,9 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
                          "checkpoint.json, params.json, ...) is refused unless --overwrite")
             ->default_val(options->out);
     command->add_flag("--overwrite", options->overwrite,
-                      "Replace the run that --out holds: its files (checkpoint included) are removed before the "
-                      "new run writes; other files are left");
+                      "Replace the run that --out holds: its files (checkpoint included) are removed once the "
+                      "inputs are checked, before the first iteration, so a new run that then fails leaves "
+                      "neither; other files are left");
     command
         ->add_option("--checkpoint-every", options->optimize.checkpointEvery,
                      "Write DIR/checkpoint.json every K iterations (0: never); a stopped run loses at most K")
