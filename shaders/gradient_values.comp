@@ -40,9 +40,10 @@ void main() {
         addCopies(total, sums, sum, copies, copyStride);
         // A medium's sigma_a and sigma_s also hold what their sigma_t sums share
         // (addSigmaTGradient in lib/adjoint.glsl): 64 sums in all, the most a total holds.
-        uint component = sum % kMediumGradientStride;
-        if (i - P.mediumGradientsFirstValue < P.mediumGradientsValueCount && component < kMediumGradientG) {
-            addCopies(total, sums, sum - component + kMediumGradientSigmaT + component % 3u, copies, copyStride);
+        uint channel = sum % kMediumGradientStride - kMediumGradientSigmaA;  // rgb of sigma_a, then of sigma_s
+        if (i - P.mediumGradientsFirstValue < P.mediumGradientsValueCount && channel < 6u) {
+            uint sigmaT = sum - (sum % kMediumGradientStride) + kMediumGradientSigmaT + channel % 3u;
+            addCopies(total, sums, sigmaT, copies, copyStride);
         }
         P.gradientValues.v[i] = fixedPointFloatBits(total);
     }

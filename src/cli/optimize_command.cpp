@@ -121,7 +121,7 @@ std::string targetFile(const std::string& target) {
     return equals == std::string::npos ? target : target.substr(equals + 1);
 }
 
-// Once the inputs have been checked and just before the run writes: with --overwrite,
+// Once the inputs have been checked, before the first iteration: with --overwrite,
 // nothing of the old run is left for the new one to mix with.
 void clearOldRun(const OptimizeCommandOptions& options, bool experiment) {
     throwIfInterrupted();
