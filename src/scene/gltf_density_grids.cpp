@@ -1,11 +1,11 @@
 #include "scene/gltf_density_grids.h"
 
-#include <cmath>
 
 #include "core/error.h"
 #include "scene/flatten_nodes.h"
 #include "scene/gltf_media.h"
 #include "scene/gltf_values.h"
+#include "volume/index_transform.h"
 #include "volume/read_density_grid.h"
 
 namespace vkdr {
@@ -43,12 +43,10 @@ glm::dmat4 nodeToWorld(const tinygltf::Model& model, int index, const std::strin
     return transform;
 }
 
+// The same rule as for the grid file's own transform, applied to where the node puts it.
 void requireInvertible(const glm::dmat4& indexToWorld, const std::string& field, const GltfDiagnostics& diagnostics) {
-    const glm::dmat3 linear(indexToWorld);
-    const double determinant = glm::determinant(linear);
-    const double scale = glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2]);
-    if (!std::isfinite(determinant) || !(std::abs(determinant) > 1e-12 * scale)) {
-        diagnostics.fail(field, "the grid's placement (the node's transform times the grid's own) is singular");
+    if (std::string problem = indexTransformProblem(indexToWorld); !problem.empty()) {
+        diagnostics.fail(field, "the grid's placement (the node's transform times the grid's own): " + problem);
     }
 }
 

@@ -1,12 +1,9 @@
 #include "scene/load_scene.h"
 
-#include <algorithm>
-#include <array>
-#include <string_view>
-
 #include "scene/flatten_nodes.h"
 #include "scene/gltf_density_grids.h"
 #include "scene/gltf_diagnostics.h"
+#include "scene/gltf_json_checks.h"
 #include "scene/gltf_lights.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_media.h"
@@ -16,18 +13,10 @@
 namespace vkdr {
 namespace {
 
-// Extensions a file may require: the ones read, and the ones whose absence only loses
-// detail (with a warning).
-constexpr std::array<std::string_view, 8> kUnderstoodExtensions = {
-    "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_volume",            "KHR_texture_transform",      kPunctualLightsExtension,
-    kMediumExtension,                  kBackgroundExtension};
-
 void requireUnderstoodExtensions(const tinygltf::Model& model, const GltfDiagnostics& diagnostics) {
     for (size_t i = 0; i < model.extensionsRequired.size(); ++i) {
         const std::string& name = model.extensionsRequired[i];
-        if (std::find(kUnderstoodExtensions.begin(), kUnderstoodExtensions.end(), name) ==
-            kUnderstoodExtensions.end()) {
+        if (!isUnderstoodExtension(name)) {
             diagnostics.fail(indexed("extensionsRequired", i), name + " is not supported");
         }
     }

@@ -15,6 +15,7 @@
 #include "image/encoded_image_checks.h"
 #include "image/regular_file.h"
 #include "scene/glb_layout.h"
+#include "scene/gltf_json_checks.h"
 
 namespace vkdr {
 namespace {
@@ -114,9 +115,8 @@ bool writeWholeFile(std::string* error, const std::string&, const std::vector<un
 // Every external buffer and image is checked before tinygltf reads any, so that a
 // refusal names the field, and tinygltf's own messages (which give a file's size) are
 // only ever about files the scene may read.
-void requireReadableUris(const std::string& jsonText, const SceneFiles& files, const GltfDiagnostics& diagnostics) {
-    nlohmann::json document = nlohmann::json::parse(jsonText, nullptr, false);
-    if (!document.is_object()) return;  // tinygltf says what is wrong with it
+void requireReadableUris(const nlohmann::json& document, const SceneFiles& files,
+                         const GltfDiagnostics& diagnostics) {
     for (const char* array : {"buffers", "images"}) {
         if (!document.contains(array) || !document[array].is_array()) continue;
         for (size_t i = 0; i < document[array].size(); ++i) {
@@ -153,7 +153,13 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
 
     bool binary = extension == ".glb";
     SceneFiles files(file, access);
-    requireReadableUris(binary ? std::string(glbJson(bytes, diagnostics)) : bytes, files, diagnostics);
+    const nlohmann::json document =
+        nlohmann::json::parse(binary ? glbJson(bytes, diagnostics) : std::string_view(bytes), nullptr, false);
+    // A document that is not a JSON object is left to tinygltf, which says what is wrong with it.
+    if (document.is_object()) {
+        requireWellFormedJson(document, diagnostics);
+        requireReadableUris(document, files, diagnostics);
+    }
 
     std::string baseDirectory = files.directory().string();
     FileAccessState state{files, baseDirectory.back() == '/' ? baseDirectory : baseDirectory + "/", externalFiles};

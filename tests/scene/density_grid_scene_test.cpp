@@ -121,6 +121,10 @@ TEST(DensityGridScene, BadReferencesNameTheField) {
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 7}}), {field + ".node", "out of range"});
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", "one"}}), {field + ".node", "node index"});
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 1}}, 0.0), {field, "singular"});
+    // A placement that shears the voxels to within 1e-6 of a plane: the rule for a grid file's own transform.
+    GltfBuilder sheared = boxScene(gridMedium({{"uri", "smoke.vdb"}, {"node", 1}}));
+    sheared.document()["nodes"][1] = {{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 1, 1, 1e-9, 0, 0, 0, 0, 1}}};
+    expectLoadError(sheared.writeGltf(directory / "sheared.gltf"), {field, "placement", "singular"});
     expectLoadError(write({{"uri", "../smoke.vdb"}}), {field + ".uri", "outside"});
 }
 

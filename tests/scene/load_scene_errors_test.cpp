@@ -1,4 +1,6 @@
 // Input that loadScene must reject with a message naming the file and the field.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -235,6 +237,91 @@ GltfBuilder floorWithLights(json lights, json placement = {{"light", 0}}) {
     builder.document()["extensions"]["KHR_lights_punctual"]["lights"] = std::move(lights);
     builder.addNode({{"extensions", {{"KHR_lights_punctual", std::move(placement)}}}});
     return builder;
+}
+
+// tinygltf drops a null, an empty {} in an extension and a non-object extension, and
+// ignores a vector of the wrong length or a negative index: each would leave a default in
+// the file's place without a word. The loader refuses them, naming the field.
+TEST(LoadSceneErrors, WhatTinygltfWouldDropIsRefusedNamingTheField) {
+    TemporaryDirectory directory;
+    const std::string medium = "materials[0].extensions.VKDR_participating_media";
+    expectLoadError(boxWithMaterial(mediumMaterial({{"sigma_a", nullptr}})).writeGltf(directory / "null.gltf"),
+                    {medium + ".sigma_a", "null is not a glTF value"});
+    expectLoadError(boxWithMaterial(mediumMaterial({{"sigma_s", json::object()}})).writeGltf(directory / "empty.gltf"),
+                    {medium + ".sigma_s", "is empty ({})"});
+    expectLoadError(boxWithMaterial(mediumMaterial({{"emission", json::array()}})).writeGltf(directory / "none.gltf"),
+                    {medium + ".emission", "is empty ([])"});
+    expectLoadError(boxWithMaterial(mediumMaterial({1.0, 2.0})).writeGltf(directory / "array.gltf"),
+                    {medium, "expected an object, got [1.0,2.0]"});
+    json threeEntries = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5}}}}};
+    expectLoadError(boxWithMaterial(threeEntries).writeGltf(directory / "colour.gltf"),
+                    {"materials[0].pbrMetallicRoughness.baseColorFactor", "expected an array of 4 numbers"});
+    expectLoadError(boxWithMaterial({{"emissiveFactor", "red"}}).writeGltf(directory / "emissive.gltf"),
+                    {"materials[0].emissiveFactor", "expected an array of 3 numbers, got \"red\""});
+
+    GltfBuilder scene = boxWithMaterial({{"name", "white"}});
+    scene.document()["extensions"]["KHR_lights_punctual"] = {{"lights", {{"type", "point"}}}};
+    expectLoadError(scene.writeGltf(directory / "lights.gltf"), {"extensions.KHR_lights_punctual.lights",
+                                                                 "expected an array"});
+}
+
+TEST(LoadSceneErrors, NodesOutsideTheGltfSchema) {
+    TemporaryDirectory directory;
+    auto boxAt = [&](json node) {
+        GltfBuilder builder = boxWithMaterial({{"name", "white"}});
+        builder.document()["nodes"][0].update(node);
+        return builder.writeGltf(directory / "node.gltf");
+    };
+    expectLoadError(boxAt({{"mesh", -1}}), {"nodes[0].mesh", "expected an index (a whole number >= 0), got -1"});
+    expectLoadError(boxAt({{"children", {0.5}}}), {"nodes[0].children[0]", "expected an index"});
+    expectLoadError(boxAt({{"translation", {1.0, 2.0}}}), {"nodes[0].translation", "expected an array of 3 numbers"});
+    expectLoadError(boxAt({{"scale", 2.0}}), {"nodes[0].scale", "expected an array of 3 numbers, got 2.0"});
+    expectLoadError(boxAt({{"matrix", {1.0, 0.0, 0.0}}}), {"nodes[0].matrix", "expected an array of 16 numbers"});
+    json projective = {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.5, 0.0, 0.0, 0.0, 1.0};
+    expectLoadError(boxAt({{"matrix", projective}}), {"nodes[0].matrix", "must be affine", "got 0.0 0.0 0.5 1.0"});
+    expectLoadError(boxAt({{"rotation", {0.0, 0.0, 0.0, 0.0}}}),
+                    {"nodes[0].rotation", "must be a unit quaternion", "got length 0"});
+    expectLoadError(boxAt({{"rotation", {0.0, 0.0, 0.0, 2.0}}}), {"nodes[0].rotation", "got length 2"});
+    // An exporter's float rounding of a unit quaternion loads.
+    const float half = std::sqrt(0.5f);
+    Scene turned = loadScene(boxAt({{"rotation", {0.0, half, 0.0, half}}})).scene;
+    EXPECT_EQ(turned.triangles.size(), 12u);
+
+    GltfBuilder hollow = boxWithMaterial({{"name", "white"}});
+    hollow.document()["meshes"].push_back({{"name", "nothing"}, {"primitives", json::array()}});
+    hollow.addNode({{"mesh", 1}});
+    expectLoadError(hollow.writeGltf(directory / "hollow.gltf"), {"meshes[1].primitives", "at least one primitive"});
+}
+
+TEST(LoadSceneErrors, CamerasOutsideTheGltfSchema) {
+    TemporaryDirectory directory;
+    auto withCamera = [&](json perspective) {
+        GltfBuilder builder = boxWithMaterial({{"name", "white"}});
+        json base = {{"yfov", 0.8}, {"znear", 0.01}};
+        base.update(perspective);
+        builder.addNode({{"camera", builder.addCamera({{"type", "perspective"}, {"perspective", base}})}});
+        return builder.writeGltf(directory / "camera.gltf");
+    };
+    const std::string field = "cameras[0].perspective";
+    expectLoadError(withCamera({{"aspectRatio", 0.0}}), {field + ".aspectRatio", "must be a number > 0, got 0.0"});
+    expectLoadError(withCamera({{"znear", 0.0}}), {field + ".znear", "must be a number > 0"});
+    expectLoadError(withCamera({{"znear", -1.0}}), {field + ".znear", "got -1.0"});
+    expectLoadError(withCamera({{"zfar", 0.001}}), {field + ".zfar", "must be a number > znear (0.01), got 0.001"});
+    EXPECT_EQ(loadScene(withCamera({{"zfar", 100.0}, {"aspectRatio", 1.5}})).scene.cameras.at(0).aspectRatio, 1.5f);
+}
+
+// A member of vkdiffrender's own extensions that the loader does not know (a misspelling,
+// say) is ignored with a warning naming it and the members it knows.
+TEST(LoadSceneErrors, UnknownMediumMembersAreNamedInAWarning) {
+    TemporaryDirectory directory;
+    LoadedScene loaded = loadScene(
+        boxWithMaterial(mediumMaterial({{"sigma_s", 1.0}, {"sigma_t", 2.0}})).writeGltf(directory / "typo.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("materials[0].extensions.VKDR_participating_media.sigma_t: unknown member, "
+                                      "ignored (known: sigma_a, sigma_s, g, emission"),
+              std::string::npos)
+        << loaded.warnings[0];
+    EXPECT_EQ(loaded.scene.media.at(0).sigma_s, glm::vec3(1.0f));
 }
 
 TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {

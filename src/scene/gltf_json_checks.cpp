@@ -1,0 +1,257 @@
+#include "scene/gltf_json_checks.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/gltf_lights.h"
+#include "scene/gltf_media.h"
+
+namespace vkdr {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::array<std::string_view, 8> kUnderstoodExtensions = {
+    "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_volume",            "KHR_texture_transform",      kPunctualLightsExtension,
+    kMediumExtension,                  kBackgroundExtension};
+
+// The members of vkdiffrender's own extensions; "extensions" and "extras" are allowed on
+// every glTF object.
+constexpr std::array<std::string_view, 10> kSceneMediumMembers = {
+    "name", "sigma_a", "sigma_s", "g", "emission", "density", "emissionGrid", "albedoGrid", "extensions", "extras"};
+constexpr std::array<std::string_view, 5> kGridReferenceMembers = {"uri", "grid", "node", "extensions", "extras"};
+constexpr std::array<std::string_view, 3> kBackgroundMembers = {"radiance", "extensions", "extras"};
+constexpr std::array<std::string_view, 3> kGridReferences = {"density", "emissionGrid", "albedoGrid"};
+
+// A rotation whose length is further than this from 1 is not an exporter's rounding.
+constexpr double kUnitQuaternionTolerance = 1e-3;
+
+std::string member(const std::string& field, const std::string& key) { return field + "." + key; }
+
+std::string describeValue(const json& value) {
+    std::string text = value.dump();
+    return text.size() <= 40 ? text : text.substr(0, 37) + "...";
+}
+
+// Nulls are dropped by tinygltf wherever they stand, so the default silently takes their
+// place. Skipped: "extras" (anything goes there) and extensions the loader does not read.
+void refuseNulls(const json& value, const std::string& field, const GltfDiagnostics& diagnostics) {
+    if (value.is_null()) {
+        diagnostics.fail(field, "null is not a glTF value; leave the member out for its default");
+    }
+    if (value.is_array()) {
+        for (size_t i = 0; i < value.size(); ++i) refuseNulls(value[i], indexed(field, i), diagnostics);
+        return;
+    }
+    if (!value.is_object()) return;
+    for (const auto& [key, child] : value.items()) {
+        const std::string childField = field.empty() ? key : member(field, key);
+        if (key == "extras") continue;
+        if (key == "extensions" && child.is_object()) {
+            for (const auto& [name, extension] : child.items()) {
+                if (isUnderstoodExtension(name)) refuseNulls(extension, member(childField, name), diagnostics);
+            }
+            continue;
+        }
+        refuseNulls(child, childField, diagnostics);
+    }
+}
+
+// tinygltf skips an extension whose value is not an object.
+void requireObjectExtensions(const json& object, const std::string& field, const GltfDiagnostics& diagnostics) {
+    if (!object.is_object() || !object.contains("extensions")) return;
+    const json& extensions = object["extensions"];
+    const std::string extensionsField = field.empty() ? "extensions" : member(field, "extensions");
+    if (!extensions.is_object()) diagnostics.fail(extensionsField, "expected an object");
+    for (const auto& [name, extension] : extensions.items()) {
+        if (isUnderstoodExtension(name) && !extension.is_object()) {
+            diagnostics.fail(member(extensionsField, name), "expected an object, got " + describeValue(extension));
+        }
+    }
+}
+
+// Checks the members of one of vkdiffrender's extension objects: an empty {} or [] would
+// be dropped (and the default used); an unknown member would be ignored.
+void checkOwnMembers(const json& object, const std::string& field, std::span<const std::string_view> known,
+                     GltfDiagnostics& diagnostics) {
+    for (const auto& [key, value] : object.items()) {
+        if (key == "extras" || key == "extensions") continue;
+        if ((value.is_object() || value.is_array()) && value.empty()) {
+            diagnostics.fail(member(field, key), "is empty (" + value.dump() + "); give a value or leave it out");
+        }
+        if (std::find(known.begin(), known.end(), key) == known.end()) {
+            std::string names;
+            for (std::string_view name : known) {
+                if (name != "extensions" && name != "extras") names += (names.empty() ? "" : ", ") + std::string(name);
+            }
+            diagnostics.warn(member(field, key), "unknown member, ignored (known: " + names + ")");
+        }
+    }
+}
+
+void checkMedium(const json& extensions, const std::string& extensionsField, bool sceneWide,
+                 GltfDiagnostics& diagnostics) {
+    if (!extensions.is_object() || !extensions.contains(kMediumExtension)) return;
+    const json& medium = extensions[kMediumExtension];
+    const std::string field = member(extensionsField, kMediumExtension);
+    // A material's medium takes the material's name.
+    std::span<const std::string_view> known(kSceneMediumMembers);
+    checkOwnMembers(medium, field, sceneWide ? known : known.subspan(1), diagnostics);
+    for (std::string_view reference : kGridReferences) {
+        const std::string key(reference);
+        if (medium.contains(key) && medium[key].is_object()) {
+            checkOwnMembers(medium[key], member(field, key), kGridReferenceMembers, diagnostics);
+        }
+    }
+}
+
+void requireNumbers(const json& object, const std::string& field, const std::string& key, size_t count,
+                    const GltfDiagnostics& diagnostics) {
+    if (!object.contains(key)) return;
+    const json& value = object[key];
+    bool numbers = value.is_array() && value.size() == count &&
+                   std::all_of(value.begin(), value.end(), [](const json& entry) { return entry.is_number(); });
+    if (!numbers) {
+        diagnostics.fail(member(field, key), "expected an array of " + std::to_string(count) + " numbers, got " +
+                                                 describeValue(value));
+    }
+}
+
+void requireIndex(const json& value, const std::string& field, const GltfDiagnostics& diagnostics) {
+    bool index = value.is_number() && value.get<double>() >= 0.0 &&
+                 value.get<double>() == std::floor(value.get<double>());
+    if (!index) {
+        diagnostics.fail(field, "expected an index (a whole number >= 0), got " + describeValue(value));
+    }
+}
+
+void requireIndexMember(const json& object, const std::string& field, const std::string& key,
+                        const GltfDiagnostics& diagnostics) {
+    if (object.contains(key)) requireIndex(object[key], member(field, key), diagnostics);
+}
+
+// A number the loader needs above `bound`; absent is allowed where the schema allows it.
+void requireAbove(const json& object, const std::string& field, const std::string& key, double bound,
+                  const std::string& boundName, const GltfDiagnostics& diagnostics) {
+    if (!object.contains(key)) return;
+    const json& value = object[key];
+    if (!value.is_number() || !(value.get<double>() > bound)) {
+        diagnostics.fail(member(field, key), "must be a number > " + boundName + ", got " + describeValue(value));
+    }
+}
+
+void checkNode(const json& node, const std::string& field, const GltfDiagnostics& diagnostics) {
+    requireNumbers(node, field, "matrix", 16, diagnostics);
+    requireNumbers(node, field, "translation", 3, diagnostics);
+    requireNumbers(node, field, "rotation", 4, diagnostics);
+    requireNumbers(node, field, "scale", 3, diagnostics);
+    for (const char* key : {"mesh", "camera", "skin"}) requireIndexMember(node, field, key, diagnostics);
+    if (node.contains("children")) {
+        if (!node["children"].is_array()) diagnostics.fail(member(field, "children"), "expected an array of indices");
+        for (size_t c = 0; c < node["children"].size(); ++c) {
+            requireIndex(node["children"][c], indexed(member(field, "children"), c), diagnostics);
+        }
+    }
+    if (node.contains("matrix")) {
+        // Column-major: the last row is entries 3, 7, 11 and 15.
+        const json& matrix = node["matrix"];
+        if (matrix[3] != 0.0 || matrix[7] != 0.0 || matrix[11] != 0.0 || matrix[15] != 1.0) {
+            diagnostics.fail(member(field, "matrix"), "must be affine: its last row (entries 3, 7, 11, 15) "
+                                                      "must be 0 0 0 1, got " +
+                                                          describeValue(matrix[3]) + " " + describeValue(matrix[7]) +
+                                                          " " + describeValue(matrix[11]) + " " +
+                                                          describeValue(matrix[15]));
+        }
+    }
+    if (node.contains("rotation")) {
+        double lengthSquared = 0.0;
+        for (const json& entry : node["rotation"]) lengthSquared += entry.get<double>() * entry.get<double>();
+        const double length = std::sqrt(lengthSquared);
+        if (!(std::abs(length - 1.0) <= kUnitQuaternionTolerance)) {
+            diagnostics.fail(member(field, "rotation"), "must be a unit quaternion (x, y, z, w), got length " +
+                                                            formatNumber(length));
+        }
+    }
+}
+
+void checkCamera(const json& camera, const std::string& field, const GltfDiagnostics& diagnostics) {
+    if (!camera.contains("perspective") || !camera["perspective"].is_object()) return;
+    const json& perspective = camera["perspective"];
+    const std::string perspectiveField = member(field, "perspective");
+    requireAbove(perspective, perspectiveField, "aspectRatio", 0.0, "0", diagnostics);
+    requireAbove(perspective, perspectiveField, "yfov", 0.0, "0", diagnostics);
+    requireAbove(perspective, perspectiveField, "znear", 0.0, "0", diagnostics);
+    if (perspective.contains("znear")) {
+        const double znear = perspective["znear"].get<double>();
+        requireAbove(perspective, perspectiveField, "zfar", znear, "znear (" + formatNumber(znear) + ")", diagnostics);
+    }
+}
+
+void checkMaterial(const json& material, const std::string& field, GltfDiagnostics& diagnostics) {
+    requireNumbers(material, field, "emissiveFactor", 3, diagnostics);
+    if (material.contains("pbrMetallicRoughness") && material["pbrMetallicRoughness"].is_object()) {
+        requireNumbers(material["pbrMetallicRoughness"], member(field, "pbrMetallicRoughness"), "baseColorFactor",
+                       4, diagnostics);
+    }
+    requireObjectExtensions(material, field, diagnostics);
+    if (material.contains("extensions")) {
+        checkMedium(material["extensions"], member(field, "extensions"), false, diagnostics);
+    }
+}
+
+// Calls `check` on each object of the top-level array `name`.
+template <typename Check>
+void forEachEntry(const json& document, const char* name, Check check) {
+    if (!document.contains(name) || !document[name].is_array()) return;
+    for (size_t i = 0; i < document[name].size(); ++i) {
+        if (document[name][i].is_object()) check(document[name][i], indexed(name, i));
+    }
+}
+
+}  // namespace
+
+bool isUnderstoodExtension(std::string_view extension) {
+    return std::find(kUnderstoodExtensions.begin(), kUnderstoodExtensions.end(), extension) !=
+           kUnderstoodExtensions.end();
+}
+
+void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
+    refuseNulls(document, "", diagnostics);
+    requireObjectExtensions(document, "", diagnostics);
+    if (document.contains("extensions")) {
+        const json& extensions = document["extensions"];
+        checkMedium(extensions, "extensions", true, diagnostics);
+        if (extensions.contains(kBackgroundExtension)) {
+            checkOwnMembers(extensions[kBackgroundExtension], member("extensions", kBackgroundExtension),
+                            kBackgroundMembers, diagnostics);
+        }
+        if (extensions.contains(kPunctualLightsExtension)) {
+            const json& lights = extensions[kPunctualLightsExtension];
+            if (lights.contains("lights") && !lights["lights"].is_array()) {
+                diagnostics.fail(member(member("extensions", kPunctualLightsExtension), "lights"),
+                                 "expected an array, got " + describeValue(lights["lights"]));
+            }
+        }
+    }
+    forEachEntry(document, "nodes", [&](const json& node, const std::string& field) {
+        checkNode(node, field, diagnostics);
+        requireObjectExtensions(node, field, diagnostics);
+    });
+    forEachEntry(document, "cameras",
+                 [&](const json& camera, const std::string& field) { checkCamera(camera, field, diagnostics); });
+    forEachEntry(document, "materials",
+                 [&](const json& material, const std::string& field) { checkMaterial(material, field, diagnostics); });
+    forEachEntry(document, "meshes", [&](const json& mesh, const std::string& field) {
+        if (!mesh.contains("primitives") || !mesh["primitives"].is_array() || mesh["primitives"].empty()) {
+            diagnostics.fail(member(field, "primitives"), "a mesh needs an array of at least one primitive");
+        }
+    });
+}
+
+}  // namespace vkdr
