@@ -121,11 +121,12 @@ std::string targetFile(const std::string& target) {
     return equals == std::string::npos ? target : target.substr(equals + 1);
 }
 
-// Once the inputs have been checked, before the first iteration: with --overwrite,
-// nothing of the old run is left for the new one to mix with.
-void clearOldRun(const OptimizeCommandOptions& options, bool experiment) {
-    throwIfInterrupted();
-    if (options.overwrite) removeRunFiles(options.out, experiment);
+// With --overwrite, nothing of the old run is left for the new one to mix with; the
+// files go just before the new run writes its first, so a run that fails before then
+// leaves the old one whole.
+std::function<void()> oldRunRemover(const OptimizeCommandOptions& options, bool experiment) {
+    if (!options.overwrite) return {};
+    return [out = options.out, experiment] { removeRunFiles(out, experiment); };
 }
 
 std::string metricsText(const std::vector<Metric>& metrics) {
@@ -211,7 +212,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     job.description = {options.commandLine, context.description().name};
     RenderedLossGradient lossGradient(context, scene, std::move(views), options.optimize.parameters,
                                       options.settings, loss);
-    clearOldRun(options, false);
+    job.replaceOldRun = oldRunRemover(options, false);
     ProgressBar bar("optimize");
     OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
     bar.finish();
@@ -272,11 +273,11 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
                  experiment.optimize.iterations, optimizerKindName(experiment.optimize.optimizer).c_str(),
                  context.description().name.c_str());
 
-    clearOldRun(options, true);
     ProgressBar bar("optimize");
     OptimizationReport report = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
                                               progressOn(bar, experiment.optimize.iterations),
-                                              {options.commandLine, context.description().name});
+                                              {options.commandLine, context.description().name},
+                                              oldRunRemover(options, true));
     bar.finish();
     requireNoValidationMessages(context);
     printOutputs(options.out, report);
@@ -358,9 +359,9 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
                          "checkpoint.json, params.json, ...) is refused unless --overwrite")
             ->default_val(options->out);
     command->add_flag("--overwrite", options->overwrite,
-                      "Replace the run that --out holds: its files (checkpoint included) are removed once the "
-                      "inputs are checked, before the first iteration, so a new run that then fails leaves "
-                      "neither; other files are left");
+                      "Replace the run that --out holds: its files (checkpoint included) are removed just "
+                      "before the new run writes its first (the log, after iteration 0), so a run that fails "
+                      "or is stopped before then leaves the old one whole; other files are left");
     command
         ->add_option("--checkpoint-every", options->optimize.checkpointEvery,
                      "Write DIR/checkpoint.json every K iterations (0: never); a stopped run loses at most K")

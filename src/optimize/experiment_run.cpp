@@ -109,7 +109,8 @@ std::vector<std::pair<std::string, std::string>> heldOutSettings(const std::vect
 OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
                                  const std::filesystem::path& outputDirectory, bool resume,
                                  const std::function<void(const IterationRecord&)>& progress,
-                                 const RunDescription& description) {
+                                 const RunDescription& description,
+                                 const std::function<void()>& replaceOldRun) {
     prepareExperimentScene(experiment, scene);
     const std::vector<std::string>& names = experiment.optimize.parameters;
 
@@ -124,6 +125,7 @@ OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, con
     job.resume = resume;
     job.trueValues = truth;
     job.description = description;
+    job.replaceOldRun = replaceOldRun;
     job.settings = heldOutSettings(heldOut);
     job.measure = [&](const Scene& current, uint32_t) {
         return experimentMetrics(current, heldOut, backend, names, truth);

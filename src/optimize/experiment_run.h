@@ -39,10 +39,12 @@ inline constexpr uint32_t kHeldOutSeedOffset = 0x40000000u;
 // parameter's relative L2 error against its true values.
 // With `resume` the optimisation continues from the directory's checkpoint, which must
 // come from the same experiment file, scene and settings.
-// The report's parameters carry their true values.
+// The report's parameters carry their true values. `replaceOldRun` is
+// OptimizationJob::replaceOldRun.
 OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
                                  const std::filesystem::path& outputDirectory, bool resume = false,
                                  const std::function<void(const IterationRecord&)>& progress = {},
-                                 const RunDescription& description = {});
+                                 const RunDescription& description = {},
+                                 const std::function<void()>& replaceOldRun = {});
 
 }  // namespace vkdr

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -91,7 +92,7 @@ void requireFits(const std::filesystem::path& file, const LoopState& state, cons
 
 std::optional<LoopState> resumeState(const OptimizationJob& job, const Scene& scene, const RunIdentity& identity) {
     if (!job.resume) {
-        requireRunDirectoryFor(job.outputDirectory, RunStart::New);
+        requireRunDirectoryFor(job.outputDirectory, job.replaceOldRun ? RunStart::Overwrite : RunStart::New);
         return std::nullopt;
     }
     requireRunDirectoryFor(job.outputDirectory, RunStart::Resume);
@@ -146,13 +147,19 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     removeStaleTemporaries(directory);  // a killed run's partial writes
     IterationLog log = resume ? IterationLog(directory / "log.jsonl", resume->losses)
                               : IterationLog(directory / "log.jsonl");
+    std::function<void()> replaceOldRun = job.replaceOldRun;
+    auto writing = [&] {
+        if (replaceOldRun) std::exchange(replaceOldRun, {})();
+    };
     OptimizeCallbacks callbacks;
     callbacks.measure = job.measure;
     callbacks.iterationDone = [&](const IterationRecord& record) {
+        writing();
         log.append(record);
         if (progress) progress(record);
     };
     callbacks.checkpoint = [&](const LoopState& state) {
+        writing();
         writeCheckpoint(directory / kCheckpointFileName, {identity, state});
     };
 
@@ -170,6 +177,7 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     report.largestDifference = difference.largestDifference;
     std::vector<Image> startRenders = startImages(lossGradient, scene, job, report);
 
+    writing();
     writeText(directory / "params.json", parametersJson(scene, job.options.parameters));
     writeSceneWithParameters(job.sceneFile, scene, directory / "scene.gltf");
     writeExr(directory / "final.exr", finalImage);

@@ -33,6 +33,11 @@ struct OptimizationJob {
     // Figures measured at each iteration's values besides the loss (OptimizeCallbacks::measure):
     // logged, charted in report.html and shown by the progress callback.
     std::function<std::vector<Metric>(const Scene& scene, uint32_t iteration)> measure;
+    // For --overwrite: removes the run the directory holds (optimize/run_directory.h).
+    // Given, the directory may hold another run; it is called once, just before this run
+    // writes its first file (log.jsonl, after iteration 0), so that a run that fails or
+    // is stopped before then leaves the old one whole.
+    std::function<void()> replaceOldRun;
 };
 
 struct OptimizationReport {

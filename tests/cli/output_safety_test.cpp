@@ -150,6 +150,19 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
     EXPECT_EQ(count, 3u);
     EXPECT_EQ(slurp(out / "notes.txt"), "mine");
 
+    // A run that fails before it writes anything leaves the run it was to replace whole.
+    // Here its first step overflows: against a black target every path's gradient with
+    // respect to sigma_a is <= 0 (absorption only darkens), so the step is +1e300 times
+    // a positive number, whatever the samples.
+    const std::string replacedLog = slurp(out / "log.jsonl"), replacedParams = slurp(out / "params.json");
+    fs::path black = dir_ / "black.exr";
+    ASSERT_EQ(run("render " + fog() + small() + " --set lights/light/emission=0 -o " + black.string()).exitCode, 0);
+    RunResult failed = run(optimizeCommand(black) + " --optimizer sgd --lr 1e300 --overwrite --out " + out.string());
+    EXPECT_EQ(failed.exitCode, 2) << failed.err;
+    EXPECT_NE(failed.err.find("iteration 0"), std::string::npos) << failed.err;
+    EXPECT_EQ(slurp(out / "log.jsonl"), replacedLog);
+    EXPECT_EQ(slurp(out / "params.json"), replacedParams);
+
     // --overwrite removes only the run's files: a scene.blend or notes are the user's.
     std::ofstream(out / "scene.bin") << "old run";
     std::ofstream(out / "scene.materials1.emission_grid.vdb") << "old run";
