@@ -159,13 +159,13 @@ std::optional<std::string> whyTooLarge(const BenchSceneSource& source, uint64_t 
     return std::nullopt;
 }
 
-Scene loadBenchScene(const BenchSceneSource& source) {
+LoadedScene loadBenchScene(const BenchSceneSource& source) {
     if (!source.file.empty()) {
-        Scene scene = loadScene(source.file).scene;
+        LoadedScene loaded = loadScene(source.file);
         if (source.plumeResolution > 0) {
-            replaceGridsWithPlume(scene, source);
+            replaceGridsWithPlume(loaded.scene, source);
         }
-        return scene;
+        return loaded;
     }
     static std::atomic<int> counter{0};
     std::filesystem::path file = std::filesystem::temp_directory_path() /
@@ -175,7 +175,7 @@ Scene loadBenchScene(const BenchSceneSource& source) {
         writeRoomScene({source.roomTriangles, file, kRoomFog});
         Scene scene = loadScene(file).scene;
         std::filesystem::remove(file, ignored);
-        return scene;
+        return {std::move(scene), {}, {}};
     } catch (...) {
         std::filesystem::remove(file, ignored);
         throw;

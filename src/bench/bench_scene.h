@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/load_scene.h"
 #include "scene/scene.h"
 
 namespace vkdr {
@@ -51,7 +52,8 @@ std::optional<std::string> whyTooLarge(const BenchSceneSource& source, uint64_t 
                                        uint64_t deviceHeapBytes, bool deviceIsHost);
 
 // Loads (or generates) the scene; the room's .glb goes through a temporary file, the
-// plume stays in memory.
-Scene loadBenchScene(const BenchSceneSource& source);
+// plume stays in memory. The files read besides the scene's own are those of a glTF
+// source (LoadedScene::externalFiles); none for a generated one.
+LoadedScene loadBenchScene(const BenchSceneSource& source);
 
 }  // namespace vkdr

@@ -70,8 +70,12 @@ int runBench(BenchOptions options) {
         };
         progress(0.0);
         resetPeakHostResidentBytes();
-        Scene scene = loadBenchScene(source);
-        report.scenes.push_back(benchmarkScene(context, source.name, scene, options.settings, progress));
+        LoadedScene loaded = loadBenchScene(source);
+        if (!options.json.empty()) {
+            requireOutputsAreNotInputs({{"--json", options.json}}, loaded.externalFiles,
+                                       "a file that scene " + source.name + " reads");
+        }
+        report.scenes.push_back(benchmarkScene(context, source.name, loaded.scene, options.settings, progress));
     }
     bar.finish();
     requireNoValidationMessages(context);

@@ -57,7 +57,7 @@ TEST(BenchScene, PlumeNamesOutsideTheGeneratorsRangeAreErrorsNamingThem) {
 
 TEST(BenchScene, Plume64IsTheShippedPlumeScene) {
     Scene shipped = loadScene(kScenes / "cornell_plume.gltf").scene;
-    Scene generated = loadBenchScene(resolveBenchScene("plume_64", kScenes));
+    Scene generated = loadBenchScene(resolveBenchScene("plume_64", kScenes)).scene;
     ASSERT_EQ(generated.densityGrids.size(), 1u);
     const SceneDensityGrid& grid = generated.densityGrids[0];
     EXPECT_EQ(grid.grid.size, shipped.densityGrids[0].grid.size);
@@ -75,7 +75,7 @@ TEST(BenchScene, Plume64IsTheShippedPlumeScene) {
 
 TEST(BenchScene, PlumesOfOtherResolutionsFillTheSameBox) {
     const Scene shipped = loadScene(kScenes / "cornell_plume.gltf").scene;
-    const Scene plume = loadBenchScene(resolveBenchScene("plume_24", kScenes));
+    const Scene plume = loadBenchScene(resolveBenchScene("plume_24", kScenes)).scene;
     const SceneDensityGrid& grid = plume.densityGrids[0];
     EXPECT_EQ(grid.grid.size, glm::ivec3(24));
     EXPECT_EQ(grid.file, "plume_24");
@@ -91,7 +91,7 @@ TEST(BenchScene, PlumesOfOtherResolutionsFillTheSameBox) {
 }
 
 TEST(BenchScene, GeneratedRoomHasAboutTheRequestedTriangles) {
-    Scene scene = loadBenchScene(resolveBenchScene("room_3k", kScenes));
+    Scene scene = loadBenchScene(resolveBenchScene("room_3k", kScenes)).scene;
     EXPECT_NEAR(double(scene.triangles.size()), 3000.0, 0.05 * 3000.0);
     EXPECT_GE(scene.sceneMedium, 0);
 }

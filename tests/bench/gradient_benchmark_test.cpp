@@ -40,7 +40,7 @@ TEST(BenchGradientParameter, NoneWithoutAMediumThatScattersOrAbsorbs) {
 
 TEST(BenchGradientParameter, OfTheShippedScenes) {
     auto parameterOf = [](const char* name) {
-        return benchGradientParameter(loadBenchScene(resolveBenchScene(name, VKDR_TEST_SCENES_DIR)));
+        return benchGradientParameter(loadBenchScene(resolveBenchScene(name, VKDR_TEST_SCENES_DIR)).scene);
     };
     EXPECT_EQ(parameterOf("cornell_fog"), "media/fog/sigma_s");
     EXPECT_EQ(parameterOf("cornell_smoke"), "media/smoke/sigma_s");
@@ -55,7 +55,7 @@ TEST(BenchmarkGradient, PointsFromHalfTheValueBackToTheTargets) {
     // noise is at most about 0.5 (docs/performance.md's 64x64 at 16 spp gave 0.08), so
     // the mean of 6 is at least about 5 standard errors from 0; asked for: more than 2.
     VulkanContext context(ContextOptions{});
-    Scene scene = loadBenchScene(resolveBenchScene("cornell_fog", VKDR_TEST_SCENES_DIR));
+    Scene scene = loadBenchScene(resolveBenchScene("cornell_fog", VKDR_TEST_SCENES_DIR)).scene;
     Bvh bvh = buildBvh(scene.positions, scene.triangles);
     RenderSettings settings;
     settings.width = 32;

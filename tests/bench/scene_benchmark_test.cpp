@@ -33,7 +33,7 @@ BenchSettings tinySettingsWithoutGradientNoise() {
 }
 
 SceneBenchmark benchmarkShippedScene(const VulkanContext& context, const char* name, const BenchSettings& settings) {
-    Scene scene = loadBenchScene(resolveBenchScene(name, VKDR_TEST_SCENES_DIR));
+    Scene scene = loadBenchScene(resolveBenchScene(name, VKDR_TEST_SCENES_DIR)).scene;
     double lastProgress = 0.0;
     SceneBenchmark result = benchmarkScene(context, name, scene, settings, [&](double fraction) {
         EXPECT_GE(fraction, lastProgress);
@@ -45,7 +45,7 @@ SceneBenchmark benchmarkShippedScene(const VulkanContext& context, const char* n
 
 TEST(SceneBenchmark, ReportsEveryStageOfATinyRender) {
     VulkanContext context(ContextOptions{});
-    Scene scene = loadBenchScene(resolveBenchScene("cornell_fog", VKDR_TEST_SCENES_DIR));
+    Scene scene = loadBenchScene(resolveBenchScene("cornell_fog", VKDR_TEST_SCENES_DIR)).scene;
     SceneBenchmark result = benchmarkShippedScene(context, "cornell_fog", tinySettings());
 
     EXPECT_EQ(result.triangles, scene.triangles.size());
@@ -95,7 +95,7 @@ TEST(SceneBenchmark, CountsTheVoxelsOfAPlumeAndTimesItsMajorantsAndItsDensityAlo
     const BenchSettings settings = tinySettingsWithoutGradientNoise();
     SceneBenchmark plume = benchmarkShippedScene(context, "plume_16", settings);
     ASSERT_TRUE(plume.densityGrids.has_value());
-    const Scene scene = loadBenchScene(resolveBenchScene("plume_16", VKDR_TEST_SCENES_DIR));
+    const Scene scene = loadBenchScene(resolveBenchScene("plume_16", VKDR_TEST_SCENES_DIR)).scene;
     const std::vector<float>& values = scene.densityGrids[0].grid.values;
     EXPECT_EQ(plume.densityGrids->voxels, 16u * 16u * 16u);
     EXPECT_EQ(plume.densityGrids->activeVoxels,

@@ -249,6 +249,15 @@ TEST_F(OutputSafety, BenchNeverWritesItsReportOverAScene) {
                       (dir_ / "." / "scene.gltf").string(),
                   "a scene bench reads");
     EXPECT_EQ(slurp(scene), before);
+
+    // Nor over a file a scene reads: cornell_plume's density grid.
+    const fs::path plume = dir_ / "cornell_plume.gltf", grid = dir_ / "cornell_plume.vdb";
+    fs::copy_file(std::string(VKDR_TEST_SCENES_DIR) + "/cornell_plume.gltf", plume);
+    fs::copy_file(std::string(VKDR_TEST_SCENES_DIR) + "/cornell_plume.vdb", grid);
+    const std::string gridBefore = slurp(grid);
+    expectRefused("bench " + plume.string() + " --width 8 --spp 1 --iters 1 --gradient-seeds 0 --json " + grid.string(),
+                  "is a file that scene " + plume.string() + " reads");
+    EXPECT_EQ(slurp(grid), gridBefore);
 }
 
 TEST_F(OutputSafety, NumericOptionsMustBeFiniteAndInRange) {
