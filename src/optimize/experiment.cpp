@@ -281,8 +281,14 @@ Experiment readExperiment(const std::filesystem::path& file) {
     experiment.scene = (file.parent_path() / reader.string(document["scene"], "scene")).lexically_normal();
     std::string reason = notRegularFileReason(experiment.scene);
     if (!reason.empty()) reader.fail("scene", experiment.scene.string() + ": " + reason);
-    if (document.contains("views")) experiment.views = reader.strings(document["views"], "views");
-    if (experiment.views.empty()) experiment.views = {""};
+    if (document.contains("views")) {
+        experiment.views = reader.strings(document["views"], "views");
+        if (experiment.views.empty()) {
+            reader.fail("views", "empty: list at least one camera name, or leave \"views\" out for the first camera");
+        }
+    } else {
+        experiment.views = {""};
+    }
     if (document.contains("held_out_views")) {
         experiment.heldOutViews = reader.strings(document["held_out_views"], "held_out_views");
     }
@@ -305,17 +311,34 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
         if (hasCamera(scene, camera.name)) reader.fail("cameras", "the scene already has a camera '" + camera.name + "'");
         scene.cameras.push_back(sceneCamera(camera));
     }
+    // Each camera once, by name: "" in "views" is the first camera.
+    std::vector<std::string> fitted;
     for (const std::string& view : experiment.views) {
         if (scene.cameras.empty()) reader.fail("views", "the scene has no camera; add one under \"cameras\"");
         if (!view.empty() && !hasCamera(scene, view)) {
             reader.fail("views", "no camera '" + view + "'; cameras: " + cameraList(scene));
         }
+        const std::string& name = view.empty() ? scene.cameras.front().name : view;
+        if (std::find(fitted.begin(), fitted.end(), name) != fitted.end()) {
+            reader.fail("views", "camera '" + name + "' is listed twice" +
+                                     (std::find(experiment.views.begin(), experiment.views.end(), "") !=
+                                              experiment.views.end()
+                                          ? " (\"\" is the first camera)"
+                                          : ""));
+        }
+        fitted.push_back(name);
     }
+    std::vector<std::string> heldOut;
     for (const std::string& view : experiment.heldOutViews) {
         if (!hasCamera(scene, view)) reader.fail("held_out_views", "no camera '" + view + "'; cameras: " + cameraList(scene));
-        if (std::find(experiment.views.begin(), experiment.views.end(), view) != experiment.views.end()) {
-            reader.fail("held_out_views", "'" + view + "' is also in \"views\": a held-out view is one the fit never sees");
+        if (std::find(fitted.begin(), fitted.end(), view) != fitted.end()) {
+            reader.fail("held_out_views", "'" + view + "' is also a fitted view (\"views\", whose default is the "
+                                          "first camera): a held-out view is one the fit never sees");
         }
+        if (std::find(heldOut.begin(), heldOut.end(), view) != heldOut.end()) {
+            reader.fail("held_out_views", "camera '" + view + "' is listed twice");
+        }
+        heldOut.push_back(view);
     }
     try {
         requireOptimisableParameters(scene, experiment.optimize.parameters);

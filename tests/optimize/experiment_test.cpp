@@ -184,7 +184,19 @@ TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndGridSettingsWithoutAGrid) 
 
     experiment["views"] = {"camera"};
     experiment["held_out_views"] = {"camera"};
-    expectPrepareError(scratch, experiment, {"held_out_views", "'camera' is also in \"views\""});
+    expectPrepareError(scratch, experiment, {"held_out_views", "'camera' is also a fitted view"});
+    // The default view is the first camera, and so is "".
+    experiment.erase("views");
+    expectPrepareError(scratch, experiment, {"held_out_views", "'camera' is also a fitted view"});
+    experiment["views"] = {""};
+    expectPrepareError(scratch, experiment, {"held_out_views", "'camera' is also a fitted view"});
+
+    // A camera fitted twice would only weigh double; listed twice, it is a slip.
+    experiment.erase("held_out_views");
+    experiment["views"] = {"", "camera"};
+    expectPrepareError(scratch, experiment, {"views", "camera 'camera' is listed twice", "the first camera"});
+    experiment["views"] = json::array();
+    expectReadError(scratch, experiment, {"views", "empty", "leave \"views\" out for the first camera"});
 
     experiment = fogExperiment(scratch.path());
     experiment["smoothness"] = -1.0;
