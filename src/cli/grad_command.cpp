@@ -174,7 +174,7 @@ CommandAction addGradCommand(CLI::App& app) {
     auto options = std::make_shared<GradOptions>();
     addSceneOptions(*command, options->scene);
     command->add_option("--target", options->targets,
-                        "Target image (EXR or PNG); CAMERA=FILE for another camera than the first (repeatable)")
+                        "Target image (EXR, PNG or JPEG); CAMERA=FILE for another camera than the first (repeatable)")
         ->required();
     command->add_option("--param", options->parameters, "Parameter to differentiate, e.g. media/fog/sigma_a "
                                                         "(repeatable)")

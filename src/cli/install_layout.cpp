@@ -20,8 +20,13 @@ fs::path besideInstalledBinary(const fs::path& relative) {
 }  // namespace
 
 std::string docReference(const std::string& title, const std::string& file) {
-    fs::path installed = besideInstalledBinary(fs::path(VKDR_INSTALL_DOCDIR) / file);
-    return "the " + title + ", " + (installed.empty() ? fs::path(VKDR_FULL_DOCDIR) / file : installed).string();
+    fs::path guide = besideInstalledBinary(fs::path(VKDR_INSTALL_DOCDIR) / file);
+    // A binary in the build tree: the source tree's guide, while that tree is there.
+    std::error_code error;
+    if (guide.empty() && fs::exists(fs::path(VKDR_SOURCE_DOCS_DIR) / file, error)) {
+        guide = fs::path(VKDR_SOURCE_DOCS_DIR) / file;
+    }
+    return "the " + title + ", " + (guide.empty() ? fs::path(VKDR_FULL_DOCDIR) / file : guide).string();
 }
 
 std::string shippedScenesDirectory() {

@@ -6,6 +6,7 @@
 #include "cli/command_line_text.h"
 #include "cli/commands.h"
 #include "cli/help_formatter.h"
+#include "cli/parse_error_text.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
         if (e.get_exit_code() == 0) {
             return app.exit(e);  // --help, --version
         }
-        std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
+        std::fprintf(stderr, "error: %s\n", vkdr::parseErrorText(app, e, argc, argv).c_str());
         return 2;
     }
     vkdr::stopOnInterruptSignals();

@@ -86,6 +86,21 @@ TEST_F(CliTest, VersionIsPrinted) {
     EXPECT_EQ(version.out.rfind("vkdiffrender ", 0), 0u) << version.out;
 }
 
+// A command line CLI11 refuses is one line: the reason and where to read more.
+TEST_F(CliTest, UsageErrorsAreOneLineNamingTheHelpToRead) {
+    auto expectOneLine = [&](const std::string& args, const std::string& message) {
+        RunResult r = run(args);
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_EQ(r.err, "error: " + message + "\n");
+    };
+    expectOneLine("frob", "unknown command 'frob'; the commands are render, grad, optimize, bench, info, help "
+                          "(see 'vkdiffrender --help')");
+    expectOneLine("", "A subcommand is required: one of render, grad, optimize, bench, info, help "
+                      "(see 'vkdiffrender --help')");
+    expectOneLine("render", "scene is required; see 'vkdiffrender render --help'");
+    expectOneLine("info --frob", "The following argument was not expected: --frob; see 'vkdiffrender info --help'");
+}
+
 TEST_F(CliTest, MissingSceneFile) {
     expectCleanFailure("render " + (dir_ / "nowhere.gltf").string(), "nowhere.gltf");
 }
