@@ -10,6 +10,7 @@
 
 #include "scene/gltf_lights.h"
 #include "scene/gltf_media.h"
+#include "scene/scene_file_access.h"
 
 namespace vkdr {
 namespace {
@@ -205,6 +206,34 @@ void checkMaterial(const json& material, const std::string& field, GltfDiagnosti
     }
 }
 
+// tinygltf's own message for a data URI that does not decode to byteLength bytes quotes
+// the whole URI, which may be megabytes long.
+void checkDataUriBuffer(const json& buffer, const std::string& field, const GltfDiagnostics& diagnostics) {
+    if (!buffer.contains("uri") || !buffer["uri"].is_string()) return;
+    const std::string& uri = buffer["uri"].get_ref<const std::string&>();
+    const size_t comma = uri.find(',');
+    if (!isDataUri(uri) || comma == std::string::npos || uri.rfind(";base64", comma) != comma - 7) return;
+    const std::string_view payload = std::string_view(uri).substr(comma + 1);
+    const size_t bad = payload.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/=");
+    if (payload.empty()) diagnostics.fail(member(field, "uri"), "the data URI holds no data");
+    if (bad != std::string_view::npos || payload.size() % 4 != 0) {
+        diagnostics.fail(member(field, "uri"), "the data URI's base64 text " +
+                                                   (bad != std::string_view::npos
+                                                        ? "has '" + std::string(1, payload[bad]) + "' at character " +
+                                                              std::to_string(bad + 1)
+                                                        : "is " + std::to_string(payload.size()) +
+                                                              " characters, not a whole number of 4-character groups"));
+    }
+    const size_t padding = payload.size() - (payload.find_last_not_of('=') + 1);
+    const size_t bytes = payload.size() / 4 * 3 - std::min<size_t>(padding, 2);
+    if (buffer.contains("byteLength") && buffer["byteLength"].is_number() &&
+        buffer["byteLength"].get<double>() != double(bytes)) {
+        diagnostics.fail(member(field, "byteLength"), describeValue(buffer["byteLength"]) +
+                                                          ", but the data URI holds " + std::to_string(bytes) +
+                                                          " bytes");
+    }
+}
+
 // Calls `check` on each object of the top-level array `name`.
 template <typename Check>
 void forEachEntry(const json& document, const char* name, Check check) {
@@ -247,6 +276,9 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
                  [&](const json& camera, const std::string& field) { checkCamera(camera, field, diagnostics); });
     forEachEntry(document, "materials",
                  [&](const json& material, const std::string& field) { checkMaterial(material, field, diagnostics); });
+    forEachEntry(document, "buffers", [&](const json& buffer, const std::string& field) {
+        checkDataUriBuffer(buffer, field, diagnostics);
+    });
     forEachEntry(document, "meshes", [&](const json& mesh, const std::string& field) {
         if (!mesh.contains("primitives") || !mesh["primitives"].is_array() || mesh["primitives"].empty()) {
             diagnostics.fail(member(field, "primitives"), "a mesh needs an array of at least one primitive");

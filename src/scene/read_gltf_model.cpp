@@ -27,10 +27,20 @@ std::string lowercaseExtension(const std::filesystem::path& file) {
     return extension;
 }
 
-// tinygltf ends most messages with a newline; one-line messages read better.
+// tinygltf ends most messages with a newline, and quotes a data URI whole (megabytes,
+// perhaps); one-line messages with the URI's start read better.
 std::string trimmed(std::string text) {
     while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) {
         text.pop_back();
+    }
+    constexpr size_t kShownCharacters = 48;
+    for (size_t start = text.find("data:"); start != std::string::npos; start = text.find("data:", start + 1)) {
+        size_t end = text.find_first_of(" '\"\n", start);
+        if (end == std::string::npos) end = text.size();
+        if (end - start > kShownCharacters + 16) {
+            text.replace(start + kShownCharacters, end - start - kShownCharacters,
+                         "... (" + std::to_string(end - start) + " characters)");
+        }
     }
     return text;
 }

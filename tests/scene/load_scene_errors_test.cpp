@@ -265,6 +265,38 @@ TEST(LoadSceneErrors, WhatTinygltfWouldDropIsRefusedNamingTheField) {
                                                                  "expected an array"});
 }
 
+// A buffer's data URI may be megabytes: a message names the field and quotes its start.
+TEST(LoadSceneErrors, DataUriProblemsDoNotQuoteTheData) {
+    TemporaryDirectory directory;
+    GltfBuilder builder = boxWithMaterial({{"name", "white"}});
+    const json original = json::parse(builder.gltfText());
+    const std::string uri = original["buffers"][0]["uri"];
+    auto withBuffer = [&](const std::string& newUri, size_t byteLength) {
+        json document = original;
+        document["buffers"][0] = {{"uri", newUri}, {"byteLength", byteLength}};
+        return writeText(directory / "buffer.gltf", document.dump());
+    };
+    const size_t bytes = original["buffers"][0]["byteLength"];
+    expectLoadError(withBuffer(uri, bytes + 4),
+                    {"buffers[0].byteLength", "but the data URI holds " + std::to_string(bytes) + " bytes"});
+    const std::string prefix = "data:application/octet-stream;base64,";
+    expectLoadError(withBuffer(prefix + "AA!A", 3), {"buffers[0].uri", "has '!' at character 3"});
+    expectLoadError(withBuffer(prefix + "AAA", 2), {"buffers[0].uri", "not a whole number of 4-character groups"});
+    expectLoadError(withBuffer(prefix, 0), {"buffers[0].uri", "holds no data"});
+    // A media type tinygltf does not know: its message, with the URI cut short.
+    const std::string unknownType = "data:foo/bar;base64," + uri.substr(prefix.size());
+    try {
+        loadScene(withBuffer(unknownType, bytes));
+        ADD_FAILURE() << "a data URI of an unknown media type loaded";
+    } catch (const Error& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("data:foo/bar;base64,"), std::string::npos) << message;
+        EXPECT_NE(message.find("... (" + std::to_string(unknownType.size()) + " characters)"), std::string::npos)
+            << message;
+        EXPECT_EQ(message.find(unknownType.substr(60)), std::string::npos) << message;
+    }
+}
+
 TEST(LoadSceneErrors, NodesOutsideTheGltfSchema) {
     TemporaryDirectory directory;
     auto boxAt = [&](json node) {
