@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 
 #include "core/sample_statistics.h"
 #include "diff/gradient_over_seeds.h"
@@ -26,12 +27,13 @@ double lossWith(RenderedLossGradient& lg, const Scene& scene, const std::string&
 }
 
 // dL/dx by a central difference, or near a bound by the second-order one-sided
-// difference that stays inside it.
+// difference that stays inside it. The largest float bounds every range: a parameter set
+// is a float.
 double finiteDifference(const std::function<double(double)>& loss, double x, double h, const ValueRange& range) {
     if (x - h < range.lower) {
         return (-3.0 * loss(x) + 4.0 * loss(x + h) - loss(x + 2.0 * h)) / (2.0 * h);
     }
-    if (x + h > range.upper) {
+    if (x + h > std::min(range.upper, double(std::numeric_limits<float>::max()))) {
         return (3.0 * loss(x) - 4.0 * loss(x - h) + loss(x - 2.0 * h)) / (2.0 * h);
     }
     return (loss(x + h) - loss(x - h)) / (2.0 * h);

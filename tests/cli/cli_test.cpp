@@ -203,6 +203,10 @@ TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
         }
         EXPECT_NEAR(row["step"].get<double>(), 0.15 * 0.002, 1e-9);
     }
+    // Near the largest float the difference steps down only, not past float's range.
+    RunResult huge = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                         " --param media/fog/sigma_s --set media/fog/sigma_s=3e38 --spp 1 --check --check-seeds 2");
+    EXPECT_EQ(huge.exitCode, 0) << huge.err;
 }
 
 TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
