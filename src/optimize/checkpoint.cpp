@@ -76,8 +76,19 @@ public:
     }
 
     Json parse() const {
-        Json document = Json::parse(readRegularFile(file_), nullptr, false);
-        if (document.is_discarded() || !document.is_object()) fail("", "not a JSON object");
+        const std::string text = readRegularFile(file_);
+        if (text.find_first_not_of(" \t\r\n") == std::string::npos) fail("", "empty");
+        Json document;
+        try {
+            document = Json::parse(text);
+        } catch (const Json::parse_error& error) {
+            // nlohmann's message starts with its own error id: "[json.exception.parse_error.101] ".
+            const std::string message = error.what();
+            const size_t idEnd = message.find("] ");
+            fail("", "not valid JSON (damaged or cut short): " +
+                         (idEnd == std::string::npos ? message : message.substr(idEnd + 2)));
+        }
+        if (!document.is_object()) fail("", std::string("expected a JSON object, got ") + document.type_name());
         if (!document.contains("format") ||
             (document["format"] != kFormat && document["format"] != kFormatWithArraysOnly)) {
             fail("format", std::string("not a checkpoint (expected \"") + kFormat + "\" or \"" +

@@ -218,11 +218,15 @@ TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {
     expectErrorMentioning([&] { runOptimization(loss, scene, job); }, {"--resume", "no checkpoint.json"});
 
     writeBytes(scratch / kCheckpointFileName, "{\"format\": \"vkdiffrender optimize checkpoint 1\", \"run\": {");
-    expectErrorMentioning([&] { runOptimization(loss, scene, job); }, {"checkpoint.json", "not a JSON object"});
+    expectErrorMentioning([&] { runOptimization(loss, scene, job); },
+                          {"checkpoint.json", "not valid JSON (damaged or cut short): parse error at line 1, column"});
+    writeBytes(scratch / kCheckpointFileName, "\n");
+    expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); }, {"checkpoint.json: empty"});
     writeBytes(scratch / kCheckpointFileName, "{\"format\": \"vkdiffrender optimize checkpoint 1\", \"run\": {}}");
     expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); }, {"checkpoint.json", "iteration"});
     writeBytes(scratch / kCheckpointFileName, "[1, 2]");
-    expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); }, {"checkpoint.json"});
+    expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); },
+                          {"checkpoint.json", "expected a JSON object, got array"});
 }
 
 // Only a regular file is read: a directory is refused, and a FIFO without waiting for a writer.
