@@ -58,16 +58,27 @@ std::string shapeText(const std::vector<size_t>& shape) {
     return text + ")";
 }
 
-// Numbers as numpy makes float32 of them; None (which numpy would make NaN) is refused.
+// Numbers as numpy makes float32 of them. Refused, with a TypeError naming `what`: None
+// (numpy would make it NaN), text (numpy would parse "0.1"), complex numbers (numpy
+// would drop their imaginary part), and what numpy cannot make an array of numbers of,
+// with numpy's or PyTorch's reason (a tensor that requires grad, say).
 FloatArray floatArrayOf(const py::object& value, const std::string& what) {
-    if (value.is_none()) {
-        throw py::type_error(what + ": expected numbers, got None");
+    auto refuse = [&](const std::string& got) { throw py::type_error(what + ": expected numbers, got " + got); };
+    if (value.is_none()) refuse("None");
+    if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) refuse("text");
+    py::array numbers;
+    try {
+        numbers = py::module_::import("numpy").attr("asarray")(value);
+    } catch (py::error_already_set& error) {
+        refuse(std::string(py::str(value.get_type().attr("__name__"))) + " (" +
+               std::string(py::str(error.type().attr("__name__"))) + ": " + std::string(py::str(error.value())) +
+               ")");
     }
-    FloatArray array = FloatArray::ensure(value);
-    if (!array) {
-        throw py::error_already_set();
+    const char kind = numbers.dtype().kind();
+    if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
+        refuse("an array of dtype " + std::string(py::str(numbers.dtype())));
     }
-    return array;
+    return FloatArray(numbers);
 }
 
 std::vector<size_t> shapeOf(const FloatArray& array) {

@@ -111,6 +111,7 @@ void readMaterials(const tinygltf::Model& model, GltfDiagnostics& diagnostics, S
         if (!source.emissiveFactor.empty()) {
             material.emission = emission(source, i, diagnostics);
         }
+        material.emitter = material.isEmissive();
         material.emissionTexture = textures.textureFor(source.emissiveTexture, field + ".emissiveTexture");
         scene.materials.push_back(std::move(material));
     }

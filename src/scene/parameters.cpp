@@ -94,7 +94,7 @@ auto findStorage(SceneType& scene, std::string_view name) {
             const size_t size = parsed->description->channels * texels.size();
             storage = ParameterStorage<Float>{glm::value_ptr(texels.front()), size, parsed->description,
                                               size_t(glm::vec4::length())};
-        } else if (kind == ParameterKind::Emission) {
+        } else if (kind == ParameterKind::Emission && material.emitter) {
             storage = packedStorage<Float>(glm::value_ptr(material.emission), kind);
         }
     }
@@ -137,7 +137,7 @@ std::vector<std::string> parameterNames(const Scene& scene) {
         }
     }
     for (const Material& material : scene.materials) {
-        if (!material.isMediumBoundary() && material.isEmissive()) {
+        if (!material.isMediumBoundary() && material.emitter) {
             names.push_back(parameterName(ParameterKind::Emission, material.name));
         }
     }

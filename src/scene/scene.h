@@ -36,6 +36,9 @@ struct Material {
     glm::vec3 emission{0.0f};             // emitted radiance: emissiveFactor * emissive_strength
     int32_t emissionTexture = -1;         // index into Scene::textures, multiplies emission
     bool doubleSided = false;             // emits from both sides when true, else the front only
+    // Emits in the file as loaded: its emission is the parameter lights/<name>/emission,
+    // whatever value that is later set to (0 included), so the names stay the same.
+    bool emitter = false;
     int32_t interiorMedium = kNoMedium;   // >= 0: a pass-through boundary enclosing media[i]
     bool isMediumBoundary() const { return interiorMedium != kNoMedium; }
     bool isEmissive() const { return emission != glm::vec3(0.0f); }

@@ -19,6 +19,7 @@ Scene sceneWithTwoOfEverything() {
     white.name = "white";
     light.name = "light";
     light.emission = glm::vec3(1.0f);
+    light.emitter = true;
     light.baseColorTexture = 1;
     scene.materials = {white, light};
     PunctualLight bulb, sun;

@@ -74,6 +74,32 @@ def test_bad_parameter_values_are_refused(scene, value, problem):
     assert np.array_equal(scene["media/fog/sigma_a"], before)
 
 
+@pytest.mark.parametrize("value,problem", [
+    (None, "got None"),
+    ("0.1", "got text"),
+    (b"0.1", "got text"),
+    ({}, "got an array of dtype object"),
+    (1 + 2j, "got an array of dtype complex128"),
+    (np.array(["1", "2", "3"]), "got an array of dtype <U1"),
+    ([0.1, "x", 0.2], "got an array of dtype <U32"),
+])
+def test_values_that_are_not_numbers_are_type_errors_naming_the_parameter(scene, value, problem):
+    """numpy would parse text, make None NaN and drop an imaginary part: each is refused."""
+    before = scene["media/fog/sigma_a"].copy()
+    with pytest.raises(TypeError, match="^media/fog/sigma_a: expected numbers, " + re.escape(problem) + "$"):
+        scene["media/fog/sigma_a"] = value
+    assert np.array_equal(scene["media/fog/sigma_a"], before)
+    with pytest.raises(TypeError, match="^the image adjoint: expected numbers, "):
+        scene.backpropagate(value, ["media/fog/sigma_a"], width=WIDTH)
+
+
+def test_what_numpy_cannot_convert_is_refused_with_its_reason(scene):
+    torch = pytest.importorskip("torch")
+    with pytest.raises(TypeError, match=r"^media/fog/sigma_a: expected numbers, got Tensor \(RuntimeError: "
+                                        r"Can't call numpy\(\) on Tensor that requires grad"):
+        scene["media/fog/sigma_a"] = torch.tensor([0.1] * 3, requires_grad=True)
+
+
 @pytest.mark.parametrize("call,problem", [
     (lambda s: s.render(spp=0, width=WIDTH), "spp"),
     (lambda s: s.render(width=-1), "width"),

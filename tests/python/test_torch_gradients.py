@@ -109,3 +109,33 @@ def test_backward_takes_the_values_of_its_forward_pass(scene):
     expected = scene.backpropagate(np.ones((WIDTH, WIDTH, 3), np.float32), ["media/fog/sigma_a"], spp=4,
                                    width=WIDTH, seed=11)
     assert sigma_a.grad.item() == pytest.approx(expected["media/fog/sigma_a"].sum(), rel=1e-6)
+
+
+def test_a_light_set_to_zero_is_restored_for_the_backward_pass(scene):
+    """A light whose emission a forward pass renders at 0 stays a parameter, so the backward
+    pass sets it back to 0: the gradient is that of the black image (0), not of the lit
+    scene set in between."""
+    emission = scene["lights/light/emission"].copy()
+    sigma_a = torch.tensor(0.05, requires_grad=True)
+    image = vt.render(scene, {"lights/light/emission": torch.zeros(3), "media/fog/sigma_a": sigma_a}, spp=2,
+                      width=WIDTH)
+    assert "lights/light/emission" in scene
+    scene["lights/light/emission"] = emission
+    ((image - 1.0) ** 2).mean().backward()
+    assert sigma_a.grad.item() == 0.0
+    assert np.all(scene["lights/light/emission"] == 0.0)
+    scene["lights/light/emission"] = emission
+
+
+@pytest.mark.parametrize("parameters,settings", [
+    ({"media/fog/sigma_a": torch.tensor(0.3), "media/nowhere/sigma_a": torch.tensor(0.1)}, {}),
+    ({"media/fog/sigma_a": torch.tensor(0.3), "media/fog/sigma_s": torch.tensor(float("nan"))}, {}),
+    ({"media/fog/sigma_a": torch.tensor(0.3)}, {"spp": 0}),
+    ({"media/fog/sigma_a": torch.tensor(0.3)}, {"camera": "nobody"}),
+])
+def test_a_failing_forward_pass_leaves_the_scene_as_it_was(scene, parameters, settings):
+    before = {parameter.name: scene[parameter.name].copy() for parameter in scene.parameters()}
+    with pytest.raises(vkdiffrender.Error):
+        vt.render(scene, parameters, width=WIDTH, **settings)
+    for name, value in before.items():
+        assert np.array_equal(scene[name], value), name

@@ -26,6 +26,7 @@ Scene sceneWithEverything() {
     Material light;
     light.name = "light";
     light.emission = glm::vec3(17.0f, 12.0f, 4.0f);
+    light.emitter = true;
     Material boundary;
     boundary.name = "smoke";
     boundary.interiorMedium = 1;

@@ -6,7 +6,8 @@
     loss = ((image - target) ** 2).mean()
     loss.backward()  # sigma_a.grad
 
-The forward pass sets the scene's parameters to the tensors' values and renders. The
+The forward pass sets the scene's parameters to the tensors' values and renders (a forward
+pass that fails puts them back as they were). The
 backward pass sets every parameter back to the values the forward pass rendered with and
 hands the upstream gradient dLoss/dI to Scene.backpropagate, which
 replays the paths with random numbers independent of the forward image's: the gradient
@@ -38,9 +39,17 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
 class _Render(torch.autograd.Function):
     @staticmethod
     def forward(ctx, scene, names, settings, *tensors):
-        for name, tensor in zip(names, tensors):
-            scene[name] = tensor.detach().to("cpu", torch.float32).numpy()
-        image = scene.render(**settings)
+        # A pass that fails (an unknown name, a value out of range, a bad keyword) leaves
+        # the scene as it found it.
+        before = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
+        try:
+            for name, tensor in zip(names, tensors):
+                scene[name] = tensor.detach().to("cpu", torch.float32).numpy()
+            image = scene.render(**settings)
+        except BaseException:
+            for name, value in before.items():
+                scene[name] = value
+            raise
         # Every parameter, not only the tensors': the backward pass must differentiate the
         # scene this pass rendered, whatever is set in between (another view, say).
         ctx.values = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
