@@ -40,8 +40,10 @@ struct SceneSession::CachedRenderer {
 };
 
 SceneSession::SceneSession(const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles)
-    // Absolute, so that write() finds the original after the caller changes directory.
-    : file_(std::filesystem::absolute(file)), loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})) {
+    // Absolute, so that write() finds the original after the caller changes directory
+    // (an empty name, which has no absolute path, loadScene refuses).
+    : file_(file.empty() ? file : std::filesystem::absolute(file)),
+      loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})) {
     warnings_ = loaded_.warnings;
     for (std::string& warning : sceneWarnings(loaded_.scene)) {
         warnings_.push_back(std::move(warning));

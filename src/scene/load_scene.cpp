@@ -1,5 +1,6 @@
 #include "scene/load_scene.h"
 
+#include "core/error.h"
 #include "scene/flatten_nodes.h"
 #include "scene/gltf_density_grids.h"
 #include "scene/gltf_diagnostics.h"
@@ -43,6 +44,7 @@ void addSceneMedium(const tinygltf::Model& model, GltfDiagnostics& diagnostics, 
 }  // namespace
 
 LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& access) {
+    if (file.empty()) throw Error("the scene's file name is empty");
     GltfDiagnostics diagnostics(file.string());
     std::vector<std::filesystem::path> externalFiles;
     tinygltf::Model model = readGltfModel(file, access, diagnostics, externalFiles);

@@ -31,10 +31,10 @@ def cli_error(cli, *arguments):
 
 
 def test_messages_are_the_command_lines(cli, fog_scene_file, tmp_path):
-    missing = tmp_path / "missing.gltf"
-    with pytest.raises(vkdiffrender.Error) as raised:
-        vkdiffrender.Scene(missing)
-    assert str(raised.value) == cli_error(cli, "render", str(missing), "-o", str(tmp_path / "a.exr"))
+    for missing in [tmp_path / "missing.gltf", ""]:
+        with pytest.raises(vkdiffrender.Error) as raised:
+            vkdiffrender.Scene(missing)
+        assert str(raised.value) == cli_error(cli, "render", str(missing), "-o", str(tmp_path / "a.exr"))
     scene = vkdiffrender.Scene(fog_scene_file)
     for assignment in ["media/smoke/sigma_a=1", "media/fog/g=1.5", "media/fog/sigma_a=-1"]:
         name, value = assignment.split("=")

@@ -27,6 +27,15 @@ TEST(LoadSceneErrors, MissingFile) {
     expectLoadError(directory / "absent.gltf", {"no such file"});
 }
 
+TEST(LoadSceneErrors, EmptyFileName) {
+    try {
+        loadScene("");
+        ADD_FAILURE() << "an empty file name loaded";
+    } catch (const Error& error) {
+        EXPECT_STREQ(error.what(), "the scene's file name is empty");
+    }
+}
+
 TEST(LoadSceneErrors, MalformedJsonIncludesTheParserMessage) {
     TemporaryDirectory directory;
     expectLoadError(writeText(directory / "broken.gltf", R"({"asset": {"version": "2.0"}, "nodes": [)"),
