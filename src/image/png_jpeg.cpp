@@ -19,6 +19,12 @@
 namespace vkdr {
 namespace {
 
+// stb_image's reason for its last failure; some failures (data cut short) leave none.
+std::string stbReason() {
+    const char* reason = stbi_failure_reason();
+    return reason && *reason ? reason : "damaged or cut short";
+}
+
 [[noreturn]] void failToRead(const std::filesystem::path& file, const std::string& reason) {
     throw Error("cannot read image '" + file.string() + "': " + reason);
 }
@@ -95,18 +101,18 @@ Image readPngOrJpeg(const std::filesystem::path& file) {
 
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))
-        failToRead(file, std::string("not a PNG or JPEG image we can decode (") + stbi_failure_reason() + ")");
+        failToRead(file, "not a PNG or JPEG image we can decode (" + stbReason() + ")");
     if (width <= 0 || height <= 0) failToRead(file, "the image is empty");
     if (size_t(width) * size_t(height) > kMaxImagePixels)
         failToRead(file, std::to_string(width) + " x " + std::to_string(height) + " pixels is too large");
 
     if (stbi_is_16_bit_from_memory(bytes.data(), length)) {
         std::unique_ptr<stbi_us, StbFree> pixels(stbi_load_16_from_memory(bytes.data(), length, &width, &height, &channels, 0));
-        if (!pixels) failToRead(file, stbi_failure_reason());
+        if (!pixels) failToRead(file, stbReason());
         return decode(pixels.get(), width, height, channels, 65535.0f);
     }
     std::unique_ptr<stbi_uc, StbFree> pixels(stbi_load_from_memory(bytes.data(), length, &width, &height, &channels, 0));
-    if (!pixels) failToRead(file, stbi_failure_reason());
+    if (!pixels) failToRead(file, stbReason());
     return decode(pixels.get(), width, height, channels, 255.0f);
 }
 

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 #include "image/atomic_write.h"
 #include "image/image.h"
 #include "image/image_formats.h"
@@ -18,14 +19,18 @@ namespace {
 
 Image smallImage() { return Image{2, 2, std::vector<float>(12, 0.5f)}; }
 
-// Runs f and expects a vkdr::Error whose message names file.
+// Runs f and expects a vkdr::Error whose message names file and gives a reason, in
+// printable text.
 template <typename F>
 void expectErrorNaming(const std::filesystem::path& file, F&& f) {
     try {
         f();
         ADD_FAILURE() << "expected vkdr::Error for " << file;
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find(file.filename().string()), std::string::npos) << e.what();
+        const std::string message = e.what();
+        EXPECT_NE(message.find(file.filename().string()), std::string::npos) << message;
+        EXPECT_NE(message.back(), ' ') << "no reason after the file: " << message;
+        EXPECT_EQ(printableText(message), message);
     }
 }
 
@@ -109,9 +114,34 @@ TEST(ReadImage, TruncatedPng) {
     test::ScratchDirectory dir;
     writePng(dir / "whole.png", Image{32, 32, std::vector<float>(32 * 32 * 3, 0.3f)});
     std::string bytes = test::readBytes(dir / "whole.png");
-    for (size_t length : {size_t(0), size_t(8), bytes.size() / 2, bytes.size() - 13}) {
+    // 33 bytes: the signature and the header chunk, nothing else.
+    for (size_t length : {size_t(0), size_t(8), size_t(33), bytes.size() / 2, bytes.size() - 13}) {
         test::writeBytes(dir / "cut.png", bytes.substr(0, length));
         expectErrorNaming(dir / "cut.png", [&] { readImage(dir / "cut.png"); });
+    }
+}
+
+// Messages may quote a damaged file's own bytes: those that are not printable UTF-8 are
+// written as \xNN, so that the message is one printable line (and a Python str).
+TEST(ReadImage, DamagedBytesInAMessageAreEscaped) {
+    EXPECT_EQ(printableText("a\x03" "b\xf0" "c\n"), "a\\x03b\\xf0c\\x0a");
+    EXPECT_EQ(printableText("sc\xc3\xa8ne \xe2\x82\xac"), "sc\xc3\xa8ne \xe2\x82\xac");  // UTF-8 is kept
+    EXPECT_EQ(printableText("\xc3"), "\\xc3");                                 // a sequence cut short
+    EXPECT_EQ(printableText("\xed\xa0\x80"), "\\xed\\xa0\\x80");              // a UTF-16 surrogate
+    EXPECT_EQ(printableText("\xe0\x80\xaf"), "\\xe0\\x80\\xaf");              // an overlong '/'
+
+    test::ScratchDirectory dir;
+    writeExr(dir / "whole.exr", smallImage());
+    std::string bytes = test::readBytes(dir / "whole.exr");
+    const size_t blue = bytes.find(std::string("B\0", 2));
+    ASSERT_NE(blue, std::string::npos);
+    bytes[blue] = char(0xf0);  // the channel "B" becomes "\xf0"
+    test::writeBytes(dir / "renamed.exr", bytes);
+    try {
+        readImage(dir / "renamed.exr");
+        ADD_FAILURE() << "an EXR without a B channel was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("found G, R, \\xf0"), std::string::npos) << e.what();
     }
 }
 
