@@ -134,7 +134,8 @@ struct RenderKeywords {
 
 #define VKDR_RENDER_KEYWORDS                                                                                \
     py::kw_only(), py::arg("spp") = 16, py::arg("seed") = 0, py::arg("width") = 0, py::arg("height") = 0, \
-        py::arg("max_depth") = 8, py::arg("camera") = "", py::arg("paths_per_pass") = 0, py::arg("equiangular") = true
+        py::arg("max_depth") = 8, py::arg("camera") = "", py::arg("paths_per_pass") = 0,              \
+        py::arg("equiangular").none(false) = true
 
 #define VKDR_RENDER_KEYWORD_PARAMETERS                                                                 \
     int64_t spp, int64_t seed, int64_t width, int64_t height, int64_t maxDepth, const std::string& camera, \
@@ -244,13 +245,25 @@ void bindParameter(py::module_& m) {
         });
 }
 
+// The command line's --device text for `device`: an index (an int, as the command line's
+// digits) or part of a device's name.
+std::string deviceSelector(const py::object& device) {
+    if (py::isinstance<py::int_>(device) && !py::isinstance<py::bool_>(device)) {
+        return std::to_string(device.cast<int64_t>());
+    }
+    if (py::isinstance<py::str>(device)) return device.cast<std::string>();
+    throw py::type_error("device: expected an index or part of a device's name, got " +
+                         std::string(py::str(device.get_type().attr("__name__"))));
+}
+
 void bindScene(py::module_& m) {
     py::class_<SceneSession>(m, "Scene", "A glTF scene loaded onto a Vulkan device (docs/python.md).")
-        .def(py::init([](const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles) {
+        .def(py::init([](const std::filesystem::path& file, const py::object& device, bool allowOutsideFiles) {
+                 const std::string selector = deviceSelector(device);
                  py::gil_scoped_release release;
-                 return std::make_unique<SceneSession>(file, device, allowOutsideFiles);
+                 return std::make_unique<SceneSession>(file, selector, allowOutsideFiles);
              }),
-             py::arg("file"), py::kw_only(), py::arg("device") = "", py::arg("allow_outside_files") = false,
+             py::arg("file"), py::kw_only(), py::arg("device") = "", py::arg("allow_outside_files").none(false) = false,
              "Loads a .gltf or .glb. device: an index or part of a name (vkdiffrender.devices()); "
              "allow_outside_files: let the scene read files outside its own directory.")
         .def_property_readonly("file", &SceneSession::file, "The absolute path the scene was loaded from")

@@ -160,6 +160,24 @@ def test_files_are_checked(scene, fog_scene_file, tmp_path):
         vkdiffrender.Scene(fog_scene_file, device="no such device")
 
 
+def test_a_device_is_an_index_or_part_of_a_name(fog_scene_file):
+    name = vkdiffrender.devices()[0]
+    assert vkdiffrender.Scene(fog_scene_file, device=0).device == name
+    assert vkdiffrender.Scene(fog_scene_file, device=name[:4]).device == name
+    with pytest.raises(vkdiffrender.Error, match="no device has that index"):
+        vkdiffrender.Scene(fog_scene_file, device=len(vkdiffrender.devices()))
+    for wrong in [1.0, True, None]:
+        with pytest.raises(TypeError):
+            vkdiffrender.Scene(fog_scene_file, device=wrong)
+
+
+def test_none_is_no_boolean(scene, fog_scene_file):
+    with pytest.raises(TypeError):
+        vkdiffrender.Scene(fog_scene_file, allow_outside_files=None)
+    with pytest.raises(TypeError):
+        scene.render(width=WIDTH, spp=1, equiangular=None)
+
+
 def test_write_gives_a_scene_that_loads_with_the_values(scene, tmp_path):
     scene["media/fog/sigma_a"] = np.array([0.02, 0.03, 0.04], np.float32)
     scene.write(tmp_path / "fitted.gltf")
