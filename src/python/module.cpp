@@ -99,21 +99,35 @@ Image imageOfArray(const py::object& value, const std::string& what) {
 }
 
 // The command line's check of an integer option (cli/number_options.h), with the
-// keyword's name where the command line names its option.
-uint32_t integerIn(const char* keyword, int64_t value, int64_t low, int64_t high, const std::string& kind = "") {
-    if (value < low || value > high) {
+// keyword's name where the command line names its option. An int, or what Python takes
+// as one (a numpy integer): a float or a bool is a TypeError, not truncated.
+uint32_t integerIn(const char* keyword, const py::object& value, int64_t low, int64_t high,
+                   const std::string& kind = "") {
+    if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) {
+        throw py::type_error(std::string(keyword) + ": expected an integer, got " +
+                             std::string(py::str(value.get_type().attr("__name__"))));
+    }
+    const auto number = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+    if (!number) throw py::error_already_set();
+    auto below = [&](int64_t bound) {
+        return PyObject_RichCompareBool(number.ptr(), py::int_(bound).ptr(), Py_LT) == 1;
+    };
+    auto above = [&](int64_t bound) {
+        return PyObject_RichCompareBool(number.ptr(), py::int_(bound).ptr(), Py_GT) == 1;
+    };
+    if (below(low) || above(high)) {
         const std::string expected =
             kind.empty() ? "an integer from " + std::to_string(low) + " to " + std::to_string(high) : kind;
-        throw Error(std::string(keyword) + ": must be " + expected + ", got " + std::to_string(value));
+        throw Error(std::string(keyword) + ": must be " + expected + ", got " + std::string(py::str(number)));
     }
-    return uint32_t(value);
+    return uint32_t(number.cast<int64_t>());
 }
 
 // The keywords every device call takes, with the command line's defaults.
 struct RenderKeywords {
-    int64_t spp, seed, width, height, maxDepth;
+    py::object spp, seed, width, height, maxDepth;
     std::string camera;
-    int64_t pathsPerPass;
+    py::object pathsPerPass;
     bool equiangular;
 
     RenderSettings settings() const {
@@ -138,8 +152,8 @@ struct RenderKeywords {
         py::arg("equiangular").none(false) = true
 
 #define VKDR_RENDER_KEYWORD_PARAMETERS                                                                 \
-    int64_t spp, int64_t seed, int64_t width, int64_t height, int64_t maxDepth, const std::string& camera, \
-        int64_t pathsPerPass, bool equiangular
+    const py::object &spp, const py::object &seed, const py::object &width, const py::object &height, \
+        const py::object &maxDepth, const std::string &camera, const py::object &pathsPerPass, bool equiangular
 
 #define VKDR_RENDER_KEYWORD_VALUES \
     RenderKeywords { spp, seed, width, height, maxDepth, camera, pathsPerPass, equiangular }

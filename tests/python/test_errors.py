@@ -171,6 +171,19 @@ def test_a_device_is_an_index_or_part_of_a_name(fog_scene_file):
             vkdiffrender.Scene(fog_scene_file, device=wrong)
 
 
+def test_integer_keywords_take_integers_only(scene):
+    """numpy integers are integers; a float (numpy's too) or a bool is a TypeError rather than
+    truncated, and an integer beyond 64 bits gets the keyword's range message."""
+    assert scene.render(width=np.int64(WIDTH), spp=np.uint8(1)).shape == (WIDTH, WIDTH, 3)
+    for keyword, value in [("spp", np.float32(1.7)), ("width", 8.0), ("spp", True)]:
+        with pytest.raises(TypeError, match=f"^{keyword}: expected an integer, got {type(value).__name__}$"):
+            scene.render(**{"width": WIDTH, "spp": 1, keyword: value})
+    with pytest.raises(vkdiffrender.Error, match=r"^spp: must be an integer from 1 to \d+, got 9223372036854775808$"):
+        scene.render(width=WIDTH, spp=2**63)
+    with pytest.raises(vkdiffrender.Error, match=r"^seed: must be a 32-bit unsigned integer .*, got 18446744073709551616$"):
+        scene.render(width=WIDTH, spp=1, seed=2**64)
+
+
 def test_none_is_no_boolean(scene, fog_scene_file):
     with pytest.raises(TypeError):
         vkdiffrender.Scene(fog_scene_file, allow_outside_files=None)
