@@ -179,13 +179,15 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
 
     writing();
     writeText(directory / "params.json", parametersJson(scene, job.options.parameters));
-    writeSceneWithParameters(job.sceneFile, scene, directory / "scene.gltf");
     writeExr(directory / "final.exr", finalImage);
     writePng(directory / "final.png", finalImage);
     writePng(directory / "diff.png", difference.image);
     writeText(directory / "loss.svg", lossChartSvg(report.result.losses, lossKindName(job.loss)));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
     writeText(directory / "report.html", reportHtml(runReportPage(job, report, std::move(startRenders), seconds)));
+    // Last: it reads the scene file again, which may have changed during a long run
+    // (scene/write_scene.h refuses that), and the other outputs stand without it.
+    writeSceneWithParameters(job.sceneFile, scene, directory / "scene.gltf");
     return report;
 }
 

@@ -46,11 +46,12 @@ void addSceneMedium(const tinygltf::Model& model, GltfDiagnostics& diagnostics, 
 LoadedScene loadScene(const std::filesystem::path& file, const SceneFileAccess& access) {
     if (file.empty()) throw Error("the scene's file name is empty");
     GltfDiagnostics diagnostics(file.string());
-    std::vector<std::filesystem::path> externalFiles;
-    tinygltf::Model model = readGltfModel(file, access, diagnostics, externalFiles);
-    requireUnderstoodExtensions(model, diagnostics);
-
     Scene scene;
+    tinygltf::Model model = readGltfModel(file, access, diagnostics, scene.sourceFiles);
+    requireUnderstoodExtensions(model, diagnostics);
+    std::vector<std::filesystem::path> externalFiles;
+    for (size_t i = 1; i < scene.sourceFiles.size(); ++i) externalFiles.push_back(scene.sourceFiles[i].file);
+
     scene.punctualLights = readPunctualLights(model, diagnostics);
     readMaterials(model, diagnostics, scene);
     addSceneMedium(model, diagnostics, scene);

@@ -81,7 +81,7 @@ bool loadBoundedImage(tinygltf::Image* image, const int imageIndex, std::string*
 struct FileAccessState {
     const SceneFiles& files;
     std::string prefix;  // the base directory as tinygltf joins it: ending in '/'
-    std::vector<std::filesystem::path>& read;  // the files read, symbolic links resolved
+    std::vector<SourceFile>& read;  // the files read
 };
 
 // The decoded URI in a path tinygltf asks for; nullopt for its working-directory guess.
@@ -109,7 +109,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* error, const st
     try {
         std::string bytes = readRegularFile(resolved.file);
         out->assign(bytes.begin(), bytes.end());
-        state.read.push_back(resolved.file);
+        state.read.push_back({resolved.file, contentDigest(bytes)});
         return true;
     } catch (const Error& e) {
         *error = e.what();
@@ -151,7 +151,7 @@ std::string_view glbJson(std::string_view bytes, GltfDiagnostics& diagnostics) {
 }  // namespace
 
 tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFileAccess& access,
-                              GltfDiagnostics& diagnostics, std::vector<std::filesystem::path>& externalFiles) {
+                              GltfDiagnostics& diagnostics, std::vector<SourceFile>& sources) {
     std::string extension = lowercaseExtension(file);
     if (extension != ".gltf" && extension != ".glb") {
         diagnostics.fail("", "expected a .gltf or .glb file");
@@ -160,6 +160,8 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
     if (!reason.empty()) diagnostics.fail("", reason);
     std::string bytes = readRegularFile(file);
     if (bytes.size() > UINT32_MAX) diagnostics.fail("", "larger than 4 GiB, the most a glTF file may be");
+    std::error_code unresolvable;
+    sources.push_back({std::filesystem::weakly_canonical(file, unresolvable), contentDigest(bytes)});
 
     bool binary = extension == ".glb";
     SceneFiles files(file, access);
@@ -172,7 +174,7 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
     }
 
     std::string baseDirectory = files.directory().string();
-    FileAccessState state{files, baseDirectory.back() == '/' ? baseDirectory : baseDirectory + "/", externalFiles};
+    FileAccessState state{files, baseDirectory.back() == '/' ? baseDirectory : baseDirectory + "/", sources};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({fileExists, expandFilePath, readWholeFile, writeWholeFile, &state});
     loader.SetImageLoader(loadBoundedImage, nullptr);

@@ -6,6 +6,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/source_files.h"
+
 #include "volume/density_grid.h"
 
 namespace vkdr {
@@ -121,6 +123,9 @@ struct Scene {
     std::vector<LightPlacement> lightPlacements;
     int32_t sceneMedium = kNoMedium;            // fills all space outside enclosed media
     glm::vec3 background{0.0f};                 // radiance of rays that escape the scene
+    // The glTF file and the buffers and images it read, as loaded: writing the scene back
+    // (scene/write_scene.h) refuses one that has changed since.
+    std::vector<SourceFile> sourceFiles;
 
     bool anyMediumEmits() const { return anyMedium(&Medium::isEmissive); }
 

@@ -46,8 +46,9 @@ GltfSource parseGlb(const std::filesystem::path& file, const std::string& bytes)
     return source;
 }
 
-GltfSource readGltfSource(const std::filesystem::path& file) {
+GltfSource readGltfSource(const std::filesystem::path& file, const std::vector<SourceFile>& sources) {
     std::string bytes = readRegularFile(file);
+    requireUnchangedSource(sources, file, bytes);
     try {
         if (file.extension() == ".glb" || file.extension() == ".GLB") {
             return parseGlb(file, bytes);
@@ -226,7 +227,7 @@ void writePunctualLights(json& document, const Scene& scene, const std::filesyst
 // the original refers to stay where they are when they lie in the output's directory
 // tree, and are copied beside the output, as <stem>.<array><i><extension>, when not.
 void referToExternalFiles(json& document, const char* array, const std::filesystem::path& original,
-                          const std::filesystem::path& out) {
+                          const std::vector<SourceFile>& sources, const std::filesystem::path& out) {
     if (!document.contains(array) || !document[array].is_array()) {
         return;
     }
@@ -244,10 +245,11 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
         if (!resolved.problem.empty()) {
             failReading(original, std::string(array) + "[" + std::to_string(i) + "].uri: " + resolved.problem);
         }
+        const std::string bytes = readRegularFile(resolved.file);
+        requireUnchangedSource(sources, resolved.file, bytes);
         std::filesystem::path relative = resolved.file.lexically_relative(toDirectory);
         if (relative.empty() || *relative.begin() == "..") {
             relative = out.stem().string() + "." + array + std::to_string(i) + resolved.file.extension().string();
-            std::string bytes = readRegularFile(resolved.file);
             writeAtomically(toDirectory / relative, [&](std::ofstream& stream) {
                 stream.write(bytes.data(), std::streamsize(bytes.size()));
             });
@@ -349,14 +351,14 @@ void writeBaseColorTextures(json& document, const Scene& scene, const std::files
 
 void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
                               const std::filesystem::path& out) {
-    GltfSource source = readGltfSource(original);
+    GltfSource source = readGltfSource(original, scene.sourceFiles);
     json& document = source.document;
     writeMaterials(document, scene, original);
     writeSceneMedium(document, scene);
     writePunctualLights(document, scene, original);
 
-    referToExternalFiles(document, "buffers", original, out);
-    referToExternalFiles(document, "images", original, out);
+    referToExternalFiles(document, "buffers", original, scene.sourceFiles, out);
+    referToExternalFiles(document, "images", original, scene.sourceFiles, out);
     writeDensityGrids(document, scene, out);
     writeBinaryChunkBeside(document, source, original, out);
     writeBaseColorTextures(document, scene, out);

@@ -20,7 +20,9 @@ namespace vkdr {
 //   <stem>.density.vdb for the scene medium) beside `out`, which "density" then names.
 // External buffers and images are referred to by URIs rewritten relative to `out`'s
 // directory; a .glb's binary chunk is written beside `out` as <stem>.bin. Files are
-// written atomically. Throws vkdr::Error naming the file at fault.
+// written atomically. Throws vkdr::Error naming the file at fault, among them an
+// original, buffer or image that has changed since `scene` was loaded from it
+// (Scene::sourceFiles).
 void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
                               const std::filesystem::path& out);
 

@@ -2,10 +2,12 @@
 // write-load round trip, in both medium spellings, with external and GLB buffers.
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "expect_error.h"
 #include "gltf_test_files.h"
 #include "scene/load_scene.h"
 #include "scene/parameters.h"
@@ -29,6 +31,11 @@ void expectSameParameters(const Scene& expected, const Scene& actual) {
 }
 
 json readJson(const std::filesystem::path& file) { return json::parse(std::ifstream(file)); }
+
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream stream(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(stream), {});
+}
 
 Scene writeAndReload(const std::filesystem::path& original, const Scene& scene, const std::filesystem::path& out) {
     writeSceneWithParameters(original, scene, out);
@@ -207,6 +214,31 @@ TEST(WriteScene, RefersToExternalBuffersInsideTheOutputDirectoryWhereTheyAre) {
     Scene reloaded = writeAndReload(directory / "data" / "ink.gltf", scene, directory / "fitted.gltf");
     expectSameParameters(scene, reloaded);
     EXPECT_EQ(readJson(directory / "fitted.gltf")["buffers"][0]["uri"], "data/ink.bin");
+}
+
+// The written scene is the original with the values: an original (or a buffer it reads)
+// changed since the load, by a re-export say, would mix new contents with old values.
+TEST(WriteScene, RefusesAnOriginalThatChangedSinceTheLoad) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    addKhrVolumeBox(builder);
+    std::filesystem::path glb = builder.writeGlb(directory / "ink.glb");
+    writeSceneWithParameters(glb, loadScene(glb).scene, directory / "ink.gltf");  // with data ink.bin beside it
+    const std::filesystem::path original = directory / "ink.gltf", buffer = directory / "ink.bin";
+    const std::string text = readText(original), bytes = readText(buffer);
+
+    Scene scene = loadScene(original).scene;
+    writeText(original, text + " ");
+    expectErrorMentioning([&] { writeSceneWithParameters(original, scene, directory / "out.gltf"); },
+                          {"ink.gltf", "has changed since the scene was loaded"});
+    writeText(original, text);
+    writeText(buffer, std::string(bytes).replace(0, 1, 1, char(bytes[0] ^ 1)));
+    expectErrorMentioning([&] { writeSceneWithParameters(original, scene, directory / "out.gltf"); },
+                          {"ink.bin", "has changed since the scene was loaded"});
+    EXPECT_FALSE(std::filesystem::exists(directory / "out.gltf"));
+    writeText(buffer, bytes);
+    writeSceneWithParameters(original, scene, directory / "out.gltf");
+    EXPECT_TRUE(std::filesystem::exists(directory / "out.gltf"));
 }
 
 TEST(WriteScene, WritesFittedTexelsAsAnSrgbPng) {
