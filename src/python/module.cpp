@@ -262,9 +262,7 @@ void bindParameter(py::module_& m) {
 // The command line's --device text for `device`: an index (an int, as the command line's
 // digits) or part of a device's name.
 std::string deviceSelector(const py::object& device) {
-    if (py::isinstance<py::int_>(device) && !py::isinstance<py::bool_>(device)) {
-        return std::to_string(device.cast<int64_t>());
-    }
+    if (py::isinstance<py::int_>(device) && !py::isinstance<py::bool_>(device)) return std::string(py::str(device));
     if (py::isinstance<py::str>(device)) return device.cast<std::string>();
     throw py::type_error("device: expected an index or part of a device's name, got " +
                          std::string(py::str(device.get_type().attr("__name__"))));
