@@ -72,6 +72,7 @@ inline Scene sceneWithParameters() {
     Material lamp;
     lamp.name = "lamp";
     lamp.emission = glm::vec3(2.0f);
+    lamp.emitter = true;
     scene.materials = {white, lamp};
     return scene;
 }
