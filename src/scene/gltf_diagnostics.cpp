@@ -30,6 +30,10 @@ std::string indexed(std::string_view array, size_t index) {
     return std::string(array) + "[" + std::to_string(index) + "]";
 }
 
+std::string member(std::string_view object, std::string_view key) {
+    return std::string(object) + "." + std::string(key);
+}
+
 std::string formatNumber(double value) {
     char text[32];
     auto [end, ec] = std::to_chars(text, text + sizeof(text), value);

@@ -28,6 +28,8 @@ private:
 
 // "materials[2]" from ("materials", 2).
 std::string indexed(std::string_view array, size_t index);
+// "materials[2].name" from ("materials[2]", "name").
+std::string member(std::string_view object, std::string_view key);
 // Shortest text that reads back as the same double ("0.1", "1e+999" becomes "inf").
 std::string formatNumber(double value);
 

@@ -33,8 +33,6 @@ constexpr std::array<std::string_view, 3> kGridReferences = {"density", "emissio
 // A rotation whose length is further than this from 1 is not an exporter's rounding.
 constexpr double kUnitQuaternionTolerance = 1e-3;
 
-std::string member(const std::string& field, const std::string& key) { return field + "." + key; }
-
 std::string describeValue(const json& value) {
     std::string text = value.dump();
     return text.size() <= 40 ? text : text.substr(0, 37) + "...";

@@ -5,10 +5,6 @@
 namespace vkdr {
 namespace {
 
-std::string member(std::string_view field, const std::string& key) {
-    return std::string(field) + "." + key;
-}
-
 // Empty when `number` is finite as the float it is stored as, else why not: 1e39 is a
 // finite number in the file, but beyond float's range.
 std::string floatProblem(double number) {
