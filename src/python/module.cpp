@@ -13,11 +13,15 @@
 #include "core/interrupt.h"
 #include "image/finite_pixels.h"
 #include "image/output_paths.h"
+#include "python/constructed_instance_caster.h"
 #include "python/scene_session.h"
 #include "python/stop_signal_scope.h"
 #include "render/cut_paths.h"
 
 namespace py = pybind11;
+
+VKDR_REFUSE_UNCONSTRUCTED_INSTANCES(vkdr::SceneSession, "make a Scene with vkdiffrender.Scene(file)")
+VKDR_REFUSE_UNCONSTRUCTED_INSTANCES(vkdr::ParameterInfo, "a Parameter comes from Scene.parameter(name)")
 
 namespace vkdr {
 namespace {

@@ -163,6 +163,11 @@ SceneSession::Backpropagated SceneSession::backpropagate(const RenderSettings& s
     }
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
     if (slots.empty()) {
+        // Nothing to differentiate, but an adjoint of the wrong size is refused all the same.
+        withRenderer(settings, [&](CachedRenderer& cached) {
+            cached.renderer->requireRenderSize(imageAdjoint, "the image adjoint");
+            return 0;
+        });
         return {};
     }
     const DerivativeTargets wanted = derivativeTargetsOf(slots);

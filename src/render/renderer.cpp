@@ -55,6 +55,20 @@ uint32_t totalVoxels(const Scene& scene) {
     return static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
 }
 
+// The media a message about tracking through density grids is about: 'smoke', or
+// 'smoke' or 'cloud' where several media are grids.
+std::string gridMediaText(const Scene& scene) {
+    std::vector<std::string> names;
+    for (const Medium& medium : scene.media) {
+        if (medium.isHeterogeneous()) names.push_back("'" + medium.name + "'");
+    }
+    std::string text;
+    for (size_t i = 0; i < names.size(); ++i) {
+        text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    }
+    return text;
+}
+
 MediaFeatures mediaFeatures(const Scene& scene, const RenderSettings& settings) {
     return {.densityGrids = !scene.densityGrids.empty(),
             .emission = scene.anyMediumEmits(),
@@ -90,6 +104,7 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       punctualLightCount_(static_cast<uint32_t>(scene.punctualLights.size())),
       texelCount_(totalTexels(scene)),
       voxelCount_(totalVoxels(scene)),
+      gridMedia_(gridMediaText(scene)),
       media_(mediaFeatures(scene, settings)),
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context, media_),
@@ -344,10 +359,10 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
         stats_.truncatedPaths += counters.truncatedPaths;
     }
     if (counters.truncatedTracking > 0) {
-        throw Error(std::to_string(counters.truncatedTracking) + " rays through a density grid medium needed more than " +
-                    std::to_string(gpu::kMaxTransmittanceSteps) +
+        throw Error(std::to_string(counters.truncatedTracking) + " rays through the density grid medium " +
+                    gridMedia_ + " needed more than " + std::to_string(gpu::kMaxTransmittanceSteps) +
                     " tracking steps for their transmittance; the medium is too dense to render faithfully "
-                    "(lower its sigma_a and sigma_s)");
+                    "(lower its sigma_a and sigma_s, or its density)");
     }
     if (counters.truncatedLoops > 0) {
         throw Error("internal: " + std::to_string(counters.truncatedLoops) +

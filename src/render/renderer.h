@@ -138,6 +138,9 @@ public:
     // zero but for rounding wherever the replay took the primal pass's decisions.
     std::vector<glm::vec4> pathRadiance() const;
 
+    // Throws vkdr::Error naming `what` unless the image has the render's size.
+    void requireRenderSize(const Image& image, const std::string& what) const;
+
 private:
     enum class PassMode {
         Film,    // render and add to the film; each path's radiance stays in its slot
@@ -170,8 +173,6 @@ private:
     void backpropagateWithReplay(GradientEvaluation& result);
     void backpropagateSplitSamples(GradientEvaluation& result);
     void backpropagateInOnePass(GradientEvaluation& result);
-    // Throws vkdr::Error naming `what` unless the image has the render's size.
-    void requireRenderSize(const Image& image, const std::string& what) const;
     // Compiles the adjoint stages for the gradients of `kinds` (bit 1 << ParameterKind) and
     // the media they meet, unless they are compiled already.
     void compileGradientPipelines(uint32_t kinds);
@@ -229,6 +230,7 @@ private:
     uint32_t punctualLightCount_;
     uint32_t texelCount_;
     uint32_t voxelCount_;
+    std::string gridMedia_;  // the density grid media by name, for messages
     // What the primal stages are compiled for: media only when the scene has some, tracking
     // through grids only when it has grids, gathering media's emission once a medium
     // emits, equiangular sampling once a homogeneous medium scatters.

@@ -114,6 +114,8 @@ def test_what_numpy_cannot_convert_is_refused_with_its_reason(scene):
     (lambda s: s.backpropagate(np.zeros((WIDTH, 3), np.float32), ["media/fog/g"], width=WIDTH), "shape"),
     (lambda s: s.backpropagate(np.zeros((WIDTH + 1, WIDTH, 3), np.float32), ["media/fog/g"], width=WIDTH,
                                spp=1), "image adjoint"),
+    (lambda s: s.backpropagate(np.zeros((WIDTH + 1, WIDTH, 3), np.float32), [], width=WIDTH, spp=1),
+     "image adjoint"),
     (lambda s: s.backpropagate(np.full((WIDTH, WIDTH, 3), np.inf, np.float32), ["media/fog/g"], width=WIDTH,
                                spp=1), "not finite"),
 ])
@@ -121,6 +123,27 @@ def test_bad_calls_raise(scene, call, problem):
     with pytest.raises(vkdiffrender.Error, match=problem):
         call(scene)
     assert scene.render(spp=1, width=WIDTH).shape == (WIDTH, WIDTH, 3)  # still usable
+
+
+def test_objects_made_without_init_raise_instead_of_crashing(tmp_path):
+    bare = vkdiffrender.Scene.__new__(vkdiffrender.Scene)
+    image = np.zeros((WIDTH, WIDTH, 3), np.float32)
+    calls = [
+        lambda: bare.file, lambda: bare.warnings, lambda: bare.device, bare.parameters,
+        lambda: bare.parameter("media/fog/g"), lambda: bare["media/fog/g"],
+        lambda: bare.__setitem__("media/fog/g", 0.1), lambda: "media/fog/g" in bare,
+        lambda: bare.render(width=WIDTH), lambda: bare.backpropagate(image, [], width=WIDTH),
+        lambda: bare.loss_gradient(image, [], width=WIDTH), lambda: bare.write(str(tmp_path / "out.gltf")),
+    ]
+    for call in calls:
+        with pytest.raises(TypeError):
+            call()
+    bare_parameter = vkdiffrender.Parameter.__new__(vkdiffrender.Parameter)
+    for call in [lambda: bare_parameter.name, lambda: bare_parameter.shape, lambda: bare_parameter.lower,
+                 lambda: bare_parameter.upper, lambda: repr(bare_parameter)]:
+        with pytest.raises(TypeError):
+            call()
+    assert not list(tmp_path.iterdir())
 
 
 def test_none_is_a_type_error(scene):

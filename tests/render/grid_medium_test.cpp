@@ -184,5 +184,24 @@ TEST_F(GridMediumTest, PathsCutByTheSegmentLimitAreCountedOnce) {
     EXPECT_EQ(renderer.stats().truncatedPaths, cutForLoss);
 }
 
+// The same medium glowing: the gathering of its emission ratio-tracks each whole segment
+// and cannot pause and continue (it would need more than kMaxTransmittanceSteps steps),
+// so the render is refused, naming the medium, rather than returned with those segments'
+// emission wrong.
+TEST_F(GridMediumTest, SegmentsTooLongToTrackRefuseTheRenderNamingTheMedium) {
+    const MediumCoefficients glowing{.sigmaS = glm::vec3(3.0e5f), .emission = glm::vec3(1.0f)};
+    const Scene scene = loadScene(furnaceWithOneDenseVoxelPerCell(glm::vec3(0.5f), glowing, 0, 0.0f, tempDir())).scene;
+    const Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    Renderer renderer(testContext(), scene, bvh, {.width = 4, .height = 4, .spp = 4, .maxDepth = 0});
+    try {
+        renderer.render();
+        FAIL() << "the render was not refused";
+    } catch (const Error& e) {
+        const std::string expected = "the density grid medium 'sparse' needed more than " +
+                                     std::to_string(gpu::kMaxTransmittanceSteps) + " tracking steps";
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace vkdr::test
