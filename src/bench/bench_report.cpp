@@ -35,6 +35,11 @@ std::optional<double> gradientRelativeNoise(const SceneBenchmark& s) {
     return s.gradient && s.gradient->noise ? s.gradient->noise->relativeNoise : std::nullopt;
 }
 
+// Efficiency is defined by the relative noise: none where that is none (a black image).
+std::optional<double> imageEfficiency(const SceneBenchmark& s) {
+    return s.relativeNoise ? std::optional(s.efficiency()) : std::nullopt;
+}
+
 std::optional<double> gradientEfficiency(const SceneBenchmark& s) {
     return gradientRelativeNoise(s) ? std::optional(s.gradient->efficiency()) : std::nullopt;
 }
@@ -131,7 +136,7 @@ std::string markdownTable(const BenchReport& report) {
                formatText("%.2f", s.gradientToForward()) + " | " + formatText("%.3f", s.pathsPerSecond() * 1e-6) + " | " +
                formatText("%.3f", s.raysPerSecond() * 1e-6) + " | " +
                cell("%.4f", s.relativeNoise) + " | " +
-               cell("%.3g", s.relativeNoise ? std::optional(s.efficiency()) : std::nullopt) + " | " +
+               cell("%.3g", imageEfficiency(s)) + " | " +
                cell("%.4f", gradientRelativeNoise(s)) + " | " + cell("%.3g", gradientEfficiency(s)) +
                " | " + formatText("%.1f", double(peakDeviceBytes(s)) / kMiB) +
                " | " + formatText("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
@@ -188,7 +193,7 @@ nlohmann::ordered_json reportJson(const BenchReport& report) {
             {"paths_per_s", s.pathsPerSecond()},
             {"rays_per_s", s.raysPerSecond()},
             {"relative_noise", jsonValue(s.relativeNoise)},
-            {"efficiency", s.efficiency()},
+            {"efficiency", jsonValue(imageEfficiency(s))},
             {"gradient_parameter", s.gradient ? ordered_json(s.gradient->parameter) : ordered_json(nullptr)},
             {"gradient_seeds", s.gradient ? ordered_json(s.gradient->seeds) : ordered_json(nullptr)},
             {"gradient_mean", jsonValue(noise ? std::optional(noise->mean) : std::nullopt)},

@@ -19,10 +19,12 @@
 namespace vkdr {
 namespace {
 
-// stb_image's reason for its last failure; some failures (data cut short) leave none.
+// stb_image's reason for its last failure, which is terse (a file cut inside a chunk's
+// name gives that name cut short, "IDA"), or none at all for some data cut short.
 std::string stbReason() {
     const char* reason = stbi_failure_reason();
-    return reason && *reason ? reason : "damaged or cut short";
+    return reason && *reason ? std::string("damaged, cut short or of a kind not read (the decoder says: ") + reason + ")"
+                             : "damaged or cut short";
 }
 
 [[noreturn]] void failToRead(const std::filesystem::path& file, const std::string& reason) {

@@ -1,6 +1,7 @@
 #include "render/camera_setup.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "core/error.h"
 #include "scene/medium_at.h"
@@ -32,7 +33,7 @@ const Camera& findCamera(const Scene& scene, const std::string& name) {
 
 gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
     const Camera& camera = findCamera(scene, settings.camera);
-    if (!(camera.yfov > 0.0f && camera.yfov < 3.14f)) {
+    if (!(camera.yfov > 0.0f && camera.yfov < std::numbers::pi_v<float>)) {
         throw Error("camera " + camera.name + ": yfov must be in (0, pi), got " + std::to_string(camera.yfov));
     }
     if (settings.width < 0 || settings.height < 0 || settings.width > kMaxImageSide ||

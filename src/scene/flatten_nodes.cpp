@@ -1,5 +1,6 @@
 #include "scene/flatten_nodes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -295,10 +296,12 @@ private:
         if (!defaultMaterial_) {
             Material fallback;  // glTF's default: white, not emissive, single-sided
             fallback.name = "default";
-            for (const Material& existing : scene_.materials) {
-                if (existing.name == fallback.name) {
-                    fallback.name = std::to_string(scene_.materials.size());
-                }
+            const auto taken = [&](const std::string& name) {
+                return std::any_of(scene_.materials.begin(), scene_.materials.end(),
+                                   [&](const Material& existing) { return existing.name == name; });
+            };
+            while (taken(fallback.name)) {
+                fallback.name += "_";
             }
             scene_.materials.push_back(fallback);
             defaultMaterial_ = uint32_t(scene_.materials.size() - 1);
@@ -320,7 +323,8 @@ private:
             diagnostics_.warn(cameraField, "only perspective cameras are supported; skipped");
             return;
         }
-        if (!(source.perspective.yfov > 0.0 && source.perspective.yfov < std::numbers::pi)) {
+        // Held to the float the renderer takes: a double just under pi rounds to float's pi.
+        if (!(source.perspective.yfov > 0.0 && float(source.perspective.yfov) < std::numbers::pi_v<float>)) {
             diagnostics_.fail(cameraField + ".perspective.yfov",
                               "must be in (0, pi), got " + formatNumber(source.perspective.yfov));
         }
@@ -333,6 +337,19 @@ private:
         }
         Camera camera;
         camera.name = !node.name.empty() ? node.name : !source.name.empty() ? source.name : cameraField;
+        // --camera and experiments pick cameras by name: a repeat gets a name of its own.
+        const std::string given = camera.name;
+        const auto taken = [&](const std::string& name) {
+            return std::any_of(scene_.cameras.begin(), scene_.cameras.end(),
+                               [&](const Camera& earlier) { return earlier.name == name; });
+        };
+        while (taken(camera.name)) {
+            camera.name += "_";
+        }
+        if (camera.name != given) {
+            diagnostics_.warn(nodeField, "camera '" + given + "' is an earlier camera's name; this one is named '" +
+                                             camera.name + "'");
+        }
         // Rays are built from the axes, so keep the rotation and position only.
         camera.cameraToWorld = glm::mat4(glm::vec4(glm::normalize(glm::vec3(cameraToWorld[0])), 0.0f),
                                          glm::vec4(glm::normalize(glm::vec3(cameraToWorld[1])), 0.0f),

@@ -51,7 +51,11 @@ ElementRange checkedElements(const tinygltf::Model& model, int accessorIndex, in
                                             std::to_string(accessor.componentType) +
                                             ") is not allowed for " + std::string(field));
     }
-    if (accessor.bufferView < 0 || size_t(accessor.bufferView) >= model.bufferViews.size()) {
+    if (accessor.bufferView < 0) {
+        diagnostics.fail(accessorField, "has no bufferView (an accessor of zeros, for sparse accessors); the "
+                                        "loader reads an accessor's values from a buffer view only");
+    }
+    if (size_t(accessor.bufferView) >= model.bufferViews.size()) {
         diagnostics.fail(accessorField + ".bufferView",
                          "buffer view " + std::to_string(accessor.bufferView) +
                              " out of range (" + std::to_string(model.bufferViews.size()) +

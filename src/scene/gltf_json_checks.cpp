@@ -192,15 +192,40 @@ void checkCamera(const json& camera, const std::string& field, const GltfDiagnos
     }
 }
 
+// The `index` of a texture reference (`baseColorTexture` and the like) in `object`.
+void requireTextureIndex(const json& object, const std::string& field, const char* key,
+                         const GltfDiagnostics& diagnostics) {
+    if (object.contains(key) && object[key].is_object()) {
+        requireIndexMember(object[key], member(field, key), "index", diagnostics);
+    }
+}
+
 void checkMaterial(const json& material, const std::string& field, GltfDiagnostics& diagnostics) {
     requireNumbers(material, field, "emissiveFactor", 3, diagnostics);
     if (material.contains("pbrMetallicRoughness") && material["pbrMetallicRoughness"].is_object()) {
-        requireNumbers(material["pbrMetallicRoughness"], member(field, "pbrMetallicRoughness"), "baseColorFactor",
-                       4, diagnostics);
+        const json& pbr = material["pbrMetallicRoughness"];
+        const std::string pbrField = member(field, "pbrMetallicRoughness");
+        requireNumbers(pbr, pbrField, "baseColorFactor", 4, diagnostics);
+        for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"}) {
+            requireTextureIndex(pbr, pbrField, key, diagnostics);
+        }
+    }
+    for (const char* key : {"emissiveTexture", "normalTexture", "occlusionTexture"}) {
+        requireTextureIndex(material, field, key, diagnostics);
     }
     requireObjectExtensions(material, field, diagnostics);
     if (material.contains("extensions")) {
         checkMedium(material["extensions"], member(field, "extensions"), false, diagnostics);
+    }
+}
+
+void checkPrimitiveIndices(const json& primitive, const std::string& field, const GltfDiagnostics& diagnostics) {
+    if (!primitive.is_object()) return;
+    for (const char* key : {"indices", "material"}) requireIndexMember(primitive, field, key, diagnostics);
+    if (primitive.contains("attributes") && primitive["attributes"].is_object()) {
+        for (const auto& [name, accessor] : primitive["attributes"].items()) {
+            requireIndex(accessor, member(member(field, "attributes"), name), diagnostics);
+        }
     }
 }
 
@@ -281,6 +306,27 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
         if (!mesh.contains("primitives") || !mesh["primitives"].is_array() || mesh["primitives"].empty()) {
             diagnostics.fail(member(field, "primitives"), "a mesh needs an array of at least one primitive");
         }
+        for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+            checkPrimitiveIndices(mesh["primitives"][p], indexed(member(field, "primitives"), p), diagnostics);
+        }
+    });
+    // tinygltf reads an index that is negative, fractional or text as "none" (a
+    // primitive's -1 material as the default material) or as a wrong one.
+    if (document.contains("scene")) requireIndex(document["scene"], "scene", diagnostics);
+    forEachEntry(document, "scenes", [&](const json& scene, const std::string& field) {
+        if (!scene.contains("nodes") || !scene["nodes"].is_array()) return;
+        for (size_t n = 0; n < scene["nodes"].size(); ++n) {
+            requireIndex(scene["nodes"][n], indexed(member(field, "nodes"), n), diagnostics);
+        }
+    });
+    forEachEntry(document, "accessors", [&](const json& accessor, const std::string& field) {
+        requireIndexMember(accessor, field, "bufferView", diagnostics);
+    });
+    forEachEntry(document, "bufferViews", [&](const json& view, const std::string& field) {
+        requireIndexMember(view, field, "buffer", diagnostics);
+    });
+    forEachEntry(document, "textures", [&](const json& texture, const std::string& field) {
+        for (const char* key : {"source", "sampler"}) requireIndexMember(texture, field, key, diagnostics);
     });
 }
 

@@ -38,10 +38,18 @@ glm::vec3 lightIntensity(const tinygltf::Light& source, const std::string& field
     if (!(std::isfinite(source.intensity) && source.intensity >= 0.0)) {
         diagnostics.fail(field + ".intensity", "must be a finite number >= 0, got " + formatNumber(source.intensity));
     }
-    glm::vec3 intensity = color * float(source.intensity);
+    // Multiplied in double: an intensity beyond float's range times a colour of 0 is a dark
+    // light, and times any other colour is named as too bright, not as NaN.
+    const ParameterDescription& description = describe(ParameterKind::LightIntensity);
+    glm::vec3 intensity(0.0f);
     for (int c = 0; c < 3; ++c) {
-        if (std::string problem = valueProblem(describe(ParameterKind::LightIntensity), intensity[c]);
-            !problem.empty()) {
+        const double product = double(color[c]) * source.intensity;
+        if (!(product <= description.range.upper)) {
+            diagnostics.fail(field, "color x intensity must be in [" + formatNumber(description.range.lower) + ", " +
+                                        formatNumber(description.range.upper) + "], got " + formatNumber(product));
+        }
+        intensity[c] = float(product);
+        if (std::string problem = valueProblem(description, intensity[c]); !problem.empty()) {
             diagnostics.fail(field, "color x intensity " + problem);
         }
     }

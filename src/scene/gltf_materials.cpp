@@ -10,23 +10,36 @@
 namespace vkdr {
 namespace {
 
+// A material keeps its glTF name where it is the first to use it; the others (unnamed, or
+// repeating an earlier name) get their index as text, followed by '_' as often as it takes
+// to differ from every other material's name ("1" may be another material's own name).
 std::vector<std::string> uniqueMaterialNames(const tinygltf::Model& model,
                                              GltfDiagnostics& diagnostics) {
-    std::vector<std::string> names;
+    std::vector<std::string> names(model.materials.size());
     std::set<std::string> taken;
     for (size_t i = 0; i < model.materials.size(); ++i) {
-        std::string name = model.materials[i].name;
-        if (!name.empty() && taken.count(name)) {
+        const std::string& name = model.materials[i].name;
+        if (!name.empty() && taken.insert(name).second) {
+            names[i] = name;
+        }
+    }
+    for (size_t i = 0; i < model.materials.size(); ++i) {
+        if (!names[i].empty()) {
+            continue;
+        }
+        std::string name = std::to_string(i);
+        while (!taken.insert(name).second) {
+            name += "_";
+        }
+        const std::string& given = model.materials[i].name;
+        if (!given.empty()) {
             diagnostics.warn(indexed("materials", i) + ".name",
-                             "'" + name + "' is used by an earlier material; this one is named '" +
-                                 std::to_string(i) + "'");
-            name.clear();
+                             "'" + given + "' is used by an earlier material; this one is named '" + name + "'");
+        } else if (name != std::to_string(i)) {
+            diagnostics.warn(indexed("materials", i),
+                             "unnamed, and its index is another material's name; this one is named '" + name + "'");
         }
-        if (name.empty()) {
-            name = std::to_string(i);
-        }
-        taken.insert(name);
-        names.push_back(std::move(name));
+        names[i] = std::move(name);
     }
     return names;
 }

@@ -86,6 +86,15 @@ TEST(BenchReport, GradientFiguresAreNullWhereThereAreNone) {
     EXPECT_NE(table.find("| room_10k | media/fog/sigma_s | 8 | - | - | 200.0 |\n"), std::string::npos) << table;
 }
 
+// A black image has no relative noise, and so no efficiency, which is defined by it.
+TEST(BenchReport, ImageEfficiencyIsNullWithoutRelativeNoise) {
+    BenchReport report = exampleReport();
+    report.scenes[0].relativeNoise.reset();
+    nlohmann::ordered_json json = reportJson(report);
+    EXPECT_TRUE(json["scenes"][0]["relative_noise"].is_null());
+    EXPECT_TRUE(json["scenes"][0]["efficiency"].is_null());
+}
+
 TEST(BenchReport, DensityGridFiguresAreNullWithoutGrids) {
     BenchReport report = exampleReport();
     EXPECT_EQ(markdownTable(report).find("Density grids"), std::string::npos);  // no grid, no table

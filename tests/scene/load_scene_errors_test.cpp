@@ -1,5 +1,7 @@
 // Input that loadScene must reject with a message naming the file and the field.
 #include <cmath>
+#include <functional>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -306,6 +308,35 @@ TEST(LoadSceneErrors, DataUriProblemsDoNotQuoteTheData) {
     }
 }
 
+// tinygltf reads a negative index as "none" (a primitive's material -1 as the default
+// material) and a fractional or text one as something else again.
+TEST(LoadSceneErrors, IndicesThatAreNotWholeNumbersAreRefusedEverywhere) {
+    TemporaryDirectory directory;
+    auto changed = [&](const std::function<void(json&)>& change) {
+        GltfBuilder builder = boxWithMaterial({{"name", "white"}});
+        change(builder.document());
+        return builder.writeGltf(directory / "index.gltf");
+    };
+    const std::string expected = "expected an index (a whole number >= 0)";
+    expectLoadError(changed([](json& d) { d["scene"] = -1; }), {"scene", expected + ", got -1"});
+    expectLoadError(changed([](json& d) { d["scene"] = 0.5; }), {"scene", expected});
+    expectLoadError(changed([](json& d) { d["scene"] = "0"; }), {"scene", expected});
+    expectLoadError(changed([](json& d) { d["scenes"] = {{{"nodes", {-1}}}}; }), {"scenes[0].nodes[0]", expected});
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["material"] = -1; }),
+                    {"meshes[0].primitives[0].material", expected});
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["indices"] = -1; }),
+                    {"meshes[0].primitives[0].indices", expected});
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 1.5; }),
+                    {"meshes[0].primitives[0].attributes.POSITION", expected});
+    expectLoadError(changed([](json& d) { d["accessors"][0]["bufferView"] = -2; }),
+                    {"accessors[0].bufferView", expected});
+    expectLoadError(changed([](json& d) { d["bufferViews"][0]["buffer"] = -1; }), {"bufferViews[0].buffer", expected});
+    expectLoadError(changed([](json& d) { d["materials"][0]["emissiveTexture"] = {{"index", -1}}; }),
+                    {"materials[0].emissiveTexture.index", expected});
+    // Valid glTF that the loader does not read: an accessor of zeros, without a buffer view.
+    expectLoadError(changed([](json& d) { d["accessors"][0].erase("bufferView"); }), {"accessors[0]", "no bufferView"});
+}
+
 TEST(LoadSceneErrors, NodesOutsideTheGltfSchema) {
     TemporaryDirectory directory;
     auto boxAt = [&](json node) {
@@ -349,6 +380,10 @@ TEST(LoadSceneErrors, CamerasOutsideTheGltfSchema) {
     expectLoadError(withCamera({{"znear", -1.0}}), {field + ".znear", "got -1.0"});
     expectLoadError(withCamera({{"zfar", 0.001}}), {field + ".zfar", "must be a number > znear (0.01), got 0.001"});
     EXPECT_EQ(loadScene(withCamera({{"zfar", 100.0}, {"aspectRatio", 1.5}})).scene.cameras.at(0).aspectRatio, 1.5f);
+    // Just under pi as a double is pi as the float the renderer takes: refused here, not
+    // by the render after the load accepted it.
+    expectLoadError(withCamera({{"yfov", 3.14159265}}), {field + ".yfov", "must be in (0, pi)"});
+    EXPECT_LT(loadScene(withCamera({{"yfov", 3.1415}})).scene.cameras.at(0).yfov, std::numbers::pi_v<float>);
 }
 
 // A member of vkdiffrender's own extensions that the loader does not know (a misspelling,
@@ -376,6 +411,15 @@ TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {
                     {lights + ".color[1]", "must be >= 0"});
     expectLoadError(floorWithLights({{{"type", "point"}, {"intensity", 1e13}}}).writeGltf(directory / "bright.gltf"),
                     {lights, "color x intensity must be in [0, 1e+12]"});
+    // Beyond float's range: named as too bright (not as NaN), and dark where the colour is 0.
+    expectLoadError(floorWithLights({{{"type", "point"}, {"intensity", 1e300}, {"color", {0.0, 1.0, 0.0}}}})
+                        .writeGltf(directory / "huge.gltf"),
+                    {lights, "color x intensity must be in [0, 1e+12], got 1e+300"});
+    EXPECT_EQ(loadScene(floorWithLights({{{"type", "point"}, {"intensity", 1e300}, {"color", {0.0, 0.0, 0.0}}}})
+                            .writeGltf(directory / "dark.gltf"))
+                  .scene.punctualLights.at(0)
+                  .intensity,
+              glm::vec3(0.0f));
     expectLoadError(floorWithLights({{{"type", "spot"}, {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.5}}}}})
                         .writeGltf(directory / "cones.gltf"),
                     {lights + ".spot.innerConeAngle", "must be in [0, outerConeAngle"});

@@ -165,6 +165,54 @@ TEST(LoadScene, MultipliesEmissionByEmissiveStrength) {
     EXPECT_FALSE(scene.materials[1].isEmissive());
 }
 
+// Every material gets a name of its own, so each has parameters of its own: a name used
+// twice, and an index that is another material's name, give way to the file's own name.
+TEST(LoadScene, NamesEveryMaterialApart) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addMaterial({{"name", "1"}});        // 0: named as material 1's index
+    builder.addMaterial(json::object());         // 1: unnamed
+    builder.addMaterial({{"name", "1"}});        // 2: a repeat
+    builder.addMaterial({{"name", "default"}});  // 3: the default material's name
+    for (int material = 0; material < 4; ++material) {
+        builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
+    }
+    builder.addNode({{"mesh", builder.addMesh("plain", floorQuad(1.0f))}});
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "names.gltf"));
+    std::vector<std::string> names;
+    for (const Material& material : loaded.scene.materials) {
+        names.push_back(material.name);
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"1", "1_", "2", "default", "default_"}));
+    ASSERT_EQ(loaded.warnings.size(), 2u);
+    EXPECT_NE(loaded.warnings[0].find("materials[1]: unnamed, and its index is another material's name; this one is "
+                                      "named '1_'"),
+              std::string::npos)
+        << loaded.warnings[0];
+    EXPECT_NE(loaded.warnings[1].find("materials[2].name: '1' is used by an earlier material; this one is named '2'"),
+              std::string::npos)
+        << loaded.warnings[1];
+}
+
+TEST(LoadScene, NamesEveryCameraApart) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    const int camera = builder.addCamera({{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.01}}}});
+    for (int i = 0; i < 3; ++i) {
+        builder.addNode({{"name", "cam"}, {"camera", camera}});
+    }
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "cameras.gltf"));
+    ASSERT_EQ(loaded.scene.cameras.size(), 3u);
+    EXPECT_EQ(loaded.scene.cameras[0].name, "cam");
+    EXPECT_EQ(loaded.scene.cameras[1].name, "cam_");
+    EXPECT_EQ(loaded.scene.cameras[2].name, "cam__");
+    ASSERT_EQ(loaded.warnings.size(), 2u);
+    EXPECT_NE(loaded.warnings[1].find("camera 'cam' is an earlier camera's name; this one is named 'cam__'"),
+              std::string::npos)
+        << loaded.warnings[1];
+}
+
 TEST(LoadScene, ReadsKhrVolumeAttenuationAsAbsorption) {
     TemporaryDirectory directory;
     GltfBuilder builder;
