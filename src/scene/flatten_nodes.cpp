@@ -12,6 +12,7 @@
 
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_lights.h"
+#include "scene/unique_name.h"
 
 namespace vkdr {
 namespace {
@@ -295,14 +296,10 @@ private:
         }
         if (!defaultMaterial_) {
             Material fallback;  // glTF's default: white, not emissive, single-sided
-            fallback.name = "default";
-            const auto taken = [&](const std::string& name) {
+            fallback.name = firstFreeName("default", [&](const std::string& name) {
                 return std::any_of(scene_.materials.begin(), scene_.materials.end(),
                                    [&](const Material& existing) { return existing.name == name; });
-            };
-            while (taken(fallback.name)) {
-                fallback.name += "_";
-            }
+            });
             scene_.materials.push_back(fallback);
             defaultMaterial_ = uint32_t(scene_.materials.size() - 1);
         }
@@ -339,13 +336,10 @@ private:
         camera.name = !node.name.empty() ? node.name : !source.name.empty() ? source.name : cameraField;
         // --camera and experiments pick cameras by name: a repeat gets a name of its own.
         const std::string given = camera.name;
-        const auto taken = [&](const std::string& name) {
+        camera.name = firstFreeName(given, [&](const std::string& name) {
             return std::any_of(scene_.cameras.begin(), scene_.cameras.end(),
                                [&](const Camera& earlier) { return earlier.name == name; });
-        };
-        while (taken(camera.name)) {
-            camera.name += "_";
-        }
+        });
         if (camera.name != given) {
             diagnostics_.warn(nodeField, "camera '" + given + "' is an earlier camera's name; this one is named '" +
                                              camera.name + "'");

@@ -6,6 +6,7 @@
 #include "scene/gltf_textures.h"
 #include "scene/gltf_values.h"
 #include "scene/parameter_kinds.h"
+#include "scene/unique_name.h"
 
 namespace vkdr {
 namespace {
@@ -27,10 +28,8 @@ std::vector<std::string> uniqueMaterialNames(const tinygltf::Model& model,
         if (!names[i].empty()) {
             continue;
         }
-        std::string name = std::to_string(i);
-        while (!taken.insert(name).second) {
-            name += "_";
-        }
+        std::string name = firstFreeName(std::to_string(i), [&](const std::string& n) { return taken.count(n) > 0; });
+        taken.insert(name);
         const std::string& given = model.materials[i].name;
         if (!given.empty()) {
             diagnostics.warn(indexed("materials", i) + ".name",
