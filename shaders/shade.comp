@@ -53,7 +53,7 @@ bool survivesRoulette(inout vec3 beta, uint depth, float u) {
 
 // A vertex and what its next-event estimate needs to know.
 struct NextEventQuery {
-    vec3 position;
+    vec3 position;     // where the shadow ray starts
     uint medium;       // medium the shadow ray starts in
     vec3 beta;
     uint vertexKind;
@@ -75,8 +75,9 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
         return;
     }
     float weight = lightSampleWeight(light, scatterPdf);
-    P.shadowOrigin.v[slot] = vec4(query.position, shadowRayLength(light));
-    P.shadowDirection.v[slot] = vec4(light.wi, uintBitsToFloat(query.medium));
+    ShadowRay ray = shadowRay(light, query.position);
+    P.shadowOrigin.v[slot] = vec4(query.position, ray.distance);
+    P.shadowDirection.v[slot] = vec4(ray.direction, uintBitsToFloat(query.medium));
     // The segment keys the random numbers of ratio tracking through density grids.
     P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, uintBitsToFloat(P.pathInfo.v[slot].w));
     if (kAdjoint) {
@@ -100,7 +101,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
         // A boundary changes the medium only: no vertex, no depth, same MIS vertex.
         bool entering = dot(direction, sp.normal) < 0.0f;
         vec3 side = entering ? -sp.normal : sp.normal;
-        continuePath(slot, info, sp.position + side * P.rayEpsilon, direction,
+        continuePath(slot, info, sp.position + side * sp.offset, direction,
                      entering ? uint(material.interiorMedium) : sp.outsideMedium);
         return;
     }
@@ -129,7 +130,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     vec3 ns = shadingNormal(triangle, hit.y, hit.z, n);
     vec3 texture = baseColorTexture(material, sp.uv);
     vec3 albedo = material.baseColor.rgb * texture;
-    vec3 origin = sp.position + n * P.rayEpsilon;
+    vec3 origin = sp.position + n * sp.offset;
     if (kAdjoint) {
         P.vertexUv.v[slot] = vec4(sp.uv, 0.0f, 0.0f);
     }

@@ -129,7 +129,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(hit, Vec4Buffer)                /* x: t, y: b1, z: b2, w: triangle (uint bits) or kNoHit */ \
     X(pathInfo, UVec4Buffer)          /* x: pixel, y: sample, z: depth, w: segment */ \
     X(vertexInfo, UVec4Buffer)        /* x: current medium, y: vertex kind */ \
-    X(shadowOrigin, Vec4Buffer)       /* xyz; w: distance to the light point */ \
+    X(shadowOrigin, Vec4Buffer)       /* xyz; w: the shadow ray's length */ \
     X(shadowDirection, Vec4Buffer)    /* xyz; w: medium at the origin (uint bits) */ \
     X(shadowContribution, Vec4Buffer) /* rgb: unoccluded next-event contribution; w: the segment (uint bits) */
 
@@ -352,7 +352,6 @@ struct RenderParams {
     uint maxDepth;
     uint seed;
     uint segmentLimit;                              // safety bound on segments per path
-    float rayEpsilon;                               // offset of spawned rays off a surface, scene units
     uint lossKind;                                  // kLossL2 or kLossL1
     float filmScale;                                // 1 / spp: film sum to pixel value
     float lossScale;                                // 1 / (3 * pixels): the loss is a mean over pixels and channels

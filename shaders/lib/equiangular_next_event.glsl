@@ -56,18 +56,18 @@ void equiangularNextEvent(uint slot, uint medium, float tEnd, vec3 beta) {
     if (!(maxComponent(unoccluded) > 0.0f || (kAdjoint && maxComponent(perUnit) > 0.0f))) {
         return;
     }
-    float shadowDistance = shadowRayLength(light);
+    ShadowRay ray = shadowRay(light, position);
     MediumLengths lengths = noMediumLengths();
     TrackingRandom random = segmentTrackingRandom(info, kTrackingEquiangularShadow);
     TrackingRandom gradientPoints = segmentTrackingRandom(info, kTrackingEquiangularShadowGradient);
-    vec3 tr = shadowTransmittance(position, light.wi, shadowDistance, medium, vec3(0.0f), lengths, random,
+    vec3 tr = shadowTransmittance(position, ray.direction, ray.distance, medium, vec3(0.0f), lengths, random,
                                   gradientPoints);
     vec3 contribution = unoccluded * tr;
     gather(slot, contribution);
     if (kAdjoint) {
         vec3 normal = normalMask(adjoint);
         vec3 contributionWeight = delta * contribution * normal;
-        backpropagateTransmittance(contributionWeight, lengths, position, light.wi, shadowDistance, medium,
+        backpropagateTransmittance(contributionWeight, lengths, position, ray.direction, ray.distance, medium,
                                    segmentTrackingRandom(info, kTrackingEquiangularShadow),
                                    segmentTrackingRandom(info, kTrackingEquiangularShadowGradient));
         addSigmaTGradient(medium, -t * contributionWeight);

@@ -14,6 +14,7 @@ struct LightSample {
     uint material;   // the emitter's material
     float pdfArea;   // pmf of the triangle / its area; a punctual light's pmf
     uint punctual;   // index into P.punctualLights, or kNoPunctualLight for a triangle
+    float offset;    // how far off an emitter's surface shadow rays end; 0 for a punctual light
 };
 
 // First index i with cdf[i + 1] > u, by binary search (log2 of the light count steps).
@@ -36,12 +37,12 @@ LightSample sampleLight(vec3 u) {
     if ((source & kPunctualEmitter) != 0u) {
         uint index = source & ~kPunctualEmitter;
         GpuPunctualLight light = P.punctualLights.v[index];
-        return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, index);
+        return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, index, 0.0f);
     }
     vec2 b = sampleUniformTriangle(u.yz);
     SurfacePoint sp = surfacePoint(source, b.x, b.y);
     return LightSample(sp.position, sp.normal, sp.uv, sp.material,
-                       P.triangleInfo.v[source].lightPmf / sp.area, kNoPunctualLight);
+                       P.triangleInfo.v[source].lightPmf / sp.area, kNoPunctualLight, sp.offset);
 }
 
 // Solid-angle density of reaching a point on an emitter from `from` by light sampling.
@@ -72,6 +73,7 @@ struct LightArrival {
     float pdf;
     bool isDelta;   // a punctual light: no other strategy finds it, so no MIS
     uint emitter;   // the material, or kPunctualEmitter | the punctual light
+    vec3 end;       // where shadow rays towards a sample at a finite distance end
 };
 
 // The factor of a next event's contribution beta * scatter * Le * this: the power
@@ -81,10 +83,22 @@ float lightSampleWeight(LightArrival light, float scatterPdf) {
     return (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
 }
 
-// How far the shadow ray of a light sample goes: short of the emitter by twice the rays'
-// offset, so that it does not hit the emitter itself.
-float shadowRayLength(LightArrival light) {
-    return max(light.distance - 2.0f * P.rayEpsilon, 0.0f);
+// A shadow ray: its direction and length (kFar towards a directional light).
+struct ShadowRay {
+    vec3 direction;
+    float distance;
+};
+
+// The shadow ray of a light sample from `origin`, the vertex lit or a point spawned off
+// it: to the sample's end, off the emitter on the vertex's side (whatever the angle,
+// the emitter itself lies beyond it), or along the light's direction without end.
+ShadowRay shadowRay(LightArrival light, vec3 origin) {
+    if (light.distance >= kFar) {
+        return ShadowRay(light.wi, kFar);
+    }
+    vec3 toEnd = light.end - origin;
+    float distance = length(toEnd);
+    return distance > 0.0f ? ShadowRay(toEnd / distance, distance) : ShadowRay(light.wi, 0.0f);
 }
 
 LightArrival lightArrival(LightSample ls, vec3 from) {
@@ -98,6 +112,7 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
         a.pdf = lightPdfSolidAngle(ls.pdfArea, from, ls.position, ls.normal);
         a.isDelta = false;
         a.emitter = ls.material;
+        a.end = ls.position + (dot(ls.normal, from - ls.position) >= 0.0f ? ls.offset : -ls.offset) * ls.normal;
         return a;
     }
     GpuPunctualLight light = P.punctualLights.v[ls.punctual];
@@ -105,6 +120,7 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
     a.pdf = ls.pdfArea;
     a.isDelta = true;
     a.emitter = kPunctualEmitter | ls.punctual;
+    a.end = light.position;
     if (light.type == kLightDirectional) {
         // From infinitely far: a medium filling all space extinguishes it, as it does the background.
         a.wi = -light.direction;

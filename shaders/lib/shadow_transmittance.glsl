@@ -25,6 +25,7 @@ struct MediumLengths {
     uint count;
     uint gridMedium[kRecordedGridSegments];
     vec4 gridSegment[kRecordedGridSegments];  // xyz: where the segment starts; w: its length
+    vec3 gridDirection[kRecordedGridSegments];
     uint gridSegments;
     bool complete;  // false: through more media or grid segments than were kept
 };
@@ -37,13 +38,14 @@ MediumLengths noMediumLengths() {
     return lengths;
 }
 
-void addGridSegment(inout MediumLengths lengths, uint medium, vec3 origin, float length) {
+void addGridSegment(inout MediumLengths lengths, uint medium, vec3 origin, vec3 direction, float length) {
     if (lengths.gridSegments == kRecordedGridSegments) {
         lengths.complete = false;
         return;
     }
     lengths.gridMedium[lengths.gridSegments] = medium;
     lengths.gridSegment[lengths.gridSegments] = vec4(origin, length);
+    lengths.gridDirection[lengths.gridSegments] = direction;
     ++lengths.gridSegments;
 }
 
@@ -86,6 +88,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                          inout TrackingRandom gradientPoints) {
     vec3 tr = vec3(1.0f);
     bool toInfinity = distance >= kFar;
+    vec3 end = origin + direction * distance;
     // A trace for the gradients alone (a weight is given) needs no transmittance.
     bool forGradientsOnly = maxComponent(abs(gradientWeight)) > 0.0f;
     uint trackingStepsLeft = kMaxTransmittanceSteps;
@@ -119,7 +122,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                         // Voxel gradients need the contribution's weight, known once the
                         // whole ray is: backpropagateTransmittance estimates the density's
                         // integral along the segment then, with the weight.
-                        addGridSegment(lengths, medium, origin, segment);
+                        addGridSegment(lengths, medium, origin, direction, segment);
                         awaitsWeight = true;
                     } else {
                         opticalLength =
@@ -143,12 +146,16 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
         GpuMaterial material = P.materials.v[sp.material];
         bool entering = dot(direction, sp.normal) < 0.0f;
         medium = entering ? uint(material.interiorMedium) : sp.outsideMedium;
-        // Step past the boundary along the ray's side of it.
-        vec3 next = sp.position + (entering ? -sp.normal : sp.normal) * P.rayEpsilon;
-        distance -= dot(next - origin, direction);
-        origin = next;
-        if (distance <= 0.0f) {
-            return tr;
+        // Step past the boundary along the ray's side of it, and aim again at the end:
+        // the step's sideways part must not carry the end onto the emitter.
+        origin = sp.position + (entering ? -sp.normal : sp.normal) * sp.offset;
+        if (!toInfinity) {
+            vec3 toEnd = end - origin;
+            if (dot(toEnd, direction) <= 0.0f) {
+                return tr;
+            }
+            distance = length(toEnd);
+            direction = toEnd / distance;
         }
     }
     flagTruncatedLoop();
@@ -169,8 +176,9 @@ void backpropagateTransmittance(vec3 weight, MediumLengths lengths, vec3 origin,
             addSigmaTGradient(lengths.medium[i], -lengths.inMedium[i] * weight);
         }
         for (uint i = 0u; i < lengths.gridSegments; ++i) {
-            float opticalLength = gridSegmentOpticalLength(P.media.v[lengths.gridMedium[i]], lengths.gridSegment[i].xyz,
-                                                           direction, lengths.gridSegment[i].w, weight, gradientPoints);
+            float opticalLength =
+                gridSegmentOpticalLength(P.media.v[lengths.gridMedium[i]], lengths.gridSegment[i].xyz,
+                                         lengths.gridDirection[i], lengths.gridSegment[i].w, weight, gradientPoints);
             addSigmaTGradient(lengths.gridMedium[i], -opticalLength * weight);
         }
         return;

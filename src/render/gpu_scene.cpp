@@ -10,10 +10,6 @@
 namespace vkdr {
 namespace {
 
-// Offsets for spawned rays: far above float rounding at the scene's coordinates,
-// far below any feature a scene would model.
-constexpr float kRayEpsilonPerExtent = 1.0e-5f;
-
 float sceneExtent(const Scene& scene) {
     glm::vec3 lo(std::numeric_limits<float>::max());
     glm::vec3 hi(-std::numeric_limits<float>::max());
@@ -115,7 +111,6 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
     gpu.extent = sceneExtent(scene);
-    gpu.rayEpsilon = kRayEpsilonPerExtent * gpu.extent;
     uploadSceneParameters(context, scene, bvh.triangleOrder, gpu);
     return gpu;
 }

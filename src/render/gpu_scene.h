@@ -31,8 +31,7 @@ struct GpuScene {
     Buffer punctualLights;
     GpuDensityGrids densityGrids;
     uint32_t lightCount = 0;
-    float extent = 0.0f;      // the diagonal of the scene's bounding box (at least 1e-3), scene units
-    float rayEpsilon = 0.0f;  // scene units
+    float extent = 0.0f;  // the diagonal of the scene's bounding box (at least 1e-3), scene units
     // Each material's mean emitted radiance, then each punctual light's intensity, when
     // the emitter distribution was built.
     std::optional<std::vector<glm::vec3>> emitterPowers;

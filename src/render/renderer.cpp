@@ -186,7 +186,6 @@ void Renderer::uploadParams() {
     p.secondStreamFrom = splitHalves_ ? settings_.spp / 2 : 0u;
     p.firstStream = replayingIndependently_ ? gpu::kReplayStream : gpu::kImageStream;
     p.segmentLimit = segmentLimit(settings_.maxDepth);
-    p.rayEpsilon = scene_.rayEpsilon;
     p.filmScale = 1.0f / float(settings_.spp);
     if (adjoint_) {
         adjoint_->setAddresses(p);

@@ -1,7 +1,7 @@
 // Direct light from an area light at oblique angles, against Lambert's closed form for
 // the irradiance of a polygon of constant radiance: the Cornell box's side wall, lit
 // from the ceiling lamp at grazing angles, where next-event estimation and BSDF sampling
-// share the work through MIS.
+// share the work through MIS; and a floor under a lamp vastly larger than it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "furnace_scene.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
+#include "test_gltf.h"
 
 namespace vkdr::test {
 namespace {
@@ -113,6 +115,29 @@ TEST_F(RenderTest, AWallLitAtGrazingAnglesMatchesLambertsFormula) {
         EXPECT_NEAR(renderedSum[c], expectedSum[c], 5.0 * std::sqrt(variance[c]) + 1e-5 * expectedSum[c])
             << "channel " << c << " over " << pixels << " pixels";
     }
+}
+
+// A lamp 1e5 wide, 1 above a small floor: rays leave the floor by an offset that follows
+// the floor's own coordinates, not the scene's extent, so they start below the lamp and
+// the floor is lit as Lambert's formula says, almost as by an infinite plane.
+TEST_F(RenderTest, AFloorUnderAVastLampMatchesLambertsFormula) {
+    const glm::dvec3 le(1.0, 2.0, 3.0), albedo(0.5, 0.6, 0.7);
+    constexpr float kLampHalfSize = 1.0e5f, kLampHeight = 1.0f;
+    TestGltf scene;
+    scene.materials = {diffuseMaterial("floor", glm::vec3(albedo)), emissiveMaterial("lamp", glm::vec3(le), false)};
+    scene.meshes = {quadZ(0.0f, 0.0f, 1.0f, 0.0f, true, 0), quadZ(0.0f, 0.0f, kLampHalfSize, kLampHeight, false, 1)};
+    scene.cameraPosition = glm::vec3(0.0f, 0.0f, 0.5f);
+    scene.cameraLooksAlongPlusZ = false;
+    scene.yfov = 0.5f;
+    const double h = kLampHalfSize;
+    const std::vector<glm::dvec3> lamp = {{-h, -h, kLampHeight}, {h, -h, kLampHeight}, {h, h, kLampHeight},
+                                          {-h, h, kLampHeight}};
+    // The camera sees the floor within 0.13 of its centre, where the irradiance differs
+    // from the centre's by under 1e-10.
+    const double irradiance = polygonIrradiance(lamp, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0));
+    auto file = scene.write(tempDir(), "vast_lamp");
+    expectUniformRadiance(renderFile(file, {.width = 16, .height = 16, .spp = 64, .maxDepth = 1}),
+                          albedo * std::numbers::inv_pi * le * irradiance);
 }
 
 }  // namespace
