@@ -115,12 +115,6 @@ std::vector<NamedOutput> filesTheSceneReads(const LoadedScene& loaded) {
     return files;
 }
 
-// The file of a --target FILE or CAMERA=FILE, as readTarget splits it.
-std::string targetFile(const std::string& target) {
-    size_t equals = target.find('=');
-    return equals == std::string::npos ? target : target.substr(equals + 1);
-}
-
 // With --overwrite, nothing of the old run is left for the new one to mix with; the
 // files go just before the new run writes its first, so a run that fails before then
 // leaves the old one whole.
@@ -185,13 +179,18 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     options.optimize.parameters = options.parameters;
     options.optimize.optimizer = parseOptimizerKind(options.optimizer);
     LossKind loss = parseLossKind(options.loss);
-    std::vector<NamedOutput> inputs = {{"SCENE", options.scene.file}};
-    for (const std::string& target : options.targets) inputs.push_back({"--target", targetFile(target)});
-    requireRunWritesNoInput(options.out, false, inputs);
+    requireRunWritesNoInput(options.out, false, {{"SCENE", options.scene.file}});
 
     LoadedScene loaded = loadSceneWithOverrides(options.scene);
-    requireRunWritesNoInput(options.out, false, filesTheSceneReads(loaded));
     Scene& scene = loaded.scene;
+    // Which part of a --target is its file depends on the scene's camera names.
+    std::vector<TargetFile> targetFiles;
+    std::vector<NamedOutput> inputs = filesTheSceneReads(loaded);
+    for (const std::string& target : options.targets) {
+        targetFiles.push_back(parseTargetArgument(target, scene));
+        inputs.push_back({"--target", targetFiles.back().file});
+    }
+    requireRunWritesNoInput(options.out, false, inputs);
     requireOptimisableParameters(scene, options.optimize.parameters);
     gridPriorWeights(options.optimize.parameters, gridPriorWeightsOf(options.optimize));
     if (options.optimize.gridLevels > 1) {
@@ -200,7 +199,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
     std::vector<TargetView> views = readTargets(options.targets, scene);
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views};
-    job.inputs = {{}, options.targets, options.scene.assignments, options.settings.spp, options.settings.maxDepth};
+    job.inputs = {{}, targetFiles, options.scene.assignments, options.settings.spp, options.settings.maxDepth};
     job.resume = !options.resume.empty();
 
     throwIfInterrupted();

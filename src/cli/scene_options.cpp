@@ -2,7 +2,9 @@
 
 #include "cli/warnings.h"
 #include "scene/load_scene.h"
+#include "core/error.h"
 #include "scene/parameters.h"
+#include "scene/scene_medium_emission.h"
 #include "scene/scene_warnings.h"
 
 namespace vkdr {
@@ -23,6 +25,9 @@ LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     }
     for (const std::string& assignment : options.assignments) {
         applyAssignment(loaded.scene, assignment);
+    }
+    if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(loaded.scene)) {
+        throw Error("--set: " + unbounded->problem);
     }
     for (const std::string& warning : sceneWarnings(loaded.scene)) {
         printWarning(warning);

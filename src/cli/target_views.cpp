@@ -1,7 +1,9 @@
 #include "cli/target_views.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <system_error>
 
 #include "core/error.h"
 #include "image/finite_pixels.h"
@@ -9,23 +11,41 @@
 #include "render/render_settings.h"
 
 namespace vkdr {
+namespace {
 
-TargetView readTarget(const std::string& argument, const Scene& scene) {
-    size_t equals = argument.find('=');
-    std::string camera = equals == std::string::npos ? "" : argument.substr(0, equals);
-    std::string file = equals == std::string::npos ? argument : argument.substr(equals + 1);
+std::string cameraList(const Scene& scene) {
+    std::string cameras;
+    for (const Camera& camera : scene.cameras) cameras += (cameras.empty() ? "" : ", ") + camera.name;
+    return cameras;
+}
+
+}  // namespace
+
+TargetFile parseTargetArgument(const std::string& argument, const Scene& scene) {
     if (scene.cameras.empty()) {
         throw Error("--target " + argument + ": the scene has no camera");
     }
-    if (!camera.empty()) {
-        std::string cameras;
-        bool found = false;
-        for (const Camera& candidate : scene.cameras) {
-            found = found || candidate.name == camera;
-            cameras += (cameras.empty() ? "" : ", ") + candidate.name;
-        }
-        if (!found) throw Error("--target " + argument + ": no camera '" + camera + "'; cameras: " + cameras);
+    const Camera* named = nullptr;
+    for (const Camera& camera : scene.cameras) {
+        const std::string& name = camera.name;
+        bool prefix = argument.size() > name.size() && argument.compare(0, name.size(), name) == 0 &&
+                      argument[name.size()] == '=';
+        if (prefix && (!named || name.size() > named->name.size())) named = &camera;
     }
+    if (named) return {named->name, argument.substr(named->name.size() + 1)};
+    size_t equals = argument.find('=');
+    std::error_code error;
+    if (equals != std::string::npos && !std::filesystem::exists(argument, error)) {
+        throw Error("--target " + argument + ": no camera '" + argument.substr(0, equals) + "' and no file '" +
+                    argument + "'; cameras: " + cameraList(scene));
+    }
+    return {"", argument};
+}
+
+TargetView readTarget(const std::string& argument, const Scene& scene) {
+    const TargetFile named = parseTargetArgument(argument, scene);
+    const std::string& camera = named.camera;
+    const std::filesystem::path& file = named.file;
     Image target;
     try {
         target = readImage(file);

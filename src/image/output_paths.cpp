@@ -1,5 +1,6 @@
 #include "image/output_paths.h"
 
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,6 +32,15 @@ void requireWritableDirectory(const std::string& option, const fs::path& path, c
     if (access(directory.c_str(), W_OK | X_OK) != 0) {
         fail(option, path, "cannot write in directory " + directory.string() + ": " + std::strerror(errno));
     }
+    // Permission bits do not tell everything (root passes them; /proc and /sys take no
+    // new files): a file made and removed at once does.
+    std::string probe = (directory / ".vkdiffrender-write-check-XXXXXX").string();
+    int descriptor = mkstemp(probe.data());
+    if (descriptor < 0) {
+        fail(option, path, "cannot create a file in directory " + directory.string() + ": " + std::strerror(errno));
+    }
+    close(descriptor);
+    unlink(probe.c_str());
 }
 
 std::string lowercase(std::string text) {

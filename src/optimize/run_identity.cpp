@@ -27,11 +27,8 @@ std::string fileIdentity(const std::filesystem::path& file) {
 }
 
 // A target's file by digest, after its camera: "side=1234 bytes, fnv1a64 ...".
-std::string targetIdentity(const std::string& target) {
-    size_t equals = target.find('=');
-    std::string file = equals == std::string::npos ? target : target.substr(equals + 1);
-    std::string camera = equals == std::string::npos ? "" : target.substr(0, equals) + "=";
-    return camera + fileDigest(file);
+std::string targetIdentity(const TargetFile& target) {
+    return (target.camera.empty() ? "" : target.camera + "=") + fileDigest(target.file);
 }
 
 }  // namespace
@@ -41,7 +38,7 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
     RunIdentity identity;
     if (inputs.experiment.empty()) {
         std::vector<std::string> targets;
-        for (const std::string& target : inputs.targets) targets.push_back(targetIdentity(target));
+        for (const TargetFile& target : inputs.targets) targets.push_back(targetIdentity(target));
         identity["targets"] = joined(targets, "; ");
         identity["set"] = joined(inputs.assignments, " ");
     } else {

@@ -14,10 +14,16 @@ namespace vkdr {
 // the run that wrote it, and a run resumes from it only with the same identity.
 using RunIdentity = std::map<std::string, std::string>;
 
+// A target image as a command line names it: its camera ("" for the scene's first) and file.
+struct TargetFile {
+    std::string camera;
+    std::filesystem::path file;
+};
+
 // What decides an optimisation's result besides its scene file, the loop's options and the loss.
 struct RunInputs {
     std::filesystem::path experiment;      // the experiment file that set the run up; empty for a command line's
-    std::vector<std::string> targets;      // a command line's targets, FILE or CAMERA=FILE
+    std::vector<TargetFile> targets;       // a command line's targets
     std::vector<std::string> assignments;  // a command line's --set values, NAME=VALUE
     uint32_t spp = 0;
     uint32_t maxDepth = 0;

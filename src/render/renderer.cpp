@@ -8,12 +8,22 @@
 #include "core/interrupt.h"
 #include "render/camera_setup.h"
 #include "render/push_constants.h"
+#include "scene/scene_medium_emission.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 #include "vk/dispatch_timer.h"
 
 namespace vkdr {
 namespace {
+
+// A scene-wide medium that emits beyond what it attenuates renders infinite or past
+// float: refused, naming the medium, whether the scene was loaded so or its parameters
+// were set so (by a caller or an optimiser's step).
+void requireBoundedSceneEmission(const Scene& scene) {
+    if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(scene)) {
+        throw Error(unbounded->problem);
+    }
+}
 
 // One thread per path in a 1D dispatch of at most 65535 workgroups of 64.
 constexpr uint64_t kMaxPathsPerPass = 1u << 21;
@@ -109,6 +119,7 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       scene_(uploadScene(context, scene, bvh)),
       pipelines_(context, media_),
       lossKind_(LossKind::L2) {
+    requireBoundedSceneEmission(scene);
     if (settings.spp == 0 || settings.spp > kMaxSamplesPerPixel) {
         throw Error("--spp must be in [1, " + std::to_string(kMaxSamplesPerPixel) + "], got " +
                     std::to_string(settings.spp));
@@ -125,6 +136,7 @@ uint64_t Renderer::pathMemoryBytes() const {
 }
 
 void Renderer::setParameters(const Scene& scene) {
+    requireBoundedSceneEmission(scene);
     // What new values turn on (a medium that starts to emit or to scatter) is compiled in;
     // what they turn off stays, skipped at run time.
     MediaFeatures media = media_ | mediaFeatures(scene, settings_);

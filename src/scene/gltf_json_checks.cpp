@@ -17,10 +17,9 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::array<std::string_view, 8> kUnderstoodExtensions = {
-    "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_volume",            "KHR_texture_transform",      kPunctualLightsExtension,
-    kMediumExtension,                  kBackgroundExtension};
+constexpr std::array<std::string_view, 7> kUnderstoodExtensions = {
+    "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+    kPunctualLightsExtension,          kMediumExtension,             kBackgroundExtension};
 
 // The members of vkdiffrender's own extensions; "extensions" and "extras" are allowed on
 // every glTF object.
@@ -166,6 +165,13 @@ void checkNode(const json& node, const std::string& field, const GltfDiagnostics
                                                           describeValue(matrix[3]) + " " + describeValue(matrix[7]) +
                                                           " " + describeValue(matrix[11]) + " " +
                                                           describeValue(matrix[15]));
+        }
+        // The glTF specification forbids both; a reader would use one and drop the other.
+        for (const char* key : {"translation", "rotation", "scale"}) {
+            if (node.contains(key)) {
+                diagnostics.fail(member(field, key), "a node with a matrix must not have a translation, rotation "
+                                                     "or scale as well");
+            }
         }
     }
     if (node.contains("rotation")) {

@@ -6,6 +6,7 @@
 
 #include "scene/gltf_values.h"
 #include "scene/parameter_kinds.h"
+#include "scene/scene_medium_emission.h"
 
 namespace vkdr {
 namespace {
@@ -151,18 +152,9 @@ std::optional<Medium> readSceneMedium(const tinygltf::Model& model, GltfDiagnost
 }
 
 void requireAttenuatedSceneEmission(const Scene& scene, GltfDiagnostics& diagnostics) {
-    // A grid bounds what is emitted, or where.
-    if (scene.sceneMedium == kNoMedium || scene.media[size_t(scene.sceneMedium)].isHeterogeneous() ||
-        scene.media[size_t(scene.sceneMedium)].hasEmissionGrid()) {
-        return;
-    }
-    const Medium& medium = scene.media[size_t(scene.sceneMedium)];
-    for (int c = 0; c < 3; ++c) {
-        if (medium.emission[c] > 0.0f && medium.sigma_a[c] + medium.sigma_s[c] == 0.0f) {
-            diagnostics.fail(indexed(std::string("extensions.") + kMediumExtension + ".emission", size_t(c)),
-                             "a scene-wide medium that emits where it neither absorbs nor scatters "
-                             "(sigma_a + sigma_s = 0) makes every ray that leaves the scene infinitely bright");
-        }
+    if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(scene)) {
+        diagnostics.fail(indexed(std::string("extensions.") + kMediumExtension + ".emission", size_t(unbounded->channel)),
+                         unbounded->problem);
     }
 }
 

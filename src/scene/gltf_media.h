@@ -28,10 +28,9 @@ std::optional<Medium> readMaterialMedium(const tinygltf::Material& material,
 // outside enclosed media; its name defaults to "scene".
 std::optional<Medium> readSceneMedium(const tinygltf::Model& model, GltfDiagnostics& diagnostics);
 
-// A homogeneous scene medium fills all space, and a ray that leaves the scene through it
-// gathers its emission over an infinite length unless it is attenuated: fails for a
-// channel it emits in without absorbing or scattering. A density grid is finite. Call
-// once the scene's density grids are read.
+// Fails for a channel in which a ray leaving the scene through the scene-wide medium
+// would gather more than a radiance may have (unboundedSceneEmission). Call once the
+// scene's density grids are read.
 void requireAttenuatedSceneEmission(const Scene& scene, GltfDiagnostics& diagnostics);
 
 // The root-level VKDR_background {radiance}, black when absent.

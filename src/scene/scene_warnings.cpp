@@ -2,6 +2,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/camera_on_boundary.h"
+
 namespace vkdr {
 namespace {
 
@@ -55,6 +57,7 @@ std::vector<std::string> sceneWarnings(const Scene& scene) {
                            "punctual light has an intensity above 0, no medium emits and the background is "
                            "black, so the image will be black");
     }
+    for (std::string& warning : camerasOnMediumBoundaries(scene)) warnings.push_back(std::move(warning));
     return warnings;
 }
 

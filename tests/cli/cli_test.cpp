@@ -224,6 +224,40 @@ TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
     EXPECT_NE(missing.err.find("none.exr"), std::string::npos) << missing.err;
 }
 
+// --set may make the scene-wide fog emit where it does not attenuate (every ray leaving
+// the scene infinitely bright) or too little: refused before rendering, naming it.
+TEST_F(CliTest, SetRefusesASceneWideMediumThatEmitsWithoutBound) {
+    const std::string render = "render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 1 -o " +
+                               (dir_ / "never.exr").string() + " --set media/fog/emission=1e6 ";
+    RunResult none = run(render + "--set media/fog/sigma_a=0 --set media/fog/sigma_s=0");
+    EXPECT_EQ(none.exitCode, 2);
+    EXPECT_NE(none.err.find("error: --set: the scene-wide medium emits media/fog/emission[0]"), std::string::npos)
+        << none.err;
+    RunResult little = run(render + "--set media/fog/sigma_a=1e-7 --set media/fog/sigma_s=0");
+    EXPECT_EQ(little.exitCode, 2);
+    EXPECT_NE(little.err.find("media/fog/emission / (sigma_a + sigma_s) = 1e+06 / 1e-07"), std::string::npos)
+        << little.err;
+    EXPECT_FALSE(fs::exists(dir_ / "never.exr"));
+}
+
+// "CAMERA=FILE" names a camera only where CAMERA is one of the scene's: a file whose path
+// holds '=' is a plain FILE, and with a camera's name before it the camera's FILE.
+TEST_F(CliTest, TargetPathsMayHoldEquals) {
+    const fs::path dir = dir_ / "run=1";
+    fs::create_directories(dir);
+    const fs::path target = dir / "target.exr";
+    fs::copy_file(fogTarget(1), target);
+    const std::string grad = "grad " + scene("cornell_fog.gltf") + " --param media/fog/g --spp 1 --target ";
+    for (const std::string& argument : {target.string(), "camera=" + target.string()}) {
+        RunResult r = run(grad + argument);
+        EXPECT_EQ(r.exitCode, 0) << argument << ": " << r.err;
+    }
+    RunResult unknown = run(grad + "side=" + target.string());
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_NE(unknown.err.find("no camera 'side' and no file"), std::string::npos) << unknown.err;
+    EXPECT_NE(unknown.err.find("cameras: camera"), std::string::npos) << unknown.err;
+}
+
 // A density grid's gradient has a value per voxel: the text output summarises it, --json
 // has them all, and --check (two renders per value and seed) is refused.
 TEST_F(CliTest, GradOfADensityGridSummarisesItsVoxels) {

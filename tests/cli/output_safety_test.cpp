@@ -87,6 +87,9 @@ TEST_F(OutputSafety, RefusesToReplaceAnythingButARegularFileBeforeAnyWork) {
     expectRefused("render " + noScene() + " -o " + (dir_ / "x.exr").string() + " --png " +
                       (dir_ / "missing" / "x.png").string(),
                   "--png ");
+    // A directory that takes no new files whatever its permission bits say (even to root).
+    expectRefused("render " + noScene() + " -o /proc/x.exr", "-o /proc/x.exr: cannot");
+    expectRefused(optimizeCommand(file) + " --out /proc/run", "--out /proc/run: cannot");
 }
 
 TEST_F(OutputSafety, RefusesTwoOutputsThatAreOneFile) {

@@ -183,8 +183,8 @@ TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
     std::ofstream(target) << "pixels";
     OptimizationJob job = fogJob(scratch.path(), 40);
     RunIdentity command = runIdentity(job.sceneFile, job.options, job.loss,
-                                      {{}, {"side=" + target.string()}, {"media/fog/g=0.2", "media/fog/sigma_s=1"}, 4, 6});
-    EXPECT_EQ(command.at("targets"), "side=" + fileDigest(target));
+                                      {{}, {{"side", target}, {"", target}}, {"media/fog/g=0.2", "media/fog/sigma_s=1"}, 4, 6});
+    EXPECT_EQ(command.at("targets"), "side=" + fileDigest(target) + "; " + fileDigest(target));
     EXPECT_EQ(command.at("set"), "media/fog/g=0.2 media/fog/sigma_s=1");
     EXPECT_EQ(command.at("spp"), "4");
     EXPECT_EQ(command.at("max_depth"), "6");

@@ -126,8 +126,9 @@ TEST(LoadSceneErrors, NegativeMediumEmission) {
 }
 
 // A scene-wide homogeneous medium fills all space: where it emits without attenuating,
-// a ray that leaves the scene would gather its emission without end. An enclosed medium,
-// or a scene-wide one that attenuates in that channel, loads.
+// a ray that leaves the scene would gather its emission without end, and where it
+// attenuates little, more than a radiance may be. An enclosed medium, or a scene-wide
+// one that attenuates enough in that channel, loads.
 TEST(LoadSceneErrors, SceneWideEmissionWithoutAttenuation) {
     TemporaryDirectory directory;
     GltfBuilder builder;
@@ -138,6 +139,12 @@ TEST(LoadSceneErrors, SceneWideEmissionWithoutAttenuation) {
                     {"extensions.VKDR_participating_media.emission[1]", "sigma_a + sigma_s = 0", "infinitely bright"});
     builder.document()["extensions"]["VKDR_participating_media"]["sigma_s"] = {0.0, 0.2, 0.0};
     EXPECT_EQ(loadScene(builder.writeGltf(directory / "fog.gltf")).scene.media.at(0).emission, glm::vec3(1.0f, 1.0f, 0.0f));
+    // Attenuating too little: emission / sigma_t beyond the radiance bound.
+    builder.document()["extensions"]["VKDR_participating_media"]["sigma_s"] = {0.0, 1e-30, 0.0};
+    builder.document()["extensions"]["VKDR_participating_media"]["emission"] = {1.0, 1e12, 0.0};
+    expectLoadError(builder.writeGltf(directory / "fog.gltf"),
+                    {"extensions.VKDR_participating_media.emission[1]", "media/fog/emission / (sigma_a + sigma_s)",
+                     "1e+42", "beyond the 1e+12"});
     Scene enclosed = loadScene(boxWithMaterial(mediumMaterial({{"emission", 2.0}})).writeGltf(directory / "box.gltf")).scene;
     EXPECT_EQ(enclosed.media.at(0).emission, glm::vec3(2.0f));
 }
@@ -239,6 +246,10 @@ TEST(LoadSceneErrors, UnsupportedRequiredExtension) {
     builder.document()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
     expectLoadError(builder.writeGltf(directory / "draco.gltf"),
                     {"extensionsRequired[0]", "KHR_draco_mesh_compression is not supported"});
+    // Ignored where only used (with a warning); required, the textures would be misplaced.
+    builder.document()["extensionsRequired"] = {"KHR_materials_volume", "KHR_texture_transform"};
+    expectLoadError(builder.writeGltf(directory / "transform.gltf"),
+                    {"extensionsRequired[1]", "KHR_texture_transform is not supported"});
 }
 
 // A floor and the KHR_lights_punctual definitions `lights`, light 0 placed by a node.
@@ -351,6 +362,9 @@ TEST(LoadSceneErrors, NodesOutsideTheGltfSchema) {
     expectLoadError(boxAt({{"matrix", {1.0, 0.0, 0.0}}}), {"nodes[0].matrix", "expected an array of 16 numbers"});
     json projective = {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.5, 0.0, 0.0, 0.0, 1.0};
     expectLoadError(boxAt({{"matrix", projective}}), {"nodes[0].matrix", "must be affine", "got 0.0 0.0 0.5 1.0"});
+    const json identity = {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+    expectLoadError(boxAt({{"matrix", identity}, {"scale", {2.0, 2.0, 2.0}}}),
+                    {"nodes[0].scale", "a node with a matrix must not have a translation, rotation or scale"});
     expectLoadError(boxAt({{"rotation", {0.0, 0.0, 0.0, 0.0}}}),
                     {"nodes[0].rotation", "must be a unit quaternion", "got length 0"});
     expectLoadError(boxAt({{"rotation", {0.0, 0.0, 0.0, 2.0}}}), {"nodes[0].rotation", "got length 2"});

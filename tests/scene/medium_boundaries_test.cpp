@@ -6,6 +6,7 @@
 #include "gltf_test_files.h"
 #include "scene/load_scene.h"
 #include "scene/medium_at.h"
+#include "scene/scene_warnings.h"
 
 namespace vkdr::test {
 namespace {
@@ -88,6 +89,31 @@ TEST(MediumBoundaries, NestedBoundariesSitInTheInnermostEnclosingMedium) {
     EXPECT_EQ(mediumAt(scene, {1, 9, 9}), outerMedium);
     EXPECT_EQ(mediumAt(scene, {-5, 5, 5}), fog);
     EXPECT_EQ(mediumAt(scene, {20, 20, 20}), fog);
+}
+
+// A camera on a boundary's face (or on its edge, between two triangles) is warned of,
+// naming it and the medium; one off the face by more than float's reach is not, nor one
+// inside. (The scene has no light, which is warned of too.)
+TEST(MediumBoundaries, WarnsOfACameraOnABoundary) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
+    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {2, 2, 2}), smoke)}});
+    Scene scene = loadScene(builder.writeGltf(directory / "box.gltf")).scene;
+    scene.cameras = {Camera{.name = "face"}, Camera{.name = "edge"}, Camera{.name = "off"}, Camera{.name = "inside"}};
+    scene.cameras[0].cameraToWorld[3] = glm::vec4(0.5f, 1.5f, 2.0f, 1.0f);
+    scene.cameras[1].cameraToWorld[3] = glm::vec4(2.0f, 1.0f, 2.0f, 1.0f);
+    scene.cameras[2].cameraToWorld[3] = glm::vec4(0.5f, 1.5f, 2.001f, 1.0f);
+    scene.cameras[3].cameraToWorld[3] = glm::vec4(1.0f, 1.0f, 1.0f, 1.0f);
+    std::vector<std::string> warnings;
+    for (const std::string& warning : sceneWarnings(scene)) {
+        if (warning.find("lies on the boundary") != std::string::npos) warnings.push_back(warning);
+    }
+    ASSERT_EQ(warnings.size(), 2u);
+    EXPECT_NE(warnings[0].find("camera 'face' lies on the boundary of medium 'smoke'"), std::string::npos)
+        << warnings[0];
+    EXPECT_NE(warnings[1].find("camera 'edge' lies on the boundary of medium 'smoke'"), std::string::npos)
+        << warnings[1];
 }
 
 TEST(MediumBoundaries, VacuumOutsideWithoutSceneMedium) {
