@@ -90,8 +90,8 @@ struct ShadowRay {
 };
 
 // The shadow ray of a light sample from `origin`, the vertex lit or a point spawned off
-// it: to the sample's end, off the emitter on the vertex's side (whatever the angle,
-// the emitter itself lies beyond it), or along the light's direction without end.
+// it: to the sample's end, off the emitter on the vertex's side, or along the light's
+// direction without end.
 ShadowRay shadowRay(LightArrival light, vec3 origin) {
     if (light.distance >= kFar) {
         return ShadowRay(light.wi, kFar);
@@ -112,7 +112,10 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
         a.pdf = lightPdfSolidAngle(ls.pdfArea, from, ls.position, ls.normal);
         a.isDelta = false;
         a.emitter = ls.material;
-        a.end = ls.position + (dot(ls.normal, from - ls.position) >= 0.0f ? ls.offset : -ls.offset) * ls.normal;
+        // Off the emitter towards the vertex, by at most half the vertex's height above
+        // the emitter's plane, so that the end never passes the vertex.
+        float height = dot(ls.normal, from - ls.position);
+        a.end = ls.position + sign(height) * min(ls.offset, 0.5f * abs(height)) * ls.normal;
         return a;
     }
     GpuPunctualLight light = P.punctualLights.v[ls.punctual];

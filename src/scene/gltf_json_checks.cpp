@@ -17,9 +17,10 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::array<std::string_view, 7> kUnderstoodExtensions = {
-    "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
-    kPunctualLightsExtension,          kMediumExtension,             kBackgroundExtension};
+constexpr std::array<std::string_view, 8> kUnderstoodExtensions = {
+    "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_volume",            "KHR_texture_transform",      kPunctualLightsExtension,
+    kMediumExtension,                  kBackgroundExtension};
 
 // The members of vkdiffrender's own extensions; "extensions" and "extras" are allowed on
 // every glTF object.
