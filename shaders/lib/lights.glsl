@@ -83,6 +83,9 @@ float lightSampleWeight(LightArrival light, float scatterPdf) {
     return (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
 }
 
+// The part of a shadow ray's length by which it stops short of a point or spot light.
+const float kShadowEpsilon = 1.0e-4f;
+
 // A shadow ray: its direction and length (kFar towards a directional light).
 struct ShadowRay {
     vec3 direction;
@@ -135,6 +138,12 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
     float dist2 = dot(d, d);
     a.distance = sqrt(dist2);
     a.wi = d / a.distance;
+    // Short of the light by a surface point's offset at its coordinates, or by 1e-4 of
+    // the distance (pbrt's ShadowEpsilon) where larger: a light placed on a surface lights
+    // what faces it, as it would a hair's breadth in front of it, instead of meeting that
+    // surface at the end.
+    float offset = max(kSpawnOffsetPerMagnitude * maxComponent(abs(light.position)), kShadowEpsilon * a.distance);
+    a.end = a.distance > 0.0f ? light.position - min(offset, 0.5f * a.distance) * a.wi : light.position;
     float falloff = light.type == kLightSpot ? spotFalloff(light, dot(light.direction, -a.wi)) : 1.0f;
     a.perUnit = vec3(dist2 > 0.0f ? falloff / dist2 : 0.0f);
     return a;

@@ -32,10 +32,20 @@ TargetFile parseTargetArgument(const std::string& argument, const Scene& scene) 
                       argument[name.size()] == '=';
         if (prefix && (!named || name.size() > named->name.size())) named = &camera;
     }
-    if (named) return {named->name, argument.substr(named->name.size() + 1)};
-    size_t equals = argument.find('=');
     std::error_code error;
-    if (equals != std::string::npos && !std::filesystem::exists(argument, error)) {
+    const bool wholeIsFile = std::filesystem::is_regular_file(argument, error);
+    if (named) {
+        std::string file = argument.substr(named->name.size() + 1);
+        if (!wholeIsFile) return {named->name, file};
+        if (std::filesystem::is_regular_file(file, error)) {
+            throw Error("--target " + argument + ": both the file '" + argument + "' and camera '" + named->name +
+                        "' with file '" + file + "'; write ./" + argument + " for the file or " + named->name +
+                        "=./" + file + " for the camera");
+        }
+        return {"", argument};
+    }
+    size_t equals = argument.find('=');
+    if (equals != std::string::npos && !wholeIsFile) {
         throw Error("--target " + argument + ": no camera '" + argument.substr(0, equals) + "' and no file '" +
                     argument + "'; cameras: " + cameraList(scene));
     }

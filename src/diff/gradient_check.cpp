@@ -3,11 +3,14 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "core/sample_statistics.h"
 #include "diff/gradient_over_seeds.h"
 #include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
+#include "scene/scene_medium_emission.h"
 
 namespace vkdr {
 namespace {
@@ -48,14 +51,21 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
     for (size_t p = 0; p < parameters.size(); ++p) {
         const std::vector<float> value = getParameter(scene, parameters[p]);
         const ParameterDescription& description = *parseParameterName(parameters[p])->description;
+        const std::optional<std::string> coupled = sceneWideEmissionMember(scene, parameters[p]);
         for (size_t c = 0; c < value.size(); ++c) {
             const float x = value[c];
             const double h = description.finiteDifferenceStep(x);
+            ValueRange range = description.range;
+            if (coupled) {
+                const Medium& medium = scene.media[size_t(scene.sceneMedium)];
+                range = emissionBoundedRange({medium.sigma_a[c], medium.sigma_s[c], medium.emission[c]}, *coupled,
+                                             range, 0.0);
+            }
             std::vector<double> differences;
             for (int s = 0; s < seeds; ++s) {
                 const uint32_t seed = kFirstFiniteDifferenceSeed + uint32_t(s);
                 auto loss = [&](double at) { return lossWith(lg, scene, parameters[p], int(c), float(at), seed); };
-                differences.push_back(finiteDifference(loss, x, h, description.range));
+                differences.push_back(finiteDifference(loss, x, h, range));
             }
             const MeanAndError& a = adjoint[p][c];
             const MeanAndError f = meanAndError(differences);

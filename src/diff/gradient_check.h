@@ -20,7 +20,9 @@ struct GradientCheckRow {
 // Each component's step is its kind's (scene/parameter_kinds.h). Where value - h would
 // leave the kind's range (sigma = 0, base colour 0) or value + h would (g at 0.99), the
 // second-order one-sided difference (-3 L(x) + 4 L(x + h) - L(x + 2h)) / 2h, or its
-// mirror, is used instead. Parameter names must be valid for the scene.
+// mirror, is used instead; so too where a scene-wide medium's sigma or emission would
+// leave the range that keeps its emission bounded (scene/scene_medium_emission.h).
+// Parameter names must be valid for the scene.
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lossGradient, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds);
 

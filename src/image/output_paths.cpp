@@ -40,7 +40,12 @@ void requireWritableDirectory(const std::string& option, const fs::path& path, c
         fail(option, path, "cannot create a file in directory " + directory.string() + ": " + std::strerror(errno));
     }
     close(descriptor);
-    unlink(probe.c_str());
+    // A directory that keeps every name (append-only) keeps the probe too; refused, as
+    // the temporary file an output is written to could not be renamed over it either.
+    if (unlink(probe.c_str()) != 0) {
+        fail(option, path, "directory " + directory.string() + " takes new files but does not let them be removed (" +
+                               std::strerror(errno) + "); the test file " + probe + " is left there");
+    }
 }
 
 std::string lowercase(std::string text) {

@@ -18,6 +18,7 @@
 #include "optimize/density_grid_options.h"
 #include "optimize/log_space.h"
 #include "optimize/parameter_vector.h"
+#include "optimize/scene_emission_bound.h"
 #include "scene/parameters.h"
 
 namespace vkdr {
@@ -257,6 +258,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         optimizer->step(parameters.values(), gradient);
         logSpace.leave(parameters.values());
         parameters.project();
+        keepSceneWideEmissionBounded(parameters, scene);
         requireFiniteSteps(parameters, iteration);
         parameters.writeTo(scene);
         const double iterationMs =

@@ -1,7 +1,9 @@
 #include "scene/scene_medium_emission.h"
 
+#include <algorithm>
+#include <limits>
+
 #include "core/format_text.h"
-#include "scene/parameter_kinds.h"
 
 namespace vkdr {
 
@@ -27,6 +29,32 @@ std::optional<UnboundedSceneEmission> unboundedSceneEmission(const Scene& scene)
                           prefix.c_str(), emission, sigmaT, emission / sigmaT, c, kMaxRadiance)};
     }
     return std::nullopt;
+}
+
+std::optional<std::string> sceneWideEmissionMember(const Scene& scene, std::string_view parameter) {
+    if (scene.sceneMedium == kNoMedium) return std::nullopt;
+    const Medium& medium = scene.media[size_t(scene.sceneMedium)];
+    if (medium.isHeterogeneous() || medium.hasEmissionGrid()) return std::nullopt;
+    const std::string prefix = "media/" + medium.name + "/";
+    for (const char* member : {"sigma_a", "sigma_s", "emission"}) {
+        if (parameter == prefix + member) return member;
+    }
+    return std::nullopt;
+}
+
+ValueRange emissionBoundedRange(const EmissionAndAttenuation& values, std::string_view member, ValueRange range,
+                                double margin) {
+    if (member == "emission") {
+        range.upper = std::min(range.upper, kMaxRadiance * (values.sigma_a + values.sigma_s) / (1.0 + margin));
+        return range;
+    }
+    if (!(values.emission > 0.0)) return range;
+    // At least float's least normal number: a smaller one loses the margin when stored.
+    const double attenuation = std::max(values.emission / kMaxRadiance * (1.0 + margin),
+                                        double(std::numeric_limits<float>::min()));
+    const double other = member == "sigma_a" ? values.sigma_s : values.sigma_a;
+    range.lower = std::max(range.lower, attenuation - other);
+    return range;
 }
 
 }  // namespace vkdr

@@ -1,7 +1,9 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <string_view>
 
+#include "scene/parameter_kinds.h"
 #include "scene/scene.h"
 
 namespace vkdr {
@@ -15,5 +17,23 @@ struct UnboundedSceneEmission {
     std::string problem;
 };
 std::optional<UnboundedSceneEmission> unboundedSceneEmission(const Scene& scene);
+
+// One channel of the three values that bound couples.
+struct EmissionAndAttenuation {
+    double sigma_a = 0.0;
+    double sigma_s = 0.0;
+    double emission = 0.0;
+};
+
+// "sigma_a", "sigma_s" or "emission" where `parameter` names that value of the scene's
+// homogeneous scene-wide medium, the values the bound couples; else nullopt.
+std::optional<std::string> sceneWideEmissionMember(const Scene& scene, std::string_view parameter);
+
+// `range` narrowed to the values of `member` ("sigma_a", "sigma_s" or "emission") that
+// keep emission / (sigma_a + sigma_s) within kMaxRadiance, the other two as in `values`:
+// a least sigma_a or sigma_s, a largest emission. `margin` (relative) holds the values
+// that far inside the bound, so that they stay inside it once stored as floats.
+ValueRange emissionBoundedRange(const EmissionAndAttenuation& values, std::string_view member, ValueRange range,
+                                double margin);
 
 }  // namespace vkdr

@@ -207,6 +207,12 @@ TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
     RunResult huge = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
                          " --param media/fog/sigma_s --set media/fog/sigma_s=3e38 --spp 1 --check --check-seeds 2");
     EXPECT_EQ(huge.exitCode, 0) << huge.err;
+    // Within a step of the least sigma_a that keeps a scene-wide medium's emission
+    // bounded (emission / 1e12), the difference steps up only, not past that bound.
+    RunResult coupled = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                            " --param media/fog/sigma_a --set media/fog/sigma_s=0 --set media/fog/sigma_a=1.1e-12 "
+                            "--set media/fog/emission=1 --spp 1 --check --check-seeds 2");
+    EXPECT_EQ(coupled.exitCode, 0) << coupled.err;
 }
 
 TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
@@ -256,6 +262,23 @@ TEST_F(CliTest, TargetPathsMayHoldEquals) {
     EXPECT_EQ(unknown.exitCode, 2);
     EXPECT_NE(unknown.err.find("no camera 'side' and no file"), std::string::npos) << unknown.err;
     EXPECT_NE(unknown.err.find("cameras: camera"), std::string::npos) << unknown.err;
+
+    // A file whose whole name starts with a camera's name and '=' is that file, unless
+    // the part after '=' is a file too: then the argument is refused as ambiguous.
+    fs::copy_file(target, dir_ / "camera=t.exr");
+    const std::string inScratch = "cd '" + dir_.string() + "' &&";
+    RunResult whole = runCli(grad + "camera=t.exr", dir_, inScratch);
+    EXPECT_EQ(whole.exitCode, 0) << whole.err;
+    fs::copy_file(target, dir_ / "t.exr");
+    RunResult ambiguous = runCli(grad + "camera=t.exr", dir_, inScratch);
+    EXPECT_EQ(ambiguous.exitCode, 2);
+    EXPECT_NE(ambiguous.err.find("both the file 'camera=t.exr' and camera 'camera' with file 't.exr'"),
+              std::string::npos)
+        << ambiguous.err;
+    for (const char* unambiguous : {"./camera=t.exr", "camera=./t.exr"}) {
+        RunResult r = runCli(grad + unambiguous, dir_, inScratch);
+        EXPECT_EQ(r.exitCode, 0) << unambiguous << ": " << r.err;
+    }
 }
 
 // A density grid's gradient has a value per voxel: the text output summarises it, --json

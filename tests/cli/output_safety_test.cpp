@@ -6,6 +6,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -90,6 +91,22 @@ TEST_F(OutputSafety, RefusesToReplaceAnythingButARegularFileBeforeAnyWork) {
     // A directory that takes no new files whatever its permission bits say (even to root).
     expectRefused("render " + noScene() + " -o /proc/x.exr", "-o /proc/x.exr: cannot");
     expectRefused(optimizeCommand(file) + " --out /proc/run", "--out /proc/run: cannot");
+}
+
+// An append-only directory (chattr +a) takes new files but removes none: outputs, which
+// are renamed over their path, cannot be written there, and the test file made to find
+// out is named as left behind.
+TEST_F(OutputSafety, RefusesADirectoryThatKeepsEveryFile) {
+    const fs::path keeps = dir_ / "keeps";
+    fs::create_directory(keeps);
+    if (std::system(("chattr +a '" + keeps.string() + "' 2> /dev/null").c_str()) != 0) {
+        GTEST_SKIP() << "chattr +a needs root and a file system that has the attribute";
+    }
+    RunResult r = run("render " + noScene() + " -o " + (keeps / "x.exr").string());
+    EXPECT_EQ(std::system(("chattr -a '" + keeps.string() + "'").c_str()), 0);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("takes new files but does not let them be removed"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(".vkdiffrender-write-check-"), std::string::npos) << r.err;
 }
 
 TEST_F(OutputSafety, RefusesTwoOutputsThatAreOneFile) {

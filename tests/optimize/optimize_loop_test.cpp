@@ -12,6 +12,7 @@
 #include "optimize/optimize_loop.h"
 #include "quadratic_loss_gradient.h"
 #include "scene/parameters.h"
+#include "scene/scene_medium_emission.h"
 
 namespace vkdr::test {
 namespace {
@@ -95,6 +96,34 @@ TEST(OptimizeLoop, KeepsEveryParameterInsideItsConstraints) {
     expectValues(scene, "media/fog/g", {0.99f}, 1e-6f);
     expectValues(scene, "materials/white/base_color", {1.0f, 0.0f, 0.4f}, 2e-3f);
     expectValues(scene, "lights/lamp/emission", {0.0f, 1.0f, 2.0f}, 2e-3f);
+}
+
+// A scene-wide medium that emits may not stop attenuating (every ray leaving the scene
+// would gather emission / sigma_t beyond any radiance): a fit towards sigma_a = 0 is held
+// at emission / kMaxRadiance in the channels that emit, and one towards a stronger
+// emission at kMaxRadiance x sigma_t.
+TEST(OptimizeLoop, KeepsASceneWideMediumsEmissionBounded) {
+    Scene scene = sceneWithParameters();
+    scene.media[0].sigma_s = glm::vec3(0.0f);
+    scene.media[0].emission = glm::vec3(1.0f, 2.0f, 0.0f);
+    OptimizeCallbacks callbacks;
+    callbacks.iterationDone = [&](const IterationRecord& record) {
+        std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(scene);
+        EXPECT_FALSE(unbounded) << "iteration " << record.iteration << ": " << unbounded->problem;
+    };
+    QuadraticLossGradient towardsNoAttenuation({{"media/fog/sigma_a", {-1.0, -1.0, -1.0}}});
+    optimize(towardsNoAttenuation, scene, optionsFor({"media/fog/sigma_a"}, OptimizerKind::Adam, 0.05, 100),
+             callbacks);
+    std::vector<float> sigmaA = getParameter(scene, "media/fog/sigma_a");
+    EXPECT_NEAR(sigmaA[0], 1e-12f, 1e-16f);
+    EXPECT_NEAR(sigmaA[1], 2e-12f, 1e-16f);
+    EXPECT_EQ(sigmaA[2], 0.0f);
+
+    scene.media[0].sigma_a = glm::vec3(1e-13f, 0.0f, 0.0f);
+    scene.media[0].emission = glm::vec3(0.0f);
+    QuadraticLossGradient towardsBrighter({{"media/fog/emission", {5.0, 0.0, 0.0}}});
+    optimize(towardsBrighter, scene, optionsFor({"media/fog/emission"}, OptimizerKind::Adam, 0.05, 100), callbacks);
+    EXPECT_NEAR(getParameter(scene, "media/fog/emission")[0], 0.1f, 1e-5f);
 }
 
 TEST(OptimizeLoop, UsesPerParameterLearningRates) {

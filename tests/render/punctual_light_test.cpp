@@ -68,6 +68,14 @@ const glm::vec3 kColor(1.0f, 0.5f, 0.25f);
 constexpr float kIntensity = 3.0f;
 constexpr double kLightHeight = 0.7;  // the light's distance in front of the plane
 
+// A pixel of the plane lit by the point light kLightHeight in front of its centre.
+PixelExpectation pointLitPixel(int x, int y) {
+    return overPixel(x, y, glm::dvec3(kColor) * double(kIntensity), [](glm::dvec2 p) {
+        double d2 = glm::dot(p, p) + kLightHeight * kLightHeight;
+        return kAlbedo / std::numbers::pi * kLightHeight / (d2 * std::sqrt(d2));
+    });
+}
+
 class PunctualLightTest : public RenderTest {};
 
 TEST_F(PunctualLightTest, PointLightIlluminatesAsInverseSquareTimesCosine) {
@@ -75,12 +83,25 @@ TEST_F(PunctualLightTest, PointLightIlluminatesAsInverseSquareTimesCosine) {
     g.lights = {light("bulb", "point", kColor, kIntensity)};
     g.lightNodes = {{0, glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight)}};
     Image image = renderFile(g.write(tempDir(), "point"), {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 3});
-    expectPixelsMatch(image, kSpp, kFloatTolerance, [](int x, int y) {
-        return overPixel(x, y, glm::dvec3(kColor) * double(kIntensity), [](glm::dvec2 p) {
-            double d2 = glm::dot(p, p) + kLightHeight * kLightHeight;
-            return kAlbedo / std::numbers::pi * kLightHeight / (d2 * std::sqrt(d2));
-        });
-    });
+    expectPixelsMatch(image, kSpp, kFloatTolerance, pointLitPixel);
+}
+
+// The light sits exactly on a black wall in the plane x = 0, through the camera, which
+// sees it edge on: every shadow ray ends on the wall's plane, and the wall must not block
+// it (a light on a surface lights what faces it). The wall reflects nothing, so the
+// plane's radiance is the closed form above.
+TEST_F(PunctualLightTest, APointLightOnASurfaceLightsWhatFacesIt) {
+    TestGltf g = litPlane();
+    g.materials.push_back(diffuseMaterial("wall", glm::vec3(0.0f)));
+    TestMesh wall;
+    wall.material = 1;
+    wall.positions = {{0.0f, -5.0f, 0.5f}, {0.0f, 5.0f, 0.5f}, {0.0f, 5.0f, 1.9f}, {0.0f, -5.0f, 1.9f}};
+    wall.triangles = {{0u, 1u, 2u}, {0u, 2u, 3u}};
+    g.meshes.push_back(wall);
+    g.lights = {light("bulb", "point", kColor, kIntensity)};
+    g.lightNodes = {{0, glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight)}};
+    Image image = renderFile(g.write(tempDir(), "on_wall"), {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 3});
+    expectPixelsMatch(image, kSpp, kFloatTolerance, pointLitPixel);
 }
 
 TEST_F(PunctualLightTest, SpotLightFallsOffBetweenItsCones) {

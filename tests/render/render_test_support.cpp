@@ -104,10 +104,13 @@ void expectPixelsMatch(const Image& image, uint32_t spp, double floatTolerance,
 
 std::array<MeanAndError, 3> pixelOverSeeds(const std::filesystem::path& scene, RenderSettings settings, int renders) {
     settings.width = settings.height = 1;
+    LoadedScene loaded = loadScene(scene);
+    Bvh bvh = buildBvh(loaded.scene.positions, loaded.scene.triangles);
+    Renderer renderer(testContext(), loaded.scene, bvh, settings);
     std::vector<double> channels[3];
     for (int seed = 0; seed < renders; ++seed) {
-        settings.seed = uint32_t(seed);
-        Image image = renderFile(scene, settings);
+        renderer.setSeed(uint32_t(seed));
+        Image image = renderer.render();
         for (int c = 0; c < 3; ++c) {
             channels[c].push_back(image.rgb[c]);
         }

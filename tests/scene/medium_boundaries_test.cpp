@@ -35,6 +35,14 @@ MeshData boxWithSplitFaces(glm::vec3 min, glm::vec3 max) {
     return split;
 }
 
+// A scene of one box of the medium "smoke" from the origin to `corner`, in vacuum.
+Scene smokeBox(const std::filesystem::path& directory, glm::vec3 corner) {
+    GltfBuilder builder;
+    int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
+    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, corner), smoke)}});
+    return loadScene(builder.writeGltf(directory / "box.gltf")).scene;
+}
+
 TEST(MediumBoundaries, FlipsInwardWoundBoundariesAndWeldsSplitVertices) {
     TemporaryDirectory directory;
     GltfBuilder builder;
@@ -96,10 +104,7 @@ TEST(MediumBoundaries, NestedBoundariesSitInTheInnermostEnclosingMedium) {
 // inside. (The scene has no light, which is warned of too.)
 TEST(MediumBoundaries, WarnsOfACameraOnABoundary) {
     TemporaryDirectory directory;
-    GltfBuilder builder;
-    int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
-    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {2, 2, 2}), smoke)}});
-    Scene scene = loadScene(builder.writeGltf(directory / "box.gltf")).scene;
+    Scene scene = smokeBox(directory.path(), {2, 2, 2});
     scene.cameras = {Camera{.name = "face"}, Camera{.name = "edge"}, Camera{.name = "off"}, Camera{.name = "inside"}};
     scene.cameras[0].cameraToWorld[3] = glm::vec4(0.5f, 1.5f, 2.0f, 1.0f);
     scene.cameras[1].cameraToWorld[3] = glm::vec4(2.0f, 1.0f, 2.0f, 1.0f);
@@ -118,10 +123,7 @@ TEST(MediumBoundaries, WarnsOfACameraOnABoundary) {
 
 TEST(MediumBoundaries, VacuumOutsideWithoutSceneMedium) {
     TemporaryDirectory directory;
-    GltfBuilder builder;
-    int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
-    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, {1, 1, 1}), smoke)}});
-    Scene scene = loadScene(builder.writeGltf(directory / "vacuum.gltf")).scene;
+    Scene scene = smokeBox(directory.path(), {1, 1, 1});
     EXPECT_EQ(mediumAt(scene, {0.5f, 0.5f, 0.5f}), 0);
     EXPECT_EQ(mediumAt(scene, {2, 2, 2}), kNoMedium);
     EXPECT_EQ(scene.triangleOutsideMedium, std::vector<int32_t>(12, kNoMedium));

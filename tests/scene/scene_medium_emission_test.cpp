@@ -1,0 +1,68 @@
+// The bound on a homogeneous scene-wide medium's emission / (sigma_a + sigma_s): which
+// parameters it couples, and the ranges that keep it, checked against the scene's own
+// test once the values are stored as floats.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "scene/scene_medium_emission.h"
+
+namespace vkdr::test {
+namespace {
+
+Scene sceneWideFog(glm::vec3 sigma_a, glm::vec3 sigma_s, glm::vec3 emission) {
+    Scene scene;
+    scene.media.push_back({"fog", sigma_a, sigma_s, 0.0f, emission});
+    scene.sceneMedium = 0;
+    return scene;
+}
+
+TEST(SceneMediumEmission, CouplesTheSceneWideHomogeneousMediumsSigmasAndEmission) {
+    Scene scene = sceneWideFog(glm::vec3(1.0f), glm::vec3(0.0f), glm::vec3(0.0f));
+    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/sigma_a"), "sigma_a");
+    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/sigma_s"), "sigma_s");
+    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/emission"), "emission");
+    EXPECT_FALSE(sceneWideEmissionMember(scene, "media/fog/g"));
+    EXPECT_FALSE(sceneWideEmissionMember(scene, "media/smoke/sigma_a"));
+    scene.media.push_back({"smoke", glm::vec3(1.0f)});
+    scene.sceneMedium = 1;
+    EXPECT_FALSE(sceneWideEmissionMember(scene, "media/fog/sigma_a"));
+    scene.media[1].densityGrid = 0;  // a grid is finite: nothing to bound
+    EXPECT_FALSE(sceneWideEmissionMember(scene, "media/smoke/sigma_a"));
+    scene.sceneMedium = kNoMedium;
+    EXPECT_FALSE(sceneWideEmissionMember(scene, "media/fog/sigma_a"));
+}
+
+// Each member set to its range's end, from values far outside the bound, leaves the
+// scene within it as floats: emissions from ordinary down to below float's normal range.
+TEST(SceneMediumEmission, TheEndsOfTheRangesKeepTheBoundAsFloats) {
+    const ValueRange any{-INFINITY, INFINITY};
+    for (double emission : {3.0, 1e-20, 1e-30, 1e-40}) {
+        const EmissionAndAttenuation values{0.0, 0.0, emission};
+        for (const char* member : {"sigma_a", "sigma_s"}) {
+            ValueRange range = emissionBoundedRange(values, member, any, 1e-5);
+            EXPECT_GT(range.lower, 0.0) << member << " at emission " << emission;
+            glm::vec3 sigma(float(range.lower));
+            Scene scene = std::string(member) == "sigma_a"
+                              ? sceneWideFog(sigma, glm::vec3(0.0f), glm::vec3(float(emission)))
+                              : sceneWideFog(glm::vec3(0.0f), sigma, glm::vec3(float(emission)));
+            std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(scene);
+            EXPECT_FALSE(unbounded) << member << " at emission " << emission << ": " << unbounded->problem;
+        }
+    }
+    // The largest emission over a given attenuation; none over none.
+    const EmissionAndAttenuation thin{2e-13, 1e-13, 5.0};
+    ValueRange range = emissionBoundedRange(thin, "emission", {0.0, 1e12}, 1e-5);
+    EXPECT_NEAR(range.upper, 0.3, 1e-5);
+    std::optional<UnboundedSceneEmission> unbounded =
+        unboundedSceneEmission(sceneWideFog(glm::vec3(2e-13f), glm::vec3(1e-13f), glm::vec3(float(range.upper))));
+    EXPECT_FALSE(unbounded) << unbounded->problem;
+    EXPECT_EQ(emissionBoundedRange({0.0, 0.0, 1.0}, "emission", {0.0, 1e12}, 0.0).upper, 0.0);
+    // Ranges already inside the bound are left as they are.
+    EXPECT_EQ(emissionBoundedRange({0.5, 0.5, 1.0}, "sigma_a", {0.0, INFINITY}, 1e-5).lower, 0.0);
+    EXPECT_EQ(emissionBoundedRange({0.0, 0.0, 0.0}, "sigma_s", {0.0, INFINITY}, 1e-5).lower, 0.0);
+}
+
+}  // namespace
+}  // namespace vkdr::test
