@@ -41,7 +41,7 @@ set(CPACK_DEBIAN_PACKAGE_MAINTAINER ${CPACK_PACKAGE_CONTACT})
 # finds its docs and scenes relative to itself (src/cli/install_layout.h).
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
-# RelWithDebInfo binaries are mostly debug information, which a user does not need.
+# Line tables and symbols (tools/build.sh builds with -g1) are not needed to run it.
 set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 # The libraries the binary and the module link (OpenEXR, TBB, tinygltf, libstdc++, ...)

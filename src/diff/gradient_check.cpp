@@ -58,8 +58,9 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
             ValueRange range = description.range;
             if (coupled) {
                 const Medium& medium = scene.media[size_t(scene.sceneMedium)];
+                // The optimiser's margin: the steps are rendered as floats.
                 range = emissionBoundedRange({medium.sigma_a[c], medium.sigma_s[c], medium.emission[c]}, *coupled,
-                                             range, 0.0);
+                                             range, kEmissionBoundMargin);
             }
             std::vector<double> differences;
             for (int s = 0; s < seeds; ++s) {

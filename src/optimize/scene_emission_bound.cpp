@@ -24,8 +24,6 @@ void keepSceneWideEmissionBounded(ParameterVector& parameters, const Scene& scen
     }
     if (!optimised[0] && !optimised[1] && !optimised[2]) return;
     const Medium& medium = scene.media[size_t(scene.sceneMedium)];
-    // Far above float's rounding of the values when they are written to the scene.
-    constexpr double kMargin = 1e-5;
     const ValueRange unbounded{-INFINITY, INFINITY};
     for (size_t c = 0; c < 3; ++c) {
         double* value[3];
@@ -34,7 +32,8 @@ void keepSceneWideEmissionBounded(ParameterVector& parameters, const Scene& scen
         // The first optimised member in this order takes the whole correction.
         for (size_t m = 0; m < 3; ++m) {
             if (!optimised[m]) continue;
-            ValueRange range = emissionBoundedRange({*value[0], *value[1], *value[2]}, members[m], unbounded, kMargin);
+            ValueRange range = emissionBoundedRange({*value[0], *value[1], *value[2]}, members[m], unbounded,
+                                                    kEmissionBoundMargin);
             *value[m] = std::clamp(*value[m], range.lower, range.upper);
         }
     }

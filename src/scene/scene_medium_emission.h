@@ -29,6 +29,9 @@ struct EmissionAndAttenuation {
 // homogeneous scene-wide medium, the values the bound couples; else nullopt.
 std::optional<std::string> sceneWideEmissionMember(const Scene& scene, std::string_view parameter);
 
+// A margin for emissionBoundedRange far above float's rounding (6e-8, relative).
+inline constexpr double kEmissionBoundMargin = 1e-5;
+
 // `range` narrowed to the values of `member` ("sigma_a", "sigma_s" or "emission") that
 // keep emission / (sigma_a + sigma_s) within kMaxRadiance, the other two as in `values`:
 // a least sigma_a or sigma_s, a largest emission. `margin` (relative) holds the values
