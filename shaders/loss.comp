@@ -49,5 +49,5 @@ void main() {
         loss = pixelLoss(p, film / float(pass.samplesInPass), imageAdjoint);
     }
     P.imageAdjoint.v[p] = vec4(imageAdjoint, 0.0f);
-    addFixedPoint(P.lossSum, 0u, vec3(loss * P.lossScale, 0.0f, 0.0f), 1u);
+    addFixedPoint(P.lossSum, 0u, vec4(loss * P.lossScale, 0.0f, 0.0f, 0.0f), 1u);
 }

@@ -83,7 +83,8 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
         float integral = densityIntegralAdjoint(grid, origin, direction, flight.t, nextTrackingRandom(points).x,
                                                 dot(weight, sigma_t));
         vec3 dLogScattering = flight.collided ? logDerivativeOfLinear(m.sigma_s) : vec3(0.0f);
-        addSigmaGradient(medium, -integral * weight, (dLogScattering - integral) * weight);
+        addSigmaTGradient(medium, -integral * weight);
+        addSigmaSGradient(medium, dLogScattering * weight);
         if (flight.collided) {
             GridRay ray = gridRay(grid, origin, direction);
             addTrilinearDensityGradient(grid, ray.origin + flight.t * ray.direction,
@@ -113,8 +114,8 @@ uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, in
         float pdf = freeFlightPdf(sigma_t, t);
         vec3 perUnitScattering = pdf > 0.0f ? transmittance(sigma_t, t) / pdf : vec3(0.0f);
         if (kAdjoint) {
-            addSigmaGradient(medium, factorGradient(slot, vec3(-t)),
-                             factorGradient(slot, logDerivativeOfLinear(m.sigma_s) - t));
+            addSigmaTGradient(medium, factorGradient(slot, vec3(-t)));
+            addSigmaSGradient(medium, factorGradient(slot, logDerivativeOfLinear(m.sigma_s)));
         }
         beta = multiplyByParameter(beta, m.sigma_s, perUnitScattering, kTargetMediumScattering, medium);
         scatterByAlbedoGrid(slot, m, P.rayOrigin.v[slot].xyz + t * P.rayDirection.v[slot].xyz, beta);
@@ -135,7 +136,7 @@ uint sampleFreeFlightVertex(uint slot, uint medium, float tHit, bool escaped, in
     return kVertexSurface;
 }
 
-void main() {
+void sampleSegment() {
     uint index = gl_GlobalInvocationID.x;
     if (index >= endSize(pass.currentRays)) {
         return;
@@ -148,6 +149,7 @@ void main() {
     uint medium = vertex.x;
     vec3 beta = P.beta.v[slot].rgb;
     beginReplay(slot);
+    holdMediumGradients(medium);
     applyPendingFactor(slot);
     uint vertexKind = kVertexSurface;
     if (kMedia && medium != kNoMediumIndex) {
@@ -170,4 +172,9 @@ void main() {
     P.beta.v[slot].rgb = beta;
     P.vertexInfo.v[slot].y = vertexKind;
     queueShade(slot, vertexKind == kVertexSurface);
+}
+
+void main() {
+    sampleSegment();
+    flushMediumGradients();
 }

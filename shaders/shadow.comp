@@ -39,7 +39,7 @@ void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr, MediumLengths
     addEmitterGradient(floatBitsToUint(emissionGradient.w), delta * emissionGradient.rgb * tr * normal);
 }
 
-void main() {
+void traceShadowRay() {
     uint index = gl_GlobalInvocationID.x;
     if (index >= queueSize(kQueueShadow)) {
         return;
@@ -54,6 +54,7 @@ void main() {
                                   lengths, random, gradientPoints);
     vec3 contribution = tr * P.shadowContribution.v[slot].rgb;
     beginReplay(slot);
+    holdMediumGradients(floatBitsToUint(direction.w));
     if (kAdjoint) {
         // The derivative channels as they were at the vertex, before its continuation.
         // For this contribution only: the stage never stores the replay state back.
@@ -63,4 +64,9 @@ void main() {
     if (kAdjoint) {
         backpropagateNextEvent(slot, contribution, tr, lengths);
     }
+}
+
+void main() {
+    traceShadowRay();
+    flushMediumGradients();
 }

@@ -84,7 +84,7 @@ uint subgroupCopyOfSum(uint copyStride, uint first) {
 // share `first` add together (addFixedPoint sums their digits first): the loop peels off
 // one distinct `first` per iteration. A call site must pass one buffer for all its lanes,
 // since the lanes are grouped by `first` alone.
-void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec3 g, uint channels) {
+void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec4 g, uint channels) {
     uint sum = subgroupCopyOfSum(copyStride, first);
     if (!kSubgroupGradientSums) {
         for (uint c = 0u; c < channels; ++c) {
@@ -101,9 +101,8 @@ void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec3 g, uin
     }
 }
 
-void addMediumGradient(uint medium, uint firstComponent, vec3 g, uint channels) {
-    addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + firstComponent, g,
-                channels);
+void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec3 g, uint channels) {
+    addGradient(gradients, copyStride, first, vec4(g, 0.0f), channels);
 }
 
 // Whether the pipelines add gradients of this kind (kGradientKind* in device_types.h).
@@ -112,29 +111,98 @@ bool gradientWanted(uint kind) {
     return (kGradientKinds & (1u << kind)) != 0u;
 }
 
+// The first of the sums a gradient with respect to sigma_t = sigma_a + sigma_s adds to.
+// Where both are wanted, their sigma_t sums, which gradient_values.comp adds to each (the
+// same total, bit for bit, as adding every term to both, at half the additions);
+// otherwise the sums of the one wanted.
+uint sigmaTSums() {
+    if (gradientWanted(kGradientKindSigmaA)) {
+        return gradientWanted(kGradientKindSigmaS) ? kMediumGradientSigmaT : kMediumGradientSigmaA;
+    }
+    return kMediumGradientSigmaS;
+}
+
+// An invocation's terms of one medium's gradient, held until its stage ends
+// (flushMediumGradients). A segment through a homogeneous medium adds to the same few sums
+// from its free flight, its equiangular next event, its shadow ray and its phase function,
+// and every addition to device memory costs subgroup sums over the words of its sums
+// (addFixedPoint): held, each sum takes one. Terms of other media are added at once. An
+// invocation sums its terms in the same order in every run and whatever else is wanted
+// (sigma_t's terms apart from sigma_s's), so totals keep their bits.
+struct HeldMediumGradients {
+    uint medium;  // kNoMediumIndex: nothing held
+    vec3 sigmaS;
+    vec4 gAndSigmaT;  // x: g; yzw: sigma_t (kMediumGradientG, then kMediumGradientSigmaT)
+    vec3 emission;
+};
+
+HeldMediumGradients heldMediumGradients = HeldMediumGradients(kNoMediumIndex, vec3(0.0f), vec4(0.0f), vec3(0.0f));
+
+// The stage holds the terms of `medium` (the medium its segment or shadow ray starts in).
+void holdMediumGradients(uint medium) {
+    heldMediumGradients.medium = medium;
+}
+
+// Adds `values` to the held medium's sums from `component`, where any lane of the
+// subgroup has a term for them.
+void addHeldMediumSums(uint component, vec4 values, uint channels) {
+    if (subgroupAny(any(notEqual(values, vec4(0.0f))))) {
+        addGradient(P.mediumGradients, P.mediumGradientsCopyStride,
+                    heldMediumGradients.medium * kMediumGradientStride + component, values, channels);
+    }
+}
+
+// Adds the held terms to their medium's sums: every stage that holds a medium's terms
+// calls it before it ends.
+void flushMediumGradients() {
+    if (!kAdjoint || heldMediumGradients.medium == kNoMediumIndex) {
+        return;
+    }
+    HeldMediumGradients held = heldMediumGradients;
+    if (gradientWanted(kGradientKindSigmaS)) {
+        addHeldMediumSums(kMediumGradientSigmaS, vec4(held.sigmaS, 0.0f), 3u);
+    }
+    if (sigmaTSums() == kMediumGradientSigmaT) {
+        addHeldMediumSums(kMediumGradientG, held.gAndSigmaT, 4u);
+    } else {
+        if (gradientWanted(kGradientKindG)) {
+            addHeldMediumSums(kMediumGradientG, vec4(held.gAndSigmaT.x, 0.0f, 0.0f, 0.0f), 1u);
+        }
+        if (gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS)) {
+            addHeldMediumSums(sigmaTSums(), vec4(held.gAndSigmaT.yzw, 0.0f), 3u);
+        }
+    }
+    if (gradientWanted(kGradientKindMediumEmission)) {
+        addHeldMediumSums(kMediumGradientEmission, vec4(held.emission, 0.0f), 3u);
+    }
+}
+
+void addMediumGradient(uint medium, uint component, vec3 g, uint channels) {
+    if (medium != heldMediumGradients.medium) {
+        uint sums = component == kMediumGradientSigmaT ? sigmaTSums() : component;
+        addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + sums, g,
+                    channels);
+    } else if (component == kMediumGradientSigmaS) {
+        heldMediumGradients.sigmaS += g;
+    } else if (component == kMediumGradientG) {
+        heldMediumGradients.gAndSigmaT.x += g.x;
+    } else if (component == kMediumGradientSigmaT) {
+        heldMediumGradients.gAndSigmaT.yzw += g;
+    } else {
+        heldMediumGradients.emission += g;
+    }
+}
+
 void addSigmaSGradient(uint medium, vec3 dSigmaS) {
     if (gradientWanted(kGradientKindSigmaS)) {
         addMediumGradient(medium, kMediumGradientSigmaS, dSigmaS, 3u);
     }
 }
 
-void addSigmaGradient(uint medium, vec3 dSigmaA, vec3 dSigmaS) {
-    if (gradientWanted(kGradientKindSigmaA)) {
-        addMediumGradient(medium, kMediumGradientSigmaA, dSigmaA, 3u);
-    }
-    addSigmaSGradient(medium, dSigmaS);
-}
-
-// A gradient with respect to sigma_t = sigma_a + sigma_s, which both share: where both
-// are wanted, summed once into the sigma_t sums, which gradient_values.comp adds to each
-// (the same total, bit for bit, as adding every term to both, at half the additions).
+// A gradient with respect to sigma_t = sigma_a + sigma_s (sigmaTSums).
 void addSigmaTGradient(uint medium, vec3 dSigmaT) {
-    if (gradientWanted(kGradientKindSigmaA) && gradientWanted(kGradientKindSigmaS)) {
+    if (gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS)) {
         addMediumGradient(medium, kMediumGradientSigmaT, dSigmaT, 3u);
-    } else if (gradientWanted(kGradientKindSigmaA)) {
-        addMediumGradient(medium, kMediumGradientSigmaA, dSigmaT, 3u);
-    } else {
-        addSigmaSGradient(medium, dSigmaT);
     }
 }
 

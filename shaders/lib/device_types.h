@@ -85,10 +85,11 @@ const uint kTargetBaseColor = 2u;         // base colour of a material (factor o
 const uint kMediumGradientSigmaA = 0u;  // rgb
 const uint kMediumGradientSigmaS = 3u;  // rgb
 const uint kMediumGradientG = 6u;       // one value
-const uint kMediumGradientEmission = 7u;  // rgb
 // rgb: a gradient with respect to sigma_t = sigma_a + sigma_s, when both are wanted, is
-// summed here once; gradient_values.comp reads it as part of each of the two.
-const uint kMediumGradientSigmaT = 10u;
+// summed here once; gradient_values.comp reads it as part of each of the two. Beside g,
+// so that a stage adds both with one addition (flushMediumGradients in adjoint.glsl).
+const uint kMediumGradientSigmaT = 7u;
+const uint kMediumGradientEmission = 10u;  // rgb
 const uint kMediumGradientStride = 13u;
 // A base colour, emission or texel gradient: rgb.
 const uint kColorGradientStride = 3u;

@@ -29,12 +29,13 @@ void addToWord(Int64Buffer sums, uint sum, uint k, int64_t value) {
 // kFixedPointWordsPerSum, ... (the index of each one's first word). Every active lane of
 // the subgroup must call it with the same `sum`: the lanes' digits are added up first with
 // integer subgroup sums, exact in any grouping, so one lane adds each word's total.
-void addFixedPoint(Int64Buffer sums, uint sum, vec3 x, uint channels) {
-    FixedPointTerm terms[3] = FixedPointTerm[3](fixedPointTerm(x.x), fixedPointTerm(x.y), fixedPointTerm(x.z));
-    uvec3 flags = subgroupOr(uvec3(terms[0].flags, terms[1].flags, terms[2].flags));
+void addFixedPoint(Int64Buffer sums, uint sum, vec4 x, uint channels) {
+    FixedPointTerm terms[4] = FixedPointTerm[4](fixedPointTerm(x.x), fixedPointTerm(x.y), fixedPointTerm(x.z),
+                                                fixedPointTerm(x.w));
+    uvec4 flags = subgroupOr(uvec4(terms[0].flags, terms[1].flags, terms[2].flags, terms[3].flags));
     uint lowest = kFixedPointWords;
     uint highest = 0u;
-    for (uint c = 0u; c < 3u; ++c) {
+    for (uint c = 0u; c < channels; ++c) {
         if (terms[c].word < kFixedPointWords) {
             lowest = min(lowest, terms[c].word);
             highest = max(highest, terms[c].word + 1u);
@@ -43,8 +44,8 @@ void addFixedPoint(Int64Buffer sums, uint sum, vec3 x, uint channels) {
     lowest = subgroupMin(lowest);
     highest = min(subgroupMax(highest), kFixedPointWords - 1u);
     for (uint k = lowest; k <= highest; ++k) {
-        i64vec3 digits = subgroupAdd(i64vec3(fixedPointDigit(terms[0], k), fixedPointDigit(terms[1], k),
-                                             fixedPointDigit(terms[2], k)));
+        i64vec4 digits = subgroupAdd(i64vec4(fixedPointDigit(terms[0], k), fixedPointDigit(terms[1], k),
+                                             fixedPointDigit(terms[2], k), fixedPointDigit(terms[3], k)));
         if (subgroupElect()) {
             for (uint c = 0u; c < channels; ++c) {
                 if (digits[c] != int64_t(0)) {

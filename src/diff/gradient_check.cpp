@@ -51,16 +51,15 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
     for (size_t p = 0; p < parameters.size(); ++p) {
         const std::vector<float> value = getParameter(scene, parameters[p]);
         const ParameterDescription& description = *parseParameterName(parameters[p])->description;
-        const std::optional<std::string> coupled = sceneWideEmissionMember(scene, parameters[p]);
+        const std::optional<EmissionBoundMember> coupled = sceneWideEmissionMember(scene, parameters[p]);
         for (size_t c = 0; c < value.size(); ++c) {
             const float x = value[c];
             const double h = description.finiteDifferenceStep(x);
             ValueRange range = description.range;
             if (coupled) {
-                const Medium& medium = scene.media[size_t(scene.sceneMedium)];
                 // The optimiser's margin: the steps are rendered as floats.
-                range = emissionBoundedRange({medium.sigma_a[c], medium.sigma_s[c], medium.emission[c]}, *coupled,
-                                             range, kEmissionBoundMargin);
+                range = emissionBoundedRange(emissionAndAttenuation(*boundedSceneWideMedium(scene), int(c)),
+                                             *coupled, range, kEmissionBoundMargin);
             }
             std::vector<double> differences;
             for (int s = 0; s < seeds; ++s) {

@@ -12,28 +12,28 @@
 namespace vkdr {
 
 void keepSceneWideEmissionBounded(ParameterVector& parameters, const Scene& scene) {
-    // The values of each coupled member (sigma_a, sigma_s, emission) that is optimised.
+    // The values of each coupled member that is optimised, by EmissionBoundMember.
     std::optional<std::span<double>> optimised[3];
-    const char* const members[3] = {"sigma_a", "sigma_s", "emission"};
     const std::vector<std::string>& names = parameters.names();
     for (size_t i = 0; i < names.size(); ++i) {
-        std::optional<std::string> member = sceneWideEmissionMember(scene, names[i]);
-        if (!member) continue;
-        size_t m = size_t(std::find(members, members + 3, *member) - members);
-        optimised[m] = parameters.values().subspan(parameters.offset(i), parameters.count(i));
+        if (std::optional<EmissionBoundMember> member = sceneWideEmissionMember(scene, names[i])) {
+            optimised[size_t(*member)] = parameters.values().subspan(parameters.offset(i), parameters.count(i));
+        }
     }
     if (!optimised[0] && !optimised[1] && !optimised[2]) return;
-    const Medium& medium = scene.media[size_t(scene.sceneMedium)];
+    const Medium& medium = *boundedSceneWideMedium(scene);
     const ValueRange unbounded{-INFINITY, INFINITY};
-    for (size_t c = 0; c < 3; ++c) {
+    for (int c = 0; c < 3; ++c) {
+        const EmissionAndAttenuation sceneValues = emissionAndAttenuation(medium, c);
+        double sceneValue[3] = {sceneValues.sigma_a, sceneValues.sigma_s, sceneValues.emission};
         double* value[3];
-        double sceneValue[3] = {medium.sigma_a[c], medium.sigma_s[c], medium.emission[c]};
-        for (size_t m = 0; m < 3; ++m) value[m] = optimised[m] ? &(*optimised[m])[c] : &sceneValue[m];
+        for (size_t m = 0; m < 3; ++m) value[m] = optimised[m] ? &(*optimised[m])[size_t(c)] : &sceneValue[m];
         // The first optimised member in this order takes the whole correction.
-        for (size_t m = 0; m < 3; ++m) {
+        for (EmissionBoundMember member : kEmissionBoundMembers) {
+            const size_t m = size_t(member);
             if (!optimised[m]) continue;
-            ValueRange range = emissionBoundedRange({*value[0], *value[1], *value[2]}, members[m], unbounded,
-                                                    kEmissionBoundMargin);
+            ValueRange range =
+                emissionBoundedRange({*value[0], *value[1], *value[2]}, member, unbounded, kEmissionBoundMargin);
             *value[m] = std::clamp(*value[m], range.lower, range.upper);
         }
     }

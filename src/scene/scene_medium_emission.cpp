@@ -7,10 +7,21 @@
 
 namespace vkdr {
 
-std::optional<UnboundedSceneEmission> unboundedSceneEmission(const Scene& scene) {
-    if (scene.sceneMedium == kNoMedium) return std::nullopt;
+const Medium* boundedSceneWideMedium(const Scene& scene) {
+    if (scene.sceneMedium == kNoMedium) return nullptr;
     const Medium& medium = scene.media[size_t(scene.sceneMedium)];
-    if (medium.isHeterogeneous() || medium.hasEmissionGrid()) return std::nullopt;
+    if (medium.isHeterogeneous() || medium.hasEmissionGrid()) return nullptr;
+    return &medium;
+}
+
+EmissionAndAttenuation emissionAndAttenuation(const Medium& medium, int channel) {
+    return {medium.sigma_a[channel], medium.sigma_s[channel], medium.emission[channel]};
+}
+
+std::optional<UnboundedSceneEmission> unboundedSceneEmission(const Scene& scene) {
+    const Medium* bounded = boundedSceneWideMedium(scene);
+    if (!bounded) return std::nullopt;
+    const Medium& medium = *bounded;
     for (int c = 0; c < 3; ++c) {
         const double emission = medium.emission[c];
         const double sigmaT = double(medium.sigma_a[c]) + double(medium.sigma_s[c]);
@@ -31,20 +42,20 @@ std::optional<UnboundedSceneEmission> unboundedSceneEmission(const Scene& scene)
     return std::nullopt;
 }
 
-std::optional<std::string> sceneWideEmissionMember(const Scene& scene, std::string_view parameter) {
-    if (scene.sceneMedium == kNoMedium) return std::nullopt;
-    const Medium& medium = scene.media[size_t(scene.sceneMedium)];
-    if (medium.isHeterogeneous() || medium.hasEmissionGrid()) return std::nullopt;
-    const std::string prefix = "media/" + medium.name + "/";
-    for (const char* member : {"sigma_a", "sigma_s", "emission"}) {
-        if (parameter == prefix + member) return member;
+std::optional<EmissionBoundMember> sceneWideEmissionMember(const Scene& scene, std::string_view parameter) {
+    const Medium* medium = boundedSceneWideMedium(scene);
+    if (!medium) return std::nullopt;
+    const std::string prefix = "media/" + medium->name + "/";
+    const char* const names[] = {"sigma_a", "sigma_s", "emission"};
+    for (EmissionBoundMember member : kEmissionBoundMembers) {
+        if (parameter == prefix + names[size_t(member)]) return member;
     }
     return std::nullopt;
 }
 
-ValueRange emissionBoundedRange(const EmissionAndAttenuation& values, std::string_view member, ValueRange range,
+ValueRange emissionBoundedRange(const EmissionAndAttenuation& values, EmissionBoundMember member, ValueRange range,
                                 double margin) {
-    if (member == "emission") {
+    if (member == EmissionBoundMember::Emission) {
         range.upper = std::min(range.upper, kMaxRadiance * (values.sigma_a + values.sigma_s) / (1.0 + margin));
         return range;
     }
@@ -52,7 +63,7 @@ ValueRange emissionBoundedRange(const EmissionAndAttenuation& values, std::strin
     // At least float's least normal number: a smaller one loses the margin when stored.
     const double attenuation = std::max(values.emission / kMaxRadiance * (1.0 + margin),
                                         double(std::numeric_limits<float>::min()));
-    const double other = member == "sigma_a" ? values.sigma_s : values.sigma_a;
+    const double other = member == EmissionBoundMember::SigmaA ? values.sigma_s : values.sigma_a;
     range.lower = std::max(range.lower, attenuation - other);
     return range;
 }

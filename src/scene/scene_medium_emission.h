@@ -18,25 +18,35 @@ struct UnboundedSceneEmission {
 };
 std::optional<UnboundedSceneEmission> unboundedSceneEmission(const Scene& scene);
 
-// One channel of the three values that bound couples.
+// The homogeneous scene-wide medium without an emission grid, the medium the bound
+// applies to; nullptr where the scene has none.
+const Medium* boundedSceneWideMedium(const Scene& scene);
+
+// The three values the bound couples, in the order keepSceneWideEmissionBounded
+// (optimize/scene_emission_bound.h) corrects them.
+enum class EmissionBoundMember { SigmaA, SigmaS, Emission };
+inline constexpr EmissionBoundMember kEmissionBoundMembers[] = {
+    EmissionBoundMember::SigmaA, EmissionBoundMember::SigmaS, EmissionBoundMember::Emission};
+
+// One channel of those values.
 struct EmissionAndAttenuation {
     double sigma_a = 0.0;
     double sigma_s = 0.0;
     double emission = 0.0;
 };
+EmissionAndAttenuation emissionAndAttenuation(const Medium& medium, int channel);
 
-// "sigma_a", "sigma_s" or "emission" where `parameter` names that value of the scene's
-// homogeneous scene-wide medium, the values the bound couples; else nullopt.
-std::optional<std::string> sceneWideEmissionMember(const Scene& scene, std::string_view parameter);
+// The member `parameter` names where it is one of boundedSceneWideMedium's coupled values;
+// else nullopt.
+std::optional<EmissionBoundMember> sceneWideEmissionMember(const Scene& scene, std::string_view parameter);
 
 // A margin for emissionBoundedRange far above float's rounding (6e-8, relative).
 inline constexpr double kEmissionBoundMargin = 1e-5;
 
-// `range` narrowed to the values of `member` ("sigma_a", "sigma_s" or "emission") that
-// keep emission / (sigma_a + sigma_s) within kMaxRadiance, the other two as in `values`:
+// `range` narrowed to the values of `member` that keep emission / (sigma_a + sigma_s) within kMaxRadiance, the other two as in `values`:
 // a least sigma_a or sigma_s, a largest emission. `margin` (relative) holds the values
 // that far inside the bound, so that they stay inside it once stored as floats.
-ValueRange emissionBoundedRange(const EmissionAndAttenuation& values, std::string_view member, ValueRange range,
+ValueRange emissionBoundedRange(const EmissionAndAttenuation& values, EmissionBoundMember member, ValueRange range,
                                 double margin);
 
 }  // namespace vkdr

@@ -20,9 +20,9 @@ Scene sceneWideFog(glm::vec3 sigma_a, glm::vec3 sigma_s, glm::vec3 emission) {
 
 TEST(SceneMediumEmission, CouplesTheSceneWideHomogeneousMediumsSigmasAndEmission) {
     Scene scene = sceneWideFog(glm::vec3(1.0f), glm::vec3(0.0f), glm::vec3(0.0f));
-    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/sigma_a"), "sigma_a");
-    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/sigma_s"), "sigma_s");
-    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/emission"), "emission");
+    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/sigma_a"), EmissionBoundMember::SigmaA);
+    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/sigma_s"), EmissionBoundMember::SigmaS);
+    EXPECT_EQ(sceneWideEmissionMember(scene, "media/fog/emission"), EmissionBoundMember::Emission);
     EXPECT_FALSE(sceneWideEmissionMember(scene, "media/fog/g"));
     EXPECT_FALSE(sceneWideEmissionMember(scene, "media/smoke/sigma_a"));
     scene.media.push_back({"smoke", glm::vec3(1.0f)});
@@ -40,28 +40,29 @@ TEST(SceneMediumEmission, TheEndsOfTheRangesKeepTheBoundAsFloats) {
     const ValueRange any{-INFINITY, INFINITY};
     for (double emission : {3.0, 1e-20, 1e-30, 1e-40}) {
         const EmissionAndAttenuation values{0.0, 0.0, emission};
-        for (const char* member : {"sigma_a", "sigma_s"}) {
+        for (EmissionBoundMember member : {EmissionBoundMember::SigmaA, EmissionBoundMember::SigmaS}) {
+            const bool sigma_a = member == EmissionBoundMember::SigmaA;
             ValueRange range = emissionBoundedRange(values, member, any, 1e-5);
-            EXPECT_GT(range.lower, 0.0) << member << " at emission " << emission;
+            EXPECT_GT(range.lower, 0.0) << (sigma_a ? "sigma_a" : "sigma_s") << " at emission " << emission;
             glm::vec3 sigma(float(range.lower));
-            Scene scene = std::string(member) == "sigma_a"
-                              ? sceneWideFog(sigma, glm::vec3(0.0f), glm::vec3(float(emission)))
-                              : sceneWideFog(glm::vec3(0.0f), sigma, glm::vec3(float(emission)));
+            Scene scene = sigma_a ? sceneWideFog(sigma, glm::vec3(0.0f), glm::vec3(float(emission)))
+                                  : sceneWideFog(glm::vec3(0.0f), sigma, glm::vec3(float(emission)));
             std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(scene);
-            EXPECT_FALSE(unbounded) << member << " at emission " << emission << ": " << unbounded->problem;
+            EXPECT_FALSE(unbounded) << (sigma_a ? "sigma_a" : "sigma_s") << " at emission " << emission << ": "
+                                    << unbounded->problem;
         }
     }
     // The largest emission over a given attenuation; none over none.
     const EmissionAndAttenuation thin{2e-13, 1e-13, 5.0};
-    ValueRange range = emissionBoundedRange(thin, "emission", {0.0, 1e12}, 1e-5);
+    ValueRange range = emissionBoundedRange(thin, EmissionBoundMember::Emission, {0.0, 1e12}, 1e-5);
     EXPECT_NEAR(range.upper, 0.3, 1e-5);
     std::optional<UnboundedSceneEmission> unbounded =
         unboundedSceneEmission(sceneWideFog(glm::vec3(2e-13f), glm::vec3(1e-13f), glm::vec3(float(range.upper))));
     EXPECT_FALSE(unbounded) << unbounded->problem;
-    EXPECT_EQ(emissionBoundedRange({0.0, 0.0, 1.0}, "emission", {0.0, 1e12}, 0.0).upper, 0.0);
+    EXPECT_EQ(emissionBoundedRange({0.0, 0.0, 1.0}, EmissionBoundMember::Emission, {0.0, 1e12}, 0.0).upper, 0.0);
     // Ranges already inside the bound are left as they are.
-    EXPECT_EQ(emissionBoundedRange({0.5, 0.5, 1.0}, "sigma_a", {0.0, INFINITY}, 1e-5).lower, 0.0);
-    EXPECT_EQ(emissionBoundedRange({0.0, 0.0, 0.0}, "sigma_s", {0.0, INFINITY}, 1e-5).lower, 0.0);
+    EXPECT_EQ(emissionBoundedRange({0.5, 0.5, 1.0}, EmissionBoundMember::SigmaA, {0.0, INFINITY}, 1e-5).lower, 0.0);
+    EXPECT_EQ(emissionBoundedRange({0.0, 0.0, 0.0}, EmissionBoundMember::SigmaS, {0.0, INFINITY}, 1e-5).lower, 0.0);
 }
 
 }  // namespace
