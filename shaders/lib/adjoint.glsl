@@ -143,12 +143,12 @@ void holdMediumGradients(uint medium) {
     heldMediumGradients.medium = medium;
 }
 
-// Adds `values` to the held medium's sums from `component`, where any lane of the
-// subgroup has a term for them.
-void addHeldMediumSums(uint component, vec4 values, uint channels) {
-    if (subgroupAny(any(notEqual(values, vec4(0.0f))))) {
-        addGradient(P.mediumGradients, P.mediumGradientsCopyStride,
-                    heldMediumGradients.medium * kMediumGradientStride + component, values, channels);
+// Adds `values` to the sums of `medium` from `component`, where any lane of the subgroup
+// has a term for them.
+void addHeldMediumSums(uint medium, uint component, vec4 values, uint channels) {
+    if (subgroupBallot(any(notEqual(values, vec4(0.0f)))) != uvec4(0u)) {
+        addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + component,
+                    values, channels);
     }
 }
 
@@ -160,36 +160,39 @@ void flushMediumGradients() {
     }
     HeldMediumGradients held = heldMediumGradients;
     if (gradientWanted(kGradientKindSigmaS)) {
-        addHeldMediumSums(kMediumGradientSigmaS, vec4(held.sigmaS, 0.0f), 3u);
+        addHeldMediumSums(held.medium, kMediumGradientSigmaS, vec4(held.sigmaS, 0.0f), 3u);
     }
     if (sigmaTSums() == kMediumGradientSigmaT) {
-        addHeldMediumSums(kMediumGradientG, held.gAndSigmaT, 4u);
+        addHeldMediumSums(held.medium, kMediumGradientG, held.gAndSigmaT, 4u);
     } else {
         if (gradientWanted(kGradientKindG)) {
-            addHeldMediumSums(kMediumGradientG, vec4(held.gAndSigmaT.x, 0.0f, 0.0f, 0.0f), 1u);
+            addHeldMediumSums(held.medium, kMediumGradientG, vec4(held.gAndSigmaT.x, 0.0f, 0.0f, 0.0f), 1u);
         }
         if (gradientWanted(kGradientKindSigmaA) || gradientWanted(kGradientKindSigmaS)) {
-            addHeldMediumSums(sigmaTSums(), vec4(held.gAndSigmaT.yzw, 0.0f), 3u);
+            addHeldMediumSums(held.medium, sigmaTSums(), vec4(held.gAndSigmaT.yzw, 0.0f), 3u);
         }
     }
     if (gradientWanted(kGradientKindMediumEmission)) {
-        addHeldMediumSums(kMediumGradientEmission, vec4(held.emission, 0.0f), 3u);
+        addHeldMediumSums(held.medium, kMediumGradientEmission, vec4(held.emission, 0.0f), 3u);
     }
 }
 
+// Adds g to the sums of `medium` from `component` (a kMediumGradient* offset), or holds
+// it where `medium` is held and the component has a place in HeldMediumGradients.
 void addMediumGradient(uint medium, uint component, vec3 g, uint channels) {
-    if (medium != heldMediumGradients.medium) {
+    bool held = medium == heldMediumGradients.medium;
+    if (held && component == kMediumGradientSigmaS) {
+        heldMediumGradients.sigmaS += g;
+    } else if (held && component == kMediumGradientG) {
+        heldMediumGradients.gAndSigmaT.x += g.x;
+    } else if (held && component == kMediumGradientSigmaT) {
+        heldMediumGradients.gAndSigmaT.yzw += g;
+    } else if (held && component == kMediumGradientEmission) {
+        heldMediumGradients.emission += g;
+    } else {
         uint sums = component == kMediumGradientSigmaT ? sigmaTSums() : component;
         addGradient(P.mediumGradients, P.mediumGradientsCopyStride, medium * kMediumGradientStride + sums, g,
                     channels);
-    } else if (component == kMediumGradientSigmaS) {
-        heldMediumGradients.sigmaS += g;
-    } else if (component == kMediumGradientG) {
-        heldMediumGradients.gAndSigmaT.x += g.x;
-    } else if (component == kMediumGradientSigmaT) {
-        heldMediumGradients.gAndSigmaT.yzw += g;
-    } else {
-        heldMediumGradients.emission += g;
     }
 }
 

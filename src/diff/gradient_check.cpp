@@ -1,11 +1,14 @@
 #include "diff/gradient_check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <optional>
 #include <string>
 
+#include "core/error.h"
+#include "core/format_text.h"
 #include "core/sample_statistics.h"
 #include "diff/gradient_over_seeds.h"
 #include "scene/parameter_kinds.h"
@@ -29,14 +32,27 @@ double lossWith(RenderedLossGradient& lg, const Scene& scene, const std::string&
     return lg.loss(changed, seed);
 }
 
+// The largest float bounds every range: a parameter set is a float.
+double upperEnd(const ValueRange& range) {
+    return std::min(range.upper, double(std::numeric_limits<float>::max()));
+}
+
+// The step h where it fits in the range around x, as a central or a one-sided
+// difference (2h to one side); where it fits neither way (a range narrower than the
+// step, as a scene-wide medium's emission bound can make), half the wider side's room.
+double fittedStep(double x, double h, const ValueRange& range) {
+    const double below = x - range.lower, above = upperEnd(range) - x;
+    if ((h <= below && h <= above) || 2.0 * h <= below || 2.0 * h <= above) return h;
+    return std::max(below, above) / 2.0;
+}
+
 // dL/dx by a central difference, or near a bound by the second-order one-sided
-// difference that stays inside it. The largest float bounds every range: a parameter set
-// is a float.
+// difference that stays inside it; h from fittedStep.
 double finiteDifference(const std::function<double(double)>& loss, double x, double h, const ValueRange& range) {
     if (x - h < range.lower) {
         return (-3.0 * loss(x) + 4.0 * loss(x + h) - loss(x + 2.0 * h)) / (2.0 * h);
     }
-    if (x + h > std::min(range.upper, double(std::numeric_limits<float>::max()))) {
+    if (x + h > upperEnd(range)) {
         return (3.0 * loss(x) - 4.0 * loss(x - h) + loss(x - 2.0 * h)) / (2.0 * h);
     }
     return (loss(x + h) - loss(x - h)) / (2.0 * h);
@@ -54,12 +70,17 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
         const std::optional<EmissionBoundMember> coupled = sceneWideEmissionMember(scene, parameters[p]);
         for (size_t c = 0; c < value.size(); ++c) {
             const float x = value[c];
-            const double h = description.finiteDifferenceStep(x);
             ValueRange range = description.range;
             if (coupled) {
                 // The optimiser's margin: the steps are rendered as floats.
                 range = emissionBoundedRange(emissionAndAttenuation(*boundedSceneWideMedium(scene), int(c)),
                                              *coupled, range, kEmissionBoundMargin);
+            }
+            const double h = fittedStep(x, description.finiteDifferenceStep(x), range);
+            if (!(float(x + h) != x || float(x - h) != x)) {
+                throw Error(formatText("%s[%zu] = %g: its range here, %g to %g, leaves no room for a finite "
+                                       "difference",
+                                       parameters[p].c_str(), c, double(x), range.lower, upperEnd(range)));
             }
             std::vector<double> differences;
             for (int s = 0; s < seeds; ++s) {

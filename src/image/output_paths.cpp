@@ -1,6 +1,9 @@
 #include "image/output_paths.h"
 
+#include <fcntl.h>
+#include <linux/fs.h>
 #include <stdlib.h>
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,12 +28,41 @@ fs::file_status statusOf(const std::string& option, const fs::path& path, bool f
     return status;
 }
 
-void requireWritableDirectory(const std::string& option, const fs::path& path, const fs::path& directory) {
+// The directory's inode flags (FS_IOC_GETFLAGS, chattr's attributes); 0 where the file
+// system has none.
+int inodeFlags(const fs::path& directory) {
+    int flags = 0;
+    int descriptor = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (descriptor < 0) return 0;
+    if (ioctl(descriptor, FS_IOC_GETFLAGS, &flags) != 0) flags = 0;
+    close(descriptor);
+    return flags;
+}
+
+// What an output needs of a directory: to write its files there (made under a temporary
+// name and renamed over their path), or only to make a new directory in it.
+enum class DirectoryUse { HoldsOutputs, TakesNewDirectory };
+
+void requireWritableDirectory(const std::string& option, const fs::path& path, const fs::path& directory,
+                              DirectoryUse use) {
     fs::file_status parent = statusOf(option, directory, true);
     if (!fs::exists(parent)) fail(option, path, "directory " + directory.string() + " does not exist");
     if (!fs::is_directory(parent)) fail(option, path, directory.string() + " is not a directory");
     if (access(directory.c_str(), W_OK | X_OK) != 0) {
         fail(option, path, "cannot write in directory " + directory.string() + ": " + std::strerror(errno));
+    }
+    const int flags = inodeFlags(directory);
+    if ((flags & FS_IMMUTABLE_FL) != 0) {
+        fail(option, path, "directory " + directory.string() + " is immutable (chattr +i): it takes no new files");
+    }
+    if ((flags & FS_APPEND_FL) != 0) {
+        // Append-only (chattr +a): new names, and so a new directory, but no removal and no
+        // rename over a name, which writing an output needs.
+        if (use == DirectoryUse::TakesNewDirectory) return;
+        fail(option, path,
+             "directory " + directory.string() +
+                 " is append-only (chattr +a): it takes new files but does not let them be replaced, which writing "
+                 "an output needs");
     }
     // Permission bits do not tell everything (root passes them; /proc and /sys take no
     // new files): a file made and removed at once does.
@@ -40,8 +72,9 @@ void requireWritableDirectory(const std::string& option, const fs::path& path, c
         fail(option, path, "cannot create a file in directory " + directory.string() + ": " + std::strerror(errno));
     }
     close(descriptor);
-    // A directory that keeps every name (append-only) keeps the probe too; refused, as
-    // the temporary file an output is written to could not be renamed over it either.
+    // A directory that keeps every name without saying so by its flags keeps the probe
+    // too; refused, as the temporary file an output is written to could not be renamed
+    // over it either.
     if (unlink(probe.c_str()) != 0) {
         fail(option, path, "directory " + directory.string() + " takes new files but does not let them be removed (" +
                                std::strerror(errno) + "); the test file " + probe + " is left there");
@@ -79,7 +112,7 @@ void requireOutputFile(const std::string& option, const fs::path& file) {
     fs::path name = file.filename();
     if (name.empty() || name == "." || name == "..") fail(option, file, "not a file name");
     fs::path parent = file.parent_path();
-    requireWritableDirectory(option, file, parent.empty() ? fs::path(".") : parent);
+    requireWritableDirectory(option, file, parent.empty() ? fs::path(".") : parent, DirectoryUse::HoldsOutputs);
 }
 
 void requireOutputDirectory(const std::string& option, const fs::path& directory) {
@@ -87,7 +120,7 @@ void requireOutputDirectory(const std::string& option, const fs::path& directory
     fs::file_status status = statusOf(option, directory, true);
     if (fs::exists(status)) {
         if (!fs::is_directory(status)) fail(option, directory, "exists and is not a directory");
-        requireWritableDirectory(option, directory, directory);
+        requireWritableDirectory(option, directory, directory, DirectoryUse::HoldsOutputs);
         return;
     }
     // Created with its missing parents: the nearest ancestor that exists must take them.
@@ -95,7 +128,7 @@ void requireOutputDirectory(const std::string& option, const fs::path& directory
     while (!fs::exists(statusOf(option, ancestor, true)) && ancestor.has_relative_path()) {
         ancestor = ancestor.parent_path();
     }
-    requireWritableDirectory(option, directory, ancestor);
+    requireWritableDirectory(option, directory, ancestor, DirectoryUse::TakesNewDirectory);
 }
 
 bool sameFile(const fs::path& a, const fs::path& b) {

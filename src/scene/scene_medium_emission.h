@@ -43,9 +43,10 @@ std::optional<EmissionBoundMember> sceneWideEmissionMember(const Scene& scene, s
 // A margin for emissionBoundedRange far above float's rounding (6e-8, relative).
 inline constexpr double kEmissionBoundMargin = 1e-5;
 
-// `range` narrowed to the values of `member` that keep emission / (sigma_a + sigma_s) within kMaxRadiance, the other two as in `values`:
-// a least sigma_a or sigma_s, a largest emission. `margin` (relative) holds the values
-// that far inside the bound, so that they stay inside it once stored as floats.
+// `range` narrowed to the values of `member` that keep emission / (sigma_a + sigma_s)
+// within kMaxRadiance, the other two as in `values`: a least sigma_a or sigma_s, a
+// largest emission. `margin` (relative) holds the values that far inside the bound, so
+// that they stay inside it once stored as floats.
 ValueRange emissionBoundedRange(const EmissionAndAttenuation& values, EmissionBoundMember member, ValueRange range,
                                 double margin);
 

@@ -213,6 +213,16 @@ TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
                             " --param media/fog/sigma_a --set media/fog/sigma_s=0 --set media/fog/sigma_a=1.1e-12 "
                             "--set media/fog/emission=1 --spp 1 --check --check-seeds 2");
     EXPECT_EQ(coupled.exitCode, 0) << coupled.err;
+    // An emission of 0.001 whose attenuation allows 0.0015 has room for neither its step
+    // of 0.001 to each side nor 0.002 to one: the step shrinks to fit.
+    RunResult narrow = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                           " --param media/fog/emission --set media/fog/sigma_s=0 --set media/fog/sigma_a=1.5e-15 "
+                           "--set media/fog/emission=0.001 --spp 1 --check --check-seeds 2 --json");
+    ASSERT_EQ(narrow.exitCode, 0) << narrow.err;
+    for (const auto& row : nlohmann::json::parse(narrow.out)["check"]) {
+        EXPECT_LT(row["step"].get<double>(), 0.001);
+        EXPECT_GT(row["step"].get<double>(), 0.0);
+    }
 }
 
 TEST_F(CliTest, GradRejectsBadParametersAndTargets) {
