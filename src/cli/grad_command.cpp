@@ -140,6 +140,7 @@ void requireCheckable(const Scene& scene, const GradOptions& options) {
                         std::to_string(2 * values * size_t(options.checkSeeds)) + " renders");
         }
     }
+    if (options.check) finiteDifferenceSteps(scene, options.parameters);
 }
 
 int runGrad(const GradOptions& options) {

@@ -60,14 +60,14 @@ double finiteDifference(const std::function<double(double)>& loss, double x, dou
 
 }  // namespace
 
-std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Scene& scene,
-                                             const std::vector<std::string>& parameters, int seeds) {
-    const std::vector<std::vector<MeanAndError>> adjoint = gradientOverSeeds(lg, scene, uint32_t(seeds));
-    std::vector<GradientCheckRow> rows;
-    for (size_t p = 0; p < parameters.size(); ++p) {
-        const std::vector<float> value = getParameter(scene, parameters[p]);
-        const ParameterDescription& description = *parseParameterName(parameters[p])->description;
-        const std::optional<EmissionBoundMember> coupled = sceneWideEmissionMember(scene, parameters[p]);
+std::vector<std::vector<FiniteDifferenceStep>> finiteDifferenceSteps(const Scene& scene,
+                                                                      const std::vector<std::string>& parameters) {
+    std::vector<std::vector<FiniteDifferenceStep>> steps;
+    for (const std::string& name : parameters) {
+        const std::vector<float> value = getParameter(scene, name);
+        const ParameterDescription& description = *parseParameterName(name)->description;
+        const std::optional<EmissionBoundMember> coupled = sceneWideEmissionMember(scene, name);
+        std::vector<FiniteDifferenceStep>& components = steps.emplace_back();
         for (size_t c = 0; c < value.size(); ++c) {
             const float x = value[c];
             ValueRange range = description.range;
@@ -78,10 +78,30 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
             }
             const double h = fittedStep(x, description.finiteDifferenceStep(x), range);
             if (!(float(x + h) != x || float(x - h) != x)) {
-                throw Error(formatText("%s[%zu] = %g: its range here, %g to %g, leaves no room for a finite "
-                                       "difference",
-                                       parameters[p].c_str(), c, double(x), range.lower, upperEnd(range)));
+                throw Error(formatText("--check: %s[%zu] = %g has no room for a finite difference: its range here is "
+                                       "%g to %g%s",
+                                       name.c_str(), c, double(x), range.lower, upperEnd(range),
+                                       coupled ? " (a scene-wide medium's emission / (sigma_a + sigma_s) may not "
+                                                 "exceed 1e12)"
+                                               : ""));
             }
+            components.push_back({h, range});
+        }
+    }
+    return steps;
+}
+
+std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Scene& scene,
+                                             const std::vector<std::string>& parameters, int seeds) {
+    const std::vector<std::vector<FiniteDifferenceStep>> steps = finiteDifferenceSteps(scene, parameters);
+    const std::vector<std::vector<MeanAndError>> adjoint = gradientOverSeeds(lg, scene, uint32_t(seeds));
+    std::vector<GradientCheckRow> rows;
+    for (size_t p = 0; p < parameters.size(); ++p) {
+        const std::vector<float> value = getParameter(scene, parameters[p]);
+        for (size_t c = 0; c < value.size(); ++c) {
+            const float x = value[c];
+            const double h = steps[p][c].step;
+            const ValueRange& range = steps[p][c].range;
             std::vector<double> differences;
             for (int s = 0; s < seeds; ++s) {
                 const uint32_t seed = kFirstFiniteDifferenceSeed + uint32_t(s);

@@ -3,8 +3,23 @@
 #include <vector>
 
 #include "diff/rendered_loss_gradient.h"
+#include "scene/parameter_kinds.h"
 
 namespace vkdr {
+
+// One component's finite difference: its step and the range its evaluations stay in.
+struct FiniteDifferenceStep {
+    double step = 0.0;
+    ValueRange range;
+};
+
+// The step and range of every component of every parameter, by parameter and component:
+// each kind's step, or where neither a central nor a one-sided difference fits the range
+// (a scene-wide medium's emission near its bound), half the wider side's room. Throws,
+// naming the component and its range, where float has no room at all; call it before
+// any rendering.
+std::vector<std::vector<FiniteDifferenceStep>> finiteDifferenceSteps(const Scene& scene,
+                                                                      const std::vector<std::string>& parameters);
 
 // One component of one parameter: the adjoint gradient against central finite
 // differences of the loss with common random numbers, each the mean over several seeds
@@ -22,7 +37,8 @@ struct GradientCheckRow {
 // second-order one-sided difference (-3 L(x) + 4 L(x + h) - L(x + 2h)) / 2h, or its
 // mirror, is used instead; so too where a scene-wide medium's sigma or emission would
 // leave the range that keeps its emission bounded (scene/scene_medium_emission.h).
-// Parameter names must be valid for the scene.
+// Where neither fits, the step shrinks to fit (finiteDifferenceSteps). Parameter names
+// must be valid for the scene.
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lossGradient, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds);
 

@@ -1,9 +1,8 @@
 #include "image/output_paths.h"
 
 #include <fcntl.h>
-#include <linux/fs.h>
 #include <stdlib.h>
-#include <sys/ioctl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -28,15 +27,12 @@ fs::file_status statusOf(const std::string& option, const fs::path& path, bool f
     return status;
 }
 
-// The directory's inode flags (FS_IOC_GETFLAGS, chattr's attributes); 0 where the file
-// system has none.
-int inodeFlags(const fs::path& directory) {
-    int flags = 0;
-    int descriptor = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (descriptor < 0) return 0;
-    if (ioctl(descriptor, FS_IOC_GETFLAGS, &flags) != 0) flags = 0;
-    close(descriptor);
-    return flags;
+// The directory's attributes that chattr sets (STATX_ATTR_*), as far as the file system
+// reports them; statx needs no permission on the directory itself.
+uint64_t fileAttributes(const fs::path& directory) {
+    struct statx attributes {};
+    if (statx(AT_FDCWD, directory.c_str(), 0, STATX_BASIC_STATS, &attributes) != 0) return 0;
+    return attributes.stx_attributes & attributes.stx_attributes_mask;
 }
 
 // What an output needs of a directory: to write its files there (made under a temporary
@@ -48,21 +44,21 @@ void requireWritableDirectory(const std::string& option, const fs::path& path, c
     fs::file_status parent = statusOf(option, directory, true);
     if (!fs::exists(parent)) fail(option, path, "directory " + directory.string() + " does not exist");
     if (!fs::is_directory(parent)) fail(option, path, directory.string() + " is not a directory");
+    const uint64_t attributes = fileAttributes(directory);
+    if ((attributes & STATX_ATTR_IMMUTABLE) != 0) {
+        fail(option, path, "directory " + directory.string() + " is immutable (chattr +i): it takes no new files");
+    }
     if (access(directory.c_str(), W_OK | X_OK) != 0) {
         fail(option, path, "cannot write in directory " + directory.string() + ": " + std::strerror(errno));
     }
-    const int flags = inodeFlags(directory);
-    if ((flags & FS_IMMUTABLE_FL) != 0) {
-        fail(option, path, "directory " + directory.string() + " is immutable (chattr +i): it takes no new files");
-    }
-    if ((flags & FS_APPEND_FL) != 0) {
-        // Append-only (chattr +a): new names, and so a new directory, but no removal and no
-        // rename over a name, which writing an output needs.
+    if ((attributes & STATX_ATTR_APPEND) != 0) {
+        // Append-only (chattr +a): new names, and so a new directory, but no rename and no
+        // removal of a name, which writing an output (made under a temporary name) needs.
         if (use == DirectoryUse::TakesNewDirectory) return;
         fail(option, path,
              "directory " + directory.string() +
-                 " is append-only (chattr +a): it takes new files but does not let them be replaced, which writing "
-                 "an output needs");
+                 " is append-only (chattr +a): it does not let a file be renamed or removed, which writing an "
+                 "output (made under a temporary name) needs");
     }
     // Permission bits do not tell everything (root passes them; /proc and /sys take no
     // new files): a file made and removed at once does.

@@ -93,9 +93,9 @@ TEST_F(OutputSafety, RefusesToReplaceAnythingButARegularFileBeforeAnyWork) {
     expectRefused(optimizeCommand(file) + " --out /proc/run", "--out /proc/run: cannot");
 }
 
-// An append-only directory (chattr +a) takes new files but removes none: outputs, which
-// are renamed over their path, cannot be written there, and it is refused before anything
-// is made in it. A new output directory made inside it works.
+// An append-only directory (chattr +a) takes new files but renames and removes none:
+// outputs, made under a temporary name and renamed, cannot be written there, and it is
+// refused before anything is made in it. A new output directory made inside it works.
 TEST_F(OutputSafety, RefusesADirectoryThatKeepsEveryFileButMakesANewOneInIt) {
     const fs::path keeps = dir_ / "keeps";
     fs::create_directory(keeps);
@@ -112,6 +112,14 @@ TEST_F(OutputSafety, RefusesADirectoryThatKeepsEveryFileButMakesANewOneInIt) {
     EXPECT_TRUE(leftNothing);
     EXPECT_EQ(made.exitCode, 0) << made.err;
     EXPECT_TRUE(fs::exists(keeps / "run" / "one" / "log.jsonl"));
+    // An immutable directory (chattr +i) takes nothing, and says so.
+    const fs::path frozen = dir_ / "frozen";
+    fs::create_directory(frozen);
+    ASSERT_EQ(std::system(("chattr +i '" + frozen.string() + "'").c_str()), 0);
+    RunResult immutable = run("render " + noScene() + " -o " + (frozen / "x.exr").string());
+    EXPECT_EQ(std::system(("chattr -i '" + frozen.string() + "'").c_str()), 0);
+    EXPECT_EQ(immutable.exitCode, 2) << immutable.err;
+    EXPECT_NE(immutable.err.find("is immutable (chattr +i)"), std::string::npos) << immutable.err;
 }
 
 TEST_F(OutputSafety, RefusesTwoOutputsThatAreOneFile) {
