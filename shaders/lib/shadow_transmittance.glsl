@@ -75,19 +75,8 @@ float gridSegmentOpticalLength(GpuMedium m, vec3 origin, vec3 direction, float l
                                   nextTrackingRandom(gradientPoints).x, dot(voxelWeight, sigmaT(m)));
 }
 
-// Whether the plane of the surface at `sp` holds `point`, within the rounding of either
-// position: a ray ending at `point` meets that plane only at its end, so the surface does
-// not block it. This is a light placed on a surface, whose shadow rays end just short of
-// it (lights.glsl); where they graze a large triangle, the intersection's distance is
-// rounded in proportion to the triangle's size over the sine of the angle and may fall
-// short of the end.
-bool planeHolds(SurfacePoint sp, vec3 point) {
-    float rounding = max(sp.offset, kSpawnOffsetPerMagnitude * maxComponent(abs(point)));
-    return abs(dot(point - sp.position, sp.normal)) <= rounding;
-}
-
 // Transmittance from the shadow ray's origin to its end, zero when something opaque
-// is in the way (but not a surface whose plane holds the end: planeHolds). In the adjoint pass it also records the length in each medium, and
+// is in the way. In the adjoint pass it also records the length in each medium, and
 // with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
 // segment's length, or in a density grid the density's integral along it, estimated at
 // points of its own) to its medium's sigma_t gradient. A ray to a directional light
@@ -106,16 +95,8 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
     bool truncated = false;
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
         TraceHit hit = traceClosest(origin, direction, distance, true);
-        SurfacePoint sp;
-        if (hit.triangle != kNoHit) {
-            sp = surfacePoint(hit.triangle, hit.b1, hit.b2);
-            if (isOpaque(hit.triangle)) {
-                if (toInfinity || !planeHolds(sp, end)) {
-                    return vec3(0.0f);
-                }
-                hit.triangle = kNoHit;
-                hit.t = kFar;
-            }
+        if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
+            return vec3(0.0f);
         }
         float segment = min(hit.t, distance);
         if (kMedia && medium != kNoMediumIndex) {
@@ -161,6 +142,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
         if (hit.triangle == kNoHit) {
             return tr;
         }
+        SurfacePoint sp = surfacePoint(hit.triangle, hit.b1, hit.b2);
         GpuMaterial material = P.materials.v[sp.material];
         bool entering = dot(direction, sp.normal) < 0.0f;
         medium = entering ? uint(material.interiorMedium) : sp.outsideMedium;
