@@ -43,11 +43,35 @@ uvec2 nodeLink(uint node) {
     return uvec2(floatBitsToUint(P.bvhNodes.v[2u * node].w), floatBitsToUint(P.bvhNodes.v[2u * node + 1u].w));
 }
 
+// Whether the segment from `origin` to `end` reaches the plane of the triangle (v0, v1,
+// v2). Where its ends are both strictly on one side, or the end lies on the plane within
+// the rounding of the positions involved and the origin does not, it cannot meet the
+// triangle short of its end, whatever the intersection test says: a ray that grazes a
+// triangle much larger than itself has its intersection's distance rounded in proportion
+// to the triangle's size over the sine of the angle. That is a shadow ray towards a light
+// placed on a surface. The rounding of a side is a few units in the last place of the
+// largest coordinate, times the normal's length.
+bool segmentReachesPlane(vec3 origin, vec3 end, vec3 v0, vec3 v1, vec3 v2) {
+    const float kRoundingUlps = 8.0f * 1.1920929e-7f;  // 8 times float's machine epsilon
+    vec3 normal = cross(v1 - v0, v2 - v0);
+    float originSide = dot(normal, origin - v0);
+    float endSide = dot(normal, end - v0);
+    float magnitude = maxComponent(max(max(abs(v0), abs(v1)), max(abs(v2), abs(end))));
+    float rounding = kRoundingUlps * magnitude * length(normal);
+    bool oneSide = (originSide > 0.0f && endSide > 0.0f) || (originSide < 0.0f && endSide < 0.0f);
+    bool endOnPlane = abs(endSide) <= rounding && abs(originSide) > rounding;
+    return !(oneSide || endOnPlane);
+}
+
 // The closest hit within tMax. With stopAtOpaque, the first hit found on an opaque
 // triangle ends the search instead: a shadow ray is blocked by any opaque surface on
-// its way, whichever is nearest, and only medium boundaries need the closest hit.
+// its way, whichever is nearest, and only medium boundaries need the closest hit. Such
+// a ray ends at tMax where that is finite, and an opaque triangle whose plane it does not
+// reach (segmentReachesPlane) is passed over.
 TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque) {
     TraceHit best = TraceHit(tMax, 0.0f, 0.0f, kNoHit);
+    bool endsAtTMax = tMax < kFar;
+    vec3 end = origin + direction * (endsAtTMax ? tMax : 0.0f);
     vec3 invDirection = safeInverse(direction);
     uint stack[kBvhStackSize];
     uint stackSize = 0u;
@@ -95,14 +119,19 @@ TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque
         }
         ++steps;
         for (uint i = link.x; i < link.x + link.y; ++i) {
-            vec3 hit = intersectTriangle(origin, direction, P.triangleVertices.v[3u * i].xyz,
-                                         P.triangleVertices.v[3u * i + 1u].xyz,
-                                         P.triangleVertices.v[3u * i + 2u].xyz, best.t);
-            if (hit.x > 0.0f) {
-                best = TraceHit(hit.x, hit.y, hit.z, i);
-                if (stopAtOpaque && isOpaque(i)) {
-                    return best;
+            vec3 v0 = P.triangleVertices.v[3u * i].xyz;
+            vec3 v1 = P.triangleVertices.v[3u * i + 1u].xyz;
+            vec3 v2 = P.triangleVertices.v[3u * i + 2u].xyz;
+            vec3 hit = intersectTriangle(origin, direction, v0, v1, v2, best.t);
+            if (hit.x <= 0.0f) {
+                continue;
+            }
+            if (stopAtOpaque && isOpaque(i)) {
+                if (!endsAtTMax || segmentReachesPlane(origin, end, v0, v1, v2)) {
+                    return TraceHit(hit.x, hit.y, hit.z, i);
                 }
+            } else {
+                best = TraceHit(hit.x, hit.y, hit.z, i);
             }
         }
         done = stackSize == 0u;

@@ -68,14 +68,23 @@ const glm::vec3 kColor(1.0f, 0.5f, 0.25f);
 constexpr float kIntensity = 3.0f;
 constexpr double kLightHeight = 0.7;  // the light's distance in front of the plane
 
-// A pixel of the plane lit by the point light kLightHeight in front of its centre.
-PixelExpectation pointLitPixel(int x, int y) {
-    return overPixel(x, y, glm::dvec3(kColor) * double(kIntensity), [](glm::dvec2 p) {
-        double d2 = glm::dot(p, p) + kLightHeight * kLightHeight;
+// A pixel of the plane lit by a point light kLightHeight in front of the plane point
+// (x, y) = `light`, at the plane points `reached` says its light reaches. The camera
+// looks along +z with +y up, so the plane point at image position p is at (x, y) = -p.
+PixelExpectation pointLitPixelWhere(int x, int y, glm::dvec2 light, const std::function<bool(glm::dvec2)>& reached) {
+    return overPixel(x, y, glm::dvec3(kColor) * double(kIntensity), [&](glm::dvec2 p) {
+        if (!reached(-p)) {
+            return 0.0;
+        }
+        double d2 = glm::dot(-p - light, -p - light) + kLightHeight * kLightHeight;
         return kAlbedo / std::numbers::pi * kLightHeight / (d2 * std::sqrt(d2));
     });
 }
 
+// A pixel of the plane lit by the point light kLightHeight in front of its centre.
+PixelExpectation pointLitPixel(int x, int y) {
+    return pointLitPixelWhere(x, y, glm::dvec2(0.0), [](glm::dvec2) { return true; });
+}
 class PunctualLightTest : public RenderTest {};
 
 TEST_F(PunctualLightTest, PointLightIlluminatesAsInverseSquareTimesCosine) {
@@ -86,22 +95,52 @@ TEST_F(PunctualLightTest, PointLightIlluminatesAsInverseSquareTimesCosine) {
     expectPixelsMatch(image, kSpp, kFloatTolerance, pointLitPixel);
 }
 
-// The light sits exactly on a black wall in the plane x = 0, through the camera, which
-// sees it edge on: every shadow ray ends on the wall's plane, and the wall must not block
-// it (a light on a surface lights what faces it). The wall reflects nothing, so the
-// plane's radiance is the closed form above.
-TEST_F(PunctualLightTest, APointLightOnASurfaceLightsWhatFacesIt) {
+// A black wall through the camera, which sees it edge on, reaching from z = 0.5 to 1.9
+// and `halfWidth` to each side of the view axis, turned `angle` about that axis from the
+// plane x = 0. A point light kLightHeight in front of the plane sits `behind` the wall
+// along its normal (0: on it). The wall reflects nothing, so the plane's radiance is
+// the closed form above where the wall does not block the light, and 0 where it does.
+void expectWallByTheLight(const std::filesystem::path& dir, const std::string& name, float halfWidth, float angle,
+                          float behind) {
     TestGltf g = litPlane();
     g.materials.push_back(diffuseMaterial("wall", glm::vec3(0.0f)));
     TestMesh wall;
     wall.material = 1;
-    wall.positions = {{0.0f, -5.0f, 0.5f}, {0.0f, 5.0f, 0.5f}, {0.0f, 5.0f, 1.9f}, {0.0f, -5.0f, 1.9f}};
+    const glm::vec3 side = halfWidth * glm::vec3(-std::sin(angle), std::cos(angle), 0.0f);
+    const glm::vec3 near(0.0f, 0.0f, 0.5f), far(0.0f, 0.0f, 1.9f);
+    wall.positions = {near - side, near + side, far + side, far - side};
     wall.triangles = {{0u, 1u, 2u}, {0u, 2u, 3u}};
     g.meshes.push_back(wall);
+    const glm::dvec2 normal(std::cos(angle), std::sin(angle));
+    const glm::dvec2 lightPoint = double(behind) * normal;
     g.lights = {light("bulb", "point", kColor, kIntensity)};
-    g.lightNodes = {{0, glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight)}};
-    Image image = renderFile(g.write(tempDir(), "on_wall"), {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 3});
-    expectPixelsMatch(image, kSpp, kFloatTolerance, pointLitPixel);
+    g.lightNodes = {{0, glm::vec3(glm::vec2(lightPoint), kPlaneZ - kLightHeight)}};
+    Image image = renderFile(g.write(dir, name), {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 3});
+    // The ray from a plane point p to the light crosses the wall's plane a fraction
+    // behind / (behind - p.normal) of the way from the light, at z = lightZ + that
+    // fraction times kLightHeight: blocked where that is below the wall's top.
+    const double top = 1.9 - (kPlaneZ - kLightHeight);
+    expectPixelsMatch(image, kSpp, kFloatTolerance, [&](int x, int y) {
+        return pointLitPixelWhere(x, y, lightPoint, [&](glm::dvec2 p) {
+            double across = glm::dot(p, normal);
+            return behind == 0.0f || across >= 0.0 || behind / (behind - across) * kLightHeight >= top;
+        });
+    });
+}
+
+// Every shadow ray ends on the wall's plane, and the wall must not block it: a light on
+// a surface lights what faces it. On a wide wall turned from the axes the rays that
+// graze it meet its large triangles where rounding puts them.
+TEST_F(PunctualLightTest, APointLightOnASurfaceLightsWhatFacesIt) {
+    expectWallByTheLight(tempDir(), "narrow", 5.0f, 0.0f, 0.0f);
+    expectWallByTheLight(tempDir(), "wide", 50.0f, 0.3f, 0.0f);
+}
+
+// A light 5e-4 behind the wide wall, far more than the rounding of a position 50 from
+// the origin (about 4e-6) and less than a surface point's offset there (5e-4): the wall
+// hides it from the other side.
+TEST_F(PunctualLightTest, APointLightJustBehindASurfaceIsHiddenByIt) {
+    expectWallByTheLight(tempDir(), "behind", 50.0f, 0.3f, 5e-4f);
 }
 
 TEST_F(PunctualLightTest, SpotLightFallsOffBetweenItsCones) {
