@@ -43,31 +43,48 @@ uvec2 nodeLink(uint node) {
     return uvec2(floatBitsToUint(P.bvhNodes.v[2u * node].w), floatBitsToUint(P.bvhNodes.v[2u * node + 1u].w));
 }
 
-// Whether the segment from `origin` to `end` reaches the plane of the triangle (v0, v1,
-// v2). Where its ends are both strictly on one side, or the end lies on the plane within
-// the rounding of the positions involved and the origin does not, it cannot meet the
-// triangle short of its end, whatever the intersection test says: a ray that grazes a
-// triangle much larger than itself has its intersection's distance rounded in proportion
-// to the triangle's size over the sine of the angle. That is a shadow ray towards a light
-// placed on a surface. The rounding of a side is a few units in the last place of the
-// largest coordinate, times the normal's length.
-bool segmentReachesPlane(vec3 origin, vec3 end, vec3 v0, vec3 v1, vec3 v2) {
-    const float kRoundingUlps = 8.0f * 1.1920929e-7f;  // 8 times float's machine epsilon
-    vec3 normal = cross(v1 - v0, v2 - v0);
-    float originSide = dot(normal, origin - v0);
-    float endSide = dot(normal, end - v0);
-    float magnitude = maxComponent(max(max(abs(v0), abs(v1)), max(abs(v2), abs(end))));
-    float rounding = kRoundingUlps * magnitude * length(normal);
-    bool oneSide = (originSide > 0.0f && endSide > 0.0f) || (originSide < 0.0f && endSide < 0.0f);
-    bool endOnPlane = abs(endSide) <= rounding && abs(originSide) > rounding;
-    return !(oneSide || endOnPlane);
+// Whether the segment from `origin` to `end` may reach the plane of the triangle (v0,
+// v1, v2). It cannot where its origin is off the plane and its end on the origin's side
+// or on the plane, beyond the rounding of either side: then it cannot meet the triangle
+// short of its end, whatever the intersection test says. A ray that grazes a triangle
+// much larger than itself has its intersection's distance rounded in proportion to the
+// triangle's size over the sine of the angle: a shadow ray towards a light placed on a
+// surface. The normal is the cross product of the two edges at the vertex opposite the
+// longest, the best conditioned pair; the rounding of a point's side is that of the
+// normal times the point's distance from that vertex, plus that of the positions
+// themselves (the largest coordinate of the vertices and the end), each a few machine
+// epsilons.
+bool segmentMayReachPlane(vec3 origin, vec3 end, vec3 v0, vec3 v1, vec3 v2) {
+    const float kRounding = 8.0f * 1.1920929e-7f;  // 8 times float's machine epsilon
+    vec3 e01 = v1 - v0, e12 = v2 - v1, e20 = v0 - v2;
+    float l01 = dot(e01, e01), l12 = dot(e12, e12), l20 = dot(e20, e20);
+    vec3 corner = v0, ea = e01, eb = -e20;  // at v0, opposite the edge v1 v2
+    if (l01 >= l12 && l01 >= l20) {
+        corner = v2;  // opposite the edge v0 v1
+        ea = e20;
+        eb = -e12;
+    } else if (l20 >= l12) {
+        corner = v1;  // opposite the edge v2 v0
+        ea = e12;
+        eb = -e01;
+    }
+    vec3 normal = cross(ea, eb);
+    float originSide = dot(normal, origin - corner);
+    float endSide = dot(normal, end - corner);
+    float edges = length(ea) * length(eb);
+    float positions = maxComponent(max(max(abs(v0), abs(v1)), max(abs(v2), abs(end)))) * length(normal);
+    float originRounding = kRounding * (edges * length(origin - corner) + positions);
+    float endRounding = kRounding * (edges * length(end - corner) + positions);
+    bool originOff = abs(originSide) > originRounding;
+    bool endNotPast = (originSide > 0.0f ? endSide : -endSide) >= -endRounding;
+    return !(originOff && endNotPast);
 }
 
 // The closest hit within tMax. With stopAtOpaque, the first hit found on an opaque
 // triangle ends the search instead: a shadow ray is blocked by any opaque surface on
 // its way, whichever is nearest, and only medium boundaries need the closest hit. Such
-// a ray ends at tMax where that is finite, and an opaque triangle whose plane it does not
-// reach (segmentReachesPlane) is passed over.
+// a ray ends at tMax where that is finite, and an opaque triangle whose plane it
+// cannot reach (segmentMayReachPlane) is passed over.
 TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque) {
     TraceHit best = TraceHit(tMax, 0.0f, 0.0f, kNoHit);
     bool endsAtTMax = tMax < kFar;
@@ -127,7 +144,7 @@ TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque
                 continue;
             }
             if (stopAtOpaque && isOpaque(i)) {
-                if (!endsAtTMax || segmentReachesPlane(origin, end, v0, v1, v2)) {
+                if (!endsAtTMax || segmentMayReachPlane(origin, end, v0, v1, v2)) {
                     return TraceHit(hit.x, hit.y, hit.z, i);
                 }
             } else {
