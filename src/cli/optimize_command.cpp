@@ -201,6 +201,8 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views};
     job.inputs = {{}, targetFiles, options.scene.assignments, options.settings.spp, options.settings.maxDepth};
     job.resume = !options.resume.empty();
+    job.replaceOldRun = oldRunRemover(options, false);
+    requireRunCanStart(job, scene);
 
     throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});
@@ -211,7 +213,6 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     job.description = {options.commandLine, context.description().name};
     RenderedLossGradient lossGradient(context, scene, std::move(views), options.optimize.parameters,
                                       options.settings, loss);
-    job.replaceOldRun = oldRunRemover(options, false);
     ProgressBar bar("optimize");
     OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
     bar.finish();

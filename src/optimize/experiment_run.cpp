@@ -113,6 +113,12 @@ OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, con
                                  const std::function<void()>& replaceOldRun) {
     prepareExperimentScene(experiment, scene);
     const std::vector<std::string>& names = experiment.optimize.parameters;
+    OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, {}};
+    job.inputs = {experiment.file, {}, {}, experiment.render.spp, experiment.render.maxDepth};
+    job.resume = resume;
+    job.description = description;
+    job.replaceOldRun = replaceOldRun;
+    requireRunCanStart(job, scene);  // before the targets are rendered
 
     applyValues(scene, experiment.trueValues);
     std::vector<std::vector<float>> truth = currentValues(scene, names);
@@ -120,12 +126,8 @@ OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, con
     std::vector<HeldOutView> heldOut = heldOutViews(experiment, scene, backend);
     applyValues(scene, experiment.startValues);
 
-    OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, targets};
-    job.inputs = {experiment.file, {}, {}, experiment.render.spp, experiment.render.maxDepth};
-    job.resume = resume;
+    job.targets = targets;
     job.trueValues = truth;
-    job.description = description;
-    job.replaceOldRun = replaceOldRun;
     job.settings = heldOutSettings(heldOut);
     job.measure = [&](const Scene& current, uint32_t) {
         return experimentMetrics(current, heldOut, backend, names, truth);

@@ -127,15 +127,16 @@ std::vector<MetricSeries> readMetrics(const std::filesystem::path& file) {
     return series;
 }
 
-IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>& losses) : file_(std::move(file)) {
-    const std::string name = file_.string();
+std::string resumedLogLines(const std::filesystem::path& file, const std::vector<double>& losses) {
+    const std::string name = file.string();
     auto fail = [&](const std::string& problem) {
         throw Error(name + ": " + problem + "; it is not the log of the run the checkpoint holds");
     };
-    if (std::string reason = notRegularFileReason(file_); !reason.empty()) fail(reason);
-    std::istringstream in(readRegularFile(file_));
+    if (std::string reason = notRegularFileReason(file); !reason.empty()) fail(reason);
+    std::istringstream in(readRegularFile(file));
     // One run logs iterations 0, 1, 2, ... in order; it may have logged some past its
     // last checkpoint, which are dropped.
+    std::string kept;
     uint64_t lineNumber = 0;
     for (std::string line; std::getline(in, line) && lineNumber < losses.size(); ++lineNumber) {
         nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
@@ -153,11 +154,16 @@ IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>
             fail(at + ": iteration " + std::to_string(iteration) + " has loss " + nlohmann::json(loss).dump() +
                  ", the checkpoint " + nlohmann::json(losses[lineNumber]).dump());
         }
-        text_ += line + "\n";
+        kept += line + "\n";
     }
     if (lineNumber < losses.size()) {
         fail("it has " + std::to_string(lineNumber) + " iterations, the checkpoint " + std::to_string(losses.size()));
     }
+    return kept;
+}
+
+IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>& losses)
+    : file_(std::move(file)), text_(resumedLogLines(file_, losses)) {
     writeAtomically(file_, [&](std::ofstream& stream) { stream << text_; });
 }
 

@@ -43,15 +43,19 @@ struct MetricSeries {
 // Throws vkdr::Error naming the file and line when a metric is not a number.
 std::vector<MetricSeries> readMetrics(const std::filesystem::path& file);
 
+// The lines of the log `file` that a run resumed with the checkpoint's `losses`, one per
+// iteration done, keeps: those of the iterations done, without any after them (a stopped
+// run may have logged a few past its last checkpoint). Throws vkdr::Error naming the
+// file when it is missing or its lines are not that run's: out of order, missing, or
+// with other losses.
+std::string resumedLogLines(const std::filesystem::path& file, const std::vector<double>& losses);
+
 class IterationLog {
 public:
     // Starts a new log; the file is written at the first append.
     explicit IterationLog(std::filesystem::path file) : file_(std::move(file)) {}
-    // Continues the log of a run resumed with the checkpoint's `losses`, one per iteration
-    // done: keeps the lines of those iterations and drops those after (a stopped run may
-    // have logged a few past its last checkpoint), so that each iteration appears once.
-    // Throws vkdr::Error naming the file when it is missing or its lines are not that
-    // run's: out of order, missing, or with other losses. Rewrites the file.
+    // Continues the log of a run resumed with the checkpoint's `losses`: rewrites the file
+    // with resumedLogLines, so that each iteration appears once.
     IterationLog(std::filesystem::path file, const std::vector<double>& losses);
     void append(const IterationRecord& record);
 

@@ -131,6 +131,12 @@ std::vector<Image> startImages(LossGradient& lossGradient, Scene& scene, const O
 
 }  // namespace
 
+void requireRunCanStart(const OptimizationJob& job, const Scene& scene) {
+    std::optional<LoopState> resume =
+        resumeState(job, scene, runIdentity(job.sceneFile, job.options, job.loss, job.inputs));
+    if (resume) resumedLogLines(job.outputDirectory / "log.jsonl", resume->losses);
+}
+
 OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene, const OptimizationJob& job,
                                    const std::function<void(const IterationRecord&)>& progress) {
     std::map<std::string, GridPriorWeights> priors =

@@ -133,6 +133,7 @@ TEST_F(OptimizeResume, RefusesALogThatDoesNotMatchTheCheckpoint) {
         EXPECT_EQ(r.exitCode, 2) << what << "\n" << r.err;
         EXPECT_NE(r.err.find("error: " + (cut / "log.jsonl").string()), std::string::npos) << what << "\n" << r.err;
         EXPECT_EQ(r.err.find("error: "), r.err.rfind("error: ")) << r.err;
+        EXPECT_EQ(r.err.find("iterations of"), std::string::npos) << "refused before the device is set up\n" << r.err;
         EXPECT_EQ(slurp(cut / "log.jsonl"), text) << what;
         EXPECT_EQ(slurp(cut / "checkpoint.json"), checkpoint) << what;
         EXPECT_FALSE(fs::exists(cut / "params.json")) << what;

@@ -1,5 +1,6 @@
 // Experiment files: reading, validation against the scene, and a whole run with an
 // analytic stand-in for the renderer.
+#include <fstream>
 #include <functional>
 
 #include <gtest/gtest.h>
@@ -289,6 +290,31 @@ TEST(Experiment, RecoversTheTrueValuesWithAnAnalyticBackend) {
     for (const char* file : {"log.jsonl", "params.json", "scene.gltf", "target.exr", "diff.png", "report.html"}) {
         EXPECT_TRUE(std::filesystem::is_regular_file(scratch / "out" / file)) << file;
     }
+}
+
+// A run directory that cannot be resumed, or that holds another run, is refused before
+// any target is rendered.
+TEST(Experiment, RefusesItsRunDirectoryBeforeRenderingTargets) {
+    ScratchDirectory scratch;
+    Experiment experiment = readExperiment(writeExperiment(scratch, fogExperiment(scratch.path())));
+    Scene scene = loadScene(experiment.scene).scene;
+    size_t renders = 0;
+    ExperimentBackend backend;
+    backend.render = [&](const Scene&, const RenderSettings& settings) {
+        ++renders;
+        return Image{settings.width, settings.height, std::vector<float>(size_t(settings.width * settings.height * 3))};
+    };
+    backend.makeLossGradient = [&](const Scene&, std::vector<TargetView>, std::vector<std::string>,
+                                   const RenderSettings&, LossKind) -> std::unique_ptr<LossGradient> {
+        ADD_FAILURE() << "no loss gradient is made for a refused run";
+        return nullptr;
+    };
+    std::filesystem::create_directory(scratch / "out");
+    expectErrorMentioning([&] { runExperiment(experiment, scene, backend, scratch / "out", true); },
+                          {"checkpoint.json"});
+    std::ofstream(scratch / "out" / "log.jsonl") << "{}\n";
+    expectErrorMentioning([&] { runExperiment(experiment, scene, backend, scratch / "out"); }, {"log.jsonl"});
+    EXPECT_EQ(renders, 0u);
 }
 
 // A held-out view renders its target once and, at every iteration, with the same
