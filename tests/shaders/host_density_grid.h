@@ -9,6 +9,9 @@
 #include "glsl_host.h"
 
 namespace vkdr::test {
+// Internal linkage, as glsl_host.h's functions and `P`: a grid binds and reads its own
+// test file's copies.
+namespace {
 
 using namespace glsl;
 
@@ -73,4 +76,5 @@ struct HostDensityGrid {
     }
 };
 
+}  // namespace
 }  // namespace vkdr::test
