@@ -38,9 +38,8 @@ inline constexpr uint32_t kHeldOutSeedOffset = 0x40000000u;
 // metrics, each held-out view's error (optimize/held_out_error.h) and each summarised
 // parameter's relative L2 error against its true values.
 // With `resume` the optimisation continues from the directory's checkpoint, which must
-// come from the same experiment file, scene and settings. A directory that cannot be
-// resumed, or holds another run, is refused before any target is rendered
-// (requireRunCanStart).
+// come from the same experiment file, scene and settings. The directory is refused as
+// runOptimization refuses it (requireRunCanStart) before any target is rendered.
 // The report's parameters carry their true values. `replaceOldRun` is
 // OptimizationJob::replaceOldRun.
 OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,

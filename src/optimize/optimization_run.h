@@ -47,10 +47,11 @@ struct OptimizationReport {
 };
 
 // The checks runOptimization makes of job.outputDirectory before it writes anything: a
-// new run's directory holds no other run (unless job.replaceOldRun is given); a resumed
-// run's checkpoint is this run's and fits the scene, and log.jsonl holds that run's lines
-// up to it. Throws vkdr::Error as runOptimization would, and writes nothing: for a caller
-// to make before its device work (runOptimization makes them again).
+// new run's directory holds no other run's files (with job.replaceOldRun given, none of
+// them is a directory); a resumed run's checkpoint is this run's and fits the scene, and
+// log.jsonl holds that run's lines up to it. Throws vkdr::Error as runOptimization
+// would, and writes nothing: for a caller to make before its device work
+// (runOptimization makes them again).
 void requireRunCanStart(const OptimizationJob& job, const Scene& scene);
 
 // Optimises `scene` in place and writes into job.outputDirectory, every file atomically:

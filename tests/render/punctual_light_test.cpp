@@ -136,9 +136,10 @@ TEST_F(PunctualLightTest, APointLightOnASurfaceLightsWhatFacesIt) {
     expectWallByTheLight(tempDir(), "wide", 50.0f, 0.3f, 0.0f);
 }
 
-// A light 5e-4 behind the wide wall, more than the rounding of a side 50 from the wall's
-// corners (about 1e-4, shaders/lib/bvh_traverse.glsl) plus the shadow ray's shortening
-// (1e-4 of its length, at most 1.5e-4 here): the wall hides it from the other side.
+// A light 5e-4 behind the wide wall, more than twice the rounding of a side 50 from the
+// wall's corners (about 1e-4, shaders/lib/bvh_traverse.glsl) plus the shadow ray's
+// shortening (1e-4 of its length, at most 1.6e-4 here): the wall hides it from the
+// other side.
 TEST_F(PunctualLightTest, APointLightJustBehindASurfaceIsHiddenByIt) {
     expectWallByTheLight(tempDir(), "behind", 50.0f, 0.3f, 5e-4f);
 }
