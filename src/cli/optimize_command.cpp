@@ -260,6 +260,8 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     requireRunWritesNoInput(options.out, true, filesTheSceneReads(loaded));
     Scene checked = loaded.scene;
     prepareExperimentScene(experiment, checked);  // its errors before any rendering
+    requireRunCanStart(experimentJob(experiment, options.out, !options.resume.empty(), oldRunRemover(options, true)),
+                       checked);
     for (const std::string& warning : sceneWarnings(checked)) printWarning(warning);
 
     throwIfInterrupted();

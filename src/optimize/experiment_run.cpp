@@ -106,6 +106,15 @@ std::vector<std::pair<std::string, std::string>> heldOutSettings(const std::vect
 
 }  // namespace
 
+OptimizationJob experimentJob(const Experiment& experiment, const std::filesystem::path& outputDirectory, bool resume,
+                              const std::function<void()>& replaceOldRun) {
+    OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, {}};
+    job.inputs = {experiment.file, {}, {}, experiment.render.spp, experiment.render.maxDepth};
+    job.resume = resume;
+    job.replaceOldRun = replaceOldRun;
+    return job;
+}
+
 OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
                                  const std::filesystem::path& outputDirectory, bool resume,
                                  const std::function<void(const IterationRecord&)>& progress,
@@ -113,11 +122,8 @@ OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, con
                                  const std::function<void()>& replaceOldRun) {
     prepareExperimentScene(experiment, scene);
     const std::vector<std::string>& names = experiment.optimize.parameters;
-    OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, {}};
-    job.inputs = {experiment.file, {}, {}, experiment.render.spp, experiment.render.maxDepth};
-    job.resume = resume;
+    OptimizationJob job = experimentJob(experiment, outputDirectory, resume, replaceOldRun);
     job.description = description;
-    job.replaceOldRun = replaceOldRun;
     requireRunCanStart(job, scene);  // before the targets are rendered
 
     applyValues(scene, experiment.trueValues);

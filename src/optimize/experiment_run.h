@@ -31,6 +31,12 @@ inline constexpr uint32_t kTargetSeedOffset = 0x80000000u;
 // same samples each time, so that their error changes only with the values.
 inline constexpr uint32_t kHeldOutSeedOffset = 0x40000000u;
 
+// The job runExperiment gives runOptimization before the targets are rendered: without
+// them, the true values and the held-out views' settings, but enough for
+// requireRunCanStart.
+OptimizationJob experimentJob(const Experiment& experiment, const std::filesystem::path& outputDirectory, bool resume,
+                              const std::function<void()>& replaceOldRun = {});
+
 // Checks `experiment` against `scene` (loaded from experiment.scene), renders the targets
 // from the true values, resets to the start values and optimises, writing the outputs of
 // runOptimization into `outputDirectory` (report.html with the true values) plus

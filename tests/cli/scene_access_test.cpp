@@ -119,19 +119,25 @@ TEST_F(SceneAccess, RefusesAnExperimentFileThatIsADirectoryOrAFifo) {
     EXPECT_TRUE(fs::is_empty(scratch_ / "out"));
 }
 
-// The checkpoint is read before any device work: the error is the run's first line.
+// The checkpoint is read before any device work, of a run and of an experiment: the
+// error is the run's first line.
 TEST_F(SceneAccess, RefusesACheckpointThatIsADirectoryOrAFifo) {
-    std::string optimize = "optimize " + kFog + " --target " + kValidTarget.string() +
-                           " --param media/fog/g --iters 2 --spp 1 --max-depth 1 --resume ";
+    const std::string run = "optimize " + kFog + " --target " + kValidTarget.string() +
+                            " --param media/fog/g --iters 2 --spp 1 --max-depth 1 --resume ";
+    const std::string experiment =
+        "optimize --experiment " + std::string(VKDR_TEST_SCENES_DIR) + "/experiments/cornell_absorption.json --resume ";
     fs::create_directories(scratch_ / "with_folder" / "checkpoint.json");
     fs::create_directories(scratch_ / "with_fifo");
     fifo("with_fifo/checkpoint.json");
-    for (const auto& [directory, problem] : {std::pair{"with_folder", "is a directory"}, {"with_fifo", "is a FIFO"}}) {
-        RunResult r = runCli(optimize + (scratch_ / directory).string(), scratch_);
-        EXPECT_EQ(r.exitCode, 2) << r.err;
-        std::string error = "error: " + (scratch_ / directory / "checkpoint.json").string() + ": " + problem;
-        EXPECT_EQ(r.err.find(error), 0u) << r.err;
-        EXPECT_EQ(r.err.find("error: "), r.err.rfind("error: ")) << "more than one error:\n" << r.err;
+    for (const std::string& optimize : {run, experiment}) {
+        for (const auto& [directory, problem] :
+             {std::pair{"with_folder", "is a directory"}, {"with_fifo", "is a FIFO"}}) {
+            RunResult r = runCli(optimize + (scratch_ / directory).string(), scratch_);
+            EXPECT_EQ(r.exitCode, 2) << r.err;
+            std::string error = "error: " + (scratch_ / directory / "checkpoint.json").string() + ": " + problem;
+            EXPECT_EQ(r.err.find(error), 0u) << optimize << "\n" << r.err;
+            EXPECT_EQ(r.err.find("error: "), r.err.rfind("error: ")) << "more than one error:\n" << r.err;
+        }
     }
 }
 
