@@ -199,7 +199,12 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     LogSpace(ParameterVector(scene, options.optimize.parameters), options.optimize.logParameters);
     std::vector<TargetView> views = readTargets(options.targets, scene);
     OptimizationJob job{options.scene.file, options.out, options.optimize, loss, views};
-    job.inputs = {{}, targetFiles, options.scene.assignments, options.settings.spp, options.settings.maxDepth};
+    job.inputs = {{},
+                  targetFiles,
+                  options.scene.assignments,
+                  options.settings.spp,
+                  options.settings.maxDepth,
+                  options.settings.equiangularSampling};
     job.resume = !options.resume.empty();
     job.replaceOldRun = oldRunRemover(options, false);
     requireRunCanStart(job, scene);

@@ -109,7 +109,8 @@ std::vector<std::pair<std::string, std::string>> heldOutSettings(const std::vect
 OptimizationJob experimentJob(const Experiment& experiment, const std::filesystem::path& outputDirectory, bool resume,
                               const std::function<void()>& replaceOldRun) {
     OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, {}};
-    job.inputs = {experiment.file, {}, {}, experiment.render.spp, experiment.render.maxDepth};
+    job.inputs = {experiment.file, {}, {}, experiment.render.spp, experiment.render.maxDepth,
+                  experiment.render.equiangularSampling};
     job.resume = resume;
     job.replaceOldRun = replaceOldRun;
     return job;

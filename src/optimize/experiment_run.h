@@ -31,9 +31,9 @@ inline constexpr uint32_t kTargetSeedOffset = 0x80000000u;
 // same samples each time, so that their error changes only with the values.
 inline constexpr uint32_t kHeldOutSeedOffset = 0x40000000u;
 
-// The job runExperiment gives runOptimization before the targets are rendered: without
-// them, the true values and the held-out views' settings, but enough for
-// requireRunCanStart.
+// The job runExperiment gives runOptimization, as it is before the targets are rendered:
+// without them, the true values, the held-out views' settings and measures and the run's
+// description, but enough for requireRunCanStart.
 OptimizationJob experimentJob(const Experiment& experiment, const std::filesystem::path& outputDirectory, bool resume,
                               const std::function<void()>& replaceOldRun = {});
 

@@ -46,6 +46,9 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
     }
     identity["spp"] = std::to_string(inputs.spp);
     identity["max_depth"] = std::to_string(inputs.maxDepth);
+    // Only where off: the checkpoints written before it was recorded keep their identity,
+    // and were written with it on or are refused.
+    if (!inputs.equiangularSampling) identity["equiangular_sampling"] = "off";
     identity["scene"] = fileIdentity(sceneFile);
     identity["parameters"] = joined(options.parameters, " ");
     identity["optimizer"] = optimizerKindName(options.optimizer);

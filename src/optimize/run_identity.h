@@ -27,6 +27,7 @@ struct RunInputs {
     std::vector<std::string> assignments;  // a command line's --set values, NAME=VALUE
     uint32_t spp = 0;
     uint32_t maxDepth = 0;
+    bool equiangularSampling = true;       // RenderSettings::equiangularSampling
 };
 
 // The identity of a run: files by name and digest (an experiment's file stands for its

@@ -105,6 +105,9 @@ TEST_F(OptimizeResume, RefusesAResumeWithOtherOptionsOrAnotherOut) {
     RunResult otherRate = runCli(command_ + " --lr 0.5 --resume " + cut.string(), scratch_);
     EXPECT_EQ(otherRate.exitCode, 2);
     EXPECT_NE(otherRate.err.find("learning_rate '0.01"), std::string::npos) << otherRate.err;
+    RunResult otherSampling = runCli(command_ + " --no-equiangular --resume " + cut.string(), scratch_);
+    EXPECT_EQ(otherSampling.exitCode, 2);
+    EXPECT_NE(otherSampling.err.find("equiangular_sampling"), std::string::npos) << otherSampling.err;
     RunResult otherOut = runCli(command_ + " --resume " + cut.string() + " --out elsewhere", scratch_);
     EXPECT_EQ(otherOut.exitCode, 2);
     EXPECT_NE(otherOut.err.find("--out elsewhere"), std::string::npos) << otherOut.err;

@@ -207,6 +207,10 @@ TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
     EXPECT_EQ(command.count("total_variation"), 0u);
     job.options.totalVariation = 0.25;
     EXPECT_EQ(runIdentity(job.sceneFile, job.options, job.loss, {target, {}, {}, 4, 6}).at("total_variation"), "0.25");
+    // So does equiangular sampling where it is off (--no-equiangular): it changes every render.
+    EXPECT_EQ(command.count("equiangular_sampling"), 0u);
+    EXPECT_EQ(runIdentity(job.sceneFile, job.options, job.loss, {target, {}, {}, 4, 6, false}).at("equiangular_sampling"),
+              "off");
 }
 
 TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {
