@@ -43,6 +43,9 @@ struct MetricSeries {
 // Throws vkdr::Error naming the file and line when a metric is not a number.
 std::vector<MetricSeries> readMetrics(const std::filesystem::path& file);
 
+// The name of a run's log in its output directory.
+inline constexpr const char* kLogFileName = "log.jsonl";
+
 // The lines of the log `file` that a run resumed with the checkpoint's `losses`, one per
 // iteration done, keeps: those of the iterations done, without any after them (a stopped
 // run may have logged a few past its last checkpoint). Throws vkdr::Error naming the

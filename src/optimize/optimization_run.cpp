@@ -134,7 +134,7 @@ std::vector<Image> startImages(LossGradient& lossGradient, Scene& scene, const O
 void requireRunCanStart(const OptimizationJob& job, const Scene& scene) {
     std::optional<LoopState> resume =
         resumeState(job, scene, runIdentity(job.sceneFile, job.options, job.loss, job.inputs));
-    if (resume) resumedLogLines(job.outputDirectory / "log.jsonl", resume->losses);
+    if (resume) resumedLogLines(job.outputDirectory / kLogFileName, resume->losses);
 }
 
 OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene, const OptimizationJob& job,
@@ -151,8 +151,8 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
     removeStaleTemporaries(directory);  // a killed run's partial writes
-    IterationLog log = resume ? IterationLog(directory / "log.jsonl", resume->losses)
-                              : IterationLog(directory / "log.jsonl");
+    IterationLog log = resume ? IterationLog(directory / kLogFileName, resume->losses)
+                              : IterationLog(directory / kLogFileName);
     std::function<void()> replaceOldRun = job.replaceOldRun;
     auto writing = [&] {
         if (replaceOldRun) std::exchange(replaceOldRun, {})();

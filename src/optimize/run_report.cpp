@@ -78,8 +78,8 @@ ReportPage runReportPage(const OptimizationJob& job, const OptimizationReport& r
     page.losses = report.result.losses;
     page.lossName = lossKindName(job.loss);
     page.fits = report.parameters;
-    page.trajectories = readTrajectories(job.outputDirectory / "log.jsonl", job.options.parameters);
-    page.metrics = readMetrics(job.outputDirectory / "log.jsonl");
+    page.trajectories = readTrajectories(job.outputDirectory / kLogFileName, job.options.parameters);
+    page.metrics = readMetrics(job.outputDirectory / kLogFileName);
     return page;
 }
 
