@@ -71,6 +71,55 @@ int64_t fixedPointCarry(int64_t before, int64_t after) {
     return crossed ? after >> 32 : int64_t(0);
 }
 
+// How a term goes into a sum's words, one atomic addition at a time
+// (fixed_point_sums.glsl): a step adds `value` to `word`, and what the word held before
+// decides the next step. A step that takes the word across kFixedPointCarryAt is followed
+// by one that takes the carry back out of it, and the carry goes up with the term's next
+// digit; a carry out of the top word flags the sum as out of range.
+struct FixedPointAddition {
+    uint word;              // kFixedPointWords: nothing more to add
+    int64_t value;          // what this step adds to `word`
+    int64_t next;           // what the step after it adds to word + 1
+    bool takesCarryBack;    // this step's result needs no carry check
+    uint flags;             // kFixedPoint* flags for the sum's flags word
+};
+
+FixedPointAddition fixedPointAdditionToWord(uint word, int64_t value, int64_t next) {
+    return FixedPointAddition(word, value, next, false, 0u);
+}
+
+FixedPointAddition fixedPointAdditionOf(FixedPointTerm term) {
+    if (term.flags != 0u || term.word >= kFixedPointWords) {
+        return FixedPointAddition(kFixedPointWords, int64_t(0), int64_t(0), false, term.flags);
+    }
+    if (term.low == int64_t(0)) {
+        return fixedPointAdditionToWord(term.word + 1u, term.high, int64_t(0));
+    }
+    return fixedPointAdditionToWord(term.word, term.low, term.high);
+}
+
+FixedPointAddition fixedPointAdditionAfter(FixedPointAddition step, int64_t before) {
+    if (!step.takesCarryBack) {
+        int64_t carry = fixedPointCarry(before, before + step.value);
+        if (carry != int64_t(0)) {
+            if (step.word + 1u == kFixedPointWords) {
+                step.flags |= carry > int64_t(0) ? kFixedPointPositiveOverflow : kFixedPointNegativeOverflow;
+                step.word = kFixedPointWords;
+                return step;
+            }
+            step.value = -(carry << 32);
+            step.next += carry;
+            step.takesCarryBack = true;
+            return step;
+        }
+    }
+    step.takesCarryBack = false;
+    step.word = step.next != int64_t(0) ? step.word + 1u : kFixedPointWords;
+    step.value = step.next;
+    step.next = int64_t(0);
+    return step;
+}
+
 // The exact total of fixed-point sums (the copies of one accumulator), gathered word by
 // word: each word's low 32 bits go to its part and the rest to the next one's, so that a
 // part stays below 2^39 for up to 64 sums, and the flags of all of them.

@@ -5,23 +5,17 @@
 #define VKDR_FIXED_POINT_SUMS_GLSL
 #include "fixed_point.glsl"
 
-// Adds `value` to word k of the sum at `sum`, moving a carry up when the word grows
-// large (fixedPointCarry); a carry out of the top word means the sum is out of range.
-void addToWord(Int64Buffer sums, uint sum, uint k, int64_t value) {
-    for (;;) {
-        int64_t before = atomicAdd(sums.v[sum + k], value);
-        int64_t carry = fixedPointCarry(before, before + value);
-        if (carry == int64_t(0)) {
-            return;
-        }
-        if (k + 1u == kFixedPointWords) {
-            uint overflow = carry > int64_t(0) ? kFixedPointPositiveOverflow : kFixedPointNegativeOverflow;
-            atomicOr(sums.v[sum + kFixedPointFlagsWord], int64_t(overflow));
-            return;
-        }
-        atomicAdd(sums.v[sum + k], -(carry << 32));
-        value = carry;
-        ++k;
+// Makes the additions of `step` and of the steps it leads to (fixedPointAdditionAfter),
+// then sets its flags. One atomic addition in a loop rather than one for each case: a
+// CPU device runs every atomic instruction it meets once for each lane of the subgroup,
+// whether any lane takes it or not.
+void addFixedPointSteps(Int64Buffer sums, uint sum, FixedPointAddition step) {
+    while (step.word < kFixedPointWords) {
+        int64_t before = atomicAdd(sums.v[sum + step.word], step.value);
+        step = fixedPointAdditionAfter(step, before);
+    }
+    if (step.flags != 0u) {
+        atomicOr(sums.v[sum + kFixedPointFlagsWord], int64_t(step.flags));
     }
 }
 
@@ -49,7 +43,8 @@ void addFixedPoint(Int64Buffer sums, uint sum, vec4 x, uint channels) {
         if (subgroupElect()) {
             for (uint c = 0u; c < channels; ++c) {
                 if (digits[c] != int64_t(0)) {
-                    addToWord(sums, sum + c * kFixedPointWordsPerSum, k, digits[c]);
+                    addFixedPointSteps(sums, sum + c * kFixedPointWordsPerSum,
+                                       fixedPointAdditionToWord(k, digits[c], int64_t(0)));
                 }
             }
         }
@@ -69,20 +64,7 @@ void addFixedPoint(Int64Buffer sums, uint sum, vec4 x, uint channels) {
 // another (kSubgroupGradientSums). Integer additions are exact, so the total is the same
 // in any order.
 void addFixedPointFromOneLane(Int64Buffer sums, uint sum, float x) {
-    FixedPointTerm term = fixedPointTerm(x);
-    if (term.flags != 0u) {
-        atomicOr(sums.v[sum + kFixedPointFlagsWord], int64_t(term.flags));
-        return;
-    }
-    if (term.word >= kFixedPointWords) {
-        return;  // 0, or below the lowest bit
-    }
-    if (term.low != int64_t(0)) {
-        addToWord(sums, sum, term.word, term.low);
-    }
-    if (term.high != int64_t(0)) {
-        addToWord(sums, sum, term.word + 1u, term.high);
-    }
+    addFixedPointSteps(sums, sum, fixedPointAdditionOf(fixedPointTerm(x)));
 }
 
 #endif

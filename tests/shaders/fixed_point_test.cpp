@@ -22,28 +22,29 @@ namespace {
 
 using Words = std::vector<int64_t>;
 
-// The device's addToWord, one thread at a time: add, and move a carry up when the word
-// crosses the threshold.
-void addToWord(Words& words, uint32_t k, int64_t value) {
-    for (;;) {
-        const int64_t before = words[k];
-        words[k] += value;
-        const int64_t carry = glsl::fixedPointCarry(before, words[k]);
-        if (carry == 0) return;
-        ASSERT_LT(k + 1, gpu::kFixedPointWords) << "a carry out of the top word";
-        words[k] -= carry << 32;
-        value = carry;
-        ++k;
-    }
+// One step of the device's addFixedPointSteps: the atomic addition, done in place.
+void addStep(Words& words, glsl::FixedPointAddition& step) {
+    const int64_t before = words[step.word];
+    words[step.word] += step.value;
+    step = glsl::fixedPointAdditionAfter(step, before);
 }
 
+// The device's addFixedPointFromOneLane, one thread at a time.
 void add(Words& words, float x) {
-    const glsl::FixedPointTerm term = glsl::fixedPointTerm(x);
-    words[gpu::kFixedPointFlagsWord] |= term.flags;
-    for (uint32_t k = 0; k < gpu::kFixedPointWords; ++k) {
-        const int64_t digit = glsl::fixedPointDigit(term, k);
-        if (digit != 0) addToWord(words, k, digit);
+    glsl::FixedPointAddition step = glsl::fixedPointAdditionOf(glsl::fixedPointTerm(x));
+    while (step.word < gpu::kFixedPointWords) addStep(words, step);
+    words[gpu::kFixedPointFlagsWord] |= step.flags;
+}
+
+// The exact total of `count` sums' words, in units of the lowest bit.
+boost::multiprecision::cpp_int exactTotal(const Words& words, size_t count = 1) {
+    boost::multiprecision::cpp_int total = 0;
+    for (size_t i = 0; i < count; ++i) {
+        for (uint32_t k = 0; k < gpu::kFixedPointWords; ++k) {
+            total += boost::multiprecision::cpp_int(words[i * gpu::kFixedPointWordsPerSum + k]) << (32 * k);
+        }
     }
+    return total;
 }
 
 double sumOf(const std::vector<float>& terms, Words words = Words(gpu::kFixedPointWordsPerSum, 0)) {
@@ -106,6 +107,59 @@ TEST(FixedPoint, IsTheExactSumInAnyOrder) {
     EXPECT_NEAR(sums[0] - offset, sum, 1e-12 * std::abs(offset));
 }
 
+// Threads that add to one sum at once: their steps interleave in any order, and each
+// sees the word as the others left it.
+TEST(FixedPoint, IsTheExactSumWhenAdditionsInterleave) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+    std::uniform_int_distribution<int> exponent(-60, 40);
+    std::vector<float> terms(20000);
+    for (float& x : terms) x = std::ldexp(uniform(random), exponent(random));
+    // Words near the carry threshold, so that carries are taken back while other
+    // additions come in between.
+    Words start(gpu::kFixedPointWordsPerSum, 0);
+    start[1] = glsl::kFixedPointCarryAt - 12345;
+    start[2] = -(glsl::kFixedPointCarryAt - 1);
+    start[3] = glsl::kFixedPointCarryAt - (int64_t(1) << 33);
+    Words inOrder = start;
+    for (float x : terms) add(inOrder, x);
+    Words words = start;
+    std::vector<glsl::FixedPointAddition> inFlight;
+    size_t nextTerm = 0;
+    size_t carriesTakenBack = 0;
+    while (nextTerm < terms.size() || !inFlight.empty()) {
+        if (nextTerm < terms.size() && (inFlight.size() < 64 || inFlight.empty())) {
+            inFlight.push_back(glsl::fixedPointAdditionOf(glsl::fixedPointTerm(terms[nextTerm++])));
+        }
+        const size_t i = std::uniform_int_distribution<size_t>(0, inFlight.size() - 1)(random);
+        if (inFlight[i].word < gpu::kFixedPointWords) {
+            addStep(words, inFlight[i]);
+            carriesTakenBack += inFlight[i].takesCarryBack ? 1 : 0;
+        }
+        if (inFlight[i].word == gpu::kFixedPointWords) {
+            words[gpu::kFixedPointFlagsWord] |= inFlight[i].flags;
+            inFlight.erase(inFlight.begin() + std::ptrdiff_t(i));
+        }
+    }
+    EXPECT_GT(carriesTakenBack, 0u);
+    EXPECT_EQ(words[gpu::kFixedPointFlagsWord], 0);
+    EXPECT_EQ(exactTotal(words), exactTotal(inOrder));
+}
+
+// A carry out of the top word cannot be held: the sum is flagged out of range, with the
+// sign of the carry.
+TEST(FixedPoint, FlagsACarryOutOfTheTopWord) {
+    const uint32_t top = gpu::kFixedPointWords - 1;
+    for (int sign : {1, -1}) {
+        Words words(gpu::kFixedPointWordsPerSum, 0);
+        words[top] = sign * (glsl::kFixedPointCarryAt - 1);
+        glsl::FixedPointAddition step = glsl::fixedPointAdditionToWord(top, sign * int64_t(2), 0);
+        addStep(words, step);
+        EXPECT_EQ(step.word, gpu::kFixedPointWords);
+        EXPECT_EQ(step.flags, sign > 0 ? gpu::kFixedPointPositiveOverflow : gpu::kFixedPointNegativeOverflow);
+    }
+}
+
 TEST(FixedPoint, CopiesSumToTheirTotal) {
     Words copies(3 * gpu::kFixedPointWordsPerSum, 0);
     const float values[3] = {0.25f, -3.5f, 1e-6f};
@@ -147,12 +201,7 @@ float deviceFloat(const Words& words, size_t count = 1, size_t stride = gpu::kFi
 // rounds twice, which near a tie can give the other neighbour).
 float nearestFloat(const Words& words, size_t count) {
     using boost::multiprecision::cpp_int;
-    cpp_int total = 0;
-    for (size_t i = 0; i < count; ++i) {
-        for (uint32_t k = 0; k < gpu::kFixedPointWords; ++k) {
-            total += cpp_int(words[i * gpu::kFixedPointWordsPerSum + k]) << (32 * k);
-        }
-    }
+    const cpp_int total = exactTotal(words, count);
     if (total == 0) return 0.0f;
     const bool negative = total < 0;
     const cpp_int magnitude = negative ? cpp_int(-total) : total;
