@@ -11,24 +11,20 @@
 #include "lib/shadow_transmittance.glsl"
 
 // Random numbers for the shadow ray in `slot` (ratio tracking, or the adjoint's points),
-// keyed by the segment that queued it.
-TrackingRandom shadowRandom(uint slot, uint purpose) {
+// keyed by the segment that queued it (the w of its shadowContribution).
+TrackingRandom shadowRandom(uint slot, uint segment, uint purpose) {
     PathInfo info = loadPathInfo(slot);
-    info.segment = floatBitsToUint(P.shadowContribution.v[slot].w);
+    info.segment = segment;
     return segmentTrackingRandom(info, purpose);
 }
 
 // The adjoint of a next-event contribution C = T * scatter * Le * w / pdf that reached
-// the light with transmittance `tr`: dC/dsigma_t of every medium on the way, and the
-// scattering and emission factors recorded by the shade stage.
-void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr, MediumLengths lengths) {
+// the light with transmittance `tr` (whose gradients tracedShadowTransmittance added):
+// the scattering and emission factors recorded by the shade stage.
+void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr) {
     uvec4 vertex = P.shadowVertex.v[slot];
     vec3 normal = normalMask(adjoint);
     vec3 weight = delta * contribution * normal;
-    vec4 origin = P.shadowOrigin.v[slot];
-    vec4 direction = P.shadowDirection.v[slot];
-    backpropagateTransmittance(weight, lengths, origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w),
-                               shadowRandom(slot, kTrackingShadow), shadowRandom(slot, kTrackingShadowGradient));
     vec4 scatterGradient = P.shadowScatterGradient.v[slot];
     vec4 emissionGradient = P.shadowEmissionGradient.v[slot];
     if (vertex.x == kVertexSurface) {
@@ -47,22 +43,26 @@ void traceShadowRay() {
     uint slot = queueItem(kQueueShadow, index);
     vec4 origin = P.shadowOrigin.v[slot];
     vec4 direction = P.shadowDirection.v[slot];
-    MediumLengths lengths = noMediumLengths();
-    TrackingRandom random = shadowRandom(slot, kTrackingShadow);
-    TrackingRandom gradientPoints = shadowRandom(slot, kTrackingShadowGradient);
-    vec3 tr = shadowTransmittance(origin.xyz, direction.xyz, origin.w, floatBitsToUint(direction.w), vec3(0.0f),
-                                  lengths, random, gradientPoints);
-    vec3 contribution = tr * P.shadowContribution.v[slot].rgb;
+    uint medium = floatBitsToUint(direction.w);
+    // Read as one vec4: lavapipe (Mesa 22.3) compiled a read of its .rgb and one of its .w
+    // before the trace into code whose tracking numbers followed the .rgb.
+    vec4 contributionAndSegment = P.shadowContribution.v[slot];
+    vec3 perUnitTransmittance = contributionAndSegment.rgb;
+    uint segment = floatBitsToUint(contributionAndSegment.w);
     beginReplay(slot);
-    holdMediumGradients(floatBitsToUint(direction.w));
+    holdMediumGradients(medium);
     if (kAdjoint) {
         // The derivative channels as they were at the vertex, before its continuation.
         // For this contribution only: the stage never stores the replay state back.
         adjoint.derivativeChannels = P.shadowVertex.v[slot].z;
     }
+    vec3 tr = tracedShadowTransmittance(origin.xyz, direction.xyz, origin.w, medium, perUnitTransmittance,
+                                        shadowRandom(slot, segment, kTrackingShadow),
+                                        shadowRandom(slot, segment, kTrackingShadowGradient));
+    vec3 contribution = tr * perUnitTransmittance;
     gather(slot, contribution);
     if (kAdjoint) {
-        backpropagateNextEvent(slot, contribution, tr, lengths);
+        backpropagateNextEvent(slot, contribution, tr);
     }
 }
 

@@ -57,19 +57,14 @@ void equiangularNextEvent(uint slot, uint medium, float tEnd, vec3 beta) {
         return;
     }
     ShadowRay ray = shadowRay(light, position);
-    MediumLengths lengths = noMediumLengths();
-    TrackingRandom random = segmentTrackingRandom(info, kTrackingEquiangularShadow);
-    TrackingRandom gradientPoints = segmentTrackingRandom(info, kTrackingEquiangularShadowGradient);
-    vec3 tr = shadowTransmittance(position, ray.direction, ray.distance, medium, vec3(0.0f), lengths, random,
-                                  gradientPoints);
+    vec3 tr = tracedShadowTransmittance(position, ray.direction, ray.distance, medium, unoccluded,
+                                        segmentTrackingRandom(info, kTrackingEquiangularShadow),
+                                        segmentTrackingRandom(info, kTrackingEquiangularShadowGradient));
     vec3 contribution = unoccluded * tr;
     gather(slot, contribution);
     if (kAdjoint) {
         vec3 normal = normalMask(adjoint);
         vec3 contributionWeight = delta * contribution * normal;
-        backpropagateTransmittance(contributionWeight, lengths, position, ray.direction, ray.distance, medium,
-                                   segmentTrackingRandom(info, kTrackingEquiangularShadow),
-                                   segmentTrackingRandom(info, kTrackingEquiangularShadowGradient));
         addSigmaTGradient(medium, -t * contributionWeight);
         addSigmaSGradient(medium, delta * perUnit * light.parameter * tr * normal);
         addPhaseGGradient(medium, (contributionWeight.x + contributionWeight.y + contributionWeight.z) *

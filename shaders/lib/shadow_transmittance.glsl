@@ -16,7 +16,7 @@ const uint kMaxBoundaryCrossings = 64u;
 // m on the way. Where a grid's voxel gradients are wanted, it keeps the segments through
 // grids instead, whose points (densityIntegralAdjoint) need the contribution's weight. A
 // ray through more distinct media or grid segments than are kept is traced a second time
-// to add its gradients.
+// to add its gradients (tracedShadowTransmittance).
 const uint kRecordedMedia = 2u;
 const uint kRecordedGridSegments = 2u;
 struct MediumLengths {
@@ -67,8 +67,8 @@ void addMediumLength(inout MediumLengths lengths, uint medium, float length) {
 
 // The density's integral along a grid medium's segment, estimated at the next of the
 // shadow ray's own points; adds -voxelWeight . sigma_t times its voxel derivatives
-// (densityIntegralAdjoint). The first trace and backpropagateTransmittance draw the points of
-// a ray's grid segments in the same order.
+// (densityIntegralAdjoint). The first trace and addRecordedTransmittanceGradients draw the
+// points of a ray's grid segments in the same order.
 float gridSegmentOpticalLength(GpuMedium m, vec3 origin, vec3 direction, float length, vec3 voxelWeight,
                                inout TrackingRandom gradientPoints) {
     return densityIntegralAdjoint(P.densityGrids.v[m.densityGrid], origin, direction, length,
@@ -105,7 +105,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             // length, or in a grid the density's integral along it.
             float opticalLength = segment;
             bool unbounded = toInfinity && hit.triangle == kNoHit;
-            bool awaitsWeight = false;  // a grid segment whose gradients backpropagateTransmittance adds
+            bool awaitsWeight = false;  // a grid segment whose gradients addRecordedTransmittanceGradients adds
             if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
                 GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
                 if (!forGradientsOnly) {
@@ -120,8 +120,8 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                 if (kAdjoint && gridGradientsWanted()) {
                     if (gradientWanted(kGradientKindDensity) && !forGradientsOnly) {
                         // Voxel gradients need the contribution's weight, known once the
-                        // whole ray is: backpropagateTransmittance estimates the density's
-                        // integral along the segment then, with the weight.
+                        // whole ray is: addRecordedTransmittanceGradients estimates the
+                        // density's integral along the segment then, with the weight.
                         addGridSegment(lengths, medium, origin, direction, segment);
                         awaitsWeight = true;
                     } else {
@@ -162,29 +162,56 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
     return vec3(0.0f);
 }
 
-// Adds weight * d log T / d sigma_t for every medium a shadow ray passed through, T being
-// its transmittance (shadowTransmittance recorded `lengths`). Grid segments take the
-// density's integral at the ray's own gradient points; a ray through more than was
-// recorded is traced again, with the same random numbers, to add its gradients.
-void backpropagateTransmittance(vec3 weight, MediumLengths lengths, vec3 origin, vec3 direction, float distance,
-                                uint medium, TrackingRandom random, TrackingRandom gradientPoints) {
-    if (!(maxComponent(abs(weight)) > 0.0f)) {
-        return;
+// Adds weight * d log T / d sigma_t for every medium in `lengths` (a shadow ray that
+// shadowTransmittance recorded whole); grid segments take the density's integral at the
+// ray's own gradient points.
+void addRecordedTransmittanceGradients(vec3 weight, MediumLengths lengths, TrackingRandom gradientPoints) {
+    for (uint i = 0u; i < lengths.count; ++i) {
+        addSigmaTGradient(lengths.medium[i], -lengths.inMedium[i] * weight);
     }
-    if (lengths.complete) {
-        for (uint i = 0u; i < lengths.count; ++i) {
-            addSigmaTGradient(lengths.medium[i], -lengths.inMedium[i] * weight);
-        }
-        for (uint i = 0u; i < lengths.gridSegments; ++i) {
-            float opticalLength =
-                gridSegmentOpticalLength(P.media.v[lengths.gridMedium[i]], lengths.gridSegment[i].xyz,
-                                         lengths.gridDirection[i], lengths.gridSegment[i].w, weight, gradientPoints);
-            addSigmaTGradient(lengths.gridMedium[i], -opticalLength * weight);
-        }
-        return;
+    for (uint i = 0u; i < lengths.gridSegments; ++i) {
+        float opticalLength =
+            gridSegmentOpticalLength(P.media.v[lengths.gridMedium[i]], lengths.gridSegment[i].xyz,
+                                     lengths.gridDirection[i], lengths.gridSegment[i].w, weight, gradientPoints);
+        addSigmaTGradient(lengths.gridMedium[i], -opticalLength * weight);
     }
-    MediumLengths retraced = noMediumLengths();
-    shadowTransmittance(origin, direction, distance, medium, weight, retraced, random, gradientPoints);
+}
+
+// The transmittance of a shadow ray whose contribution is `perUnitTransmittance` times it.
+// The adjoint pass also adds delta * contribution * d log T for every medium on the way
+// (on the channels in normal mode). A ray through more media or grid segments than
+// MediumLengths keeps is traced a second time for them, with the same random numbers, by
+// the same code in a loop: on a CPU device a shader's code runs where it stands, whether
+// any lane takes it or not, and a second call would run a whole trace for every ray.
+vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 perUnitTransmittance,
+                               TrackingRandom random, TrackingRandom gradientPoints) {
+    vec3 tr = vec3(0.0f);
+    vec3 gradientWeight = vec3(0.0f);  // 0 for the first trace
+    bool retrace = false;
+    for (;;) {
+        MediumLengths lengths = noMediumLengths();
+        TrackingRandom tracking = random;
+        TrackingRandom points = gradientPoints;
+        vec3 traced = shadowTransmittance(origin, direction, distance, medium, gradientWeight, lengths, tracking, points);
+        if (retrace) {
+            break;
+        }
+        tr = traced;
+        if (!kAdjoint) {
+            break;
+        }
+        vec3 contribution = tr * perUnitTransmittance;
+        gradientWeight = delta * contribution * normalMask(adjoint);
+        if (!(maxComponent(abs(gradientWeight)) > 0.0f)) {
+            break;
+        }
+        if (lengths.complete) {
+            addRecordedTransmittanceGradients(gradientWeight, lengths, gradientPoints);
+            break;
+        }
+        retrace = true;
+    }
+    return tr;
 }
 
 #endif
