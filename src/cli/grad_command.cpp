@@ -153,7 +153,7 @@ int runGrad(const GradOptions& options) {
     GradientResult result = lossGradient.evaluate(scene, options.settings.seed);
     std::vector<GradientCheckRow> check;
     if (options.check) {
-        check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds);
+        check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds, options.settings.seed);
     }
     requireNoValidationMessages(context);
     requireFiniteResult(result, check);
@@ -191,7 +191,8 @@ CommandAction addGradCommand(CLI::App& app) {
     command->add_flag("--check", options->check,
                       "Also compute central finite differences with common random numbers (the step is in " +
                           docReference("Gradients guide", "gradients.md") +
-                          ") and print both with their standard errors over --check-seeds seeds");
+                          ") and print both with their standard errors over --check-seeds seeds from --seed on; "
+                          "at most " + std::to_string(kMostValuesChecked) + " values a parameter");
     command->add_option("--check-seeds", options->checkSeeds, "Seeds the check averages over")
         ->default_val(options->checkSeeds)->transform(integerIn(2, 1000));
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");

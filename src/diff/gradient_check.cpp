@@ -19,9 +19,9 @@ namespace vkdr {
 namespace {
 
 // The adjoint's gradient at seed s is taken from the render at seed s; the finite
-// differences use seeds from here on, so the two estimates are independent and their
+// differences use seeds this far on, so the two estimates are independent and their
 // standard errors combine as those of independent means.
-constexpr uint32_t kFirstFiniteDifferenceSeed = 1u << 20;
+constexpr uint32_t kFiniteDifferenceSeedOffset = 1u << 20;
 
 double lossWith(RenderedLossGradient& lg, const Scene& scene, const std::string& name, int component, float value,
                 uint32_t seed) {
@@ -92,9 +92,11 @@ std::vector<std::vector<FiniteDifferenceStep>> finiteDifferenceSteps(const Scene
 }
 
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Scene& scene,
-                                             const std::vector<std::string>& parameters, int seeds) {
+                                             const std::vector<std::string>& parameters, int seeds,
+                                             uint32_t firstSeed) {
     const std::vector<std::vector<FiniteDifferenceStep>> steps = finiteDifferenceSteps(scene, parameters);
-    const std::vector<std::vector<MeanAndError>> adjoint = gradientOverSeeds(lg, scene, uint32_t(seeds));
+    const std::vector<std::vector<MeanAndError>> adjoint =
+        gradientOverSeeds(lg, scene, uint32_t(seeds), firstSeed);
     std::vector<GradientCheckRow> rows;
     for (size_t p = 0; p < parameters.size(); ++p) {
         const std::vector<float> value = getParameter(scene, parameters[p]);
@@ -104,7 +106,7 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
             const ValueRange& range = steps[p][c].range;
             std::vector<double> differences;
             for (int s = 0; s < seeds; ++s) {
-                const uint32_t seed = kFirstFiniteDifferenceSeed + uint32_t(s);
+                const uint32_t seed = firstSeed + kFiniteDifferenceSeedOffset + uint32_t(s);
                 auto loss = [&](double at) { return lossWith(lg, scene, parameters[p], int(c), float(at), seed); };
                 differences.push_back(finiteDifference(loss, x, h, range));
             }

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -37,9 +38,12 @@ struct GradientCheckRow {
 // second-order one-sided difference (-3 L(x) + 4 L(x + h) - L(x + 2h)) / 2h, or its
 // mirror, is used instead; so too where a scene-wide medium's sigma or emission would
 // leave the range that keeps its emission bounded (scene/scene_medium_emission.h).
-// Where neither fits, the step shrinks to fit (finiteDifferenceSteps). Parameter names
-// must be valid for the scene.
+// Where neither fits, the step shrinks to fit (finiteDifferenceSteps). The adjoint is
+// taken at seeds firstSeed, firstSeed + 1, ..., the finite differences at seeds 2^20
+// further on (modulo 2^32), so that the two share no samples. Parameter names must be
+// valid for the scene.
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lossGradient, const Scene& scene,
-                                             const std::vector<std::string>& parameters, int seeds);
+                                             const std::vector<std::string>& parameters, int seeds,
+                                             uint32_t firstSeed = 0);
 
 }  // namespace vkdr

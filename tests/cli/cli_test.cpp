@@ -188,7 +188,8 @@ TEST_F(CliTest, GradPrintsOneJsonObject) {
 }
 
 // --check adds, per component, the adjoint and the finite difference with their
-// standard errors and the step: relative for sigma, so a thin fog gets a thin step.
+// standard errors and the step: relative for sigma, so a thin fog gets a thin step. Its
+// seeds start at --seed.
 TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
     fs::path target = fogTarget(2);
     RunResult r = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
@@ -203,6 +204,19 @@ TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
         }
         EXPECT_NEAR(row["step"].get<double>(), 0.15 * 0.002, 1e-9);
     }
+    // The check's seeds start at --seed: another seed is another check, the same one the same.
+    const std::string seeded = "grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                               " --param media/fog/g --spp 2 --check --check-seeds 2 --json --seed ";
+    RunResult seed5 = run(seeded + "5");
+    RunResult seed5Again = run(seeded + "5");
+    RunResult seed6 = run(seeded + "6");
+    ASSERT_EQ(seed5.exitCode, 0) << seed5.err;
+    ASSERT_EQ(seed6.exitCode, 0) << seed6.err;
+    const nlohmann::json row5 = nlohmann::json::parse(seed5.out)["check"][0];
+    const nlohmann::json row6 = nlohmann::json::parse(seed6.out)["check"][0];
+    EXPECT_EQ(nlohmann::json::parse(seed5Again.out)["check"][0], row5);
+    EXPECT_NE(row5["adjoint"], row6["adjoint"]);
+    EXPECT_NE(row5["finite_difference"], row6["finite_difference"]);
     // Near the largest float the difference steps down only, not past float's range.
     RunResult huge = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
                          " --param media/fog/sigma_s --set media/fog/sigma_s=3e38 --spp 1 --check --check-seeds 2");
