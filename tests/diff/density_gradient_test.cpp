@@ -18,6 +18,7 @@
 #include "scene/load_scene.h"
 #include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
+#include "side_lit_medium.h"
 #include "test_gltf.h"
 #include "volume/write_density_grid.h"
 
@@ -28,14 +29,8 @@ constexpr int kSide = 8;
 constexpr int kVoxels = 6;
 constexpr uint32_t kSeeds = 32;
 
-// Voxel centres span the medium's box: x, y in [-0.6, 0.6], z in [1, 2.2].
 DensityGrid smokeGrid() {
-    DensityGrid grid;
-    grid.name = "density";
-    grid.size = glm::ivec3(kVoxels);
-    const double edge = 1.2 / (kVoxels - 1);
-    grid.indexToLocal = glm::dmat4(glm::dvec4(edge, 0, 0, 0), glm::dvec4(0, edge, 0, 0), glm::dvec4(0, 0, edge, 0),
-                                   glm::dvec4(-0.6, -0.6, 1.0, 1.0));
+    DensityGrid grid = gridOverMediumBox(kVoxels);
     for (int i = 0; i < kVoxels * kVoxels * kVoxels; ++i) {
         grid.values.push_back(0.4f + 1.6f * float((i * 37) % 11) / 10.0f);
     }
@@ -101,12 +96,7 @@ TestGltf smokeScene(const Lighting& lighting) {
     }
     g.materials = {emissiveMaterial("back", lighting.back * glm::vec3(1.0f, 0.8f, 0.6f), false),
                    emissiveMaterial("side", glm::vec3(lighting.side), false), smoke};
-    TestMesh side = quadZ(0.0f, 0.0f, 0.4f, 0.0f, true, 1);
-    for (glm::vec3& p : side.positions) {
-        // Swapping x and z mirrors the square into the plane x = 1.5, facing -x (towards the medium).
-        p = glm::vec3(1.5f, p.y, 1.6f + p.x);
-    }
-    g.meshes = {quadZ(0.0f, 0.0f, 2.0f, 3.0f, false, 0), side,
+    g.meshes = {quadZ(0.0f, 0.0f, 2.0f, 3.0f, false, 0), sideEmitter(1),
                 box(glm::vec3(-0.6f, -0.6f, 1.0f), glm::vec3(0.6f, 0.6f, 2.2f), 2)};
     g.yfov = 0.9f;
     return g;

@@ -13,6 +13,7 @@
 #include "diff/rendered_loss_gradient.h"
 #include "render_test_support.h"
 #include "scene/load_scene.h"
+#include "side_lit_medium.h"
 #include "test_gltf.h"
 #include "volume/write_density_grid.h"
 
@@ -26,15 +27,10 @@ constexpr float kDensity = 1.5f;
 const glm::vec3 kSigmaA(0.1f);
 const glm::vec3 kSigmaS(0.5f, 0.75f, 1.0f);
 
-// Voxel centres span x, y in [-0.6, 0.6] and z in [1, 2.2], the slabs' extent, so the
-// density is kDensity everywhere inside them.
+// Voxel centres span the medium's box, the slabs' extent, so the density is kDensity
+// everywhere inside them.
 DensityGrid constantGrid() {
-    DensityGrid grid;
-    grid.name = "density";
-    grid.size = glm::ivec3(kVoxels);
-    const double edge = 1.2 / (kVoxels - 1);
-    grid.indexToLocal = glm::dmat4(glm::dvec4(edge, 0, 0, 0), glm::dvec4(0, edge, 0, 0), glm::dvec4(0, 0, edge, 0),
-                                   glm::dvec4(-0.6, -0.6, 1.0, 1.0));
+    DensityGrid grid = gridOverMediumBox(kVoxels);
     grid.values.assign(grid.voxelCount(), kDensity);
     return grid;
 }
@@ -50,12 +46,7 @@ TestGltf slabScene(bool grid) {
     }
     g.materials = {emissiveMaterial("back", glm::vec3(0.2f), false), emissiveMaterial("side", glm::vec3(20.0f), false),
                    smoke};
-    TestMesh side = quadZ(0.0f, 0.0f, 0.4f, 0.0f, true, 1);
-    for (glm::vec3& p : side.positions) {
-        // Swapping x and z mirrors the square into the plane x = 1.5, facing -x.
-        p = glm::vec3(1.5f, p.y, 1.6f + p.x);
-    }
-    g.meshes = {quadZ(0.0f, 0.0f, 2.0f, 3.0f, false, 0), side};
+    g.meshes = {quadZ(0.0f, 0.0f, 2.0f, 3.0f, false, 0), sideEmitter(1)};
     for (glm::vec2 x : {glm::vec2(-0.6f, -0.25f), glm::vec2(-0.175f, 0.175f), glm::vec2(0.25f, 0.6f)}) {
         g.meshes.push_back(box(glm::vec3(x[0], -0.6f, 1.0f), glm::vec3(x[1], 0.6f, 2.2f), 2));
     }
