@@ -52,7 +52,8 @@ def main():
     else:
         bpy.ops.wm.open_mainfile(filepath=str(out / "start.blend"))
         vkdiffrender_blender.register()
-        warnings = write_back.apply_params_file(bpy.context.scene, str(out / "run" / "params.json"))
+        warnings = write_back.apply_params_file(bpy.context.scene, bpy.context.view_layer,
+                                                str(out / "run" / "params.json"))
         if warnings:
             raise SystemExit("\n".join(warnings))
         bpy.ops.wm.save_as_mainfile(filepath=str(out / "fitted.blend"))

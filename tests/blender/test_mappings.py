@@ -150,3 +150,12 @@ def test_spot_cone_angles():
     assert inner == pytest.approx(0.0, abs=1e-6)
     _, inner = mappings.spot_cone_angles(math.radians(60), 0.5)
     assert math.cos(inner) == pytest.approx(math.cos(math.radians(30)) + 0.5 * (1 - math.cos(math.radians(30))))
+
+
+def test_spot_size_and_blend_invert_the_cone_angles():
+    rng = random.Random(4)
+    for _ in range(TRIALS):
+        size, blend = rng.uniform(0.01, math.pi), rng.uniform(0.0, 1.0)
+        back_size, back_blend = mappings.spot_size_and_blend(*mappings.spot_cone_angles(size, blend))
+        assert back_size == pytest.approx(size, rel=1e-12)
+        assert back_blend == pytest.approx(blend, abs=1e-5)  # a Blend of 0 keeps the inner cone a millionth in

@@ -18,8 +18,17 @@ from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper
 
 from . import gltf_json, mappings, node_graph
+from .rendered_objects import rendered_objects
 
 EXTENSION = "VKDR_participating_media"
+
+# What the glTF exporter writes for a material that vkdiffrender would refuse on a
+# surface (refraction) or read as a medium.
+TRANSMISSION_EXTENSIONS = ("KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior")
+
+
+class ExportError(Exception):
+    """A scene or path the export cannot write a loadable scene for; nothing is written."""
 
 
 def blender_to_gltf(v):
@@ -41,10 +50,27 @@ def medium_json(medium):
     return entry
 
 
-def add_material_media(doc, warnings):
+def fluid_domain_materials(view_layer):
+    """Names of the materials on smoke or fire simulation domains, whose volume Cycles
+    reads from the simulation's grids."""
+    return {slot.material.name for rendered in rendered_objects(view_layer)
+            if any(m.type == "FLUID" and m.fluid_type == "DOMAIN" for m in rendered.object.modifiers)
+            for slot in rendered.object.material_slots if slot.material is not None}
+
+
+def add_material_media(doc, view_layer, warnings):
     """Volumes of materials: the glTF material of the same name becomes a medium boundary."""
+    domains = fluid_domain_materials(view_layer)
     for material in doc.get("materials", []):
         blender_material = bpy.data.materials.get(material.get("name", ""))
+        if blender_material is not None and blender_material.name in domains:
+            warnings.append(f"material '{blender_material.name}': on a smoke simulation domain, whose grids the "
+                            f"export does not read; exported as an empty medium. Import the simulation's "
+                            f"OpenVDB cache as a Volume object (File > Import > OpenVDB) with this material "
+                            f"to export the smoke")
+            material.setdefault("extensions", {})[EXTENSION] = medium_json(mappings.Medium((0.0,) * 3, (0.0,) * 3,
+                                                                                           0.0))
+            continue
         medium = node_graph.medium_of(blender_material, warnings, f"material '{material.get('name')}'")
         if medium is None:
             continue
@@ -53,7 +79,7 @@ def add_material_media(doc, warnings):
                             f"vkdiffrender renders the boundary clear (as Cycles does with no Surface)")
         extensions = material.setdefault("extensions", {})
         # Our extension takes precedence, but a refracting transmission would still be refused.
-        for name in ("KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"):
+        for name in TRANSMISSION_EXTENSIONS:
             extensions.pop(name, None)
         extensions[EXTENSION] = medium_json(medium)
 
@@ -87,6 +113,11 @@ def set_surfaces(doc, warnings):
             warnings.append(f"{what}: Principled BSDF is exported as a Lambertian of its Base Color; Cycles adds "
                             f"its specular lobe (Specular {node.inputs['Specular'].default_value:g}) and a "
                             f"retro-reflective diffuse")
+            extensions = material.get("extensions", {})
+            dropped = [extensions.pop(name) for name in TRANSMISSION_EXTENSIONS if name in extensions]
+            if dropped:
+                warnings.append(f"{what}: Transmission is exported as an opaque surface (vkdiffrender does not "
+                                f"refract)")
         else:
             warnings.append(f"{what}: surface shader {node.bl_idname} is exported as the glTF exporter reads it")
 
@@ -95,7 +126,11 @@ def add_world(doc, scene, warnings):
     """The World's volume fills the scene; its constant Background is the radiance of
     escaping rays."""
     world = scene.world
-    if world is None or not world.use_nodes:
+    if world is None:
+        return
+    if not world.use_nodes:
+        if max(world.color) > 0.0:  # what Cycles renders for a World without nodes
+            doc.setdefault("extensions", {})["VKDR_background"] = {"radiance": list(world.color)}
         return
     medium = node_graph.medium_of(world, warnings, f"world '{world.name}'")
     if medium is not None:
@@ -109,6 +144,9 @@ def add_world(doc, scene, warnings):
             node_graph.constant(background, "Strength", warnings, f"world '{world.name}'"))
         if max(radiance) > 0.0:
             doc.setdefault("extensions", {})["VKDR_background"] = {"radiance": list(radiance)}
+    elif background is not None:
+        warnings.append(f"world '{world.name}': its Surface is a {background.bl_idname}, not a Background node; "
+                        f"exported without a background (black)")
 
 
 def warn_camera_clipping(scene, medium, warnings):
@@ -127,14 +165,21 @@ def warn_camera_clipping(scene, medium, warnings):
                         f"near 0 for Cycles renders that vkdiffrender should match")
 
 
-def set_punctual_lights(doc, scene, warnings):
+def set_punctual_lights(doc, warnings):
     """Replace the exporter's photometric intensities by Cycles' radiometric ones."""
     lights = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
     for node in doc.get("nodes", []):
         index = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
-        obj = scene.objects.get(node.get("name", ""))
-        if index is None or obj is None or obj.type != "LIGHT":
+        if index is None:
             continue
+        # bpy.data rather than the scene's objects: a lamp instanced from a collection is
+        # not in the scene, and every instance has the same light data.
+        obj = bpy.data.objects.get(node.get("name", ""))
+        if obj is None or obj.type != "LIGHT":
+            warnings.append(f"light node '{node.get('name')}': no Blender light of that name; its intensity is "
+                            f"left as the glTF exporter wrote it (photometric units, not Cycles' watts)")
+            continue
+        warn_light_nodes(obj, warnings)
         light, entry = obj.data, lights[index]
         entry["color"] = list(light.color)
         if light.type == "SUN":
@@ -154,9 +199,17 @@ def set_punctual_lights(doc, scene, warnings):
                             f"the axis) differs from glTF's; exported with the same cone angles")
 
 
-def area_light_polygon(obj):
-    """World-space corners of an area light, ordered counter-clockwise seen from below
-    (its emitting side, local -Z)."""
+def warn_light_nodes(obj, warnings):
+    if obj.data.use_nodes and obj.data.node_tree is not None:
+        warnings.append(f"light '{obj.name}': its shader nodes (such as an Emission Strength) are ignored; "
+                        f"exported with its Power and Color")
+
+
+def area_light_polygon(obj, matrix_world=None):
+    """World-space corners of an area light placed by MATRIX_WORLD (by default its own),
+    ordered counter-clockwise seen from its emitting side, local -Z, also when the
+    matrix mirrors it."""
+    matrix_world = obj.matrix_world if matrix_world is None else matrix_world
     light = obj.data
     sx = light.size
     sy = light.size_y if light.shape in {"RECTANGLE", "ELLIPSE"} else light.size
@@ -167,7 +220,9 @@ def area_light_polygon(obj):
     else:
         local = [(-0.5 * sx, -0.5 * sy, 0.0), (-0.5 * sx, 0.5 * sy, 0.0), (0.5 * sx, 0.5 * sy, 0.0),
                  (0.5 * sx, -0.5 * sy, 0.0)]
-    return [tuple(obj.matrix_world @ mathutils.Vector(p)) for p in local]
+    if matrix_world.to_3x3().determinant() < 0.0:
+        local.reverse()
+    return [tuple(matrix_world @ mathutils.Vector(p)) for p in local]
 
 
 def polygon_area(points):
@@ -179,29 +234,33 @@ def polygon_area(points):
     return 0.5 * math.sqrt(sum(c * c for c in a))
 
 
-def area_light_material_name(obj):
-    return f"{obj.name}.area"
+def area_light_material_name(name):
+    """The emitter's name for the area light rendered as NAME (rendered_objects)."""
+    return f"{name}.area"
 
 
-def add_area_lights(doc, scene, warnings):
+def add_area_lights(doc, view_layer, warnings):
     """Area lights, which the glTF exporter drops, become one-sided emissive polygons of
-    Cycles' radiance Power / (4 area), black so that they reflect nothing."""
-    for obj in scene.objects:
-        if obj.type != "LIGHT" or obj.data.type != "AREA" or obj.hide_render:
+    Cycles' radiance Power / (4 area), black so that they reflect nothing; one for each
+    place a render shows the light (rendered_objects)."""
+    for rendered in rendered_objects(view_layer):
+        obj = rendered.object
+        if obj.type != "LIGHT" or obj.data.type != "AREA":
             continue
         light = obj.data
         if light.spread < math.pi - 1e-6:
             warnings.append(f"light '{obj.name}': spread {math.degrees(light.spread):.0f} deg is exported as 180")
-        corners = [blender_to_gltf(p) for p in area_light_polygon(obj)]
+        warn_light_nodes(obj, warnings)
+        corners = [blender_to_gltf(p) for p in area_light_polygon(obj, rendered.matrix_world)]
         area = polygon_area(corners)
         radiance = mappings.area_light_radiance(light.color, light.energy, area)
         emission = mappings.radiance_to_emission(radiance)
-        material = {"name": area_light_material_name(obj), "doubleSided": False,
+        material = {"name": area_light_material_name(rendered.name), "doubleSided": False,
                     "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]},
                     "emissiveFactor": list(emission["color"]),
                     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": emission["strength"]}}}
         triangles = [(0, i, i + 1) for i in range(1, len(corners) - 1)]
-        gltf_json.add_mesh_node(doc, obj.name + ".area", corners, triangles, material)
+        gltf_json.add_mesh_node(doc, area_light_material_name(rendered.name), corners, triangles, material)
         gltf_json.use_extension(doc, "KHR_materials_emissive_strength")
 
 
@@ -214,9 +273,10 @@ BOX_TRIANGLES = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4
                  (2, 6, 7), (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
 
 
-def volume_box(obj):
-    """World-space corners of the object-space box around a volume object's grids, grown
-    by a voxel on every side so that the density's trilinear fade-out lies inside."""
+def volume_box(obj, matrix_world):
+    """World-space corners of the object-space box around a volume object's grids, placed
+    by MATRIX_WORLD, grown by a voxel on every side so that the density's trilinear
+    fade-out lies inside."""
     corners = [mathutils.Vector(c) for c in obj.bound_box]
     low = mathutils.Vector([min(c[i] for c in corners) for i in range(3)])
     high = mathutils.Vector([max(c[i] for c in corners) for i in range(3)])
@@ -226,7 +286,7 @@ def volume_box(obj):
     high += mathutils.Vector((voxel, voxel, voxel))
     box = [mathutils.Vector((high.x if i & 1 else low.x, high.y if i & 2 else low.y, high.z if i & 4 else low.z))
            for i in range(8)]
-    return [tuple(obj.matrix_world @ c) for c in box]
+    return [tuple(matrix_world @ c) for c in box]
 
 
 def volume_grid_attributes(node, volume, what, warnings):
@@ -257,7 +317,20 @@ def volume_grid_attributes(node, volume, what, warnings):
     return density, albedo, emission, {"Emission Strength": 1.0}
 
 
-def add_volume_objects(doc, scene, filepath, warnings):
+def volume_file_name(stem, object_name, taken):
+    """A name for the copy of a volume's file beside the scene: the object's name with
+    what file names should not hold replaced, made unique among TAKEN (names compared
+    without case, as some file systems do)."""
+    base = f"{stem}.{re.sub(r'[^A-Za-z0-9_.-]', '_', object_name)}"
+    name, number = f"{base}.vdb", 1
+    while name.lower() in taken:
+        number += 1
+        name = f"{base}.{number}.vdb"
+    taken.add(name.lower())
+    return name
+
+
+def add_volume_objects(doc, view_layer, filepath, warnings):
     """Volume objects (an OpenVDB file, such as a smoke simulation's cache) become media:
     a box around their grids as the boundary, the grid their Principled Volume's Density
     Attribute names as its density grid (with an albedo and an emission grid where its
@@ -267,10 +340,12 @@ def add_volume_objects(doc, scene, filepath, warnings):
     directory."""
     directory = os.path.dirname(os.path.abspath(filepath))
     stem = os.path.splitext(os.path.basename(filepath))[0]
-    for obj in scene.objects:
-        if obj.type != "VOLUME" or obj.hide_render:
+    taken = set()
+    for rendered in rendered_objects(view_layer):
+        obj = rendered.object
+        if obj.type != "VOLUME":
             continue
-        what = f"volume '{obj.name}'"
+        what = f"volume '{rendered.name}'"
         material = obj.active_material
         volume = obj.data
         if not volume.grids.load():
@@ -279,6 +354,10 @@ def add_volume_objects(doc, scene, filepath, warnings):
         node = node_graph.material_volume_node(material)
         grid, albedo, emission, overrides = volume_grid_attributes(node, volume, what, warnings)
         medium = node_graph.medium_of(material, warnings, what, overrides)
+        if medium is not None and node.bl_idname != "ShaderNodeVolumePrincipled":
+            warnings.append(f"{what}: its {node.bl_idname} reads no grid, so Cycles does not multiply it by "
+                            f"the '{grid}' grid as the export does; use a Principled Volume (its Density "
+                            f"Attribute) for the two to render the same")
         if medium is None:
             warnings.append(f"{what}: has no volume material that vkdiffrender can read; skipped")
             continue
@@ -287,11 +366,13 @@ def add_volume_objects(doc, scene, filepath, warnings):
             warnings.append(f"{what}: no grid '{grid}' in a file on disk (a volume generated in memory, or a "
                             f"Density Attribute the file lacks); skipped")
             continue
-        copy = f"{stem}.{re.sub(r'[^A-Za-z0-9_.-]', '_', obj.name)}.vdb"
+        if any(m.type == "VOLUME_DISPLACE" for m in obj.modifiers):
+            warnings.append(f"{what}: its Volume Displace modifier is not applied; the file is exported as it is")
+        copy = volume_file_name(stem, rendered.name, taken)
         shutil.copyfile(source, os.path.join(directory, copy))
-        placement = Z_UP_TO_Y_UP @ obj.matrix_world
+        placement = Z_UP_TO_Y_UP @ rendered.matrix_world
         nodes = doc.setdefault("nodes", [])
-        nodes.append({"name": obj.name + ".grid", "matrix": [placement[row][column] for column in range(4)
+        nodes.append({"name": rendered.name + ".grid", "matrix": [placement[row][column] for column in range(4)
                                                               for row in range(4)]})
         entry = medium_json(medium)
         reference = {"uri": copy, "node": len(nodes) - 1}
@@ -301,9 +382,10 @@ def add_volume_objects(doc, scene, filepath, warnings):
         if emission is not None and "emission" in entry:
             entry["emissionGrid"] = {**reference, "grid": emission}
         names = {m.get("name") for m in doc.get("materials", [])}
-        name = material.name if material.name not in names else f"{material.name}.{obj.name}"
-        corners = [blender_to_gltf(p) for p in volume_box(obj)]
-        gltf_json.add_mesh_node(doc, obj.name, corners, BOX_TRIANGLES, {"name": name, "extensions": {EXTENSION: entry}})
+        name = material.name if material.name not in names else f"{material.name}.{rendered.name}"
+        corners = [blender_to_gltf(p) for p in volume_box(obj, rendered.matrix_world)]
+        gltf_json.add_mesh_node(doc, rendered.name, corners, BOX_TRIANGLES,
+                                {"name": name, "extensions": {EXTENSION: entry}})
 
 
 def warn_bounce_limits(scene, warnings):
@@ -323,19 +405,62 @@ def warn_bounce_limits(scene, warnings):
                         f"Cycles renders that vkdiffrender should match")
 
 
+def checked_output_path(filepath):
+    """FILEPATH made absolute (a '//' path is relative to the .blend), or ExportError where
+    it cannot be written without harm: a directory, a symbolic link (whose target would
+    be left holding the glTF exporter's own output), a directory that does not exist."""
+    if filepath.startswith("//") and not bpy.data.filepath:
+        raise ExportError(f"{filepath}: a path relative to the .blend file, which has not been saved")
+    path = os.path.abspath(bpy.path.abspath(filepath))
+    if os.path.islink(path):
+        raise ExportError(f"{path}: is a symbolic link; export to the file it points to instead")
+    if os.path.isdir(path):
+        raise ExportError(f"{path}: is a directory")
+    if not os.path.isdir(os.path.dirname(path)):
+        raise ExportError(f"{os.path.dirname(path)}: the directory does not exist")
+    return path
+
+
+def check_cameras(scene, view_layer, warnings):
+    """vkdiffrender renders perspective cameras, without depth of field or lens shift, and
+    the first camera of the file unless told another (`--camera`)."""
+    cameras = [r.object for r in rendered_objects(view_layer) if r.object.type == "CAMERA"]
+    if scene.camera is None or scene.camera.type != "CAMERA":
+        raise ExportError("the scene has no camera; vkdiffrender renders through a perspective camera")
+    if scene.camera.data.type != "PERSP":
+        raise ExportError(f"camera '{scene.camera.name}': {scene.camera.data.type.lower()} cameras are not "
+                          f"supported; vkdiffrender renders through a perspective camera")
+    for camera in cameras:
+        if camera.data.type != "PERSP":
+            warnings.append(f"camera '{camera.name}': {camera.data.type.lower()} cameras are not supported; "
+                            f"vkdiffrender refuses to render through it")
+        if camera.data.dof.use_dof:
+            warnings.append(f"camera '{camera.name}': depth of field is exported as a pinhole (all in focus)")
+        if camera.data.shift_x != 0.0 or camera.data.shift_y != 0.0:
+            warnings.append(f"camera '{camera.name}': lens shift is not exported (the view is centred)")
+    if len(cameras) > 1:
+        warnings.append(f"the scene has {len(cameras)} cameras; vkdiffrender renders the first in the file unless "
+                        f"given `--camera NAME` (the scene camera is '{scene.camera.name}')")
+
+
 def export_scene(context, filepath):
-    """Writes FILEPATH (.gltf, with its .bin beside it) for vkdiffrender; returns the warnings."""
+    """Writes FILEPATH (.gltf, with its .bin beside it) for vkdiffrender; returns the
+    warnings. Raises ExportError, before writing anything, for a scene or path that
+    cannot give a scene vkdiffrender loads."""
     scene = context.scene
+    view_layer = context.view_layer
+    filepath = checked_output_path(filepath)
+    warnings = []
+    check_cameras(scene, view_layer, warnings)
     run_gltf_exporter(filepath)
     with open(filepath, encoding="utf-8") as f:
         doc = json.load(f)
-    warnings = []
     set_surfaces(doc, warnings)
-    add_material_media(doc, warnings)
+    add_material_media(doc, view_layer, warnings)
     add_world(doc, scene, warnings)
-    set_punctual_lights(doc, scene, warnings)
-    add_area_lights(doc, scene, warnings)
-    add_volume_objects(doc, scene, filepath, warnings)
+    set_punctual_lights(doc, warnings)
+    add_area_lights(doc, view_layer, warnings)
+    add_volume_objects(doc, view_layer, filepath, warnings)
     warn_bounce_limits(scene, warnings)
     if EXTENSION in json.dumps(doc):
         gltf_json.use_extension(doc, EXTENSION)
@@ -354,7 +479,12 @@ class EXPORT_OT_vkdiffrender(bpy.types.Operator, ExportHelper):
     filter_glob: StringProperty(default="*.gltf", options={"HIDDEN"})
 
     def execute(self, context):
-        for warning in export_scene(context, self.filepath):
+        try:
+            warnings = export_scene(context, self.filepath)
+        except (ExportError, OSError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        for warning in warnings:
             self.report({"WARNING"}, warning)
         self.report({"INFO"}, f"wrote {os.path.basename(self.filepath)}")
         return {"FINISHED"}

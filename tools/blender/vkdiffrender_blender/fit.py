@@ -65,7 +65,7 @@ class VKDR_OT_fit_refresh(bpy.types.Operator):
         chosen = {p.name for p in settings.parameters if p.enabled}
         images = {t.name: t.image for t in settings.targets}
         settings.parameters.clear()
-        for name in write_back.fittable_parameters(context.scene):
+        for name in write_back.fittable_parameters(context.scene, context.view_layer):
             entry = settings.parameters.add()
             entry.name, entry.enabled = name, name in chosen
         settings.targets.clear()
@@ -87,10 +87,20 @@ class VKDR_OT_fit(bpy.types.Operator):
         return any(p.enabled for p in settings.parameters) and any(t.image for t in settings.targets)
 
     def invoke(self, context, event):
-        run_directory = bpy.path.abspath(context.scene.vkdr_fit.run_directory)
-        os.makedirs(run_directory, exist_ok=True)
+        run_directory = context.scene.vkdr_fit.run_directory
+        if run_directory.startswith("//") and not bpy.data.filepath:
+            self.report({"ERROR"}, f"the run directory {run_directory} is relative to the .blend file, which has not "
+                                   f"been saved: save it, or choose an absolute run directory")
+            return {"CANCELLED"}
+        run_directory = bpy.path.abspath(run_directory)
         scene_file = os.path.join(run_directory, "exported.gltf")
-        for warning in export_scene.export_scene(context, scene_file):
+        try:
+            os.makedirs(run_directory, exist_ok=True)
+            warnings = export_scene.export_scene(context, scene_file)
+        except (export_scene.ExportError, OSError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        for warning in warnings:
             self.report({"WARNING"}, warning)
         request = fit_request(context, scene_file)
         try:
@@ -125,7 +135,7 @@ class VKDR_OT_fit(bpy.types.Operator):
         if not self.run.succeeded:
             self.report({"ERROR"}, self.run.failure_message())
             return {"CANCELLED"}
-        for warning in self.run.write_back(lambda params: write_back.apply_fitted_values(context.scene, params)):
+        for warning in self.run.write_back(lambda params: write_back.apply_fitted_values(context.scene, context.view_layer, params)):
             self.report({"WARNING"}, warning)
         self.report({"INFO"}, f"fitted values written back (loss {loss:.4g})" if loss is not None else "fitted")
         return {"FINISHED"}

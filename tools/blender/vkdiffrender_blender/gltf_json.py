@@ -55,11 +55,23 @@ def add_mesh_node(doc, name, positions, triangles, material):
     scene.setdefault("nodes", []).append(len(nodes) - 1)
 
 
+def new_file_mode(path):
+    """The permissions of the file at PATH, or those a new file gets (0666 less the umask):
+    mkstemp's 0600 would hide the written file from other users."""
+    try:
+        return os.stat(path).st_mode & 0o777
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+
 def write_atomically(path, doc):
     """Write through a temporary file and a rename, so that a failure leaves the old file."""
     directory = os.path.dirname(os.path.abspath(path))
     handle, temporary = tempfile.mkstemp(dir=directory, suffix=".tmp")
     try:
+        os.chmod(temporary, new_file_mode(path))
         with os.fdopen(handle, "w", encoding="utf-8") as f:
             json.dump(doc, f, indent=1)
         os.replace(temporary, path)

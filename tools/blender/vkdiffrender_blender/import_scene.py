@@ -99,19 +99,35 @@ def restore_media(doc, materials, warnings):
         if blender_material is None:
             warnings.append(f"material '{name}': not created by the importer (unused?); its medium is skipped")
             continue
+        warn_grids(entry, f"material '{name}'", warnings)
         set_volume(blender_material, medium_from_json(entry, f"materials[{index}]"), "OUTPUT_MATERIAL")
 
 
-def restore_world(doc, scene):
+GRID_KEYS = {"density": "density", "albedoGrid": "albedo", "emissionGrid": "emission"}
+
+
+def warn_grids(entry, what, warnings):
+    """The import makes a medium of constants: a grid the medium reads is not imported."""
+    for key, kind in GRID_KEYS.items():
+        if key in entry:
+            grid = entry[key]
+            warnings.append(f"{what}: its {kind} grid ('{grid.get('grid')}' in {grid.get('uri')}) is not imported; "
+                            f"the medium comes in uniform (import the file as a Volume object with File > Import "
+                            f"> OpenVDB for the grid)")
+
+
+def restore_world(doc, scene, warnings):
+    """The scene medium and background in a new World, so that a World the scene had (which
+    other scenes may share) keeps its values."""
     extensions = doc.get("extensions", {})
     medium_entry, background = extensions.get(EXTENSION), extensions.get("VKDR_background")
     if medium_entry is None and background is None:
         return
-    if scene.world is None:
-        scene.world = bpy.data.worlds.new(medium_entry.get("name", "World") if medium_entry else "World")
-    world = scene.world
+    world = bpy.data.worlds.new(medium_entry.get("name", "World") if medium_entry else "World")
+    scene.world = world
     world.use_nodes = True
     if medium_entry is not None:
+        warn_grids(medium_entry, "the scene medium", warnings)
         set_volume(world, medium_from_json(medium_entry, "extensions." + EXTENSION), "OUTPUT_WORLD")
     out = node_graph.output_node(world.node_tree, "OUTPUT_WORLD")
     node = node_graph.linked_node(out.inputs["Surface"])
@@ -136,6 +152,11 @@ def restore_lights(doc, objects):
         node_graph.set_light_value(obj.data, value)
         if obj.data.type != "SUN":
             obj.data.shadow_soft_size = 0.0
+        if obj.data.type == "SPOT":
+            # The importer's own blend is not the export's (mappings.spot_cone_angles).
+            spot = entry.get("spot", {})
+            obj.data.spot_size, obj.data.spot_blend = mappings.spot_size_and_blend(
+                spot.get("outerConeAngle", math.pi / 4.0), spot.get("innerConeAngle", 0.0))
 
 
 def import_scene(context, filepath):
@@ -147,7 +168,7 @@ def import_scene(context, filepath):
     doc = read_gltf_json(filepath)
     warnings = []
     restore_media(doc, new_ids(bpy.data.materials, materials_before), warnings)
-    restore_world(doc, context.scene)
+    restore_world(doc, context.scene, warnings)
     restore_lights(doc, new_ids(bpy.data.objects, objects_before))
     return warnings
 

@@ -216,3 +216,11 @@ def spot_cone_angles(spot_size, spot_blend):
     cos_outer = math.cos(outer)
     inner = math.acos(min(cos_outer + (1.0 - cos_outer) * float(spot_blend), 1.0))
     return outer, min(inner, outer * (1.0 - 1e-6))
+
+
+def spot_size_and_blend(outer, inner):
+    """Blender's Spot Size and Blend for glTF's cone angles: the inverse of
+    spot_cone_angles."""
+    cos_outer = math.cos(float(outer))
+    blend = (math.cos(float(inner)) - cos_outer) / (1.0 - cos_outer) if cos_outer < 1.0 else 0.0
+    return 2.0 * float(outer), min(max(blend, 0.0), 1.0)

@@ -7,6 +7,7 @@ import json
 import bpy
 
 from . import export_scene, mappings, node_graph
+from .rendered_objects import rendered_objects
 
 SURFACE_COLOR_INPUTS = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffuse": "Color"}
 
@@ -19,21 +20,28 @@ def volume_owners(scene):
     return [(name, owner, node) for name, owner, node in owners if node is not None]
 
 
-def fittable_parameters(scene):
-    """Parameter names in vkdiffrender's spelling, each with a label for the UI."""
+def rendered_area_lights(view_layer):
+    """{exported name: (light object, its world matrix)} of the area lights the export writes."""
+    return {export_scene.area_light_material_name(r.name): (r.object, r.matrix_world)
+            for r in rendered_objects(view_layer) if r.object.type == "LIGHT" and r.object.data.type == "AREA"}
+
+
+def fittable_parameters(scene, view_layer):
+    """Parameter names in vkdiffrender's spelling, each with a label for the UI. The Fit
+    steps coefficients in log units (fit_run.optimize_command), so a coefficient is
+    offered only where every channel of it is above 0."""
     names = []
     for name, _, node in volume_owners(scene):
         kinds = {"ShaderNodeVolumePrincipled": ("sigma_a", "sigma_s", "g", "emission"),
                  "ShaderNodeVolumeAbsorption": ("sigma_a",),
                  "ShaderNodeVolumeScatter": ("sigma_s", "g")}[node.bl_idname]
-        names += [f"media/{name}/{kind}" for kind in kinds]
+        medium = node_graph.volume_medium(node, [], name)
+        names += [f"media/{name}/{kind}" for kind in kinds if kind == "g" or min(getattr(medium, kind)) > 0.0]
     for material in bpy.data.materials:
         surface = node_graph.surface_node(material) if material.users else None
         if surface is not None and surface.bl_idname in SURFACE_COLOR_INPUTS:
             names.append(f"materials/{material.name}/base_color")
-    for obj in scene.objects:
-        if obj.type == "LIGHT" and obj.data.type == "AREA":
-            names.append(f"lights/{export_scene.area_light_material_name(obj)}/emission")
+    names += [f"lights/{name}/emission" for name in rendered_area_lights(view_layer)]
     return names
 
 
@@ -49,11 +57,12 @@ def write_medium_values(owner_node, fitted, name):
     return [warning] if warning else []
 
 
-def apply_fitted_values(scene, params):
+def apply_fitted_values(scene, view_layer, params):
     """Write PARAMS ({name: [values]}) into the scene; returns warnings for names that have
     no Blender counterpart or cannot be held exactly."""
     warnings = []
     media = {}
+    area_lights = rendered_area_lights(view_layer)
     for name, value in params.items():
         parts = name.split("/")
         if parts[0] == "media" and len(parts) == 3:
@@ -66,11 +75,11 @@ def apply_fitted_values(scene, params):
                 continue
             surface.inputs[SURFACE_COLOR_INPUTS[surface.bl_idname]].default_value = (*value[:3], 1.0)
         elif parts[0] == "lights" and parts[-1] == "emission" and parts[1].endswith(".area"):
-            obj = scene.objects.get(parts[1][:-len(".area")])
-            if obj is None:
+            if parts[1] not in area_lights:
                 warnings.append(f"{name}: no area light '{parts[1][:-len('.area')]}'")
                 continue
-            corners = [export_scene.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj)]
+            obj, matrix_world = area_lights[parts[1]]
+            corners = [export_scene.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj, matrix_world)]
             light = mappings.radiance_to_area_light(value, export_scene.polygon_area(corners))
             obj.data.color, obj.data.energy = light["color"], light["power"]
         elif parts[0] == "lights" and parts[-1] == "intensity":
@@ -93,6 +102,6 @@ def apply_fitted_values(scene, params):
     return warnings
 
 
-def apply_params_file(scene, path):
+def apply_params_file(scene, view_layer, path):
     with open(path, encoding="utf-8") as f:
-        return apply_fitted_values(scene, json.load(f))
+        return apply_fitted_values(scene, view_layer, json.load(f))

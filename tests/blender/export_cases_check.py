@@ -1,0 +1,163 @@
+"""Run inside Blender for test_export_cases.py: build small scenes that an artist's file
+may hold, each from an empty file, and export each with the add-on to OUT/<case>/scene.gltf.
+OUT/<case>/result.json holds the export's warnings, or the ExportError it raised, and
+the case's own facts (the file mode a new file gets).
+
+  blender -b --factory-startup --python export_cases_check.py -- --out DIR"""
+import argparse
+import json
+import os
+import pathlib
+import sys
+
+import bpy
+
+HERE = pathlib.Path(__file__).resolve().parent
+SCENES = HERE.parents[1] / "scenes"
+sys.path[:0] = [str(HERE.parents[1] / "tools" / "blender")]
+from vkdiffrender_blender import export_scene  # noqa: E402
+
+
+def empty_scene():
+    """A perspective camera above a floor lit by nothing yet."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    camera.location, camera.rotation_euler = (0.0, -5.0, 1.0), (1.5708, 0.0, 0.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    bpy.ops.mesh.primitive_plane_add(size=10.0)
+    return scene
+
+
+def add_light(kind, name, location, energy, collection):
+    light = bpy.data.objects.new(name, bpy.data.lights.new(name, kind))
+    light.data.energy = energy
+    light.location = location
+    collection.objects.link(light)
+    return light
+
+
+def instanced_lights(scene):
+    """A point and an area lamp in a collection the scene does not hold, instanced 1 m
+    along x, as a linked lamp asset arrives."""
+    asset = bpy.data.collections.new("LampAsset")
+    add_light("POINT", "Bulb", (0.0, 0.0, 3.0), 200.0, asset)
+    add_light("AREA", "Panel", (0.0, 0.0, 2.5), 100.0, asset)
+    instance = bpy.data.objects.new("Lamps", None)
+    instance.instance_type, instance.instance_collection = "COLLECTION", asset
+    instance.location = (1.0, 0.0, 0.0)
+    scene.collection.objects.link(instance)
+
+
+def hidden_lights(scene):
+    """Area lamps in a collection disabled for rendering and in one the view layer excludes,
+    and a mirrored one that renders."""
+    off = bpy.data.collections.new("Off")
+    scene.collection.children.link(off)
+    off.hide_render = True
+    add_light("AREA", "Disabled", (0.0, 0.0, 2.0), 300.0, off)
+    excluded = bpy.data.collections.new("Excluded")
+    scene.collection.children.link(excluded)
+    add_light("AREA", "Excluded", (0.0, 0.0, 2.0), 300.0, excluded)
+    bpy.context.view_layer.layer_collection.children["Excluded"].exclude = True
+    mirrored = add_light("AREA", "Mirrored", (0.0, 0.0, 2.0), 300.0, scene.collection)
+    mirrored.scale = (-1.0, 1.0, 1.0)
+
+
+def world_without_nodes(scene):
+    scene.world = bpy.data.worlds.new("Plain")
+    scene.world.use_nodes = False
+    scene.world.color = (0.3, 0.2, 0.1)
+
+
+def world_mix_shader(scene):
+    world = bpy.data.worlds.new("Mixed")
+    world.use_nodes = True
+    scene.world = world
+    tree = world.node_tree
+    mix = tree.nodes.new("ShaderNodeMixShader")
+    tree.links.new(tree.nodes["Background"].outputs[0], mix.inputs[1])
+    tree.links.new(mix.outputs[0], tree.nodes["World Output"].inputs["Surface"])
+
+
+def volume_object(scene, name, path):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    tree = material.node_tree
+    tree.nodes.clear()
+    volume = tree.nodes.new("ShaderNodeVolumePrincipled")
+    tree.links.new(volume.outputs[0], tree.nodes.new("ShaderNodeOutputMaterial").inputs["Volume"])
+    data = bpy.data.volumes.new(name)
+    data.filepath = str(path)
+    obj = bpy.data.objects.new(name, data)
+    obj.data.materials.append(material)
+    scene.collection.objects.link(obj)
+    return obj
+
+
+def same_file_names(scene):
+    """Two Volume objects whose names differ only where a file name cannot hold them."""
+    volume_object(scene, "Дым", SCENES / "cornell_plume.vdb").location.x = -1.0
+    volume_object(scene, "Пар", SCENES / "cornell_fire_flame.vdb").location.x = 1.0
+    for obj in scene.objects:
+        if obj.type == "VOLUME":
+            obj.active_material.node_tree.nodes["Principled Volume"].inputs["Density Attribute"].default_value = \
+                "density" if obj.name == "Дым" else "flame"
+
+
+def smoke_domain(scene):
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
+    bpy.ops.object.quick_smoke()
+    add_light("SUN", "Sun", (0.0, 0.0, 5.0), 3.0, scene.collection)
+
+
+def glass(scene):
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
+    material = bpy.data.materials.new("Glass")
+    material.use_nodes = True
+    material.node_tree.nodes["Principled BSDF"].inputs["Transmission"].default_value = 1.0
+    bpy.context.object.data.materials.append(material)
+    add_light("POINT", "Bulb", (0.0, -1.0, 2.0), 100.0, scene.collection)
+
+
+def orthographic_camera(scene):
+    scene.camera.data.type = "ORTHO"
+
+
+CASES = {"instanced_lights": instanced_lights, "hidden_lights": hidden_lights,
+         "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
+         "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
+         "orthographic_camera": orthographic_camera}
+
+
+def export_case(out, case, build, target=None):
+    scene = empty_scene()
+    build(scene)
+    directory = out / case
+    directory.mkdir()
+    result = {}
+    try:
+        result["warnings"] = export_scene.export_scene(bpy.context, str(target or directory / "scene.gltf"))
+    except export_scene.ExportError as error:
+        result["error"] = str(error)
+    umask = os.umask(0)
+    os.umask(umask)
+    result["new_file_mode"] = 0o666 & ~umask
+    (directory / "result.json").write_text(json.dumps(result))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--out", required=True)
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    out = pathlib.Path(args.out)
+    for case, build in CASES.items():
+        export_case(out, case, build)
+    (out / "elsewhere.gltf").write_text("the user's file")
+    (out / "link.gltf").symlink_to(out / "elsewhere.gltf")
+    export_case(out, "symbolic_link", lambda scene: None, out / "link.gltf")
+    export_case(out, "missing_directory", lambda scene: None, out / "no such directory" / "scene.gltf")
+
+
+main()

@@ -1,0 +1,139 @@
+"""The add-on's export of what an artist's file may hold beyond the plain scenes of
+scenes.py (export_cases_check.py builds each in headless Blender): lamps instanced from a
+collection, lamps Cycles does not render, a mirrored area lamp, a World without nodes or
+with a mixed Surface, Volume objects whose names clash as file names, a smoke simulation
+domain, glass, and paths and cameras the export must refuse before writing anything.
+The exported scenes must load and render in vkdiffrender."""
+import base64
+import json
+import math
+import pathlib
+import struct
+import subprocess
+
+import numpy as np
+import pytest
+import vkdiffrender
+
+HERE = pathlib.Path(__file__).resolve().parent
+
+
+@pytest.fixture(scope="module")
+def exported(blender, tmp_path_factory):
+    out = tmp_path_factory.mktemp("cases")
+    subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
+                    str(HERE / "export_cases_check.py"), "--", "--out", str(out)], check=True,
+                   stdout=subprocess.DEVNULL)
+    return out
+
+
+def result(exported, case):
+    return json.loads((exported / case / "result.json").read_text())
+
+
+def document(exported, case):
+    return json.loads((exported / case / "scene.gltf").read_text())
+
+
+def own_warnings(exported, case):
+    """The case's warnings but the one of Blender's default bounce limits, which every case keeps."""
+    return [w for w in result(exported, case)["warnings"] if "bounce limits" not in w]
+
+
+def area_emitter(doc, name):
+    """(centre, unit normal of the first triangle) of an exported area light's polygon."""
+    mesh = next(m for m in doc["meshes"] if m["name"] == name)
+    primitive = mesh["primitives"][0]
+    accessor = doc["accessors"][primitive["attributes"]["POSITION"]]
+    view = doc["bufferViews"][accessor["bufferView"]]
+    data = base64.b64decode(doc["buffers"][view["buffer"]]["uri"].split(",", 1)[1])
+    points = np.array([struct.unpack_from("<3f", data, view["byteOffset"] + 12 * i) for i in range(accessor["count"])])
+    normal = np.cross(points[1] - points[0], points[2] - points[0])
+    return points.mean(axis=0), normal / np.linalg.norm(normal)
+
+
+def render_mean(cli, exported, case):
+    """vkdiffrender's image mean of the exported scene (16x16, 16 spp), which must load."""
+    image = exported / case / "render.exr"
+    run = subprocess.run([cli, "render", str(exported / case / "scene.gltf"), "-o", str(image), "--width", "16",
+                          "--height", "16", "--spp", "16", "--max-depth", "2"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    pixels = vkdiffrender.read_image(str(image))
+    assert np.isfinite(pixels).all()
+    return float(pixels.mean())
+
+
+def test_lamps_instanced_from_a_collection_are_exported_at_the_instance(exported, cli):
+    doc = document(exported, "instanced_lights")
+    bulb = doc["extensions"]["KHR_lights_punctual"]["lights"][0]
+    assert bulb["intensity"] == pytest.approx(200.0 / (4.0 * math.pi))  # Cycles' watts, not the exporter's candela
+    centre, normal = area_emitter(doc, "Lamps.Panel.area")
+    assert centre == pytest.approx([1.0, 2.5, 0.0], abs=1e-6)  # Blender (1, 0, 2.5): the instance's offset
+    assert normal == pytest.approx([0.0, -1.0, 0.0], abs=1e-6)  # emitting down, its local -Z
+    assert render_mean(cli, exported, "instanced_lights") > 0.0
+
+
+def test_lamps_that_cycles_does_not_render_are_not_exported_and_a_mirrored_one_still_shines_down(exported, cli):
+    doc = document(exported, "hidden_lights")
+    emitters = [m["name"] for m in doc["meshes"] if m["name"].endswith(".area")]
+    assert emitters == ["Mirrored.area"]
+    _, normal = area_emitter(doc, "Mirrored.area")
+    assert normal == pytest.approx([0.0, -1.0, 0.0], abs=1e-6)
+    assert render_mean(cli, exported, "hidden_lights") > 0.0, "the floor below the mirrored lamp is lit"
+
+
+def test_a_world_without_nodes_gives_its_colour_as_the_background(exported):
+    background = document(exported, "world_without_nodes")["extensions"]["VKDR_background"]
+    assert background["radiance"] == pytest.approx([0.3, 0.2, 0.1], rel=1e-6)
+
+
+def test_a_world_surface_that_is_not_a_background_is_reported(exported):
+    assert "VKDR_background" not in document(exported, "world_mix_shader").get("extensions", {})
+    assert any("ShaderNodeMixShader" in w and "not a Background" in w
+               for w in own_warnings(exported, "world_mix_shader"))
+
+
+def test_volume_objects_whose_names_clash_as_file_names_get_files_of_their_own(exported):
+    doc = document(exported, "same_file_names")
+    grids = {m["name"]: m["extensions"]["VKDR_participating_media"]["density"] for m in doc["materials"]
+             if "VKDR_participating_media" in m.get("extensions", {})}
+    assert sorted(grids) == ["Дым", "Пар"]
+    assert grids["Дым"]["uri"] != grids["Пар"]["uri"]
+    for entry, source in ((grids["Дым"], "cornell_plume.vdb"), (grids["Пар"], "cornell_fire_flame.vdb")):
+        copied = exported / "same_file_names" / entry["uri"]
+        assert copied.read_bytes() == (HERE.parents[1] / "scenes" / source).read_bytes()
+
+
+def test_a_smoke_domain_is_exported_empty_with_a_warning(exported, cli):
+    doc = document(exported, "smoke_domain")
+    domain = next(m for m in doc["materials"] if m["name"] == "Smoke Domain Material")
+    medium = domain["extensions"]["VKDR_participating_media"]
+    assert medium["sigma_a"] == [0.0] * 3 and medium["sigma_s"] == [0.0] * 3
+    assert any("smoke simulation domain" in w for w in own_warnings(exported, "smoke_domain"))
+    render_mean(cli, exported, "smoke_domain")
+
+
+def test_glass_is_exported_opaque_with_a_warning_and_loads(exported, cli):
+    glass = next(m for m in document(exported, "glass")["materials"] if m["name"] == "Glass")
+    assert not set(glass.get("extensions", {})) & {"KHR_materials_transmission", "KHR_materials_ior",
+                                                    "KHR_materials_volume"}
+    assert any("Transmission is exported as an opaque surface" in w for w in own_warnings(exported, "glass"))
+    render_mean(cli, exported, "glass")
+
+
+def test_new_files_get_the_umasks_permissions(exported):
+    for case in ("instanced_lights", "glass"):
+        mode = (exported / case / "scene.gltf").stat().st_mode & 0o777
+        assert mode == result(exported, case)["new_file_mode"]
+
+
+@pytest.mark.parametrize("case, message", [
+    ("orthographic_camera", "camera 'camera': ortho cameras are not supported"),
+    ("symbolic_link", "link.gltf: is a symbolic link"),
+    ("missing_directory", "no such directory: the directory does not exist"),
+])
+def test_what_cannot_be_exported_is_refused_before_anything_is_written(exported, case, message):
+    assert message in result(exported, case)["error"]
+    assert not (exported / case / "scene.gltf").exists()
+    assert (exported / "elsewhere.gltf").read_text() == "the user's file"
+    assert not (exported / "no such directory").exists()
