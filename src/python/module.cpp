@@ -162,18 +162,30 @@ struct RenderKeywords {
 #define VKDR_RENDER_KEYWORD_VALUES \
     RenderKeywords { spp, seed, width, height, maxDepth, camera, pathsPerPass, equiangular }
 
+// The session's calls wait for another thread's render to finish: with Python's lock
+// released, so that other threads go on meanwhile.
+ParameterInfo parameterInfo(const SceneSession& session, const std::string& name) {
+    py::gil_scoped_release release;
+    return session.parameter(name);
+}
+
+std::vector<ParameterInfo> allParameters(const SceneSession& session) {
+    py::gil_scoped_release release;
+    return session.parameters();
+}
+
 // Each parameter's gradient, shaped as the parameter, by name in the order asked for.
 py::dict gradientDictionary(const SceneSession& session, std::vector<ParameterGradient>& gradients) {
     py::dict result;
     for (ParameterGradient& g : gradients) {
-        result[py::str(g.name)] = arrayOf(std::move(g.gradient), session.parameter(g.name).shape);
+        result[py::str(g.name)] = arrayOf(std::move(g.gradient), parameterInfo(session, g.name).shape);
     }
     return result;
 }
 
 void setParameter(SceneSession& session, const std::string& name, const py::object& value) {
     const FloatArray array = floatArrayOf(value, name);
-    const ParameterInfo info = session.parameter(name);
+    const ParameterInfo info = parameterInfo(session, name);
     if (array.size() != 1 && shapeOf(array) != info.shape) {
         throw Error(name + ": expected shape " + shapeText(info.shape) + " or one value, got " +
                     shapeText(shapeOf(array)));
@@ -184,8 +196,13 @@ void setParameter(SceneSession& session, const std::string& name, const py::obje
 }
 
 py::array_t<float> getParameter(const SceneSession& session, const std::string& name) {
-    const ParameterInfo info = session.parameter(name);
-    return arrayOf(session.get(name), info.shape);
+    const ParameterInfo info = parameterInfo(session, name);
+    std::vector<float> values;
+    {
+        py::gil_scoped_release release;
+        values = session.get(name);
+    }
+    return arrayOf(std::move(values), info.shape);
 }
 
 // A RuntimeWarning, as the command line warns, when paths of the call were cut short.
@@ -287,15 +304,15 @@ void bindScene(py::module_& m) {
         .def_property_readonly(
             "device", [](const SceneSession& s) { return s.context().description().name; },
             "The name of the Vulkan device the scene renders on")
-        .def("parameters", &SceneSession::parameters, "Every named parameter, as Parameter objects")
-        .def("parameter", &SceneSession::parameter, py::arg("name"), "One named parameter, as a Parameter")
+        .def("parameters", &allParameters, "Every named parameter, as Parameter objects")
+        .def("parameter", &parameterInfo, py::arg("name"), "One named parameter, as a Parameter")
         .def("__getitem__", &getParameter, py::arg("name"), "A copy of the parameter's values, float32")
         .def("__setitem__", &setParameter, py::arg("name"), py::arg("value"),
              "Sets a parameter: one value sets every channel (and texel), else the parameter's exact shape")
         .def(
             "__contains__",
             [](const SceneSession& s, const std::string& name) {
-                const std::vector<ParameterInfo> all = s.parameters();
+                const std::vector<ParameterInfo> all = allParameters(s);
                 return std::any_of(all.begin(), all.end(), [&](const ParameterInfo& p) { return p.name == name; });
             },
             py::arg("name"))
@@ -341,10 +358,15 @@ void bindFunctions(py::module_& m) {
                 py::gil_scoped_release release;
                 image = readImage(file);
             }
+            // As a --target is read: a loss against such an image is NaN or infinite.
+            if (std::optional<std::string> bad = unrepresentablePixel(image)) {
+                throw Error(file.string() + ": " + *bad);
+            }
             return arrayOfImage(std::move(image));
         },
         py::arg("path"),
-        "Reads an EXR (linear), PNG or JPEG (sRGB, decoded to linear) as an (H, W, 3) float32 array.");
+        "Reads an EXR (linear), PNG or JPEG (sRGB, decoded to linear) as an (H, W, 3) float32 array; refuses NaN, "
+        "infinite and larger than 1e18 pixels.");
     m.def("write_image", &writeImage, py::arg("path"), py::arg("image"),
           "Writes an (H, W, 3) array as .exr (32-bit float linear RGB) or .png (8-bit sRGB, clamped to [0, 1]), "
           "atomically; refuses NaN and infinite pixels.");

@@ -204,6 +204,14 @@ SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& sett
         cutPaths = cached.renderer->stats().truncatedPaths;
         return result;
     });
+    // As render() refuses such an image, and before the gradients, which it would make
+    // infinite too.
+    if (std::optional<std::string> bad = unrepresentablePixel(evaluation.image)) {
+        throw Error("the render's " + *bad);
+    }
+    if (!std::isfinite(evaluation.loss)) {
+        throw Error("the loss is not finite: the image and the target differ by more than a float can sum");
+    }
     return {evaluation.loss, std::move(evaluation.image), namedGradients(slots, evaluation.gradients), cutPaths};
 }
 

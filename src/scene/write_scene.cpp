@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "image/atomic_write.h"
 #include "image/image.h"
+#include "image/output_paths.h"
 #include "image/regular_file.h"
 #include "scene/glb_layout.h"
 #include "scene/scene_file_access.h"
@@ -223,6 +224,18 @@ void writePunctualLights(json& document, const Scene& scene, const std::filesyst
     }
 }
 
+// A file the written scene consists of may not be one the scene was loaded from (the
+// original, a buffer, an image, a grid): that file would change under the scene that
+// reads it. Checked before each file is written.
+void requireNotASource(const std::vector<SourceFile>& sources, const std::filesystem::path& file) {
+    for (const SourceFile& source : sources) {
+        if (sameFile(file, source.file)) {
+            throw Error(file.string() + ": the written scene would replace this file, which the scene reads; write "
+                        "the scene under another name or in another directory");
+        }
+    }
+}
+
 // The written scene must load by the same rule as any other (scene_file_access.h): files
 // the original refers to stay where they are when they lie in the output's directory
 // tree, and are copied beside the output, as <stem>.<array><i><extension>, when not.
@@ -250,6 +263,7 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
         std::filesystem::path relative = resolved.file.lexically_relative(toDirectory);
         if (relative.empty() || *relative.begin() == "..") {
             relative = out.stem().string() + "." + array + std::to_string(i) + resolved.file.extension().string();
+            requireNotASource(sources, toDirectory / relative);
             writeAtomically(toDirectory / relative, [&](std::ofstream& stream) {
                 stream.write(bytes.data(), std::streamsize(bytes.size()));
             });
@@ -272,6 +286,7 @@ void writeDensityGrids(json& document, const Scene& scene, const std::filesystem
         }
         const DensityGrid& values = scene.densityGrids[size_t(grid)].grid;
         const std::string file = stem + ".vdb";
+        requireNotASource(scene.sourceFiles, out.parent_path() / file);
         writeDensityGridVdb(out.parent_path() / file, values);
         json& reference = owner["extensions"][kMediumExtension][key];
         reference["uri"] = encodeUriPath(file);
@@ -295,7 +310,7 @@ void writeDensityGrids(json& document, const Scene& scene, const std::filesystem
 }
 
 void writeBinaryChunkBeside(json& document, const GltfSource& source, const std::filesystem::path& original,
-                            const std::filesystem::path& out) {
+                            const std::vector<SourceFile>& sources, const std::filesystem::path& out) {
     if (!document.contains("buffers") || document["buffers"].empty() || document["buffers"][0].contains("uri")) {
         return;
     }
@@ -305,6 +320,7 @@ void writeBinaryChunkBeside(json& document, const GltfSource& source, const std:
         failReading(original, "buffers[0] needs a binary chunk of " + std::to_string(byteLength) + " bytes");
     }
     std::filesystem::path binary = std::filesystem::path(out).replace_extension(".bin");
+    requireNotASource(sources, binary);
     // tinygltf requires an external buffer's file to be exactly byteLength long.
     writeAtomically(binary, [&](std::ofstream& stream) {
         stream.write(source.binaryChunk->data(), std::streamsize(byteLength));
@@ -338,6 +354,7 @@ void writeBaseColorTextures(json& document, const Scene& scene, const std::files
             continue;
         }
         std::string file = out.stem().string() + ".image" + std::to_string(image) + ".png";
+        requireNotASource(scene.sourceFiles, out.parent_path() / file);
         writePng(out.parent_path() / file, textureImage(scene.textures[size_t(material.baseColorTexture)]));
         json& entry = document["images"][image];
         entry.erase("bufferView");
@@ -360,10 +377,11 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     referToExternalFiles(document, "buffers", original, scene.sourceFiles, out);
     referToExternalFiles(document, "images", original, scene.sourceFiles, out);
     writeDensityGrids(document, scene, out);
-    writeBinaryChunkBeside(document, source, original, out);
+    writeBinaryChunkBeside(document, source, original, scene.sourceFiles, out);
     writeBaseColorTextures(document, scene, out);
 
     std::string text = document.dump(2);
+    requireNotASource(scene.sourceFiles, out);
     writeAtomically(out, [&](std::ofstream& stream) { stream << text << '\n'; });
 }
 

@@ -22,7 +22,7 @@ namespace vkdr {
 // directory; a .glb's binary chunk is written beside `out` as <stem>.bin. Files are
 // written atomically. Throws vkdr::Error naming the file at fault, among them an
 // original, buffer or image that has changed since `scene` was loaded from it
-// (Scene::sourceFiles).
+// (Scene::sourceFiles), and any file to be written that is one the scene reads.
 void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
                               const std::filesystem::path& out);
 

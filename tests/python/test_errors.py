@@ -12,8 +12,11 @@ import time
 import numpy as np
 import pytest
 import vkdiffrender
+from conftest import SCENES
+from textured_scene import write_textured_fog_scene
 
 WIDTH = 16
+MALFORMED = SCENES.parent / "tests" / "cli" / "data" / "malformed"
 
 
 @pytest.fixture(scope="module")
@@ -160,6 +163,49 @@ def test_an_unsummable_image_adjoint_is_an_error_not_an_infinite_gradient(scene)
     assert scene.backpropagate(huge, [], spp=2, width=WIDTH) == {}
 
 
+def test_a_render_too_bright_for_floats_is_an_error_from_every_call():
+    """Each value in its range, their product beyond float's: render refuses the image, and
+    so must loss_gradient, which would otherwise return an infinite loss and image."""
+    fire = vkdiffrender.Scene(SCENES / "cornell_fire.gltf")
+    fire["media/fire/emission_grid"] = 1e30
+    fire["media/fire/emission"] = 1e12
+    target = np.zeros((WIDTH, WIDTH, 3), np.float32)
+    with pytest.raises(vkdiffrender.Error, match="the render's pixel .* is"):
+        fire.render(width=WIDTH, height=WIDTH, spp=2)
+    for names in ([], ["media/fire/g"]):
+        with pytest.raises(vkdiffrender.Error, match="the render's pixel .* is"):
+            fire.loss_gradient(target, names, width=WIDTH, height=WIDTH, spp=2)
+
+
+def test_write_refuses_to_replace_a_file_the_scene_reads(tmp_path):
+    """Writing out.gltf writes its texture as out.image0.png: here the very file the scene
+    reads its texture from, which must be left as it was."""
+    scene_file = write_textured_fog_scene(tmp_path)
+    (tmp_path / "poster.png").rename(tmp_path / "out.image0.png")
+    gltf = scene_file.read_text().replace('"poster.png"', '"out.image0.png"')
+    scene_file.write_text(gltf)
+    texture = (tmp_path / "out.image0.png").read_bytes()
+    scene = vkdiffrender.Scene(scene_file)
+    scene["materials/poster/base_color_texture"] = 0.9
+    with pytest.raises(vkdiffrender.Error, match="out.image0.png: the written scene would replace this file"):
+        scene.write(tmp_path / "out.gltf")
+    assert (tmp_path / "out.image0.png").read_bytes() == texture
+    scene.write(tmp_path / "other.gltf")  # the scene's files are as loaded
+    vkdiffrender.write_image(tmp_path / "texel.png", np.full((1, 1, 3), 0.9, np.float32))
+    eight_bit = vkdiffrender.read_image(tmp_path / "texel.png")[0, 0, 0]  # as the written texture holds 0.9
+    assert np.all(vkdiffrender.Scene(tmp_path / "other.gltf")["materials/poster/base_color_texture"] == eight_bit)
+
+
+@pytest.mark.parametrize("value, problem", [(float("nan"), "NaN"), (float("inf"), "+infinity"), (1e19, "beyond")])
+def test_read_image_refuses_what_a_target_may_not_hold(tmp_path, value, problem):
+    """The EXR of 4 x 4 pixels of 0.5 with its last value (pixel (3, 3), channel R) changed."""
+    data = bytearray((MALFORMED / "valid_target.exr").read_bytes())
+    data[-4:] = np.float32(value).tobytes()
+    (tmp_path / "bad.exr").write_bytes(data)
+    with pytest.raises(vkdiffrender.Error, match=f"bad.exr: pixel \\(3, 3\\) channel R .*{re.escape(problem)}"):
+        vkdiffrender.read_image(tmp_path / "bad.exr")
+
+
 def test_files_are_checked(scene, fog_scene_file, tmp_path):
     with pytest.raises(vkdiffrender.Error, match="expected a .gltf or .glb file"):
         vkdiffrender.Scene(tmp_path)
@@ -239,6 +285,34 @@ def test_the_device_works_without_pythons_lock(scene):
         done.set()
         counter.join()
     assert ticks > 10
+
+
+def test_a_thread_waiting_for_a_parameter_lets_other_threads_go_on(scene):
+    """Reading a parameter waits for another thread's render, with Python's lock released."""
+    scene.render(spp=1, width=48)  # sets up the view, so that the render below starts at once
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(time.monotonic())
+            time.sleep(0.001)
+
+    renderer = threading.Thread(target=lambda: scene.render(spp=64, width=48))
+    counter = threading.Thread(target=count)
+    renderer.start()
+    time.sleep(0.2)
+    counter.start()
+    try:
+        started = time.monotonic()
+        scene["media/fog/g"]
+        finished = time.monotonic()
+    finally:
+        done.set()
+        counter.join()
+        renderer.join()
+    assert finished - started > 0.1, "the render ended before the read began; render more samples"
+    assert sum(started <= t <= finished for t in ticks) > 10
 
 
 def test_threads_sharing_a_scene_take_turns(scene):

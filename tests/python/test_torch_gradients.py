@@ -139,3 +139,10 @@ def test_a_failing_forward_pass_leaves_the_scene_as_it_was(scene, parameters, se
         vt.render(scene, parameters, width=WIDTH, **settings)
     for name, value in before.items():
         assert np.array_equal(scene[name], value), name
+
+
+def test_complex_values_are_refused_not_cut_to_their_real_part(scene):
+    before = scene["media/fog/sigma_a"].copy()
+    with pytest.raises(TypeError, match="media/fog/sigma_a: expected real numbers"):
+        vt.render(scene, {"media/fog/sigma_a": torch.tensor([0.05 + 0.3j] * 3)}, width=WIDTH)
+    assert np.array_equal(scene["media/fog/sigma_a"], before)

@@ -33,6 +33,10 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
                     paths_per_pass=paths_per_pass, equiangular=equiangular)
     names = list(parameters)
     tensors = [torch.as_tensor(parameters[name]) for name in names]
+    for name, tensor in zip(names, tensors):
+        # Converting to float32 would drop an imaginary part with a mere warning.
+        if tensor.is_complex():
+            raise TypeError(f"{name}: expected real numbers, got a tensor of {tensor.dtype}")
     return _Render.apply(scene, names, settings, *tensors)
 
 
