@@ -15,6 +15,7 @@
 #include "core/interrupt.h"
 #include "diff/gradient_check.h"
 #include "diff/rendered_loss_gradient.h"
+#include "diff/unrepresentable_render.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/value_summary.h"
 #include "vk/context.h"
@@ -58,6 +59,9 @@ void requireFinite(double value, const std::string& what) {
 
 // What grad prints is a number: a NaN or infinity (null in JSON) is refused, naming it.
 void requireFiniteResult(const GradientResult& result, const std::vector<GradientCheckRow>& check) {
+    if (std::optional<std::string> bad = unrepresentableRender(result)) {
+        throw Error("grad: " + *bad + ": the scene's values make more light than a float holds; nothing is printed");
+    }
     requireFinite(result.loss, "the loss");
     for (const ParameterGradient& p : result.parameters) {
         for (size_t c = 0; c < p.gradient.size(); ++c) {

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "diff/unrepresentable_render.h"
 #include "optimize/coarse_grid_gradient.h"
 #include "optimize/density_grid_options.h"
 #include "optimize/log_space.h"
@@ -59,9 +60,13 @@ constexpr double kExtremeMagnitude = 1e6;
 
 // Why a loss or gradient the render gave is not finite. Targets, parameters and
 // checkpoints are refused at load when they are not finite, and a step that leaves
-// float range is caught by requireFiniteSteps, so it is either an extreme value the
-// steps reached or the renderer itself.
-std::string nonFiniteCause(const ParameterVector& parameters) {
+// float range is caught by requireFiniteSteps, so it is a render beyond float range
+// (values, fitted or not, that each lie in their range but together make too much
+// light), an extreme value the steps reached, or the renderer itself.
+std::string nonFiniteCause(const GradientResult& result, const ParameterVector& parameters) {
+    if (std::optional<std::string> bad = unrepresentableRender(result)) {
+        return *bad + ": the scene's values, fitted or not, make more light than a float holds";
+    }
     std::string extreme;
     for (size_t i = 0; i < parameters.names().size(); ++i) {
         std::span<const double> values = parameters.values().subspan(parameters.offset(i), parameters.count(i));
@@ -98,7 +103,7 @@ void requireFinite(const GradientResult& result, const ParameterVector& paramete
                   valuesText(parameters.values().subspan(parameters.offset(i), parameters.count(i)));
         }
         throw Error(where + "the loss is " + numberText(result.loss) + " at " + at + kept +
-                    nonFiniteCause(parameters));
+                    nonFiniteCause(result, parameters));
     }
     for (size_t i = 0; i < result.parameters.size(); ++i) {
         const ParameterGradient& parameter = result.parameters[i];
@@ -108,7 +113,7 @@ void requireFinite(const GradientResult& result, const ParameterVector& paramete
                 std::span<const double> values =
                     parameters.values().subspan(parameters.offset(i), parameters.count(i));
                 throw Error(where + "the gradient of " + parameter.name + " is " + numberText(gradient) + " at " +
-                            parameter.name + " = " + valuesText(values) + kept + nonFiniteCause(parameters));
+                            parameter.name + " = " + valuesText(values) + kept + nonFiniteCause(result, parameters));
             }
         }
     }

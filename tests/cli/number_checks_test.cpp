@@ -101,6 +101,21 @@ TEST_F(NumberChecksTest, TheBrightestAcceptedEmissionGivesFinitePixels) {
     EXPECT_FALSE(fs::exists(dir_ / "bright.exr"));
 }
 
+TEST_F(NumberChecksTest, ValuesInRangeWhoseProductOverflowsAreBlamedOnTheScene) {
+    // An emission grid's voxels at 1e30 times the medium's emission at 1e12, each in its range.
+    const std::string fire = std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fire.gltf" +
+                             " --set media/fire/emission_grid=1e30 --set media/fire/emission=1e12";
+    const std::string blame = "make more light than a float holds";
+    fs::path target = targetWith(0.2f, 0, 0, 0);
+    expectError(run("grad " + fire + " --target " + target.string() + " --param media/fire/g --spp 2"),
+                {"grad: the render of view 0: pixel (", "is +infinity: the scene's values " + blame});
+    fs::path out = dir_ / "fit";
+    expectError(run("optimize " + fire + " --target camera=" + target.string() +
+                    " --param media/fire/g --spp 2 --iters 1 --out " + out.string()),
+                {"iteration 0: the loss is inf", "the render of view 0: pixel (", blame});
+    EXPECT_FALSE(fs::exists(out / "params.json"));
+}
+
 TEST_F(NumberChecksTest, TargetsWithUnrepresentablePixelsAreRefusedNamingThePixel) {
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
     struct Case {

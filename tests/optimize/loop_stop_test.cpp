@@ -71,6 +71,31 @@ public:
     }
 };
 
+// A render beyond float range, as values that each lie in their range can make together
+// (an emission grid's voxels times the medium's emission), and so an infinite loss.
+class InfiniteRender : public InfiniteLoss {
+public:
+    using InfiniteLoss::InfiniteLoss;
+    GradientResult evaluate(const Scene& scene, uint32_t seed) override {
+        GradientResult result = InfiniteLoss::evaluate(scene, seed);
+        result.images = {Image{2, 2, std::vector<float>(12, 0.5f)}};
+        result.images[0].rgb[9] = std::numeric_limits<float>::infinity();  // pixel (1, 1), channel R
+        return result;
+    }
+};
+
+TEST(LoopStop, AnInfiniteRenderBlamesTheScenesValues) {
+    Scene scene = sceneWithParameters();
+    InfiniteRender loss({{"media/fog/g", {0.0}}});
+    std::string message = stopMessage(loss, scene, optionsFor({"media/fog/g"}, OptimizerKind::Adam, 0.01));
+    EXPECT_NE(message.find("iteration 0: the loss is inf at media/fog/g = ["), std::string::npos) << message;
+    EXPECT_NE(message.find("the render of view 0: pixel (1, 1) channel R is +infinity: the scene's values, fitted or "
+                           "not, make more light than a float holds"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(message.find("please report"), std::string::npos) << message;
+}
+
 TEST(LoopStop, ANonFiniteLossNamesEveryParameterAndItsValues) {
     Scene scene = sceneWithParameters();
     InfiniteLoss loss({{"media/fog/g", {0.0}}});
