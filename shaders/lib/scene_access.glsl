@@ -77,7 +77,9 @@ struct BilinearFootprint {
 
 BilinearFootprint bilinearFootprint(int textureIndex, vec2 uv) {
     GpuTexture tex = P.textures.v[textureIndex];
-    vec2 st = uv * vec2(tex.width, tex.height) - 0.5f;
+    // Repeat wrapping in float first: far from [0, 1) (|uv| up to float's range is valid
+    // glTF) the texel coordinate would leave int range.
+    vec2 st = fract(uv) * vec2(tex.width, tex.height) - 0.5f;
     vec2 cell = floor(st);
     vec2 f = st - cell;
     ivec2 size = ivec2(tex.width, tex.height);
@@ -85,7 +87,8 @@ BilinearFootprint bilinearFootprint(int textureIndex, vec2 uv) {
     BilinearFootprint footprint;
     for (int corner = 0; corner < 4; ++corner) {
         ivec2 offset = ivec2(corner & 1, corner >> 1);
-        ivec2 c = wrapRepeat(c0 + offset, size);
+        // Clamped too: a coordinate interpolated beyond float range is NaN after fract.
+        ivec2 c = clamp(wrapRepeat(c0 + offset, size), ivec2(0), size - 1);
         footprint.texel[corner] = tex.firstTexel + uint(c.y) * tex.width + uint(c.x);
         footprint.weight[corner] = (offset.x == 1 ? f.x : 1.0f - f.x) * (offset.y == 1 ? f.y : 1.0f - f.y);
     }

@@ -1,5 +1,6 @@
 #include "scene/gltf_accessors.h"
 
+#include <cmath>
 #include <cstring>
 #include <initializer_list>
 #include <optional>
@@ -137,6 +138,9 @@ std::vector<glm::vec2> readTexcoords(const tinygltf::Model& model, int accessor,
         const unsigned char* element = range.first + i * range.stride;
         uvs[i] = {normalizedComponent(element, range.componentType),
                   normalizedComponent(element + componentSize, range.componentType)};
+        if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y)) {
+            diagnostics.fail(field, "texture coordinate " + std::to_string(i) + " is not finite");
+        }
     }
     return uvs;
 }

@@ -44,6 +44,18 @@ TEST(LoadSceneErrors, MalformedJsonIncludesTheParserMessage) {
                     {"cannot parse glTF", "parse error"});
 }
 
+TEST(LoadSceneErrors, TextureCoordinatesThatAreNotFinite) {
+    TemporaryDirectory directory;
+    for (float bad : {std::nanf(""), INFINITY}) {
+        MeshData quad = floorQuad(1.0f);
+        quad.uvs[2].y = bad;
+        GltfBuilder builder;
+        builder.addNode({{"mesh", builder.addMesh("quad", quad)}});
+        expectLoadError(builder.writeGltf(directory / "uv.gltf"),
+                        {"meshes[0].primitives[0].attributes.TEXCOORD_0", "texture coordinate 2 is not finite"});
+    }
+}
+
 TEST(LoadSceneErrors, OutOfRangeIndices) {
     TemporaryDirectory directory;
     {
