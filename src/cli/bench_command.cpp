@@ -120,10 +120,13 @@ CommandAction addBenchCommand(CLI::App& app) {
                      "skips them")
         ->default_val(options->settings.gradientSeeds)
         ->transform(integerIn(0, 1000));
-    command->add_option("--json", options->json, "Also write the results as JSON (see " + docReference("Performance guide", "performance.md") + ")");
+    command->add_option("--json", options->json, "Also write the results as JSON (see " + docReference("Performance guide", "performance.md") + ")")
+        ->check(nonEmpty("a file name"));
     command->add_option("--scenes-dir", options->scenesDirectory, "Where the shipped scenes are")
-        ->default_val(options->scenesDirectory);
-    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
+        ->default_val(options->scenesDirectory)
+        ->check(nonEmpty("a directory"));
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)")
+        ->check(nonEmpty("an index or part of a name"));
     return [command, options]() { return command->parsed() ? runBench(*options) : -1; };
 }
 

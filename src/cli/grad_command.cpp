@@ -199,7 +199,8 @@ CommandAction addGradCommand(CLI::App& app) {
                           "at most " + std::to_string(kMostValuesChecked) + " values a parameter");
     command->add_option("--check-seeds", options->checkSeeds, "Seeds the check averages over")
         ->default_val(options->checkSeeds)->transform(integerIn(2, 1000));
-    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)")
+        ->check(nonEmpty("an index or part of a name"));
     return [command, options]() { return command->parsed() ? runGrad(*options) : -1; };
 }
 

@@ -1,6 +1,7 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "cli/number_options.h"
 #include "vk/context.h"
 
 namespace vkdr {
@@ -11,7 +12,8 @@ CommandAction addInfoCommand(CLI::App& app) {
     auto options = std::make_shared<ContextOptions>();
     command->add_option("--device", options->device,
                         "Device index as listed here, or part of its name; digits are always an index "
-                        "(default: best available)");
+                        "(default: best available)")
+        ->check(nonEmpty("an index or part of a name"));
     return [command, options]() {
         if (!command->parsed()) {
             return -1;

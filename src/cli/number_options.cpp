@@ -53,4 +53,9 @@ CLI::Validator integerIn(uint64_t low, uint64_t high, const std::string& kind) {
         expected);
 }
 
+CLI::Validator nonEmpty(const std::string& what) {
+    return CLI::Validator([what](std::string& text) -> std::string { return text.empty() ? "give " + what : ""; },
+                          "");
+}
+
 }  // namespace vkdr

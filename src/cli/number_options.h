@@ -23,5 +23,10 @@ CLI::Validator finiteNumberIn(double lower, double upper);
 // replaces "an integer from low to high" where a name says more (the seed's).
 CLI::Validator integerIn(uint64_t low, uint64_t high, const std::string& kind = "");
 
+// Refuses an empty value ("--png ''"), saying what to give ("give a file name"): for an
+// option whose absence means "none" or "the default", an empty value would silently mean
+// that too.
+CLI::Validator nonEmpty(const std::string& what);
+
 
 }  // namespace vkdr

@@ -8,6 +8,7 @@
 #include "cli/experiment_backend.h"
 #include "cli/install_layout.h"
 #include "cli/number_options.h"
+#include "render/camera_setup.h"
 #include "image/output_paths.h"
 #include "optimize/density_grid_options.h"
 #include "cli/progress_bar.h"
@@ -261,6 +262,7 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     applyOverrides(options, overrides, experiment);
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     LoadedScene loaded = loadScene(experiment.scene, options.scene.access);
+    requirePerspectiveCamera(loaded.scene, experiment.scene.string());
     for (const std::string& warning : loaded.warnings) printWarning(warning);
     requireRunWritesNoInput(options.out, true, filesTheSceneReads(loaded));
     Scene checked = loaded.scene;
@@ -306,7 +308,8 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
     command->add_option("--param", options->parameters, "Parameter to optimise, e.g. media/fog/sigma_a (repeatable)");
     command->add_option("--experiment", options->experiment,
                         "Run a self-contained experiment file (see " +
-                            docReference("Optimisation guide", "optimisation.md") + ") instead of SCENE");
+                            docReference("Optimisation guide", "optimisation.md") + ") instead of SCENE")
+        ->check(nonEmpty("a file name"));
     ExperimentOverrides overrides;
     overrides.iterations = command->add_option("--iters", options->optimize.iterations, "Iterations")
                                ->default_val(options->optimize.iterations)->transform(integerIn(1, 1000000));
@@ -377,8 +380,10 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
     command->add_option("--resume", options->resume,
                         "Continue the stopped run whose --out was DIR, from DIR/checkpoint.json; give the same "
                         "scene, targets, parameters and options. SIGINT or SIGTERM stops a run with a checkpoint of "
-                        "its last finished iteration and exit code 130 (SIGINT) or 143 (SIGTERM)");
-    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
+                        "its last finished iteration and exit code 130 (SIGINT) or 143 (SIGTERM)")
+        ->check(nonEmpty("a directory"));
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)")
+        ->check(nonEmpty("an index or part of a name"));
     return [command, options, overrides, out]() {
         if (!command->parsed()) return -1;
         options->optimize.seed = options->settings.seed;

@@ -107,15 +107,18 @@ CommandAction addRenderCommand(CLI::App& app) {
     addSceneOptions(*command, options->scene);
     command->add_option("-o,--output", options->output, "Output image; its extension sets the type: .exr (32-bit float linear RGB) or .png (8-bit sRGB, "
                         "clamped to [0, 1]). A regular file or a new name; a symbolic link is refused")->required();
-    command->add_option("--png", options->png, "Also write an sRGB PNG preview (clamped to [0, 1]) to this .png file, not the -o file");
+    command->add_option("--png", options->png, "Also write an sRGB PNG preview (clamped to [0, 1]) to this .png file, not the -o file")
+        ->check(nonEmpty("a file name"));
     addSamplingOptions(*command, options->settings);
     command->add_option("--width", options->settings.width, "Image width in pixels (default: 512, or from --height)")
         ->transform(integerIn(1, kMaxImageSide));
     command->add_option("--height", options->settings.height,
                         "Image height in pixels (default: from the width and the camera's aspect ratio)")
         ->transform(integerIn(1, kMaxImageSide));
-    command->add_option("--camera", options->settings.camera, "Camera node name (default: the first camera)");
-    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)");
+    command->add_option("--camera", options->settings.camera, "Camera node name (default: the first camera)")
+        ->check(nonEmpty("a camera's name"));
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)")
+        ->check(nonEmpty("an index or part of a name"));
     return [command, options]() { return command->parsed() ? runRender(*options) : -1; };
 }
 

@@ -3,6 +3,7 @@
 #include "cli/warnings.h"
 #include "scene/load_scene.h"
 #include "core/error.h"
+#include "render/camera_setup.h"
 #include "scene/parameters.h"
 #include "scene/scene_medium_emission.h"
 #include "scene/scene_warnings.h"
@@ -20,6 +21,7 @@ void addSceneOptions(CLI::App& command, SceneOptions& options) {
 
 LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     LoadedScene loaded = loadScene(options.file, options.access);
+    requirePerspectiveCamera(loaded.scene, options.file);
     for (const std::string& warning : loaded.warnings) {
         printWarning(warning);
     }

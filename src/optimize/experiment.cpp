@@ -40,8 +40,22 @@ public:
 
     Json parse() const {
         std::string text = readRegularFile(file_);
+        // The parser keeps the last of two equal keys in one object without a word: a
+        // value edited in one place and not the other would silently win or lose.
+        std::vector<std::set<std::string>> openObjects;
+        std::string repeated;
+        auto noteKeys = [&](int, Json::parse_event_t event, Json& parsed) {
+            if (event == Json::parse_event_t::object_start) openObjects.emplace_back();
+            if (event == Json::parse_event_t::object_end) openObjects.pop_back();
+            if (event == Json::parse_event_t::key && !openObjects.back().insert(parsed.get<std::string>()).second &&
+                repeated.empty()) {
+                repeated = parsed.get<std::string>();
+            }
+            return true;
+        };
         try {
-            Json document = Json::parse(text);
+            Json document = Json::parse(text, noteKeys);
+            if (!repeated.empty()) fail(repeated, "given twice in one object; give each key once");
             if (!document.is_object()) fail("", "expected a JSON object");
             return document;
         } catch (const Json::exception& e) {

@@ -12,10 +12,7 @@ namespace {
 constexpr int kDefaultWidth = 512;
 
 const Camera& findCamera(const Scene& scene, const std::string& name) {
-    if (scene.cameras.empty()) {
-        throw Error("the scene has no perspective camera; for a scene exported from Blender, tick Include > Cameras "
-                    "in the glTF exporter, or export it with the vkdiffrender Blender add-on");
-    }
+    requirePerspectiveCamera(scene, "");
     if (name.empty()) {
         return scene.cameras.front();
     }
@@ -30,6 +27,14 @@ const Camera& findCamera(const Scene& scene, const std::string& name) {
 }
 
 }  // namespace
+
+void requirePerspectiveCamera(const Scene& scene, const std::string& file) {
+    if (scene.cameras.empty()) {
+        throw Error((file.empty() ? "" : file + ": ") +
+                    "the scene has no perspective camera; for a scene exported from Blender, tick Include > Cameras "
+                    "in the glTF exporter, or export it with the vkdiffrender Blender add-on");
+    }
+}
 
 gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
     const Camera& camera = findCamera(scene, settings.camera);

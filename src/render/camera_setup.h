@@ -1,4 +1,6 @@
 #pragma once
+#include <string>
+
 #include "device_types.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
@@ -8,5 +10,9 @@ namespace vkdr {
 // Picks the camera named in the settings (or the first) and the image size: both sides
 // when given, else one side from the camera's aspect ratio, else 512 wide.
 gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings);
+
+// Refuses a scene without a perspective camera, saying how to export one; `file` names
+// the scene in the message ("" where the caller has no file).
+void requirePerspectiveCamera(const Scene& scene, const std::string& file);
 
 }  // namespace vkdr

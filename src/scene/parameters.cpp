@@ -191,7 +191,8 @@ void applyAssignment(Scene& scene, std::string_view assignment) {
     auto fail = [&](const std::string& problem) -> void {
         throw Error("assignment '" + std::string(assignment) + "': " + problem);
     };
-    size_t equals = assignment.find('=');
+    // The last '=': values hold none, while a material's or medium's name may.
+    size_t equals = assignment.rfind('=');
     if (equals == std::string_view::npos || equals == 0) {
         fail("expected NAME=VALUE or NAME=VALUE,VALUE,VALUE");
     }

@@ -49,7 +49,7 @@ float densityOf(ValueT value, const openvdb::Coord& voxel) {
 // One channel of an albedo: in [0, 1].
 float albedoOf(double value, const openvdb::Coord& voxel) {
     if (!(value >= 0.0 && value <= 1.0)) {
-        throw Error(formatText("voxel (%d, %d, %d) holds %g; an albedo must be in [0, 1]", voxel.x(), voxel.y(),
+        throw Error(formatText("voxel (%d, %d, %d) holds %.9g; an albedo must be in [0, 1]", voxel.x(), voxel.y(),
                                voxel.z(), value));
     }
     return float(value);

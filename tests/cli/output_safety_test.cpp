@@ -122,6 +122,19 @@ TEST_F(OutputSafety, RefusesADirectoryThatKeepsEveryFileButMakesANewOneInIt) {
     EXPECT_NE(immutable.err.find("is immutable (chattr +i)"), std::string::npos) << immutable.err;
 }
 
+TEST_F(OutputSafety, AnEmptyValueIsRefusedNotTakenForNone) {
+    const std::string out = " -o " + (dir_ / "a.exr").string();
+    expectRefused("render " + fog() + small() + out + " --png ''", "--png: give a file name");
+    expectRefused("render " + fog() + small() + out + " --camera ''", "--camera: give a camera's name");
+    expectRefused("render " + fog() + small() + out + " --device ''", "--device: give an index or part of a name");
+    expectRefused("bench cornell_fog --json ''", "--json: give a file name");
+    expectRefused("bench cornell_fog --scenes-dir ''", "--scenes-dir: give a directory");
+    expectRefused(optimizeCommand(dir_ / "t.exr") + " --resume ''", "--resume: give a directory");
+    expectRefused("optimize --experiment ''", "--experiment: give a file name");
+    expectRefused("info --device ''", "--device: give an index or part of a name");
+    EXPECT_FALSE(fs::exists(dir_ / "a.exr"));
+}
+
 TEST_F(OutputSafety, RefusesTwoOutputsThatAreOneFile) {
     fs::create_directory(dir_ / "sub");
     std::string png = (dir_ / "same.png").string();

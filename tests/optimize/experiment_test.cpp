@@ -110,6 +110,15 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
 
     writeBytes(scratch / "broken.json", "{\"scene\": ");
     expectErrorMentioning([&] { readExperiment(scratch / "broken.json"); }, {"broken.json", "not valid JSON"});
+
+    // A key given twice, at the top or inside an object, is refused rather than the last one kept.
+    std::string text = fogExperiment(scratch.path()).dump();
+    writeBytes(scratch / "twice.json", "{\"width\": 16, " + text.substr(1));
+    expectErrorMentioning([&] { readExperiment(scratch / "twice.json"); },
+                          {"twice.json", "width: given twice in one object"});
+    const size_t start = text.find("\"start\":{") + std::string("\"start\":{").size();
+    writeBytes(scratch / "twice.json", text.substr(0, start) + "\"media/fog/g\":0.1," + text.substr(start));
+    expectErrorMentioning([&] { readExperiment(scratch / "twice.json"); }, {"media/fog/g: given twice"});
 }
 
 // Every integer is checked against its range as the number it is (beyond 32 bits, beyond

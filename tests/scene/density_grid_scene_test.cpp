@@ -250,6 +250,12 @@ TEST(DensityGridScene, BadAlbedoGridsNameTheFieldAndTheVoxel) {
     expectLoadError(write({{"uri", "smoke.vdb"}, {"grid", "density"}}, "albedoGrid"),
                     {field + ".albedoGrid", "voxel", "an albedo must be in [0, 1]"});
     expectLoadError(write({{"uri", "smoke.vdb"}}, "albedoGrid"), {field + ".albedoGrid", "color", "density"});
+    // The value shows with the digits that tell it from 1.
+    DensityGrid justAbove = smallGrid();
+    justAbove.values = {0.0f, 1.0f, std::nextafter(1.0f, 2.0f), 0.5f, 0.25f, 1.0f};
+    writeDensityGridVdb(directory / "above.vdb", justAbove);
+    expectLoadError(write({{"uri", "above.vdb"}, {"grid", "density"}}, "albedoGrid"),
+                    {field + ".albedoGrid", "holds 1.00000012; an albedo must be in [0, 1]"});
     // A vector grid is no density.
     expectLoadError(write({{"uri", "colour.vdb"}, {"grid", "color"}}, "emissionGrid"),
                     {field + ".emissionGrid", "vec3s", "not scalar densities"});

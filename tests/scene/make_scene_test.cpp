@@ -1,5 +1,8 @@
 // vkdr-make-scene writes loadable scenes of the requested size.
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 
@@ -112,6 +115,20 @@ TEST(MakeScene, SpheresFaceOutwards) {
         glm::vec3 p2 = scene.positions[scene.triangles[t].z];
         ASSERT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), (p0 + p1 + p2) / 3.0f - centre), 0.0f) << t;
     }
+}
+
+TEST(MakeScene, RefusesAnOutputThatIsNotBinaryGltf) {
+    TemporaryDirectory directory;
+    const std::filesystem::path file = directory / "scene.gltf";
+    const std::filesystem::path err = directory / "stderr";
+    std::string command = std::string(VKDR_MAKE_SCENE_PATH) + " --triangles 100 -o " + file.string() + " 2> " +
+                          err.string();
+    int status = std::system(command.c_str());
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+    EXPECT_FALSE(std::filesystem::exists(file));
+    std::ifstream stream(err);
+    std::string message((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(message.rfind("error: -o " + file.string() + ": the scene is written as binary glTF", 0), 0u) << message;
 }
 
 }  // namespace

@@ -66,6 +66,15 @@ TEST(Parameters, SetsRgbValuesAndBroadcastsOneValue) {
     EXPECT_EQ(scene.media[1].g, -0.9f);
 }
 
+TEST(Parameters, AnAssignmentSplitsAtItsLastEqualsSign) {
+    Scene scene = sceneWithEverything();
+    scene.media[0].name = "a=b";
+    applyAssignment(scene, "media/a=b/sigma_a=0.25");
+    EXPECT_EQ(scene.media[0].sigma_a, glm::vec3(0.25f));
+    applyAssignment(scene, "media/a=b/g=-0.5");
+    EXPECT_EQ(scene.media[0].g, -0.5f);
+}
+
 // sceneWithEverything with a texture on "white" and a density, emission and albedo grid in "smoke": an owner
 // for every kind of parameter.
 Scene sceneWithEveryKind() {

@@ -42,6 +42,7 @@ void expectPlume(const DensityGrid& read, const DensityGrid& expected) {
 void expectRefused(const PlumeRun& run, const std::string& mentioning) {
     EXPECT_EQ(run.exitCode, 2);
     EXPECT_EQ(run.err.rfind("error: ", 0), 0u) << run.err;
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << "one line: " << run.err;
     EXPECT_NE(run.err.find(mentioning), std::string::npos) << run.err;
     EXPECT_TRUE(run.out.empty()) << run.out;
 }
@@ -76,6 +77,7 @@ TEST(MakePlume, RefusesBadArguments) {
     expectRefused(makePlume(directory, "--resolution 8 --seed -1 " + output), "--seed");
     expectRefused(makePlume(directory, "--resolution 8 " + output), "--seed");
     expectRefused(makePlume(directory, "--resolution 8 --seed 1"), "OUTPUT");
+    expectRefused(makePlume(directory, "--resolution 8 --seed 1 --grid '' " + output), "--grid: give a name");
     expectRefused(makePlume(directory, "--resolution 8 --seed 1 " + (directory / "plume.exr").string()),
                   ".vdb or .nvdb");
     expectRefused(makePlume(directory, "--resolution 8 --seed 1 " + (directory / "no/such/plume.vdb").string()),

@@ -62,7 +62,8 @@ int main(int argc, char** argv) {
         ->required()
         ->check(CLI::Range(2, 1290));
     app.add_option("--seed", options.seed, "seed of the plume's noise, 0 to 4294967295")->required();
-    app.add_option("--grid", options.grid, "name of the grid in the file (default: density, or flame with --flame)");
+    app.add_option("--grid", options.grid, "name of the grid in the file (default: density, or flame with --flame)")
+        ->check(CLI::Validator([](std::string& name) { return name.empty() ? std::string("give a name") : ""; }, ""));
     app.add_flag("--flame", options.flame,
                  "write the plume's flame instead: its density where it is hot, near the column's source, as the "
                  "emission strength of a fire (an emission grid)");
@@ -72,7 +73,7 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help
-        std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
+        std::fprintf(stderr, "error: %s (see vkdr-make-plume --help)\n", e.what());
         return 2;
     }
     try {

@@ -63,6 +63,9 @@ vkdr::RoomSceneOptions parseArguments(int argc, char** argv) {
     if (!haveOutput) {
         throw vkdr::Error("-o FILE.glb is required");
     }
+    if (options.output.extension() != ".glb") {
+        throw vkdr::Error("-o " + options.output.string() + ": the scene is written as binary glTF; give a .glb name");
+    }
     return options;
 }
 
@@ -80,7 +83,7 @@ int main(int argc, char** argv) {
                     static_cast<unsigned long long>(triangles));
         return 0;
     } catch (const vkdr::Error& error) {
-        std::fprintf(stderr, "vkdr-make-scene: %s\n%s", error.what(), kUsage);
+        std::fprintf(stderr, "error: %s (see vkdr-make-scene --help)\n", error.what());
         return 2;
     }
 }
