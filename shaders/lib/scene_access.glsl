@@ -26,11 +26,16 @@ SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
     vec4 uv01 = P.triangleUvs.v[2u * triangle];
     vec2 uv2 = P.triangleUvs.v[2u * triangle + 1u].xy;
     vec3 n = cross(v1 - v0, v2 - v0);
-    float doubleArea = length(n);
+    // Scaled by its largest component first: the squares of a triangle's cross product
+    // leave float range once its edges pass about 4e9.
+    float largest = maxComponent(abs(n));
+    vec3 scaled = n / largest;
+    float scaledLength = length(scaled);
+    float doubleArea = largest * scaledLength;
     GpuTriangleInfo info = P.triangleInfo.v[triangle];
     SurfacePoint sp;
     sp.position = v0 + b1 * (v1 - v0) + b2 * (v2 - v0);
-    sp.normal = n / doubleArea;
+    sp.normal = scaled / scaledLength;
     sp.uv = (1.0f - b1 - b2) * uv01.xy + b1 * uv01.zw + b2 * uv2;
     sp.area = 0.5f * doubleArea;
     sp.material = info.material;

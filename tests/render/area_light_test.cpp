@@ -140,5 +140,21 @@ TEST_F(RenderTest, AFloorUnderAVastLampMatchesLambertsFormula) {
                           albedo * std::numbers::inv_pi * le * irradiance);
 }
 
+// A one-sided lamp 2e10 wide seen from below its emitting face: its cross product's
+// squares leave float range, and its facing must still be found. Emitters only (max
+// depth 0): each pixel is the lamp's radiance, exactly.
+TEST_F(RenderTest, AHugeOneSidedLampFacesTheWayItsWindingSays) {
+    const glm::vec3 le(1.0f, 2.0f, 3.0f);
+    TestGltf scene;
+    scene.materials = {emissiveMaterial("lamp", le, false)};
+    scene.meshes = {quadZ(0.0f, 0.0f, 1.0e10f, 1.0f, false, 0)};
+    scene.cameraPosition = glm::vec3(0.0f);
+    const Image image = renderFile(scene.write(tempDir(), "huge_lamp"), {.width = 8, .height = 8, .spp = 4, .maxDepth = 0});
+    ASSERT_EQ(image.rgb.size(), 8u * 8u * 3u);
+    for (size_t i = 0; i < image.rgb.size(); ++i) {
+        EXPECT_FLOAT_EQ(image.rgb[i], le[int(i % 3)]) << "value " << i;
+    }
+}
+
 }  // namespace
 }  // namespace vkdr::test
