@@ -328,6 +328,8 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
     });
     forEachEntry(document, "accessors", [&](const json& accessor, const std::string& field) {
         requireIndexMember(accessor, field, "bufferView", diagnostics);
+        // glTF's minimum; a primitive reading none would be dropped without a word.
+        requireAbove(accessor, field, "count", 0.0, "0", diagnostics);
     });
     forEachEntry(document, "bufferViews", [&](const json& view, const std::string& field) {
         requireIndexMember(view, field, "buffer", diagnostics);

@@ -108,6 +108,14 @@ TEST(LoadSceneErrors, BufferShorterThanItsAccessor) {
                     {"accessors[0]", "40 elements need 480 bytes but bufferViews[0] holds 48"});
 }
 
+TEST(LoadSceneErrors, AccessorOfNoElements) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    builder.document()["accessors"][0]["count"] = 0;
+    expectLoadError(builder.writeGltf(directory / "empty.gltf"), {"accessors[0].count", "must be a number > 0, got 0"});
+}
+
 TEST(LoadSceneErrors, NonTrianglePrimitive) {
     TemporaryDirectory directory;
     GltfBuilder builder;
