@@ -121,6 +121,15 @@ def glass(scene):
     add_light("POINT", "Bulb", (0.0, -1.0, 2.0), 100.0, scene.collection)
 
 
+def light_nodes(scene):
+    """Point lamps without nodes, with the default Emission node, and with Strength 5."""
+    for name, strength in (("Plain", None), ("Default", 1.0), ("Five", 5.0)):
+        light = add_light("POINT", name, (0.0, 0.0, 3.0), 100.0, scene.collection)
+        if strength is not None:
+            light.data.use_nodes = True
+            light.data.node_tree.nodes["Emission"].inputs["Strength"].default_value = strength
+
+
 def orthographic_camera(scene):
     scene.camera.data.type = "ORTHO"
 
@@ -128,7 +137,7 @@ def orthographic_camera(scene):
 CASES = {"instanced_lights": instanced_lights, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
-         "orthographic_camera": orthographic_camera}
+         "light_nodes": light_nodes, "orthographic_camera": orthographic_camera}
 
 
 def export_case(out, case, build, target=None):

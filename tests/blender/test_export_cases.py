@@ -1,9 +1,10 @@
 """The add-on's export of what an artist's file may hold beyond the plain scenes of
 scenes.py (export_cases_check.py builds each in headless Blender): lamps instanced from a
-collection, lamps Cycles does not render, a mirrored area lamp, a World without nodes or
-with a mixed Surface, Volume objects whose names clash as file names, a smoke simulation
-domain, glass, and paths and cameras the export must refuse before writing anything.
-The exported scenes must load and render in vkdiffrender."""
+collection, lamps Cycles does not render, a mirrored area lamp, lamps whose node trees
+change them, a World without nodes or with a mixed Surface, Volume objects whose names
+clash as file names, a smoke simulation domain, glass, and paths and cameras the export
+must refuse before writing anything. The exported scenes must load and render in
+vkdiffrender."""
 import base64
 import json
 import math
@@ -119,6 +120,11 @@ def test_glass_is_exported_opaque_with_a_warning_and_loads(exported, cli):
                                                     "KHR_materials_volume"}
     assert any("Transmission is exported as an opaque surface" in w for w in own_warnings(exported, "glass"))
     render_mean(cli, exported, "glass")
+
+
+def test_only_light_nodes_that_change_the_light_are_reported(exported):
+    warned = [w for w in own_warnings(exported, "light_nodes") if "shader nodes" in w]
+    assert len(warned) == 1 and warned[0].startswith("light 'Five'")
 
 
 def test_new_files_get_the_umasks_permissions(exported):

@@ -200,9 +200,19 @@ def set_punctual_lights(doc, warnings):
 
 
 def warn_light_nodes(obj, warnings):
-    if obj.data.use_nodes and obj.data.node_tree is not None:
-        warnings.append(f"light '{obj.name}': its shader nodes (such as an Emission Strength) are ignored; "
-                        f"exported with its Power and Color")
+    """Cycles scales a light by its node tree (an Emission's Strength x Color); the export
+    reads the light's Power and Color alone, so it warns where the tree changes them."""
+    tree = obj.data.node_tree if obj.data.use_nodes else None
+    if tree is None:
+        return
+    outputs = [n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputLight"]
+    shader = node_graph.linked_node(outputs[0].inputs["Surface"]) if outputs else None
+    if shader is not None and shader.bl_idname == "ShaderNodeEmission" and not any(
+            socket.is_linked for socket in shader.inputs) and shader.inputs["Strength"].default_value == 1.0 and \
+            tuple(shader.inputs["Color"].default_value[:3]) == (1.0, 1.0, 1.0):
+        return
+    warnings.append(f"light '{obj.name}': its shader nodes are not read (they change what Cycles emits); "
+                    f"exported with its Power and Color alone")
 
 
 def area_light_polygon(obj, matrix_world=None):
