@@ -1,7 +1,8 @@
 """Run inside Blender for test_export_cases.py: build small scenes that an artist's file
 may hold, each from an empty file, and export each with the add-on to OUT/<case>/scene.gltf.
 OUT/<case>/result.json holds the export's warnings, or the ExportError it raised, and
-the case's own facts (the file mode a new file gets).
+the case's own facts (the file mode a new file gets); a baked smoke simulation's domain
+writes its size and place to OUT/baked_smoke/baked_smoke.json.
 
   blender -b --factory-startup --python export_cases_check.py -- --out DIR"""
 import argparse
@@ -107,9 +108,37 @@ def same_file_names(scene):
 
 
 def smoke_domain(scene):
+    """A smoke domain whose cache is in Mantaflow's own format, which the export cannot read."""
     bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
     bpy.ops.object.quick_smoke()
-    add_light("SUN", "Sun", (0.0, 0.0, 5.0), 3.0, scene.collection)
+    domain = next(o for o in scene.objects if o.name.startswith("Smoke Domain"))
+    domain.modifiers["Fluid"].domain_settings.cache_data_format = "UNI"
+    add_light("SUN", "Sun", (0.0, 0.0, 5.0), 3.0, scene.collection).data.angle = 0.0
+
+
+def baked_smoke(scene, out):
+    """Smoke from a cube, simulated at a resolution of 16 for 6 frames into OUT/cache,
+    exported at frame 6 with the emitting cube hidden."""
+    bpy.ops.mesh.primitive_cube_add(size=0.6, location=(0.3, -0.2, 0.5))
+    flow = bpy.context.object
+    bpy.ops.object.quick_smoke()
+    domain = next(o for o in scene.objects if o.name.startswith("Smoke Domain"))
+    settings = domain.modifiers["Fluid"].domain_settings
+    settings.cache_directory = str(out / "cache")
+    settings.resolution_max = 16
+    settings.cache_type = "ALL"
+    settings.cache_frame_end = scene.frame_end = 6
+    with bpy.context.temp_override(object=domain, active_object=domain):
+        bpy.ops.fluid.bake_all()
+    flow.hide_render = True
+    scene.frame_set(6)
+    add_light("SUN", "Sun", (0.0, 0.0, 5.0), 3.0, scene.collection).data.angle = 0.0
+    cache = bpy.data.volumes.new("cache")
+    cache.filepath = str(out / "cache" / "data" / "fluid_data_0006.vdb")
+    cache.grids.load()
+    facts = {"dimensions": list(domain.dimensions), "matrix_world": [list(row) for row in domain.matrix_world],
+             "voxel": [list(row) for row in cache.grids["density"].matrix_object]}
+    (out / "baked_smoke.json").write_text(json.dumps(facts))
 
 
 def glass(scene):
@@ -142,9 +171,9 @@ CASES = {"instanced_lights": instanced_lights, "hidden_lights": hidden_lights,
 
 def export_case(out, case, build, target=None):
     scene = empty_scene()
-    build(scene)
     directory = out / case
     directory.mkdir()
+    build(scene)
     result = {}
     try:
         result["warnings"] = export_scene.export_scene(bpy.context, str(target or directory / "scene.gltf"))
@@ -163,6 +192,7 @@ def main():
     out = pathlib.Path(args.out)
     for case, build in CASES.items():
         export_case(out, case, build)
+    export_case(out, "baked_smoke", lambda scene: baked_smoke(scene, out / "baked_smoke"))
     (out / "elsewhere.gltf").write_text("the user's file")
     (out / "link.gltf").symlink_to(out / "elsewhere.gltf")
     export_case(out, "symbolic_link", lambda scene: None, out / "link.gltf")

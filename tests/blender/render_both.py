@@ -28,7 +28,7 @@ sys.path[:0] = [str(HERE), str(HERE.parents[1] / "tools" / "blender")]
 import cycles_reference  # noqa: E402
 import scenes  # noqa: E402
 import vkdiffrender_blender  # noqa: E402
-from vkdiffrender_blender import export_scene, mappings  # noqa: E402
+from vkdiffrender_blender import axes, export_scene, mappings  # noqa: E402
 
 
 def render_cycles(scene, path):
@@ -48,7 +48,7 @@ def render_vkdiffrender(cli, gltf, path, args, seed):
 
 
 def exported_radiance(obj):
-    corners = [export_scene.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj)]
+    corners = [axes.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj)]
     return mappings.area_light_radiance(obj.data.color, obj.data.energy, export_scene.polygon_area(corners))
 
 

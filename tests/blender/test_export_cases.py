@@ -53,10 +53,10 @@ def area_emitter(doc, name):
     return points.mean(axis=0), normal / np.linalg.norm(normal)
 
 
-def render_mean(cli, exported, case):
+def render_mean(cli, exported, case, scene="scene.gltf"):
     """vkdiffrender's image mean of the exported scene (16x16, 16 spp), which must load."""
     image = exported / case / "render.exr"
-    run = subprocess.run([cli, "render", str(exported / case / "scene.gltf"), "-o", str(image), "--width", "16",
+    run = subprocess.run([cli, "render", str(exported / case / scene), "-o", str(image), "--width", "16",
                           "--height", "16", "--spp", "16", "--max-depth", "2"], capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     pixels = vkdiffrender.read_image(str(image))
@@ -105,13 +105,43 @@ def test_volume_objects_whose_names_clash_as_file_names_get_files_of_their_own(e
         assert copied.read_bytes() == (HERE.parents[1] / "scenes" / source).read_bytes()
 
 
-def test_a_smoke_domain_is_exported_empty_with_a_warning(exported, cli):
+def test_a_smoke_domain_whose_cache_cannot_be_read_is_exported_empty_with_a_warning(exported, cli):
     doc = document(exported, "smoke_domain")
     domain = next(m for m in doc["materials"] if m["name"] == "Smoke Domain Material")
     medium = domain["extensions"]["VKDR_participating_media"]
     assert medium["sigma_a"] == [0.0] * 3 and medium["sigma_s"] == [0.0] * 3
-    assert any("smoke simulation domain" in w for w in own_warnings(exported, "smoke_domain"))
+    assert own_warnings(exported, "smoke_domain") == [
+        "smoke domain 'Smoke Domain': its cache format is UNI, not OpenVDB; exported as an empty medium"]
     render_mean(cli, exported, "smoke_domain")
+
+
+def test_a_baked_smoke_simulation_is_exported_with_its_grids_over_the_domain(exported, cli):
+    """The cache of the frame is copied beside the scene and read as the domain's density;
+    the simulation's cells (the longest side's resolution, the others from its cell size,
+    as Blender sets them) are stretched over the domain's box, as Cycles reads them:
+    the first and last cell centres lie half a cell inside the box."""
+    assert own_warnings(exported, "baked_smoke") == []
+    doc = document(exported, "baked_smoke")
+    domain = next(m for m in doc["materials"] if m["name"] == "Smoke Domain Material")
+    density = domain["extensions"]["VKDR_participating_media"]["density"]
+    assert density["grid"] == "density"
+    case = exported / "baked_smoke"
+    assert (case / density["uri"]).read_bytes() == (case / "cache" / "data" / "fluid_data_0006.vdb").read_bytes()
+    facts = json.loads((case / "baked_smoke.json").read_text())
+    voxel, world = np.array(facts["voxel"]), np.array(facts["matrix_world"])
+    cell_size = np.linalg.norm(voxel[:3, :3], axis=0)
+    resolution = np.maximum((np.array(facts["dimensions"]) / cell_size + 0.5).astype(int), 4)
+    z_up_to_y_up = np.array([[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]])
+    node = np.array(doc["nodes"][density["node"]]["matrix"]).reshape(4, 4).T
+    for index, side in ((np.zeros(3), -1.0), (resolution - 1.0, 1.0)):
+        placed = node @ voxel @ np.append(index, 1.0)
+        inset = side * (1.0 - 1.0 / resolution)  # the unit cube's face, half a cell in
+        assert placed == pytest.approx(z_up_to_y_up @ world @ np.append(inset, 1.0), abs=1e-5)
+    # The smoke shows: with its medium emptied the image changes.
+    medium = domain["extensions"]["VKDR_participating_media"]
+    medium["sigma_a"] = medium["sigma_s"] = [0.0, 0.0, 0.0]
+    (case / "clear.gltf").write_text(json.dumps(doc))
+    assert render_mean(cli, exported, "baked_smoke") != render_mean(cli, exported, "baked_smoke", "clear.gltf")
 
 
 def test_glass_is_exported_opaque_with_a_warning_and_loads(exported, cli):

@@ -21,7 +21,7 @@ import bpy
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parents[1] / "tools" / "blender")]
 import scenes  # noqa: E402
-from vkdiffrender_blender import export_scene  # noqa: E402
+from vkdiffrender_blender import axes, export_scene  # noqa: E402
 
 
 def main():
@@ -34,7 +34,7 @@ def main():
     plume = bpy.data.objects["plume"]
     warnings = export_scene.export_scene(bpy.context, str(out / "scene.gltf"))
     (out / "warnings.json").write_text(json.dumps(warnings))
-    placement = export_scene.Z_UP_TO_Y_UP @ plume.matrix_world
+    placement = axes.Z_UP_TO_Y_UP @ plume.matrix_world
     (out / "placement.json").write_text(json.dumps([list(row) for row in placement]))
     if args.fire:
         tree = plume.active_material.node_tree

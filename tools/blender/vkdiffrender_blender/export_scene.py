@@ -9,31 +9,20 @@ versions."""
 import json
 import math
 import os
-import re
-import shutil
 
 import bpy
 import mathutils
 from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper
 
-from . import gltf_json, mappings, node_graph
+from . import gltf_json, grid_media, mappings, node_graph
+from .axes import blender_to_gltf
+from .gltf_json import EXTENSION, TRANSMISSION_EXTENSIONS, medium_json
 from .rendered_objects import rendered_objects
-
-EXTENSION = "VKDR_participating_media"
-
-# What the glTF exporter writes for a material that vkdiffrender would refuse on a
-# surface (refraction) or read as a medium.
-TRANSMISSION_EXTENSIONS = ("KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior")
 
 
 class ExportError(Exception):
     """A scene or path the export cannot write a loadable scene for; nothing is written."""
-
-
-def blender_to_gltf(v):
-    """Blender's Z-up to glTF's Y-up, as the exporter's export_yup does."""
-    return (v[0], v[2], -v[1])
 
 
 def run_gltf_exporter(filepath):
@@ -43,33 +32,13 @@ def run_gltf_exporter(filepath):
                               use_selection=False, use_visible=False, use_renderable=True)
 
 
-def medium_json(medium):
-    entry = {"sigma_a": list(medium.sigma_a), "sigma_s": list(medium.sigma_s), "g": medium.g}
-    if any(c > 0.0 for c in medium.emission):
-        entry["emission"] = list(medium.emission)
-    return entry
-
-
-def fluid_domain_materials(view_layer):
-    """Names of the materials on smoke or fire simulation domains, whose volume Cycles
-    reads from the simulation's grids."""
-    return {slot.material.name for rendered in rendered_objects(view_layer)
-            if any(m.type == "FLUID" and m.fluid_type == "DOMAIN" for m in rendered.object.modifiers)
-            for slot in rendered.object.material_slots if slot.material is not None}
-
-
 def add_material_media(doc, view_layer, warnings):
-    """Volumes of materials: the glTF material of the same name becomes a medium boundary."""
-    domains = fluid_domain_materials(view_layer)
+    """Volumes of materials: the glTF material of the same name becomes a medium boundary.
+    Smoke simulation domains' materials are grid_media's."""
+    domains = grid_media.fluid_domain_materials(view_layer)
     for material in doc.get("materials", []):
         blender_material = bpy.data.materials.get(material.get("name", ""))
         if blender_material is not None and blender_material.name in domains:
-            warnings.append(f"material '{blender_material.name}': on a smoke simulation domain, whose grids the "
-                            f"export does not read; exported as an empty medium. Import the simulation's "
-                            f"OpenVDB cache as a Volume object (File > Import > OpenVDB) with this material "
-                            f"to export the smoke")
-            material.setdefault("extensions", {})[EXTENSION] = medium_json(mappings.Medium((0.0,) * 3, (0.0,) * 3,
-                                                                                           0.0))
             continue
         medium = node_graph.medium_of(blender_material, warnings, f"material '{material.get('name')}'")
         if medium is None:
@@ -274,130 +243,6 @@ def add_area_lights(doc, view_layer, warnings):
         gltf_json.use_extension(doc, "KHR_materials_emissive_strength")
 
 
-# Blender's Z-up world in glTF's Y-up one: (x, y, z) -> (x, z, -y), as blender_to_gltf.
-Z_UP_TO_Y_UP = mathutils.Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, -1, 0, 0), (0, 0, 0, 1)))
-
-# A box's corners (x fastest, then y, then z) and its 12 triangles wound counter-clockwise
-# seen from outside, so that their normals point out of the medium.
-BOX_TRIANGLES = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4),
-                 (2, 6, 7), (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
-
-
-def volume_box(obj, matrix_world):
-    """World-space corners of the object-space box around a volume object's grids, placed
-    by MATRIX_WORLD, grown by a voxel on every side so that the density's trilinear
-    fade-out lies inside."""
-    corners = [mathutils.Vector(c) for c in obj.bound_box]
-    low = mathutils.Vector([min(c[i] for c in corners) for i in range(3)])
-    high = mathutils.Vector([max(c[i] for c in corners) for i in range(3)])
-    voxel = max((max(grid.matrix_object.col[i].xyz.length for i in range(3)) for grid in obj.data.grids),
-                default=0.0)
-    low -= mathutils.Vector((voxel, voxel, voxel))
-    high += mathutils.Vector((voxel, voxel, voxel))
-    box = [mathutils.Vector((high.x if i & 1 else low.x, high.y if i & 2 else low.y, high.z if i & 4 else low.z))
-           for i in range(8)]
-    return [tuple(matrix_world @ c) for c in box]
-
-
-def volume_grid_attributes(node, volume, what, warnings):
-    """The grids a Volume object's Principled Volume reads: the one its Density Attribute
-    names (the density; `density` for other volume nodes), the one its Color Attribute
-    names (an albedo grid: Cycles multiplies Color by it) and the scalar grid an Attribute
-    node feeding Emission Strength names (an emission grid). Returns (density grid, albedo
-    grid or None, emission grid or None, constant() overrides)."""
-    if node is None or node.bl_idname != "ShaderNodeVolumePrincipled":
-        return "density", None, None, {}
-    density = node.inputs["Density Attribute"].default_value
-    albedo = node.inputs["Color Attribute"].default_value
-    if albedo not in volume.grids:
-        albedo = None  # Cycles ignores an attribute the volume lacks (or none named)
-    elif max(node.inputs["Absorption Color"].default_value[:3]) > 0.0:
-        warnings.append(f"{what}: '{node.name}' Color Attribute with an Absorption Color other than black: "
-                        f"vkdiffrender's albedo grid scatters Color x attribute and absorbs the rest, which "
-                        f"differs from Cycles where the attribute is below 1")
-    emission = node_graph.attribute_input(node, "Emission Strength")
-    if emission is None:
-        return density, albedo, None, {}
-    if emission not in volume.grids:
-        return density, albedo, None, {"Emission Strength": 0.0}  # a missing attribute reads 0 in Cycles
-    if volume.grids[emission].channels != 1:
-        warnings.append(f"{what}: Emission Strength reads the vector grid '{emission}', and an emission grid "
-                        f"must be scalar; the input's unlinked value is used")
-        return density, albedo, None, {"Emission Strength": node.inputs["Emission Strength"].default_value}
-    return density, albedo, emission, {"Emission Strength": 1.0}
-
-
-def volume_file_name(stem, object_name, taken):
-    """A name for the copy of a volume's file beside the scene: the object's name with
-    what file names should not hold replaced, made unique among TAKEN (names compared
-    without case, as some file systems do)."""
-    base = f"{stem}.{re.sub(r'[^A-Za-z0-9_.-]', '_', object_name)}"
-    name, number = f"{base}.vdb", 1
-    while name.lower() in taken:
-        number += 1
-        name = f"{base}.{number}.vdb"
-    taken.add(name.lower())
-    return name
-
-
-def add_volume_objects(doc, view_layer, filepath, warnings):
-    """Volume objects (an OpenVDB file, such as a smoke simulation's cache) become media:
-    a box around their grids as the boundary, the grid their Principled Volume's Density
-    Attribute names as its density grid (with an albedo and an emission grid where its
-    Color Attribute or Emission Strength read grids: volume_grid_attributes), placed by the
-    object's transform (the file's own transform inside it, as in Blender). The file of
-    the current frame is copied beside the scene, which may only read files in its own
-    directory."""
-    directory = os.path.dirname(os.path.abspath(filepath))
-    stem = os.path.splitext(os.path.basename(filepath))[0]
-    taken = set()
-    for rendered in rendered_objects(view_layer):
-        obj = rendered.object
-        if obj.type != "VOLUME":
-            continue
-        what = f"volume '{rendered.name}'"
-        material = obj.active_material
-        volume = obj.data
-        if not volume.grids.load():
-            warnings.append(f"{what}: its grids do not load ({volume.grids.error_message}); skipped")
-            continue
-        node = node_graph.material_volume_node(material)
-        grid, albedo, emission, overrides = volume_grid_attributes(node, volume, what, warnings)
-        medium = node_graph.medium_of(material, warnings, what, overrides)
-        if medium is not None and node.bl_idname != "ShaderNodeVolumePrincipled":
-            warnings.append(f"{what}: its {node.bl_idname} reads no grid, so Cycles does not multiply it by "
-                            f"the '{grid}' grid as the export does; use a Principled Volume (its Density "
-                            f"Attribute) for the two to render the same")
-        if medium is None:
-            warnings.append(f"{what}: has no volume material that vkdiffrender can read; skipped")
-            continue
-        source = bpy.path.abspath(volume.grids.frame_filepath)
-        if not os.path.isfile(source) or grid not in volume.grids:
-            warnings.append(f"{what}: no grid '{grid}' in a file on disk (a volume generated in memory, or a "
-                            f"Density Attribute the file lacks); skipped")
-            continue
-        if any(m.type == "VOLUME_DISPLACE" for m in obj.modifiers):
-            warnings.append(f"{what}: its Volume Displace modifier is not applied; the file is exported as it is")
-        copy = volume_file_name(stem, rendered.name, taken)
-        shutil.copyfile(source, os.path.join(directory, copy))
-        placement = Z_UP_TO_Y_UP @ rendered.matrix_world
-        nodes = doc.setdefault("nodes", [])
-        nodes.append({"name": rendered.name + ".grid", "matrix": [placement[row][column] for column in range(4)
-                                                              for row in range(4)]})
-        entry = medium_json(medium)
-        reference = {"uri": copy, "node": len(nodes) - 1}
-        entry["density"] = {**reference, "grid": grid}
-        if albedo is not None:
-            entry["albedoGrid"] = {**reference, "grid": albedo}
-        if emission is not None and "emission" in entry:
-            entry["emissionGrid"] = {**reference, "grid": emission}
-        names = {m.get("name") for m in doc.get("materials", [])}
-        name = material.name if material.name not in names else f"{material.name}.{rendered.name}"
-        corners = [blender_to_gltf(p) for p in volume_box(obj, rendered.matrix_world)]
-        gltf_json.add_mesh_node(doc, rendered.name, corners, BOX_TRIANGLES,
-                                {"name": name, "extensions": {EXTENSION: entry}})
-
-
 def warn_bounce_limits(scene, warnings):
     """vkdiffrender has one limit on scattering vertices (--max-depth, which the Fit sets
     to Max Bounces + 1); Cycles also stops a path at its per-kind limits, and its default
@@ -470,7 +315,7 @@ def export_scene(context, filepath):
     add_world(doc, scene, warnings)
     set_punctual_lights(doc, warnings)
     add_area_lights(doc, view_layer, warnings)
-    add_volume_objects(doc, view_layer, filepath, warnings)
+    grid_media.add_grid_media(doc, scene, view_layer, filepath, warnings)
     warn_bounce_limits(scene, warnings)
     if EXTENSION in json.dumps(doc):
         gltf_json.use_extension(doc, EXTENSION)

@@ -8,6 +8,20 @@ import tempfile
 FLOAT, UNSIGNED_INT = 5126, 5125
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
 
+EXTENSION = "VKDR_participating_media"
+
+# What the glTF exporter writes for a material that vkdiffrender would refuse on a
+# surface (refraction) or read as a medium.
+TRANSMISSION_EXTENSIONS = ("KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior")
+
+
+def medium_json(medium):
+    """A mappings.Medium as VKDR_participating_media writes it."""
+    entry = {"sigma_a": list(medium.sigma_a), "sigma_s": list(medium.sigma_s), "g": medium.g}
+    if any(c > 0.0 for c in medium.emission):
+        entry["emission"] = list(medium.emission)
+    return entry
+
 
 def use_extension(doc, name):
     used = doc.setdefault("extensionsUsed", [])

@@ -10,8 +10,7 @@ from bpy.props import StringProperty
 from bpy_extras.io_utils import ImportHelper
 
 from . import mappings, node_graph
-
-EXTENSION = "VKDR_participating_media"
+from .gltf_json import EXTENSION
 
 
 @contextlib.contextmanager

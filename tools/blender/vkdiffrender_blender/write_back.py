@@ -6,7 +6,7 @@ import json
 
 import bpy
 
-from . import export_scene, mappings, node_graph
+from . import axes, export_scene, mappings, node_graph
 from .rendered_objects import rendered_objects
 
 SURFACE_COLOR_INPUTS = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffuse": "Color"}
@@ -79,7 +79,7 @@ def apply_fitted_values(scene, view_layer, params):
                 warnings.append(f"{name}: no area light '{parts[1][:-len('.area')]}'")
                 continue
             obj, matrix_world = area_lights[parts[1]]
-            corners = [export_scene.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj, matrix_world)]
+            corners = [axes.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj, matrix_world)]
             light = mappings.radiance_to_area_light(value, export_scene.polygon_area(corners))
             obj.data.color, obj.data.energy = light["color"], light["power"]
         elif parts[0] == "lights" and parts[-1] == "intensity":
