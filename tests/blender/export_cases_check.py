@@ -159,6 +159,53 @@ def light_nodes(scene):
             light.data.node_tree.nodes["Emission"].inputs["Strength"].default_value = strength
 
 
+def hidden_collections(scene):
+    """A cube and a bulb in a collection nested inside one disabled for rendering, and in a
+    collection the view layer excludes: Cycles renders none of them."""
+    off = bpy.data.collections.new("Off")
+    scene.collection.children.link(off)
+    off.hide_render = True
+    nested = bpy.data.collections.new("Nested")
+    off.children.link(nested)
+    excluded = bpy.data.collections.new("Excluded")
+    scene.collection.children.link(excluded)
+    bpy.context.view_layer.layer_collection.children["Excluded"].exclude = True
+    for collection in (nested, excluded):
+        cube = bpy.data.objects.new(f"{collection.name}Cube", bpy.data.meshes.new(f"{collection.name}Cube"))
+        cube.data.from_pydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [], [(0, 1, 2)])
+        collection.objects.link(cube)
+        add_light("POINT", f"{collection.name}Bulb", (0.0, 0.0, 3.0), 100.0, collection)
+
+
+def animated(scene):
+    """A cube moving from x = -2 at frame 1 to x = 2 at frame 21, exported at frame 21."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5)
+    cube = bpy.context.object
+    cube.name = "Moving"
+    for frame, x in ((1, -2.0), (21, 2.0)):
+        cube.location = (x, 0.0, 0.5)
+        cube.keyframe_insert("location", frame=frame)
+    scene.frame_set(21)
+
+
+def world_named_like_a_material(scene):
+    """A World fog and a fog cube's material, both named Fog."""
+    world = bpy.data.worlds.new("Fog")
+    world.use_nodes = True
+    scene.world = world
+    tree = world.node_tree
+    fog = tree.nodes.new("ShaderNodeVolumeScatter")
+    tree.links.new(fog.outputs[0], tree.nodes["World Output"].inputs["Volume"])
+    bpy.ops.mesh.primitive_cube_add(size=0.5)
+    material = bpy.data.materials.new("Fog")
+    material.use_nodes = True
+    material.node_tree.nodes.clear()
+    scatter = material.node_tree.nodes.new("ShaderNodeVolumeScatter")
+    output = material.node_tree.nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(scatter.outputs[0], output.inputs["Volume"])
+    bpy.context.object.data.materials.append(material)
+
+
 def orthographic_camera(scene):
     scene.camera.data.type = "ORTHO"
 
@@ -166,7 +213,16 @@ def orthographic_camera(scene):
 CASES = {"instanced_lights": instanced_lights, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
-         "light_nodes": light_nodes, "orthographic_camera": orthographic_camera}
+         "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
+         "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera}
+
+
+def failing_export(scene, directory):
+    """A folder where the export's buffer goes: the export fails once the glTF exporter
+    has run and the scene is complete, as it moves its files in."""
+    (directory / "scene.bin").mkdir()
+    (directory / "scene.bin" / "keep").write_text("a file of the user's")
+    bpy.ops.mesh.primitive_cube_add(size=0.5)
 
 
 def export_case(out, case, build, target=None):
@@ -177,7 +233,7 @@ def export_case(out, case, build, target=None):
     result = {}
     try:
         result["warnings"] = export_scene.export_scene(bpy.context, str(target or directory / "scene.gltf"))
-    except export_scene.ExportError as error:
+    except (export_scene.ExportError, OSError) as error:
         result["error"] = str(error)
     umask = os.umask(0)
     os.umask(umask)
@@ -194,6 +250,10 @@ def main():
         export_case(out, case, build)
     export_case(out, "baked_smoke", lambda scene: baked_smoke(scene, out / "baked_smoke"))
     (out / "elsewhere.gltf").write_text("the user's file")
+    failing = out / "failing"
+    failing.mkdir()
+    (failing / "scene.gltf").write_text("the previous export")
+    export_case(out, "failing_export", lambda scene: failing_export(scene, failing), failing / "scene.gltf")
     (out / "link.gltf").symlink_to(out / "elsewhere.gltf")
     export_case(out, "symbolic_link", lambda scene: None, out / "link.gltf")
     export_case(out, "missing_directory", lambda scene: None, out / "no such directory" / "scene.gltf")

@@ -163,6 +163,30 @@ def test_new_files_get_the_umasks_permissions(exported):
         assert mode == result(exported, case)["new_file_mode"]
 
 
+def test_objects_in_collections_cycles_does_not_render_are_not_exported(exported):
+    names = {node.get("name") for node in document(exported, "hidden_collections")["nodes"]}
+    assert not names & {"NestedCube", "NestedBulb", "ExcludedCube", "ExcludedBulb"}, names
+
+
+def test_an_animated_scene_is_exported_at_the_current_frame(exported):
+    moving = next(n for n in document(exported, "animated")["nodes"] if n.get("name") == "Moving")
+    assert moving["translation"][0] == pytest.approx(2.0)
+
+
+def test_a_world_named_like_a_material_gets_a_medium_name_of_its_own(exported, cli):
+    doc = document(exported, "world_named_like_a_material")
+    assert doc["extensions"]["VKDR_participating_media"]["name"] == "Fog (World)"
+    render_mean(cli, exported, "world_named_like_a_material")  # medium names must be unique to load
+
+
+def test_an_export_that_fails_leaves_the_previous_one(exported):
+    assert "scene.bin" in result(exported, "failing_export")["error"]
+    failing = exported / "failing"
+    assert (failing / "scene.gltf").read_text() == "the previous export"
+    assert (failing / "scene.bin" / "keep").read_text() == "a file of the user's"
+    assert sorted(p.name for p in failing.iterdir()) == ["scene.bin", "scene.gltf"], "no staging folder left"
+
+
 @pytest.mark.parametrize("case, message", [
     ("orthographic_camera", "camera 'camera': ortho cameras are not supported"),
     ("symbolic_link", "link.gltf: is a symbolic link"),

@@ -6,9 +6,12 @@ three of the four additions are things the exporter never visits (the World, are
 which it drops, and a root-level extension), and the light intensities it does write must
 be replaced as a whole; the JSON is the one interface that stays the same across exporter
 versions."""
+import contextlib
 import json
 import math
 import os
+import shutil
+import tempfile
 
 import bpy
 import mathutils
@@ -26,10 +29,51 @@ class ExportError(Exception):
 
 
 def run_gltf_exporter(filepath):
+    """The scene at the current frame, objects as the render shows them (renders_as_cycles)."""
     bpy.ops.export_scene.gltf(filepath=filepath, export_format="GLTF_SEPARATE", export_cameras=True,
                               export_lights=True, export_apply=True, export_yup=True,
                               export_normals=True, export_materials="EXPORT", export_extras=False,
+                              export_animations=False, export_current_frame=True,
                               use_selection=False, use_visible=False, use_renderable=True)
+
+
+@contextlib.contextmanager
+def renders_as_cycles(scene, view_layer):
+    """The glTF exporter's renderable test looks at an object's own flag and its direct
+    collections only: for its run, objects the render does not show (rendered_objects:
+    excluded or render-disabled collections at any depth) are disabled for rendering, and
+    the scene camera, which Cycles renders through whatever its flag, is enabled."""
+    shown = {r.object.name_full for r in rendered_objects(view_layer)}
+    changed = []
+    for obj in scene.objects:
+        wanted = obj == scene.camera or (obj.name_full in shown and not obj.hide_render)
+        if obj.hide_render == wanted and obj.library is None:
+            changed.append((obj, obj.hide_render))
+            obj.hide_render = not wanted
+    try:
+        yield
+    finally:
+        for obj, hidden in changed:
+            obj.hide_render = hidden
+
+
+def warn_render_differences(view_layer, warnings):
+    """What the render does with an object that the export cannot follow."""
+    ray_visibility = ("visible_camera", "visible_diffuse", "visible_glossy", "visible_transmission",
+                      "visible_volume_scatter", "visible_shadow")
+    for rendered in rendered_objects(view_layer):
+        obj, what = rendered.object, f"object '{rendered.name}'"
+        if obj.type in {"MESH", "VOLUME"} and (obj.is_holdout or
+                                               not all(getattr(obj, flag, True) for flag in ray_visibility)):
+            warnings.append(f"{what}: its ray visibility (or holdout) is not exported: every ray sees it")
+        for modifier in obj.modifiers:
+            if modifier.show_viewport != modifier.show_render:
+                where = "the viewport" if modifier.show_viewport else "rendering"
+                warnings.append(f"{what}: modifier '{modifier.name}' is enabled for {where} only; the export "
+                                f"applies the viewport's modifiers")
+        if obj.instance_type in {"VERTS", "FACES"} and obj.children:
+            warnings.append(f"{what}: instances its children at its {obj.instance_type.lower()}, which the export "
+                            f"does not repeat; they are exported once, at their own place")
 
 
 def add_material_media(doc, view_layer, warnings):
@@ -82,9 +126,12 @@ def set_surfaces(doc, warnings):
             warnings.append(f"{what}: Principled BSDF is exported as a Lambertian of its Base Color; Cycles adds "
                             f"its specular lobe (Specular {node.inputs['Specular'].default_value:g}) and a "
                             f"retro-reflective diffuse")
+            # The exporter writes KHR_materials_ior for any Specular but 0.5, which the loader
+            # reads only with a transmission.
             extensions = material.get("extensions", {})
-            dropped = [extensions.pop(name) for name in TRANSMISSION_EXTENSIONS if name in extensions]
-            if dropped:
+            for name in TRANSMISSION_EXTENSIONS:
+                extensions.pop(name, None)
+            if node.inputs["Transmission"].default_value > 0.0 or node.inputs["Transmission"].is_linked:
                 warnings.append(f"{what}: Transmission is exported as an opaque surface (vkdiffrender does not "
                                 f"refract)")
         else:
@@ -103,7 +150,8 @@ def add_world(doc, scene, warnings):
         return
     medium = node_graph.medium_of(world, warnings, f"world '{world.name}'")
     if medium is not None:
-        doc.setdefault("extensions", {})[EXTENSION] = {"name": world.name, **medium_json(medium)}
+        doc.setdefault("extensions", {})[EXTENSION] = {"name": node_graph.world_medium_name(world),
+                                                       **medium_json(medium)}
         warn_camera_clipping(scene, medium, warnings)
     out = node_graph.output_node(world.node_tree, "OUTPUT_WORLD")
     background = node_graph.linked_node(out.inputs["Surface"]) if out else None
@@ -142,9 +190,14 @@ def set_punctual_lights(doc, warnings):
         if index is None:
             continue
         # bpy.data rather than the scene's objects: a lamp instanced from a collection is
-        # not in the scene, and every instance has the same light data.
-        obj = bpy.data.objects.get(node.get("name", ""))
-        if obj is None or obj.type != "LIGHT":
+        # not in the scene, and every instance has the same light data. A linked library's
+        # objects may share a name with this file's.
+        named = [o for o in bpy.data.objects if o.name == node.get("name") and o.type == "LIGHT"]
+        obj = named[0] if named else None
+        if len({o.data for o in named}) > 1:
+            warnings.append(f"light '{node.get('name')}': several lights have this name (from linked libraries); "
+                            f"the export cannot tell them apart and gives each the power of one: rename them")
+        if obj is None:
             warnings.append(f"light node '{node.get('name')}': no Blender light of that name; its intensity is "
                             f"left as the glTF exporter wrote it (photometric units, not Cycles' watts)")
             continue
@@ -307,22 +360,35 @@ def export_scene(context, filepath):
     filepath = checked_output_path(filepath)
     warnings = []
     check_cameras(scene, view_layer, warnings)
-    run_gltf_exporter(filepath)
-    with open(filepath, encoding="utf-8") as f:
-        doc = json.load(f)
-    set_surfaces(doc, warnings)
-    add_material_media(doc, view_layer, warnings)
-    add_world(doc, scene, warnings)
-    set_punctual_lights(doc, warnings)
-    add_area_lights(doc, view_layer, warnings)
-    grid_media.add_grid_media(doc, scene, view_layer, filepath, warnings)
-    warn_bounce_limits(scene, warnings)
-    if EXTENSION in json.dumps(doc):
-        gltf_json.use_extension(doc, EXTENSION)
-    if "VKDR_background" in doc.get("extensions", {}):
-        gltf_json.use_extension(doc, "VKDR_background")
-    gltf_json.drop_unused_extensions(doc)
-    gltf_json.write_atomically(filepath, doc)
+    # Every file is written into a staging folder beside FILEPATH and moved in only once
+    # the whole scene is complete: a failure leaves the previous export as it was.
+    directory = os.path.dirname(filepath)
+    staging = tempfile.mkdtemp(prefix=".vkdiffrender-export-", dir=directory)
+    try:
+        staged = os.path.join(staging, os.path.basename(filepath))
+        with renders_as_cycles(scene, view_layer):
+            run_gltf_exporter(staged)
+        with open(staged, encoding="utf-8") as f:
+            doc = json.load(f)
+        set_surfaces(doc, warnings)
+        add_material_media(doc, view_layer, warnings)
+        add_world(doc, scene, warnings)
+        set_punctual_lights(doc, warnings)
+        add_area_lights(doc, view_layer, warnings)
+        grid_media.add_grid_media(doc, scene, view_layer, staged, warnings)
+        warn_bounce_limits(scene, warnings)
+        warn_render_differences(view_layer, warnings)
+        if EXTENSION in json.dumps(doc):
+            gltf_json.use_extension(doc, EXTENSION)
+        if "VKDR_background" in doc.get("extensions", {}):
+            gltf_json.use_extension(doc, "VKDR_background")
+        gltf_json.drop_unused_extensions(doc)
+        gltf_json.write_atomically(staged, doc, mode_of=filepath)
+        names = sorted(os.listdir(staging), key=lambda name: name == os.path.basename(filepath))
+        for name in names:  # the .gltf last, once what it refers to is in place
+            os.replace(os.path.join(staging, name), os.path.join(directory, name))
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
     return warnings
 
 
@@ -338,6 +404,10 @@ class EXPORT_OT_vkdiffrender(bpy.types.Operator, ExportHelper):
             warnings = export_scene(context, self.filepath)
         except (ExportError, OSError) as error:
             self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        except Exception as error:  # a Blender setup the export does not know: a message, not a traceback
+            self.report({"ERROR"}, f"the export failed on what it does not handle ({type(error).__name__}: {error}); "
+                                   f"nothing was written")
             return {"CANCELLED"}
         for warning in warnings:
             self.report({"WARNING"}, warning)

@@ -100,6 +100,9 @@ class VKDR_OT_fit(bpy.types.Operator):
         except (export_scene.ExportError, OSError) as error:
             self.report({"ERROR"}, str(error))
             return {"CANCELLED"}
+        except Exception as error:  # as the export operator reports it
+            self.report({"ERROR"}, f"the export failed on what it does not handle ({type(error).__name__}: {error})")
+            return {"CANCELLED"}
         for warning in warnings:
             self.report({"WARNING"}, warning)
         request = fit_request(context, scene_file)

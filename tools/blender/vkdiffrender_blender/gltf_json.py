@@ -80,12 +80,13 @@ def new_file_mode(path):
         return 0o666 & ~umask
 
 
-def write_atomically(path, doc):
-    """Write through a temporary file and a rename, so that a failure leaves the old file."""
+def write_atomically(path, doc, mode_of=None):
+    """Write through a temporary file and a rename, so that a failure leaves the old file;
+    with the permissions of the file at MODE_OF (by default PATH) where there is one."""
     directory = os.path.dirname(os.path.abspath(path))
     handle, temporary = tempfile.mkstemp(dir=directory, suffix=".tmp")
     try:
-        os.chmod(temporary, new_file_mode(path))
+        os.chmod(temporary, new_file_mode(mode_of or path))
         with os.fdopen(handle, "w", encoding="utf-8") as f:
             json.dump(doc, f, indent=1)
         os.replace(temporary, path)

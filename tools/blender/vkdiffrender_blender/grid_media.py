@@ -102,10 +102,11 @@ def grid_medium(doc, material, volume, placement, name, copies, what, warnings):
     if medium is None:
         warnings.append(f"{what}: has no volume material that vkdiffrender can read; skipped")
         return None
-    if node.bl_idname != "ShaderNodeVolumePrincipled":
-        warnings.append(f"{what}: its {node.bl_idname} reads no grid, so Cycles does not multiply it by "
-                        f"the '{grid}' grid as the export does; use a Principled Volume (its Density "
-                        f"Attribute) for the two to render the same")
+    if node is None or node.bl_idname != "ShaderNodeVolumePrincipled":
+        kind = node.bl_idname if node is not None else "a combination of volume shaders"
+        warnings.append(f"{what}: its volume is {kind}, which Cycles does not multiply by the '{grid}' grid "
+                        f"as the export does; use one Principled Volume (its Density Attribute) for the two to "
+                        f"render the same")
     source = bpy.path.abspath(volume.grids.frame_filepath)
     if not os.path.isfile(source) or grid not in volume.grids:
         warnings.append(f"{what}: no grid '{grid}' in a file on disk (a volume generated in memory, or a "
@@ -146,6 +147,9 @@ def add_volume_objects(doc, view_layer, copies, warnings):
             continue
         names = {m.get("name") for m in doc.get("materials", [])}
         name = material.name if material.name not in names else f"{material.name}.{rendered.name}"
+        if name != material.name:
+            warnings.append(f"{what}: shares material '{material.name}' with another volume, so its medium is "
+                            f"named '{name}'; a Fit of either writes into the material both share")
         corners = [blender_to_gltf(p) for p in volume_box(obj, rendered.matrix_world)]
         gltf_json.add_mesh_node(doc, rendered.name, corners, BOX_TRIANGLES,
                                 {"name": name, "extensions": {EXTENSION: entry}})

@@ -79,22 +79,34 @@ def new_ids(collection, before):
     return [item for item in collection if item.name not in before]
 
 
-def match(items, gltf_name):
-    """The importer names data after glTF names, with Blender's .001 suffix on a clash."""
+def match(items, gltf_name, renamed):
+    """The importer names data after glTF names, with Blender's .001 suffix on a clash;
+    a datablock found under another name than its glTF name goes into RENAMED."""
     for item in items:
         if item.name == gltf_name or item.name.startswith(gltf_name + "."):
+            if item.name != gltf_name:
+                renamed.append(gltf_name)
             return item
     return None
 
 
-def restore_media(doc, materials, warnings):
+def warn_renamed(renamed, warnings):
+    """Matching by Blender's suffixes can pair a value with another of the file's names."""
+    if renamed:
+        warnings.append(f"the .blend already had datablocks named like the file's ({', '.join(sorted(set(renamed)))}); "
+                        f"Blender renamed the imported ones and the import matched them by their suffixes, which "
+                        f"can pair media or light values with the wrong one: check them, or import into an empty "
+                        f"file")
+
+
+def restore_media(doc, materials, warnings, renamed):
     for index, material in enumerate(doc.get("materials", [])):
         extensions = material.get("extensions", {})
         entry = extensions.get(EXTENSION) or extensions.get("KHR_materials_volume")
         if entry is None:
             continue
         name = material.get("name", str(index))
-        blender_material = match(materials, name)
+        blender_material = match(materials, name, renamed)
         if blender_material is None:
             warnings.append(f"material '{name}': not created by the importer (unused?); its medium is skipped")
             continue
@@ -138,12 +150,12 @@ def restore_world(doc, scene, warnings):
     node.inputs["Strength"].default_value = emission["strength"]
 
 
-def restore_lights(doc, objects):
+def restore_lights(doc, objects, renamed):
     """KHR_lights_punctual in Cycles' units (the importer converts with its own factors)."""
     lights = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
     for node in doc.get("nodes", []):
         index = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
-        obj = match([o for o in objects if o.type == "LIGHT"], node.get("name", ""))
+        obj = match([o for o in objects if o.type == "LIGHT"], node.get("name", ""), renamed)
         if index is None or obj is None:
             continue
         entry = lights[index]
@@ -165,10 +177,14 @@ def import_scene(context, filepath):
     with numpy_bool_alias():
         bpy.ops.import_scene.gltf(filepath=filepath)
     doc = read_gltf_json(filepath)
-    warnings = []
-    restore_media(doc, new_ids(bpy.data.materials, materials_before), warnings)
+    warnings, renamed = [], []
+    restore_media(doc, new_ids(bpy.data.materials, materials_before), warnings, renamed)
     restore_world(doc, context.scene, warnings)
-    restore_lights(doc, new_ids(bpy.data.objects, objects_before))
+    new_objects = new_ids(bpy.data.objects, objects_before)
+    restore_lights(doc, new_objects, renamed)
+    warn_renamed(renamed, warnings)
+    if context.scene.camera is None:  # Cycles renders through the scene camera
+        context.scene.camera = next((o for o in new_objects if o.type == "CAMERA"), None)
     return warnings
 
 

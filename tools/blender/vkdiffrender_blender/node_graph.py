@@ -1,6 +1,8 @@
 """Reading Blender shader node trees into vkdiffrender values, and writing fitted values
 back into the same nodes. Only attribute access on bpy objects; the formulas are in
 mappings.py."""
+import bpy
+
 from . import mappings
 
 VOLUME_NODES = {"ShaderNodeVolumePrincipled", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumeScatter"}
@@ -110,6 +112,14 @@ def medium_of(owner, warnings, what, overrides=None):
     return mappings.Medium(medium.sigma_a, medium.sigma_s, g, medium.emission)
 
 
+def world_medium_name(world):
+    """The scene medium's name: the World's, or "<World> (World)" where a material with a
+    volume has that name too (medium names must be unique)."""
+    material = bpy.data.materials.get(world.name)
+    clash = material is not None and material.users and medium_of(material, [], material.name) is not None
+    return f"{world.name} (World)" if clash else world.name
+
+
 def surface_node(material):
     if material is None or not material.use_nodes:
         return None
@@ -117,32 +127,44 @@ def surface_node(material):
     return linked_node(out.inputs["Surface"]) if out else None
 
 
-def write_medium(node, medium):
+def write_medium(node, medium, write_emission=True):
     """Write a fitted medium into the node it came from, with the inverse mapping of that
-    node's type. Returns a warning when the node cannot hold the medium exactly."""
+    node's type (a Principled Volume's emission inputs only with WRITE_EMISSION). Returns
+    warnings: where the node cannot hold the medium exactly, and inputs written that are
+    linked (a texture or attribute drives them, so Cycles does not use the value)."""
+    warnings = []
+
+    def write(name, value):
+        socket = node.inputs[name]
+        if socket.is_linked:
+            warnings.append(f"'{node.name}' input '{name}' is linked (a texture or attribute); the fitted value "
+                            f"goes to its unlinked default, which Cycles does not use")
+        socket.default_value = value
+
     if node.bl_idname == "ShaderNodeVolumePrincipled":
         values = mappings.medium_to_principled_volume(medium)
-        node.inputs["Density"].default_value = values["density"]
-        node.inputs["Color"].default_value = (*values["color"], 1.0)
-        node.inputs["Absorption Color"].default_value = (*values["absorption_color"], 1.0)
-        node.inputs["Anisotropy"].default_value = values["anisotropy"]
-        node.inputs["Emission Color"].default_value = (*values["emission_color"], 1.0)
-        node.inputs["Emission Strength"].default_value = values["emission_strength"]
-        return None
+        write("Density", values["density"])
+        write("Color", (*values["color"], 1.0))
+        write("Absorption Color", (*values["absorption_color"], 1.0))
+        write("Anisotropy", values["anisotropy"])
+        if write_emission:
+            write("Emission Color", (*values["emission_color"], 1.0))
+            write("Emission Strength", values["emission_strength"])
+        return warnings
     if node.bl_idname == "ShaderNodeVolumeAbsorption":
         values = mappings.medium_to_volume_absorption(medium.sigma_a)
-        node.inputs["Density"].default_value = values["density"]
-        node.inputs["Color"].default_value = (*values["color"], 1.0)
+        write("Density", values["density"])
+        write("Color", (*values["color"], 1.0))
         if max(medium.sigma_s) > 0.0:
-            return f"'{node.name}' is a Volume Absorption node: the fitted scattering is dropped"
-        return None
+            warnings.append(f"'{node.name}' is a Volume Absorption node: the fitted scattering is dropped")
+        return warnings
     values = mappings.medium_to_volume_scatter(medium.sigma_s, medium.g)
-    node.inputs["Density"].default_value = values["density"]
-    node.inputs["Color"].default_value = (*values["color"], 1.0)
-    node.inputs["Anisotropy"].default_value = values["anisotropy"]
+    write("Density", values["density"])
+    write("Color", (*values["color"], 1.0))
+    write("Anisotropy", values["anisotropy"])
     if max(medium.sigma_a) > 0.0:
-        return f"'{node.name}' is a Volume Scatter node: the fitted absorption is dropped"
-    return None
+        warnings.append(f"'{node.name}' is a Volume Scatter node: the fitted absorption is dropped")
+    return warnings
 
 
 def set_light_value(light, value):

@@ -16,7 +16,8 @@ def volume_owners(scene):
     """(name, material or world, its volume node) for every volume the Fit can write into."""
     owners = [(m.name, m, node_graph.material_volume_node(m)) for m in bpy.data.materials if m.users]
     if scene.world is not None:
-        owners.append((scene.world.name, scene.world, node_graph.material_volume_node(scene.world)))
+        owners.append((node_graph.world_medium_name(scene.world), scene.world,
+                       node_graph.material_volume_node(scene.world)))
     return [(name, owner, node) for name, owner, node in owners if node is not None]
 
 
@@ -46,15 +47,34 @@ def fittable_parameters(scene, view_layer):
 
 
 def write_medium_values(owner_node, fitted, name):
-    """Complete a fitted medium with the exported values of what was not fitted."""
+    """Complete a fitted medium with the exported values of what was not fitted. Emission
+    is written only when fitted: an Emission Strength read from a grid (a fire's flame)
+    is not the node's unlinked value."""
     warnings = []
     current = node_graph.volume_medium(owner_node, warnings, name)
     medium = mappings.Medium(tuple(fitted.get("sigma_a", current.sigma_a)),
                              tuple(fitted.get("sigma_s", current.sigma_s)),
                              float(fitted.get("g", [current.g])[0]),
                              tuple(fitted.get("emission", current.emission)))
-    warning = node_graph.write_medium(owner_node, medium)
-    return [warning] if warning else []
+    return [f"{name}: {warning}" for warning in
+            node_graph.write_medium(owner_node, medium, write_emission="emission" in fitted)]
+
+
+def parameter_parts(name):
+    """(kind, owner, value) of a parameter name "kind/owner/value"; an owner's name may
+    hold '/' (a material "Fog/Night")."""
+    kind, _, rest = name.partition("/")
+    owner, _, value = rest.rpartition("/")
+    return kind, owner, value
+
+
+def linked_library_warning(name, datablock):
+    """Blender saves no change to data linked from another file (or overridden from it)."""
+    if datablock is not None and (datablock.library is not None or datablock.override_library is not None):
+        source = datablock.library.filepath if datablock.library is not None else "that it overrides"
+        return f"{name}: '{datablock.name}' comes from the library {source}; the value is set for this " \
+               f"session but not saved with this file"
+    return None
 
 
 def apply_fitted_values(scene, view_layer, params):
@@ -64,41 +84,54 @@ def apply_fitted_values(scene, view_layer, params):
     media = {}
     area_lights = rendered_area_lights(view_layer)
     for name, value in params.items():
-        parts = name.split("/")
-        if parts[0] == "media" and len(parts) == 3:
-            media.setdefault(parts[1], {})[parts[2]] = value
-        elif parts[0] == "materials" and parts[-1] == "base_color":
-            material = bpy.data.materials.get(parts[1])
+        kind, owner, value_name = parameter_parts(name)
+        if kind == "media" and owner:
+            media.setdefault(owner, {})[value_name] = value
+        elif kind == "materials" and value_name == "base_color":
+            material = bpy.data.materials.get(owner)
             surface = node_graph.surface_node(material)
             if surface is None or surface.bl_idname not in SURFACE_COLOR_INPUTS:
                 warnings.append(f"{name}: no Principled or Diffuse BSDF to write into")
                 continue
-            surface.inputs[SURFACE_COLOR_INPUTS[surface.bl_idname]].default_value = (*value[:3], 1.0)
-        elif parts[0] == "lights" and parts[-1] == "emission" and parts[1].endswith(".area"):
-            if parts[1] not in area_lights:
-                warnings.append(f"{name}: no area light '{parts[1][:-len('.area')]}'")
+            socket = surface.inputs[SURFACE_COLOR_INPUTS[surface.bl_idname]]
+            if socket.is_linked:
+                warnings.append(f"{name}: '{surface.name}' input '{socket.name}' is linked (a texture); the value "
+                                f"goes to its unlinked default, which Cycles does not use")
+            socket.default_value = (*value[:3], 1.0)
+            warnings += [w for w in [linked_library_warning(name, material)] if w]
+        elif kind == "lights" and value_name == "emission" and owner.endswith(".area"):
+            if owner not in area_lights:
+                warnings.append(f"{name}: no area light '{owner[:-len('.area')]}'")
                 continue
-            obj, matrix_world = area_lights[parts[1]]
+            obj, matrix_world = area_lights[owner]
             corners = [axes.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj, matrix_world)]
             light = mappings.radiance_to_area_light(value, export_scene.polygon_area(corners))
             obj.data.color, obj.data.energy = light["color"], light["power"]
-        elif parts[0] == "lights" and parts[-1] == "intensity":
+            sharing = [other for other, _ in area_lights.values() if other.data == obj.data and other != obj]
+            if sharing:
+                warnings.append(f"{name}: its light data is shared with {', '.join(o.name for o in sharing)}, which "
+                                f"takes the value too")
+            warnings += [w for w in [linked_library_warning(name, obj.data)] if w]
+        elif kind == "lights" and value_name == "intensity":
             # The glTF light is named after the object or after its light data.
-            obj = scene.objects.get(parts[1])
+            obj = scene.objects.get(owner)
             if obj is None or obj.type != "LIGHT":
-                obj = next((o for o in scene.objects if o.type == "LIGHT" and o.data.name == parts[1]), None)
+                obj = next((o for o in scene.objects if o.type == "LIGHT" and o.data.name == owner), None)
             if obj is None:
-                warnings.append(f"{name}: no light '{parts[1]}'")
+                warnings.append(f"{name}: no light '{owner}'")
                 continue
             node_graph.set_light_value(obj.data, value)
+            warnings += [w for w in [linked_library_warning(name, obj.data)] if w]
         else:
             warnings.append(f"{name}: not written back (no Blender counterpart)")
     owners = {name: node for name, _, node in volume_owners(scene)}
+    owners_data = {name: owner for name, owner, _ in volume_owners(scene)}
     for medium_name, fitted in media.items():
         if medium_name not in owners:
             warnings.append(f"media/{medium_name}: no material or world with a single volume node of that name")
             continue
         warnings += write_medium_values(owners[medium_name], fitted, f"medium '{medium_name}'")
+        warnings += [w for w in [linked_library_warning(f"media/{medium_name}", owners_data[medium_name])] if w]
     return warnings
 
 
