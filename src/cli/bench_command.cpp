@@ -125,7 +125,7 @@ CommandAction addBenchCommand(CLI::App& app) {
     command->add_option("--scenes-dir", options->scenesDirectory, "Where the shipped scenes are")
         ->default_val(options->scenesDirectory)
         ->check(nonEmpty("a directory"));
-    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)")
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`; default: the best available)")
         ->check(nonEmpty("an index or part of a name"));
     return [command, options]() { return command->parsed() ? runBench(*options) : -1; };
 }

@@ -110,15 +110,16 @@ void printText(const GradientResult& result, const std::vector<GradientCheckRow>
     }
 }
 
+// Keys in the order --help shows them, the gradients in the order asked for.
 void printJson(const GradientResult& result, const std::vector<GradientCheckRow>& check) {
-    nlohmann::json out;
+    nlohmann::ordered_json out;
     out["loss"] = result.loss;
-    out["gradients"] = nlohmann::json::object();
+    out["gradients"] = nlohmann::ordered_json::object();
     for (const ParameterGradient& p : result.parameters) {
         out["gradients"][p.name] = p.gradient;
     }
     if (!check.empty()) {
-        out["check"] = nlohmann::json::array();
+        out["check"] = nlohmann::ordered_json::array();
         for (const GradientCheckRow& row : check) {
             out["check"].push_back({{"parameter", row.name},
                                     {"component", row.component},
@@ -199,7 +200,7 @@ CommandAction addGradCommand(CLI::App& app) {
                           "at most " + std::to_string(kMostValuesChecked) + " values a parameter");
     command->add_option("--check-seeds", options->checkSeeds, "Seeds the check averages over")
         ->default_val(options->checkSeeds)->transform(integerIn(2, 1000));
-    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)")
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`; default: the best available)")
         ->check(nonEmpty("an index or part of a name"));
     return [command, options]() { return command->parsed() ? runGrad(*options) : -1; };
 }

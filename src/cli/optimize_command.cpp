@@ -382,7 +382,7 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
                         "scene, targets, parameters and options. SIGINT or SIGTERM stops a run with a checkpoint of "
                         "its last finished iteration and exit code 130 (SIGINT) or 143 (SIGTERM)")
         ->check(nonEmpty("a directory"));
-    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)")
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`; default: the best available)")
         ->check(nonEmpty("an index or part of a name"));
     return [command, options, overrides, out]() {
         if (!command->parsed()) return -1;

@@ -117,7 +117,7 @@ CommandAction addRenderCommand(CLI::App& app) {
         ->transform(integerIn(1, kMaxImageSide));
     command->add_option("--camera", options->settings.camera, "Camera node name (default: the first camera)")
         ->check(nonEmpty("a camera's name"));
-    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`)")
+    command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`; default: the best available)")
         ->check(nonEmpty("an index or part of a name"));
     return [command, options]() { return command->parsed() ? runRender(*options) : -1; };
 }
