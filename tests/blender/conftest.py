@@ -3,6 +3,7 @@ naming the command line; the tests that need Blender skip where it is absent."""
 import os
 import pathlib
 import shutil
+import subprocess
 import sys
 
 import pytest
@@ -24,3 +25,11 @@ def blender():
     if path is None:
         pytest.skip("blender is not installed (Debian: apt-get install blender); the Cycles comparisons need it")
     return path
+
+
+def run_blender_script(blender, script, *arguments):
+    """Runs tests/blender/SCRIPT in headless Blender, with ARGUMENTS after its `--`; a
+    Python error in it fails the run."""
+    subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
+                    str(REPOSITORY / "tests" / "blender" / script), "--", *arguments], check=True,
+                   stdout=subprocess.DEVNULL)

@@ -72,11 +72,15 @@ def world_without_nodes(scene):
     scene.world.color = (0.3, 0.2, 0.1)
 
 
+def new_world(scene, name):
+    """The scene's World, new, with nodes; returns its node tree."""
+    scene.world = bpy.data.worlds.new(name)
+    scene.world.use_nodes = True
+    return scene.world.node_tree
+
+
 def world_mix_shader(scene):
-    world = bpy.data.worlds.new("Mixed")
-    world.use_nodes = True
-    scene.world = world
-    tree = world.node_tree
+    tree = new_world(scene, "Mixed")
     mix = tree.nodes.new("ShaderNodeMixShader")
     tree.links.new(tree.nodes["Background"].outputs[0], mix.inputs[1])
     tree.links.new(mix.outputs[0], tree.nodes["World Output"].inputs["Surface"])
@@ -190,10 +194,7 @@ def animated(scene):
 
 def world_named_like_a_material(scene):
     """A World fog and a fog cube's material, both named Fog."""
-    world = bpy.data.worlds.new("Fog")
-    world.use_nodes = True
-    scene.world = world
-    tree = world.node_tree
+    tree = new_world(scene, "Fog")
     fog = tree.nodes.new("ShaderNodeVolumeScatter")
     tree.links.new(fog.outputs[0], tree.nodes["World Output"].inputs["Volume"])
     bpy.ops.mesh.primitive_cube_add(size=0.5)

@@ -7,15 +7,14 @@ relative), and Cycles' render of the fitted file matches the target within noise
 chi-square of the 4 x 4 block z-scores of the three channels (render noise of both images,
 image_stats) stays below chi-square(48)'s 0.999 quantile, where the start's is above 10^5."""
 import json
-import pathlib
 import subprocess
 
 import numpy as np
 import pytest
+from conftest import run_blender_script
 
 import image_stats
 
-HERE = pathlib.Path(__file__).resolve().parent
 BLOCKS = 4
 
 
@@ -31,9 +30,7 @@ MATCHES_WITHIN_NOISE = chi_square_quantile(BLOCKS * BLOCKS * 3, 3.09)
 
 
 def blender_step(blender, step, out):
-    subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
-                    str(HERE / "closed_loop.py"), "--", "--step", step, "--out", str(out)],
-                   check=True, stdout=subprocess.DEVNULL)
+    run_blender_script(blender, "closed_loop.py", "--step", step, "--out", str(out))
 
 
 def chi_square(a, b):

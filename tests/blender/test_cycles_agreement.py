@@ -13,15 +13,13 @@ Two runs (docs/blender.md, "Measured figures"):
   the lamp lights the box (0.8 % at depth 4), which the exported opaque emitter hides;
 - the box with Cycles' own area light at max depth 2, where no path reaches what the lamp
   hides and is then lit: the area light's radiance mapping P / (4 A) itself."""
-import pathlib
-import subprocess
 
 import numpy as np
 import pytest
+from conftest import run_blender_script
 
 import image_stats
 
-HERE = pathlib.Path(__file__).resolve().parent
 K = 5.0
 SEEDS = (1, 2)
 SCENES = ("box_area", "principled_cube", "glowing_cube", "absorption_cube", "world_fog", "point_light",
@@ -36,12 +34,10 @@ def renders(blender, cli, tmp_path_factory):
     directories = {}
     for run, settings in RUNS.items():
         out = tmp_path_factory.mktemp(run)
-        subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1",
-                        "--python", str(HERE / "render_both.py"), "--", "--scenes", ",".join(settings["scenes"]),
-                        "--out", str(out), "--cli", cli, "--size", "32", "--cycles-spp", "256",
-                        "--vkdr-spp", "256", "--seeds", ",".join(map(str, SEEDS)),
-                        "--max-depth", str(settings["max_depth"]), "--cycles-area-lights", settings["area_lights"]],
-                       check=True, stdout=subprocess.DEVNULL)
+        run_blender_script(blender, "render_both.py", "--scenes", ",".join(settings["scenes"]), "--out", str(out),
+                           "--cli", cli, "--size", "32", "--cycles-spp", "256", "--vkdr-spp", "256",
+                           "--seeds", ",".join(map(str, SEEDS)), "--max-depth", str(settings["max_depth"]),
+                           "--cycles-area-lights", settings["area_lights"])
         directories[run] = out
     return directories
 

@@ -14,6 +14,7 @@ import subprocess
 
 import numpy as np
 import pytest
+from conftest import run_blender_script
 import vkdiffrender
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -22,9 +23,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 @pytest.fixture(scope="module")
 def exported(blender, tmp_path_factory):
     out = tmp_path_factory.mktemp("cases")
-    subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
-                    str(HERE / "export_cases_check.py"), "--", "--out", str(out)], check=True,
-                   stdout=subprocess.DEVNULL)
+    run_blender_script(blender, "export_cases_check.py", "--out", str(out))
     return out
 
 

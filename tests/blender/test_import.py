@@ -8,20 +8,18 @@ relative, a few float32 roundings). Blender's own importer, run on the same file
 fail on numpy.bool where numpy lacks it (Debian 12), which is what the add-on works
 around, and the add-on must leave numpy as it found it."""
 import json
-import pathlib
 import subprocess
 
 import pytest
+from conftest import run_blender_script
 
-HERE = pathlib.Path(__file__).resolve().parent
 FLOAT32 = 1e-6
 PARAMS = ("media/smoke/sigma_a", "media/smoke/sigma_s", "media/smoke/g", "media/World/sigma_s",
           "lights/bulb/intensity")
 
 
 def blender_step(blender, *args):
-    subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
-                    str(HERE / "import_check.py"), "--", *args], check=True, stdout=subprocess.DEVNULL)
+    run_blender_script(blender, "import_check.py", *args)
 
 
 def run_cli(cli, *args):

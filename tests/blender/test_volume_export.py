@@ -13,6 +13,7 @@ import subprocess
 
 import numpy as np
 import pytest
+from conftest import run_blender_script
 
 HERE = pathlib.Path(__file__).resolve().parent
 
@@ -20,9 +21,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 @pytest.fixture(scope="module")
 def exported(blender, tmp_path_factory):
     out = tmp_path_factory.mktemp("volume")
-    subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
-                    str(HERE / "volume_export_check.py"), "--", "--out", str(out)], check=True,
-                   stdout=subprocess.DEVNULL)
+    run_blender_script(blender, "volume_export_check.py", "--out", str(out))
     return out
 
 
@@ -75,9 +74,7 @@ def fire(blender, tmp_path_factory):
     if shutil.which("vdb_tool") is None:
         pytest.skip("vdb_tool (Debian's libopenvdb-tools) is not on PATH")
     out = tmp_path_factory.mktemp("fire")
-    subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
-                    str(HERE / "volume_export_check.py"), "--", "--out", str(out), "--fire"],
-                   check=True, stdout=subprocess.DEVNULL)
+    run_blender_script(blender, "volume_export_check.py", "--out", str(out), "--fire")
     return out
 
 
