@@ -189,12 +189,14 @@ def domain_grid_placement(obj, matrix_world, volume):
     resolution stretched over the domain's box, cell i's centre at (i + 1/2) / resolution
     of it. The resolution follows from the cell size as Blender sets it from the longest
     side (at least 4 cells a side); the file's own transform, a voxel of the cell size,
-    comes first."""
+    comes first. None where every grid is empty (no smoke yet), which gives no cell size."""
     corners = [mathutils.Vector(c) for c in obj.bound_box]
     low = mathutils.Vector([min(c[i] for c in corners) for i in range(3)])
     high = mathutils.Vector([max(c[i] for c in corners) for i in range(3)])
     # The cache's grids share one cell size; an empty grid (no flame yet) has none.
-    voxel = next(g.matrix_object for g in volume.grids if g.matrix_object.to_3x3().determinant() != 0.0)
+    voxel = next((g.matrix_object for g in volume.grids if g.matrix_object.to_3x3().determinant() != 0.0), None)
+    if voxel is None:
+        return None
     cell_size = [voxel.col[i].xyz.length for i in range(3)]
     resolution = [max(int(obj.dimensions[i] / cell_size[i] + 0.5), 4) for i in range(3)]
     cell = [(high[i] - low[i]) / resolution[i] for i in range(3)]
@@ -220,11 +222,12 @@ def add_fluid_domains(doc, frame, view_layer, copies, warnings):
             volume = bpy.data.volumes.new(f"{rendered.name}.cache")
             try:
                 volume.filepath = source
-                if volume.grids.load() and len(volume.grids) > 0:
-                    placement = domain_grid_placement(rendered.object, rendered.matrix_world, volume)
+                placement = domain_grid_placement(rendered.object, rendered.matrix_world, volume) \
+                    if volume.grids.load() else None
+                if placement is not None:
                     entry = grid_medium(doc, material, volume, placement, rendered.name, copies, what, warnings)
                 else:
-                    problem = f"its cache {source} does not load"
+                    problem = f"its cache {source} does not load or holds no smoke"
             finally:
                 bpy.data.volumes.remove(volume)
         if entry is None:
