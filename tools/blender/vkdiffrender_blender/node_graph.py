@@ -36,8 +36,8 @@ def constant(node, name, warnings, what, overrides=None):
         return overrides[name]
     socket = node.inputs[name]
     if socket.is_linked:
-        warnings.append(f"{what}: '{node.name}' input '{name}' is linked (a texture or attribute); "
-                        f"vkdiffrender media are homogeneous, its unlinked value is used")
+        warnings.append(f"{what}: '{node.name}' input '{name}' is linked (a texture or attribute), which the "
+                        f"export cannot follow; its unlinked value is used")
     value = socket.default_value
     return tuple(value) if hasattr(value, "__len__") else float(value)
 
