@@ -320,6 +320,10 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
     // tinygltf reads an index that is negative, fractional or text as "none" (a
     // primitive's -1 material as the default material) or as a wrong one.
     if (document.contains("scene")) requireIndex(document["scene"], "scene", diagnostics);
+    // glTF's minimum; with none listed a reader would have to guess which nodes to show.
+    if (document.contains("scenes") && document["scenes"].is_array() && document["scenes"].empty()) {
+        diagnostics.fail("scenes", "an empty array: list at least one scene, or leave \"scenes\" out");
+    }
     forEachEntry(document, "scenes", [&](const json& scene, const std::string& field) {
         if (!scene.contains("nodes") || !scene["nodes"].is_array()) return;
         for (size_t n = 0; n < scene["nodes"].size(); ++n) {

@@ -116,6 +116,15 @@ TEST(LoadSceneErrors, AccessorOfNoElements) {
     expectLoadError(builder.writeGltf(directory / "empty.gltf"), {"accessors[0].count", "must be a number > 0, got 0"});
 }
 
+TEST(LoadSceneErrors, AnEmptyListOfScenes) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    builder.document()["scenes"] = json::array();
+    builder.document().erase("scene");
+    expectLoadError(builder.writeGltf(directory / "no_scenes.gltf"), {"scenes", "an empty array"});
+}
+
 TEST(LoadSceneErrors, NonTrianglePrimitive) {
     TemporaryDirectory directory;
     GltfBuilder builder;
