@@ -20,13 +20,18 @@ BOX_TRIANGLES = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4
                  (2, 6, 7), (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
 
 
+def object_box(obj):
+    """The lowest and highest corners of OBJ's box in its own space."""
+    corners = [mathutils.Vector(c) for c in obj.bound_box]
+    return (mathutils.Vector([min(c[i] for c in corners) for i in range(3)]),
+            mathutils.Vector([max(c[i] for c in corners) for i in range(3)]))
+
+
 def volume_box(obj, matrix_world):
     """World-space corners of the object-space box around a volume object's grids, placed
     by MATRIX_WORLD, grown by a voxel on every side so that the density's trilinear
     fade-out lies inside."""
-    corners = [mathutils.Vector(c) for c in obj.bound_box]
-    low = mathutils.Vector([min(c[i] for c in corners) for i in range(3)])
-    high = mathutils.Vector([max(c[i] for c in corners) for i in range(3)])
+    low, high = object_box(obj)
     voxel = max((max(grid.matrix_object.col[i].xyz.length for i in range(3)) for grid in obj.data.grids),
                 default=0.0)
     low -= mathutils.Vector((voxel, voxel, voxel))
@@ -190,9 +195,7 @@ def domain_grid_placement(obj, matrix_world, volume):
     of it. The resolution follows from the cell size as Blender sets it from the longest
     side (at least 4 cells a side); the file's own transform, a voxel of the cell size,
     comes first. None where every grid is empty (no smoke yet), which gives no cell size."""
-    corners = [mathutils.Vector(c) for c in obj.bound_box]
-    low = mathutils.Vector([min(c[i] for c in corners) for i in range(3)])
-    high = mathutils.Vector([max(c[i] for c in corners) for i in range(3)])
+    low, high = object_box(obj)
     # The cache's grids share one cell size; an empty grid (no flame yet) has none.
     voxel = next((g.matrix_object for g in volume.grids if g.matrix_object.to_3x3().determinant() != 0.0), None)
     if voxel is None:

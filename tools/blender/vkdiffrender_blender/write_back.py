@@ -68,13 +68,14 @@ def parameter_parts(name):
     return kind, owner, value
 
 
-def linked_library_warning(name, datablock):
-    """Blender saves no change to data linked from another file (or overridden from it)."""
-    if datablock is not None and (datablock.library is not None or datablock.override_library is not None):
-        source = datablock.library.filepath if datablock.library is not None else "that it overrides"
-        return f"{name}: '{datablock.name}' comes from the library {source}; the value is set for this " \
-               f"session but not saved with this file"
-    return None
+def linked_library_warnings(name, datablock):
+    """Blender saves no change to data linked from another file (or overridden from it):
+    a warning saying so for such a datablock, else none."""
+    if datablock is None or (datablock.library is None and datablock.override_library is None):
+        return []
+    source = datablock.library.filepath if datablock.library is not None else "that it overrides"
+    return [f"{name}: '{datablock.name}' comes from the library {source}; the value is set for this session but "
+            f"not saved with this file"]
 
 
 def apply_fitted_values(scene, view_layer, params):
@@ -98,7 +99,7 @@ def apply_fitted_values(scene, view_layer, params):
                 warnings.append(f"{name}: '{surface.name}' input '{socket.name}' is linked (a texture); the value "
                                 f"goes to its unlinked default, which Cycles does not use")
             socket.default_value = (*value[:3], 1.0)
-            warnings += [w for w in [linked_library_warning(name, material)] if w]
+            warnings += linked_library_warnings(name, material)
         elif kind == "lights" and value_name == "emission" and owner.endswith(".area"):
             if owner not in area_lights:
                 warnings.append(f"{name}: no area light '{owner[:-len('.area')]}'")
@@ -111,7 +112,7 @@ def apply_fitted_values(scene, view_layer, params):
             if sharing:
                 warnings.append(f"{name}: its light data is shared with {', '.join(o.name for o in sharing)}, which "
                                 f"takes the value too")
-            warnings += [w for w in [linked_library_warning(name, obj.data)] if w]
+            warnings += linked_library_warnings(name, obj.data)
         elif kind == "lights" and value_name == "intensity":
             # The glTF light is named after the object or after its light data.
             obj = scene.objects.get(owner)
@@ -121,17 +122,17 @@ def apply_fitted_values(scene, view_layer, params):
                 warnings.append(f"{name}: no light '{owner}'")
                 continue
             node_graph.set_light_value(obj.data, value)
-            warnings += [w for w in [linked_library_warning(name, obj.data)] if w]
+            warnings += linked_library_warnings(name, obj.data)
         else:
             warnings.append(f"{name}: not written back (no Blender counterpart)")
-    owners = {name: node for name, _, node in volume_owners(scene)}
-    owners_data = {name: owner for name, owner, _ in volume_owners(scene)}
+    owners = {name: (owner, node) for name, owner, node in volume_owners(scene)}
     for medium_name, fitted in media.items():
         if medium_name not in owners:
             warnings.append(f"media/{medium_name}: no material or world with a single volume node of that name")
             continue
-        warnings += write_medium_values(owners[medium_name], fitted, f"medium '{medium_name}'")
-        warnings += [w for w in [linked_library_warning(f"media/{medium_name}", owners_data[medium_name])] if w]
+        owner, node = owners[medium_name]
+        warnings += write_medium_values(node, fitted, f"medium '{medium_name}'")
+        warnings += linked_library_warnings(f"media/{medium_name}", owner)
     return warnings
 
 
