@@ -51,6 +51,19 @@ def instanced_lights(scene):
     scene.collection.objects.link(instance)
 
 
+def vertex_instanced_lights(scene):
+    """An area and a point lamp parented to a mesh of two vertices that instances its
+    children at them: Cycles renders each lamp at both vertices and not at its own place."""
+    mesh = bpy.data.meshes.new("Row")
+    mesh.from_pydata([(-1.5, 0.0, 0.0), (1.5, 0.0, 0.0)], [], [])
+    row = bpy.data.objects.new("Row", mesh)
+    scene.collection.objects.link(row)
+    row.instance_type = "VERTS"
+    for light in (add_light("AREA", "Panel", (0.0, 0.0, 2.5), 100.0, scene.collection),
+                  add_light("POINT", "Bulb", (0.0, 0.0, 3.0), 100.0, scene.collection)):
+        light.parent = row
+
+
 def hidden_lights(scene):
     """Area lamps in a collection disabled for rendering and in one the view layer excludes,
     and a mirrored one that renders."""
@@ -211,7 +224,8 @@ def orthographic_camera(scene):
     scene.camera.data.type = "ORTHO"
 
 
-CASES = {"instanced_lights": instanced_lights, "hidden_lights": hidden_lights,
+CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
+         "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,

@@ -73,6 +73,18 @@ def test_lamps_instanced_from_a_collection_are_exported_at_the_instance(exported
     assert render_mean(cli, exported, "instanced_lights") > 0.0
 
 
+def test_lamps_instanced_at_vertices_are_exported_at_each_vertex_and_not_at_their_own_place(exported, cli):
+    doc = document(exported, "vertex_instanced_lights")
+    for index, x in enumerate((-1.5, 1.5)):
+        centre, _ = area_emitter(doc, f"Row.{index}.Panel.area")
+        assert centre == pytest.approx([x, 2.5, 0.0], abs=1e-6)  # Blender (x, 0, 2.5)
+    assert not any(m["name"] == "Panel.area" for m in doc["meshes"])
+    bulbs = [n["translation"] for n in doc["nodes"] if "KHR_lights_punctual" in n.get("extensions", {})]
+    assert sorted(bulbs) == [pytest.approx([-1.5, 3.0, 0.0]), pytest.approx([1.5, 3.0, 0.0])]
+    assert not any("instances" in w for w in own_warnings(exported, "vertex_instanced_lights"))
+    assert render_mean(cli, exported, "vertex_instanced_lights") > 0.0
+
+
 def test_lamps_that_cycles_does_not_render_are_not_exported_and_a_mirrored_one_still_shines_down(exported, cli):
     doc = document(exported, "hidden_lights")
     emitters = [m["name"] for m in doc["meshes"] if m["name"].endswith(".area")]

@@ -71,9 +71,9 @@ def warn_render_differences(view_layer, warnings):
                 where = "the viewport" if modifier.show_viewport else "rendering"
                 warnings.append(f"{what}: modifier '{modifier.name}' is enabled for {where} only; the export "
                                 f"applies the viewport's modifiers")
-        if obj.instance_type in {"VERTS", "FACES"} and obj.children:
-            warnings.append(f"{what}: instances its children at its {obj.instance_type.lower()}, which the export "
-                            f"does not repeat; they are exported once, at their own place")
+        if rendered.in_collection_instance and obj.is_instancer and obj.instance_type != "COLLECTION":
+            warnings.append(f"{what}: instances objects at its vertices, faces or particles inside an instanced "
+                            f"collection; lights and volumes among them are not exported there")
 
 
 def add_material_media(doc, view_layer, warnings):
@@ -389,7 +389,7 @@ def export_scene(context, filepath):
             os.replace(os.path.join(staging, name), os.path.join(directory, name))
     finally:
         shutil.rmtree(staging, ignore_errors=True)
-    return warnings
+    return list(dict.fromkeys(warnings))  # once each, though every instance of a lamp finds the same
 
 
 class EXPORT_OT_vkdiffrender(bpy.types.Operator, ExportHelper):

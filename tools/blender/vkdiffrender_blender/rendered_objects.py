@@ -1,7 +1,9 @@
 """The objects a render of the scene shows, found as Cycles finds them: in the collections
 the view layer includes and that are enabled for rendering, not themselves disabled for
 rendering, with collection instances expanded, so that a lamp from a linked asset lights
-the scene at every place it is instanced."""
+the scene at every place it is instanced. Objects instanced at a mesh's vertices or
+faces, or by a particle system, are where the view layer's depsgraph places them; the
+children of a vertex or face instancer are rendered only there, not at their own place."""
 from typing import NamedTuple
 
 import mathutils
@@ -15,6 +17,7 @@ class RenderedObject(NamedTuple):
     object: object            # the Blender object (its data: the light, the volume)
     matrix_world: object      # where this instance of it is
     name: str                 # the object's name; for an instance, prefixed by its instancers'
+    in_collection_instance: bool  # placed by a collection instance (whose own instancers are not followed)
 
 
 def collection_objects(collection):
@@ -26,17 +29,42 @@ def collection_objects(collection):
         yield from collection_objects(child)
 
 
-def expand(obj, parent_matrix, prefix, depth):
+def shown_only_as_instances(obj):
+    """Cycles renders the children of a vertex or face instancer at its vertices or faces
+    alone."""
+    return obj.parent is not None and obj.parent.instance_type in {"VERTS", "FACES"}
+
+
+def instances_by_instancer(depsgraph):
+    """{instancer: [(object, world matrix) of each instance it places]} for the vertex,
+    face, particle and collection instancers of the scene itself, as DEPSGRAPH evaluates
+    them."""
+    instances = {}
+    for instance in depsgraph.object_instances:
+        if instance.is_instance and instance.parent is not None:
+            instances.setdefault(instance.parent.original, []).append(
+                (instance.object.original, instance.matrix_world.copy()))
+    return instances
+
+
+def expand(obj, parent_matrix, prefix, depth, instances):
     if obj.hide_render:
         return
     matrix = parent_matrix @ obj.matrix_world
     name = prefix + obj.name
-    yield RenderedObject(obj, matrix, name)
+    yield RenderedObject(obj, matrix, name, depth > 0)
+    if depth >= MAX_INSTANCE_DEPTH:
+        return
     collection = obj.instance_collection if obj.instance_type == "COLLECTION" else None
-    if collection is not None and depth < MAX_INSTANCE_DEPTH:
+    if collection is not None:
         placed = matrix @ mathutils.Matrix.Translation(-collection.instance_offset)
         for child in collection_objects(collection):
-            yield from expand(child, placed, name + ".", depth + 1)
+            if not shown_only_as_instances(child):
+                yield from expand(child, placed, name + ".", depth + 1, instances)
+    elif obj.is_instancer and depth == 0:
+        for index, (instanced, place) in enumerate(instances.get(obj, [])):
+            if not instanced.hide_render:
+                yield RenderedObject(instanced, place, f"{name}.{index}.{instanced.name}", False)
 
 
 def layer_objects(layer_collection):
@@ -49,9 +77,13 @@ def layer_objects(layer_collection):
 
 def rendered_objects(view_layer):
     """Every object VIEW_LAYER renders, once per place it is rendered at."""
+    depsgraph = view_layer.depsgraph
+    depsgraph.update()  # the instances as the objects are now
+    instances = instances_by_instancer(depsgraph)
     seen = set()
     for obj in layer_objects(view_layer.layer_collection):
         if obj.name in seen:
             continue  # linked into several collections
         seen.add(obj.name)
-        yield from expand(obj, mathutils.Matrix.Identity(4), "", 0)
+        if not shown_only_as_instances(obj):
+            yield from expand(obj, mathutils.Matrix.Identity(4), "", 0, instances)
