@@ -64,6 +64,24 @@ def vertex_instanced_lights(scene):
         light.parent = row
 
 
+def render_modifiers(scene):
+    """A cube subdivided once for rendering (not in the viewport) and repeated by an Array
+    modifier enabled for rendering only; another whose Array is enabled for the viewport
+    only."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
+    cube = bpy.context.object
+    cube.name = "Rendered"
+    subdivision = cube.modifiers.new("Subdivision", "SUBSURF")
+    subdivision.levels, subdivision.render_levels = 0, 1
+    array = cube.modifiers.new("Array", "ARRAY")
+    array.count, array.show_viewport = 2, False
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 2.0, 0.5))
+    cube = bpy.context.object
+    cube.name = "Viewport"
+    array = cube.modifiers.new("Array", "ARRAY")
+    array.count, array.show_render = 2, False
+
+
 def hidden_lights(scene):
     """Area lamps in a collection disabled for rendering and in one the view layer excludes,
     and a mirrored one that renders."""
@@ -225,7 +243,7 @@ def orthographic_camera(scene):
 
 
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
-         "hidden_lights": hidden_lights,
+         "render_modifiers": render_modifiers, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
@@ -250,6 +268,8 @@ def export_case(out, case, build, target=None):
         result["warnings"] = export_scene.export_scene(bpy.context, str(target or directory / "scene.gltf"))
     except (export_scene.ExportError, OSError) as error:
         result["error"] = str(error)
+    result["modifiers_after"] = {obj.name: [[m.name, m.show_viewport, m.show_render, getattr(m, "levels", None)]
+                                            for m in obj.modifiers] for obj in bpy.data.objects if obj.modifiers}
     umask = os.umask(0)
     os.umask(umask)
     result["new_file_mode"] = 0o666 & ~umask

@@ -85,6 +85,21 @@ def test_lamps_instanced_at_vertices_are_exported_at_each_vertex_and_not_at_thei
     assert render_mean(cli, exported, "vertex_instanced_lights") > 0.0
 
 
+def triangles(doc, node_name):
+    mesh = doc["meshes"][next(n["mesh"] for n in doc["nodes"] if n.get("name") == node_name)]
+    return sum(doc["accessors"][p["indices"]]["count"] // 3 for p in mesh["primitives"])
+
+
+def test_modifiers_are_exported_as_the_render_evaluates_them_and_left_as_they_were(exported):
+    doc = document(exported, "render_modifiers")
+    assert triangles(doc, "Rendered") == 2 * 6 * 4 * 2  # two copies of a cube subdivided once
+    assert triangles(doc, "Viewport") == 6 * 2  # its Array is for the viewport only
+    assert result(exported, "render_modifiers")["modifiers_after"] == {
+        "Rendered": [["Subdivision", True, True, 0], ["Array", False, True, None]],
+        "Viewport": [["Array", True, False, None]]}
+    assert own_warnings(exported, "render_modifiers") == []
+
+
 def test_lamps_that_cycles_does_not_render_are_not_exported_and_a_mirrored_one_still_shines_down(exported, cli):
     doc = document(exported, "hidden_lights")
     emitters = [m["name"] for m in doc["meshes"] if m["name"].endswith(".area")]

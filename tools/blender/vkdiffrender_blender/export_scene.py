@@ -29,12 +29,49 @@ class ExportError(Exception):
 
 
 def run_gltf_exporter(filepath):
-    """The scene at the current frame, objects as the render shows them (renders_as_cycles)."""
+    """The scene at the current frame, objects as the render shows them (renders_as_cycles,
+    modifiers_as_rendered)."""
     bpy.ops.export_scene.gltf(filepath=filepath, export_format="GLTF_SEPARATE", export_cameras=True,
                               export_lights=True, export_apply=True, export_yup=True,
                               export_normals=True, export_materials="EXPORT", export_extras=False,
                               export_animations=False, export_current_frame=True,
                               use_selection=False, use_visible=False, use_renderable=True)
+
+
+# Modifier settings whose viewport value the glTF exporter's depsgraph evaluates, with the
+# setting the render evaluates instead.
+RENDER_LEVELS = {"SUBSURF": ("levels", "render_levels"), "MULTIRES": ("levels", "render_levels")}
+
+
+def render_settings(objects):
+    """(modifier, attribute, the value a render uses) where the viewport evaluates a
+    modifier otherwise: enabled for one of the two, or subdividing to another level.
+    Linked library data cannot be changed and is left."""
+    for obj in objects:
+        if obj.library is not None:
+            continue
+        for modifier in obj.modifiers:
+            yield modifier, "show_viewport", modifier.show_render
+            if modifier.type in RENDER_LEVELS:
+                viewport, render = RENDER_LEVELS[modifier.type]
+                yield modifier, viewport, getattr(modifier, render)
+
+
+@contextlib.contextmanager
+def modifiers_as_rendered():
+    """The scene's depsgraph, which the glTF exporter and rendered_objects read, evaluates
+    the viewport's modifier settings: for the export they take the render's
+    (render_settings), in every object, instanced assets too."""
+    changed = []
+    for owner, attribute, value in list(render_settings(bpy.data.objects)):
+        if getattr(owner, attribute) != value:
+            changed.append((owner, attribute, getattr(owner, attribute)))
+            setattr(owner, attribute, value)
+    try:
+        yield
+    finally:
+        for owner, attribute, value in reversed(changed):
+            setattr(owner, attribute, value)
 
 
 @contextlib.contextmanager
@@ -66,11 +103,10 @@ def warn_render_differences(view_layer, warnings):
         if obj.type in {"MESH", "VOLUME"} and (obj.is_holdout or
                                                not all(getattr(obj, flag, True) for flag in ray_visibility)):
             warnings.append(f"{what}: its ray visibility (or holdout) is not exported: every ray sees it")
-        for modifier in obj.modifiers:
-            if modifier.show_viewport != modifier.show_render:
-                where = "the viewport" if modifier.show_viewport else "rendering"
-                warnings.append(f"{what}: modifier '{modifier.name}' is enabled for {where} only; the export "
-                                f"applies the viewport's modifiers")
+        if obj.library is not None and any(m.show_viewport != m.show_render for m in obj.modifiers):
+            warnings.append(f"{what}: its modifiers enabled for the viewport or for rendering only are exported as "
+                            f"the viewport shows them (it is linked from a library, whose settings the export "
+                            f"cannot change)")
         if rendered.in_collection_instance and obj.is_instancer and obj.instance_type != "COLLECTION":
             warnings.append(f"{what}: instances objects at its vertices, faces or particles inside an instanced "
                             f"collection; lights and volumes among them are not exported there")
@@ -366,18 +402,19 @@ def export_scene(context, filepath):
     staging = tempfile.mkdtemp(prefix=".vkdiffrender-export-", dir=directory)
     try:
         staged = os.path.join(staging, os.path.basename(filepath))
-        with renders_as_cycles(scene, view_layer):
-            run_gltf_exporter(staged)
-        with open(staged, encoding="utf-8") as f:
-            doc = json.load(f)
-        set_surfaces(doc, warnings)
-        add_material_media(doc, view_layer, warnings)
-        add_world(doc, scene, warnings)
-        set_punctual_lights(doc, warnings)
-        add_area_lights(doc, view_layer, warnings)
-        grid_media.add_grid_media(doc, scene, view_layer, staged, warnings)
-        warn_bounce_limits(scene, warnings)
-        warn_render_differences(view_layer, warnings)
+        with modifiers_as_rendered():
+            with renders_as_cycles(scene, view_layer):
+                run_gltf_exporter(staged)
+            with open(staged, encoding="utf-8") as f:
+                doc = json.load(f)
+            set_surfaces(doc, warnings)
+            add_material_media(doc, view_layer, warnings)
+            add_world(doc, scene, warnings)
+            set_punctual_lights(doc, warnings)
+            add_area_lights(doc, view_layer, warnings)
+            grid_media.add_grid_media(doc, scene, view_layer, staged, warnings)
+            warn_bounce_limits(scene, warnings)
+            warn_render_differences(view_layer, warnings)
         if EXTENSION in json.dumps(doc):
             gltf_json.use_extension(doc, EXTENSION)
         if "VKDR_background" in doc.get("extensions", {}):
