@@ -171,6 +171,10 @@ private:
         if (!primitive.targets.empty()) {
             diagnostics_.warn(field + ".targets", "morph targets are ignored");
         }
+        if (primitive.attributes.count("COLOR_0")) {
+            diagnostics_.warn(field + ".attributes.COLOR_0",
+                              "vertex colours are ignored: the base colour is the material's alone");
+        }
         DecodedPrimitive decoded;
         decoded.field = field;
         decoded.positions = readVec3s(model_, position->second, diagnostics_, field + ".attributes.POSITION");

@@ -82,6 +82,12 @@ def render_modifiers(scene):
     array.count, array.show_render = 2, False
 
 
+def vertex_colours(scene):
+    """A cube with a colour attribute its material does not read."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
+    bpy.context.object.data.color_attributes.new("Col", "FLOAT_COLOR", "POINT")
+
+
 def hidden_lights(scene):
     """Area lamps in a collection disabled for rendering and in one the view layer excludes,
     and a mirrored one that renders."""
@@ -243,7 +249,7 @@ def orthographic_camera(scene):
 
 
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
-         "render_modifiers": render_modifiers, "hidden_lights": hidden_lights,
+         "render_modifiers": render_modifiers, "vertex_colours": vertex_colours, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,

@@ -100,6 +100,11 @@ def test_modifiers_are_exported_as_the_render_evaluates_them_and_left_as_they_we
     assert own_warnings(exported, "render_modifiers") == []
 
 
+def test_colour_attributes_are_not_exported_as_vertex_colours(exported):
+    doc = document(exported, "vertex_colours")
+    assert not any("COLOR_0" in p["attributes"] for m in doc["meshes"] for p in m["primitives"])
+
+
 def test_lamps_that_cycles_does_not_render_are_not_exported_and_a_mirrored_one_still_shines_down(exported, cli):
     doc = document(exported, "hidden_lights")
     emitters = [m["name"] for m in doc["meshes"] if m["name"].endswith(".area")]

@@ -443,6 +443,20 @@ TEST(LoadSceneErrors, UnknownMediumMembersAreNamedInAWarning) {
     EXPECT_EQ(loaded.scene.media.at(0).sigma_s, glm::vec3(1.0f));
 }
 
+// glTF multiplies the base colour by COLOR_0; the renderer does not, and says so.
+TEST(LoadSceneErrors, VertexColoursAreIgnoredWithAWarning) {
+    TemporaryDirectory directory;
+    GltfBuilder gltf;
+    gltf.addNode({{"mesh", gltf.addMesh("box", box(glm::vec3(-1.0f), glm::vec3(1.0f)))}});
+    json& attributes = gltf.document()["meshes"][0]["primitives"][0]["attributes"];
+    attributes["COLOR_0"] = attributes["POSITION"];
+    LoadedScene loaded = loadScene(gltf.writeGltf(directory / "colours.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("meshes[0].primitives[0].attributes.COLOR_0: vertex colours are ignored"),
+              std::string::npos)
+        << loaded.warnings[0];
+}
+
 TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {
     TemporaryDirectory directory;
     const std::string lights = "extensions.KHR_lights_punctual.lights[0]";

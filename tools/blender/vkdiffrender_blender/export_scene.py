@@ -30,10 +30,12 @@ class ExportError(Exception):
 
 def run_gltf_exporter(filepath):
     """The scene at the current frame, objects as the render shows them (renders_as_cycles,
-    modifiers_as_rendered)."""
+    modifiers_as_rendered). Without vertex colours, which glTF multiplies into the base
+    colour and Cycles does not unless the material reads them."""
     bpy.ops.export_scene.gltf(filepath=filepath, export_format="GLTF_SEPARATE", export_cameras=True,
                               export_lights=True, export_apply=True, export_yup=True,
                               export_normals=True, export_materials="EXPORT", export_extras=False,
+                              export_colors=False,
                               export_animations=False, export_current_frame=True,
                               use_selection=False, use_visible=False, use_renderable=True)
 
