@@ -160,7 +160,7 @@ def first_camera(gltf_path, scene):
     cameras = [o for o in scene.objects if o.type == "CAMERA"]
     for node in doc.get("nodes", []):
         if "camera" in node:
-            camera = import_scene.match(cameras, node.get("name", ""))
+            camera = import_scene.match(cameras, node.get("name", ""), renamed=[])
             if camera is not None:
                 return camera
     if cameras:
