@@ -53,6 +53,10 @@ std::vector<HeldOutView> heldOutViews(const Experiment& experiment, const Scene&
     std::vector<HeldOutView> views;
     std::vector<TargetView> targets = renderTargets(experiment, experiment.heldOutViews, trueScene, backend);
     for (TargetView& target : targets) {
+        if (!(targetMean(target.target) > 0.0)) {
+            throw Error(experiment.file.string() + ": held_out_views: the target of camera '" + target.camera +
+                        "' is black (nothing it sees is lit), so no error is relative to it; hold out another view");
+        }
         RenderSettings settings = experiment.render;
         settings.camera = target.camera;
         settings.seed = experiment.optimize.seed + kHeldOutSeedOffset;

@@ -17,14 +17,18 @@ double squaredDifference(const float* a, const float* b) {
 
 }  // namespace
 
+double targetMean(const Image& target) {
+    double sum = 0.0;
+    for (float value : target.rgb) sum += value;
+    return target.rgb.empty() ? 0.0 : sum / double(target.rgb.size());
+}
+
 HeldOutError heldOutError(const Image& render, const Image& trueRender, const Image& target) {
     const bool sameSize = render.rgb.size() == target.rgb.size() && trueRender.rgb.size() == target.rgb.size() &&
                           render.width == target.width && trueRender.width == target.width;
     if (!sameSize || target.rgb.empty()) throw Error("held-out view: the renders and the target differ in size");
-    double targetSum = 0.0;
-    for (float value : target.rgb) targetSum += value;
-    const double targetMean = targetSum / double(target.rgb.size());
-    if (!(targetMean > 0.0)) throw Error("held-out view: the target is black, so no error is relative to it");
+    const double brightness = targetMean(target);
+    if (!(brightness > 0.0)) throw Error("held-out view: the target is black, so no error is relative to it");
 
     std::vector<double> excess;
     excess.reserve(target.rgb.size() / 3);
@@ -38,8 +42,8 @@ HeldOutError heldOutError(const Image& render, const Image& trueRender, const Im
     }
     const double pixels = double(target.rgb.size() / 3);
     HeldOutError error;
-    error.relativeRmse = std::sqrt(renderSum / pixels) / targetMean;
-    error.floorRelativeRmse = std::sqrt(trueSum / pixels) / targetMean;
+    error.relativeRmse = std::sqrt(renderSum / pixels) / brightness;
+    error.floorRelativeRmse = std::sqrt(trueSum / pixels) / brightness;
     const MeanAndError mean = meanAndError(excess);
     error.excessInStandardErrors = mean.error > 0.0 ? mean.mean / mean.error : 0.0;
     return error;

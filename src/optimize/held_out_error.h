@@ -19,6 +19,10 @@ struct HeldOutError {
     double excessInStandardErrors = 0.0;
 };
 
+// The mean of every pixel and channel of a held-out view's target, which its errors are
+// relative to: a view whose target's mean is not above 0 cannot be held out.
+double targetMean(const Image& target);
+
 // `render` and `trueRender` of one view, against `target`; all three the same size.
 // Throws vkdr::Error when they are not, or when the target is black.
 HeldOutError heldOutError(const Image& render, const Image& trueRender, const Image& target);

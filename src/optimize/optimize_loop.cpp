@@ -244,18 +244,20 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
     for (uint32_t iteration = first; iteration < options.iterations; ++iteration) {
         const auto started = std::chrono::steady_clock::now();
         GradientResult evaluation;
+        std::vector<Metric> metrics;
         try {
             throwIfInterrupted();
             evaluation = lossGradient.evaluate(scene, options.seed + iteration);
+            requireFinite(evaluation, parameters, iteration);
+            if (callbacks.measure) metrics = callbacks.measure(scene, iteration);
         } catch (const Interrupted&) {
-            // Stopped between iterations or within one: what the finished ones reached
-            // is worth keeping, whenever the last checkpoint was.
+            // Stopped between iterations or within one (its evaluation or the renders
+            // that measure it): what the finished ones reached is worth keeping,
+            // whenever the last checkpoint was.
             if (callbacks.checkpoint && iteration > first) callbacks.checkpoint(stateAfter(iteration));
             throw;
         }
         std::vector<double> gradient = flatGradient(parameters, evaluation);
-        requireFinite(evaluation, parameters, iteration);
-        std::vector<Metric> metrics = callbacks.measure ? callbacks.measure(scene, iteration) : std::vector<Metric>{};
 
         coarsenGridGradients(gridSlices, gridDivisorAt(iteration, options.iterations, options.gridLevels), gradient);
         optimizer->setLearningRateScale(std::pow(options.learningRateDecay, decayProgress(options, iteration)));

@@ -372,6 +372,30 @@ TEST(Experiment, MeasuresTheHeldOutViewAtEveryIteration) {
     EXPECT_NEAR(metrics[0].values[0], 0.25 / 1.05, 1e-6);  // the start 0.3 against the truth 0.05
 }
 
+// A held-out view whose target is black has no error relative to it: refused naming the
+// experiment, its field and the camera, before any iteration.
+TEST(Experiment, RefusesAHeldOutViewWhoseTargetIsBlack) {
+    ScratchDirectory scratch;
+    json file = fogExperiment(scratch.path());
+    file["cameras"] = {{{"name", "side"}, {"position", {0, 2, -4}}, {"look_at", {0, 2, 0}}}};
+    file["views"] = {"camera"};
+    file["held_out_views"] = {"side"};
+    Experiment experiment = readExperiment(writeExperiment(scratch, file));
+    Scene scene = loadScene(experiment.scene).scene;
+    ExperimentBackend backend;
+    backend.render = [&](const Scene&, const RenderSettings& settings) {
+        float value = settings.camera == "side" ? 0.0f : 1.0f;
+        return Image{settings.width, settings.height, std::vector<float>(size_t(settings.width * settings.height * 3), value)};
+    };
+    backend.makeLossGradient = [&](const Scene&, std::vector<TargetView>, std::vector<std::string>,
+                                   const RenderSettings&, LossKind) -> std::unique_ptr<LossGradient> {
+        ADD_FAILURE() << "no loss gradient is made for a refused run";
+        return nullptr;
+    };
+    expectErrorMentioning([&] { runExperiment(experiment, scene, backend, scratch / "out"); },
+                          {experiment.file.string(), "held_out_views", "camera 'side' is black"});
+}
+
 TEST(Experiment, ShippedExperimentsMatchTheirScenes) {
     std::filesystem::path directory = kScenes / "experiments";
     for (const char* name : {"cornell_absorption.json", "smoke_g_and_colour.json", "smoke_reconstruction.json"}) {

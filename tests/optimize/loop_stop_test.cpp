@@ -158,6 +158,32 @@ TEST(LoopStop, ASignalBetweenIterationsCheckpointsTheLastFinishedOne) {
     expectCheckpointAfter(false, 3);
 }
 
+// An experiment's held-out view is rendered by the measure callback, which the signal
+// may interrupt as it does the evaluation.
+TEST(LoopStop, ASignalWhileMeasuringAnIterationCheckpointsTheLastFinishedOne) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/g", {0.5}}});
+    OptimizeOptions options = optionsFor({"media/fog/g"}, OptimizerKind::Adam, 0.01);
+    options.checkpointEvery = 0;
+    std::optional<LoopState> checkpoint;
+    OptimizeCallbacks callbacks;
+    callbacks.measure = [](const Scene&, uint32_t iteration) {
+        if (iteration == 4) {
+            interrupt_detail::signalReceived = SIGINT;
+            throwIfInterrupted();
+        }
+        return std::vector<Metric>{};
+    };
+    callbacks.checkpoint = [&](const LoopState& state) { checkpoint = state; };
+    EXPECT_THROW(optimize(loss, scene, options, callbacks), Interrupted);
+    interrupt_detail::signalReceived = 0;
+    ASSERT_TRUE(checkpoint.has_value());
+    EXPECT_EQ(checkpoint->iteration, 4u);
+    EXPECT_EQ(checkpoint->losses.size(), 4u);
+    ASSERT_EQ(checkpoint->values.size(), 1u);
+    EXPECT_EQ(float(checkpoint->values[0]), getParameter(scene, "media/fog/g")[0]);
+}
+
 TEST(LoopStop, ASignalBeforeAnyIterationFinishedWritesNoCheckpoint) {
     Scene scene = sceneWithParameters();
     SignalledLoss loss({{"media/fog/g", {0.5}}}, 0, true);

@@ -240,6 +240,16 @@ TEST(ParameterTable, SummarisesAParameterOfManyValuesWithItsRelativeError) {
     EXPECT_NE(table.find("relative L2 error 100.00%"), std::string::npos) << table;
 }
 
+// A true grid of zeros: the error is absolute, as for a single value whose truth is 0.
+TEST(ParameterTable, GivesTheAbsoluteErrorOfManyValuesWhoseTruthIsZero) {
+    std::vector<float> fitted(64, 0.0f);
+    fitted[0] = 16.0f;  // RMS sqrt(256 / 64) = 2
+    std::vector<ParameterFit> fits = {{"media/smoke/density", std::vector<float>(64, 0.5f), fitted,
+                                       std::vector<float>(64, 0.0f)}};
+    std::string table = parameterTable(fits);
+    EXPECT_NE(table.find("RMS error 2 abs"), std::string::npos) << table;
+}
+
 TEST(TrajectoryChart, DrawsTheSmallestMeanAndLargestOfASummarisedParameter) {
     ParameterTrajectory trajectory{"media/smoke/density", {}, {{64, 0.5, 0.5, 0.5}, {64, 0.6, 0.1, 2.0}}};
     ParameterFit fit{"media/smoke/density", std::vector<float>(64, 0.5f), std::vector<float>(64, 0.7f),

@@ -42,10 +42,11 @@ int makePlume(const PlumeOptions& options) {
     if (options.flame) plume = vkdr::flameOfPlume(plume);
     if (!options.grid.empty()) plume.name = options.grid;
     vkdr::writeDensityGrid(options.output, plume);
-    const size_t active = size_t(std::count_if(plume.values.begin(), plume.values.end(), [](float v) { return v > 0.0f; }));
-    std::printf("%s: grid '%s', %d x %d x %d voxels, %zu active (%.1f %%)\n", options.output.string().c_str(),
-                plume.name.c_str(), plume.size.x, plume.size.y, plume.size.z, active,
-                100.0 * double(active) / double(plume.voxelCount()));
+    const size_t aboveZero =
+        size_t(std::count_if(plume.values.begin(), plume.values.end(), [](float v) { return v > 0.0f; }));
+    std::printf("%s: grid '%s', %d x %d x %d voxels, %zu above 0 (%.1f %%)\n", options.output.string().c_str(),
+                plume.name.c_str(), plume.size.x, plume.size.y, plume.size.z, aboveZero,
+                100.0 * double(aboveZero) / double(plume.voxelCount()));
     return 0;
 }
 
