@@ -25,14 +25,14 @@ uint nextRayQueue() {
 }
 
 // Queues the next segment of the path from `origin` along `direction`.
-void continuePath(uint slot, PathInfo info, vec3 origin, vec3 direction, uint medium) {
+void continuePath(uint slot, PathInfo info, vec3 origin, vec3 direction, float leadIn, uint medium) {
     ++info.segment;
     if (info.segment >= P.segmentLimit) {
         atomicAdd(P.queueCounters.c.truncatedPaths, 1u);
         return;
     }
     storePathInfo(slot, info);
-    storeRay(slot, origin, direction);
+    storeRay(slot, origin, direction, leadIn);
     P.vertexInfo.v[slot].x = medium;
     queueRay(nextRayQueue(), slot, medium);
 }
@@ -58,6 +58,8 @@ struct NextEventQuery {
     vec3 beta;
     uint vertexKind;
     uint index;        // material (surface) or medium (medium vertex)
+    vec3 normal;       // a surface vertex's: the shadow ray starts `offset` along it
+    float offset;      // 0 at a medium vertex
 };
 
 // Queues a shadow ray towards a sampled light carrying its MIS-weighted, unoccluded
@@ -77,6 +79,7 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
     float weight = lightSampleWeight(light, scatterPdf);
     ShadowRay ray = shadowRay(light, query.position);
     P.shadowOrigin.v[slot] = vec4(query.position, ray.distance);
+    P.shadowLeadIn.v[slot] = query.offset > 0.0f ? spawnLeadIn(query.offset, query.normal, ray.direction) : 0.0f;
     P.shadowDirection.v[slot] = vec4(ray.direction, uintBitsToFloat(query.medium));
     // The segment keys the random numbers of ratio tracking through density grids.
     P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, uintBitsToFloat(P.pathInfo.v[slot].w));
@@ -102,6 +105,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
         bool entering = dot(direction, sp.normal) < 0.0f;
         vec3 side = entering ? -sp.normal : sp.normal;
         continuePath(slot, info, sp.position + side * sp.offset, direction,
+                     spawnLeadIn(sp.offset, sp.normal, direction),
                      entering ? uint(material.interiorMedium) : sp.outsideMedium);
         return;
     }
@@ -139,7 +143,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
         LightArrival light = sampleLightFor(info, sp.position);
         float cosine = dot(ns, light.wi);
         if (cosine > 0.0f && dot(n, light.wi) > 0.0f) {
-            nextEvent(slot, NextEventQuery(origin, medium, beta, kVertexSurface, sp.material), light,
+            nextEvent(slot, NextEventQuery(origin, medium, beta, kVertexSurface, sp.material, n, sp.offset), light,
                       albedo * (kInvPi * cosine), kInvPi * cosine, vec3(kInvPi * cosine), 0.0f);
         }
     }
@@ -155,7 +159,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     }
     P.beta.v[slot].rgb = beta;
     P.misVertex.v[slot] = vec4(sp.position, max(dot(ns, wi), 0.0f) * kInvPi);
-    continuePath(slot, info, origin, wi, medium);
+    continuePath(slot, info, origin, wi, spawnLeadIn(sp.offset, n, wi), medium);
 }
 
 void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 direction, vec4 hit, uint medium) {
@@ -172,7 +176,8 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
         float phase = hgPhase(mu, g);
         // hit.y: where the segment that found this collision ends.
         float distanceWeight = freeFlightNextEventWeight(m, origin, direction, hit.y, hit.x, light.wi, light.distance);
-        nextEvent(slot, NextEventQuery(position, medium, beta * distanceWeight, kVertexMedium, medium), light,
+        nextEvent(slot, NextEventQuery(position, medium, beta * distanceWeight, kVertexMedium, medium, vec3(0.0f),
+                                     0.0f), light,
                   vec3(phase), phase, vec3(0.0f), hgPhaseDLogG(mu, g));
     }
     vec4 u = segmentRandom(info, kDimScatter);
@@ -184,7 +189,7 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
     }
     P.beta.v[slot].rgb = beta;
     P.misVertex.v[slot] = vec4(position, hgPhase(mu, g));
-    continuePath(slot, info, position, wi, medium);
+    continuePath(slot, info, position, wi, 0.0f, medium);
 }
 
 void main() {
@@ -202,7 +207,7 @@ void main() {
     if (kQueueEnd == kBackEnd) {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);
     } else if (kDensityGrids && vertex.y == kVertexPause) {
-        continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, vertex.x);
+        continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, 0.0f, vertex.x);
     } else {
         shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
     }

@@ -122,7 +122,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
 // allocation, its share of the bytes per path and its upload follow from it
 // (src/render/path_buffers.h). Arrays of every render:
 #define VKDR_PATH_ARRAYS(X) \
-    X(rayOrigin, Vec4Buffer)          /* xyz; w: unused */ \
+    X(rayOrigin, Vec4Buffer)          /* xyz: where the segment starts; w: its lead-in (storeRay) */ \
     X(rayDirection, Vec4Buffer)       /* xyz, unit length */ \
     X(beta, Vec4Buffer)               /* rgb path throughput / pdf */ \
     X(radiance, Vec4Buffer)           /* rgb radiance gathered so far; L_rem in the adjoint pass */ \
@@ -132,7 +132,8 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(vertexInfo, UVec4Buffer)        /* x: current medium, y: vertex kind */ \
     X(shadowOrigin, Vec4Buffer)       /* xyz; w: the shadow ray's length */ \
     X(shadowDirection, Vec4Buffer)    /* xyz; w: medium at the origin (uint bits) */ \
-    X(shadowContribution, Vec4Buffer) /* rgb: unoccluded next-event contribution; w: the segment (uint bits) */
+    X(shadowContribution, Vec4Buffer) /* rgb: unoccluded next-event contribution; w: the segment (uint bits) */ \
+    X(shadowLeadIn, FloatBuffer)      /* the lead-in before the shadow ray's origin (spawnLeadIn) */
 
 // Arrays of the adjoint pass only (AdjointBuffers), allocated when gradients are enabled.
 #define VKDR_ADJOINT_PATH_ARRAYS(X) \

@@ -38,8 +38,10 @@ TrackingRandom segmentTrackingRandom(PathInfo info, uint purpose) {
     return trackingRandom(info.pixel, stream.y, stream.x, info.segment, purpose, P.seed);
 }
 
-void storeRay(uint slot, vec3 origin, vec3 direction) {
-    P.rayOrigin.v[slot] = vec4(origin, 0.0f);
+// A ray traced from `spawn`, whose segment starts `leadIn` before it (spawnLeadIn): the
+// segment's distances, and the medium along it, count from where it starts.
+void storeRay(uint slot, vec3 spawn, vec3 direction, float leadIn) {
+    P.rayOrigin.v[slot] = vec4(spawn - leadIn * direction, leadIn);
     P.rayDirection.v[slot] = vec4(direction, 0.0f);
 }
 

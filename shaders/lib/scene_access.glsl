@@ -9,6 +9,18 @@
 // any feature a scene resolves.
 const float kSpawnOffsetPerMagnitude = 1.0e-5f;
 
+// A ray spawned off a surface starts `offset` from it, so the first stretch of its
+// segment, offset / |cos| long, is not traced: its lead-in, which the segment counts
+// (path_state.glsl's storeRay, shadowTransmittance) so that the medium beyond the
+// surface keeps its full length, wherever the surface is. Below this cosine the ray
+// grazes the surface and its lead-in stops short of the surface, so that it cannot reach
+// far along it.
+const float kLeadInMinCosine = 1.0f / 16.0f;
+
+float spawnLeadIn(float offset, vec3 normal, vec3 direction) {
+    return offset / max(abs(dot(normal, direction)), kLeadInMinCosine);
+}
+
 struct SurfacePoint {
     vec3 position;
     vec3 normal;      // geometric, unit, on the front (counter-clockwise) side

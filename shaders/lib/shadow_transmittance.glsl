@@ -76,15 +76,17 @@ float gridSegmentOpticalLength(GpuMedium m, vec3 origin, vec3 direction, float l
 }
 
 // Transmittance from the shadow ray's origin to its end, zero when something opaque
-// is in the way. In the adjoint pass it also records the length in each medium, and
+// is in the way. A ray spawned off a surface (and every ray after a boundary it crosses)
+// counts its lead-in, the stretch between the surface and where it is traced from
+// (spawnLeadIn), in the medium beyond the surface. In the adjoint pass it also records the length in each medium, and
 // with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
 // segment's length, or in a density grid the density's integral along it, estimated at
 // points of its own) to its medium's sigma_t gradient. A ray to a directional light
 // (distance kFar) ends in an unbounded segment, whose transmittance is 0 wherever
 // sigma_t > 0; where sigma_t = 0 its derivative is unbounded and left out, as for a
 // camera ray that escapes.
-vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 gradientWeight,
-                         inout MediumLengths lengths, inout TrackingRandom random,
+vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, uint medium,
+                         vec3 gradientWeight, inout MediumLengths lengths, inout TrackingRandom random,
                          inout TrackingRandom gradientPoints) {
     vec3 tr = vec3(1.0f);
     bool toInfinity = distance >= kFar;
@@ -98,7 +100,9 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
         if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
             return vec3(0.0f);
         }
-        float segment = min(hit.t, distance);
+        // The segment in the medium: from its lead-in's start to the hit or the end.
+        vec3 start = origin - leadIn * direction;
+        float segment = min(hit.t, distance) + leadIn;
         if (kMedia && medium != kNoMediumIndex) {
             GpuMedium m = P.media.v[medium];
             // d log T / d sigma_t = -(the optical length per unit sigma_t): the segment's
@@ -109,7 +113,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             if (kDensityGrids && m.densityGrid != kNoDensityGrid) {
                 GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
                 if (!forGradientsOnly) {
-                    tr *= ratioTrackTransmittance(grid, origin, direction, segment, sigmaT(m), random,
+                    tr *= ratioTrackTransmittance(grid, start, direction, segment, sigmaT(m), random,
                                                   trackingStepsLeft, truncated);
                 }
                 if (truncated) {
@@ -122,11 +126,11 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
                         // Voxel gradients need the contribution's weight, known once the
                         // whole ray is: addRecordedTransmittanceGradients estimates the
                         // density's integral along the segment then, with the weight.
-                        addGridSegment(lengths, medium, origin, direction, segment);
+                        addGridSegment(lengths, medium, start, direction, segment);
                         awaitsWeight = true;
                     } else {
                         opticalLength =
-                            gridSegmentOpticalLength(m, origin, direction, segment, gradientWeight, gradientPoints);
+                            gridSegmentOpticalLength(m, start, direction, segment, gradientWeight, gradientPoints);
                     }
                 }
             } else {
@@ -157,6 +161,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, uint mediu
             distance = length(toEnd);
             direction = toEnd / distance;
         }
+        leadIn = spawnLeadIn(sp.offset, sp.normal, direction);
     }
     flagTruncatedLoop();
     return vec3(0.0f);
@@ -183,8 +188,8 @@ void addRecordedTransmittanceGradients(vec3 weight, MediumLengths lengths, Track
 // MediumLengths keeps is traced a second time for them, with the same random numbers, by
 // the same code in a loop: on a CPU device a shader's code runs where it stands, whether
 // any lane takes it or not, and a second call would run a whole trace for every ray.
-vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, uint medium, vec3 perUnitTransmittance,
-                               TrackingRandom random, TrackingRandom gradientPoints) {
+vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, uint medium,
+                               vec3 perUnitTransmittance, TrackingRandom random, TrackingRandom gradientPoints) {
     vec3 tr = vec3(0.0f);
     vec3 gradientWeight = vec3(0.0f);  // 0 for the first trace
     bool retrace = false;
@@ -192,7 +197,8 @@ vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, uint
         MediumLengths lengths = noMediumLengths();
         TrackingRandom tracking = random;
         TrackingRandom points = gradientPoints;
-        vec3 traced = shadowTransmittance(origin, direction, distance, medium, gradientWeight, lengths, tracking, points);
+        vec3 traced =
+            shadowTransmittance(origin, direction, distance, leadIn, medium, gradientWeight, lengths, tracking, points);
         if (retrace) {
             break;
         }

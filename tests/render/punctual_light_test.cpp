@@ -180,6 +180,42 @@ void expectDirectionalLight(const std::filesystem::path& dir, double alpha, std:
     });
 }
 
+// Sunlight through an absorbing slab between the camera and the plane, 1000 from the
+// origin, where a surface's spawn offset is 0.01 long: every segment counts the stretch
+// its ray skipped at a boundary (spawnLeadIn), so a pixel is the sun's closed form times
+// exp(-sigma_a thickness / cos) along the shadow ray and along the camera's ray. The
+// points where the rays cross the slab's faces are rounded to a few units in the last
+// place of their coordinates: sigma_a times that over the cosine, at each of the four
+// crossings, bounds the error (a skipped offset would be about 4 % dark).
+TEST_F(PunctualLightTest, SunlightThroughAnAbsorbingSlabFarFromTheOrigin) {
+    constexpr double kAlpha = 0.5;
+    constexpr double kSigma = 1.0;
+    constexpr double kThickness = 1.0;
+    const glm::vec3 shift(1000.0f, 0.0f, 0.0f);
+    TestGltf g = litPlane();
+    g.materials.push_back(vkdrMediumMaterial("slab", glm::vec3(float(kSigma)), glm::vec3(0.0f), 0.0f));
+    g.meshes.push_back(box(glm::vec3(-60.0f, -60.0f, 0.5f), glm::vec3(60.0f, 60.0f, 0.5f + float(kThickness)), 1));
+    for (TestMesh& mesh : g.meshes) {
+        for (glm::vec3& position : mesh.positions) {
+            position += shift;
+        }
+    }
+    g.cameraPosition += shift;
+    g.lights = {light("sun", "directional", kColor, kIntensity)};
+    g.lightNodes = {{0, shift, glm::vec3(float(std::sin(kAlpha)), 0.0f, float(std::cos(kAlpha)))}};
+    Image image = renderFile(g.write(tempDir(), "slab"), {.width = kSide, .height = kSide, .spp = 16, .maxDepth = 3});
+    const double shadowTransmittance = std::exp(-kSigma * kThickness / std::cos(kAlpha));
+    const double sun = kIntensity * kAlbedo / std::numbers::pi * std::cos(kAlpha) * shadowTransmittance;
+    const double largest = 1060.0;
+    const double tolerance = kFloatTolerance + kSigma * 4.0 * 8.0 * 1.1920929e-7 * largest / std::cos(kAlpha);
+    expectPixelsMatch(image, 16, tolerance, [&](int x, int y) {
+        return overPixel(x, y, glm::dvec3(kColor) * sun, [](glm::dvec2 p) {
+            const double cosView = kPlaneZ / std::sqrt(glm::dot(p, p) + kPlaneZ * kPlaneZ);
+            return std::exp(-kSigma * kThickness / cosView);
+        });
+    });
+}
+
 TEST_F(PunctualLightTest, DirectionalLightGivesCosineOfItsAngle) {
     expectDirectionalLight(tempDir(), 0.0, std::nullopt);
     expectDirectionalLight(tempDir(), 0.8, std::nullopt);
