@@ -79,7 +79,8 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
     float weight = lightSampleWeight(light, scatterPdf);
     ShadowRay ray = shadowRay(light, query.position);
     P.shadowOrigin.v[slot] = vec4(query.position, ray.distance);
-    P.shadowLeadIn.v[slot] = query.offset > 0.0f ? spawnLeadIn(query.offset, query.normal, ray.direction) : 0.0f;
+    float leadIn = query.offset > 0.0f ? spawnLeadIn(query.offset, query.normal, ray.direction) : 0.0f;
+    P.shadowLeads.v[slot] = vec2(leadIn, ray.leadOut);
     P.shadowDirection.v[slot] = vec4(ray.direction, uintBitsToFloat(query.medium));
     // The segment keys the random numbers of ratio tracking through density grids.
     P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, uintBitsToFloat(P.pathInfo.v[slot].w));

@@ -56,7 +56,8 @@ void traceShadowRay() {
         // For this contribution only: the stage never stores the replay state back.
         adjoint.derivativeChannels = P.shadowVertex.v[slot].z;
     }
-    vec3 tr = tracedShadowTransmittance(origin.xyz, direction.xyz, origin.w, P.shadowLeadIn.v[slot], medium,
+    vec2 leads = P.shadowLeads.v[slot];
+    vec3 tr = tracedShadowTransmittance(origin.xyz, direction.xyz, origin.w, leads.x, leads.y, medium,
                                         perUnitTransmittance,
                                         shadowRandom(slot, segment, kTrackingShadow),
                                         shadowRandom(slot, segment, kTrackingShadowGradient));

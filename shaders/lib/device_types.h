@@ -21,6 +21,7 @@ struct Vec4Buffer { static constexpr uint32_t kElementBytes = 16; };
 struct UVec4Buffer { static constexpr uint32_t kElementBytes = 16; };
 struct UintBuffer { static constexpr uint32_t kElementBytes = 4; };
 struct FloatBuffer { static constexpr uint32_t kElementBytes = 4; };
+struct Vec2Buffer { static constexpr uint32_t kElementBytes = 8; };
 struct Int64Buffer { static constexpr uint32_t kElementBytes = 8; };
 #else
 #define VKDR_BUFFER(Type) Type
@@ -133,7 +134,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(shadowOrigin, Vec4Buffer)       /* xyz; w: the shadow ray's length */ \
     X(shadowDirection, Vec4Buffer)    /* xyz; w: medium at the origin (uint bits) */ \
     X(shadowContribution, Vec4Buffer) /* rgb: unoccluded next-event contribution; w: the segment (uint bits) */ \
-    X(shadowLeadIn, FloatBuffer)      /* the lead-in before the shadow ray's origin (spawnLeadIn) */
+    X(shadowLeads, Vec2Buffer)        /* x: the lead-in before the origin (spawnLeadIn); y: the lead-out after the end */
 
 // Arrays of the adjoint pass only (AdjointBuffers), allocated when gradients are enabled.
 #define VKDR_ADJOINT_PATH_ARRAYS(X) \
@@ -297,6 +298,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4Buffer 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer UVec4Buffer { uvec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintBuffer { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatBuffer { float v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer Vec2Buffer { vec2 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Int64Buffer { int64_t v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer MaterialBuffer { GpuMaterial v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer MediumBuffer { GpuMedium v[]; };

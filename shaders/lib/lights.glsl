@@ -74,6 +74,7 @@ struct LightArrival {
     bool isDelta;   // a punctual light: no other strategy finds it, so no MIS
     uint emitter;   // the material, or kPunctualEmitter | the punctual light
     vec3 end;       // where shadow rays towards a sample at a finite distance end
+    float leadOut;  // from there on to the light along the ray: in the medium there, not traced
 };
 
 // The factor of a next event's contribution beta * scatter * Le * this: the power
@@ -86,10 +87,12 @@ float lightSampleWeight(LightArrival light, float scatterPdf) {
 // The part of a shadow ray's length by which it stops short of a point or spot light.
 const float kShadowEpsilon = 1.0e-4f;
 
-// A shadow ray: its direction and length (kFar towards a directional light).
+// A shadow ray: its direction and length (kFar towards a directional light), and its
+// lead-out (LightArrival.leadOut).
 struct ShadowRay {
     vec3 direction;
     float distance;
+    float leadOut;
 };
 
 // The shadow ray of a light sample from `origin`, the vertex lit or a point spawned off
@@ -97,11 +100,11 @@ struct ShadowRay {
 // direction without end.
 ShadowRay shadowRay(LightArrival light, vec3 origin) {
     if (light.distance >= kFar) {
-        return ShadowRay(light.wi, kFar);
+        return ShadowRay(light.wi, kFar, 0.0f);
     }
     vec3 toEnd = light.end - origin;
     float distance = length(toEnd);
-    return distance > 0.0f ? ShadowRay(toEnd / distance, distance) : ShadowRay(light.wi, 0.0f);
+    return distance > 0.0f ? ShadowRay(toEnd / distance, distance, light.leadOut) : ShadowRay(light.wi, 0.0f, 0.0f);
 }
 
 LightArrival lightArrival(LightSample ls, vec3 from) {
@@ -118,7 +121,9 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
         // Off the emitter towards the vertex, by at most half the vertex's height above
         // the emitter's plane, so that the end never passes the vertex.
         float height = dot(ls.normal, from - ls.position);
-        a.end = ls.position + sign(height) * min(ls.offset, 0.5f * abs(height)) * ls.normal;
+        float offset = min(ls.offset, 0.5f * abs(height));
+        a.end = ls.position + sign(height) * offset * ls.normal;
+        a.leadOut = spawnLeadIn(offset, ls.normal, a.wi);
         return a;
     }
     GpuPunctualLight light = P.punctualLights.v[ls.punctual];
@@ -131,6 +136,7 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
         // From infinitely far: a medium filling all space extinguishes it, as it does the background.
         a.wi = -light.direction;
         a.distance = kFar;
+        a.leadOut = 0.0f;
         a.perUnit = vec3(1.0f);
         return a;
     }
@@ -143,7 +149,8 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
     // what faces it, as it would a hair's breadth in front of it, instead of meeting that
     // surface at the end.
     float offset = max(kSpawnOffsetPerMagnitude * maxComponent(abs(light.position)), kShadowEpsilon * a.distance);
-    a.end = a.distance > 0.0f ? light.position - min(offset, 0.5f * a.distance) * a.wi : light.position;
+    a.leadOut = a.distance > 0.0f ? min(offset, 0.5f * a.distance) : 0.0f;
+    a.end = light.position - a.leadOut * a.wi;
     float falloff = light.type == kLightSpot ? spotFalloff(light, dot(light.direction, -a.wi)) : 1.0f;
     a.perUnit = vec3(dist2 > 0.0f ? falloff / dist2 : 0.0f);
     return a;

@@ -78,14 +78,15 @@ float gridSegmentOpticalLength(GpuMedium m, vec3 origin, vec3 direction, float l
 // Transmittance from the shadow ray's origin to its end, zero when something opaque
 // is in the way. A ray spawned off a surface (and every ray after a boundary it crosses)
 // counts its lead-in, the stretch between the surface and where it is traced from
-// (spawnLeadIn), in the medium beyond the surface. In the adjoint pass it also records the length in each medium, and
+// (spawnLeadIn), in the medium beyond the surface; its last segment counts its lead-out,
+// the stretch from its end on to the light (LightArrival.leadOut). In the adjoint pass it also records the length in each medium, and
 // with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
 // segment's length, or in a density grid the density's integral along it, estimated at
 // points of its own) to its medium's sigma_t gradient. A ray to a directional light
 // (distance kFar) ends in an unbounded segment, whose transmittance is 0 wherever
 // sigma_t > 0; where sigma_t = 0 its derivative is unbounded and left out, as for a
 // camera ray that escapes.
-vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, uint medium,
+vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, float leadOut, uint medium,
                          vec3 gradientWeight, inout MediumLengths lengths, inout TrackingRandom random,
                          inout TrackingRandom gradientPoints) {
     vec3 tr = vec3(1.0f);
@@ -100,9 +101,10 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, float lead
         if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
             return vec3(0.0f);
         }
-        // The segment in the medium: from its lead-in's start to the hit or the end.
+        // The segment in the medium: from its lead-in's start to the hit, or to the end and
+        // on to the light.
         vec3 start = origin - leadIn * direction;
-        float segment = min(hit.t, distance) + leadIn;
+        float segment = hit.triangle == kNoHit ? distance + leadIn + leadOut : min(hit.t, distance) + leadIn;
         if (kMedia && medium != kNoMediumIndex) {
             GpuMedium m = P.media.v[medium];
             // d log T / d sigma_t = -(the optical length per unit sigma_t): the segment's
@@ -188,7 +190,7 @@ void addRecordedTransmittanceGradients(vec3 weight, MediumLengths lengths, Track
 // MediumLengths keeps is traced a second time for them, with the same random numbers, by
 // the same code in a loop: on a CPU device a shader's code runs where it stands, whether
 // any lane takes it or not, and a second call would run a whole trace for every ray.
-vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, uint medium,
+vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, float leadOut, uint medium,
                                vec3 perUnitTransmittance, TrackingRandom random, TrackingRandom gradientPoints) {
     vec3 tr = vec3(0.0f);
     vec3 gradientWeight = vec3(0.0f);  // 0 for the first trace
@@ -198,7 +200,8 @@ vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, floa
         TrackingRandom tracking = random;
         TrackingRandom points = gradientPoints;
         vec3 traced =
-            shadowTransmittance(origin, direction, distance, leadIn, medium, gradientWeight, lengths, tracking, points);
+            shadowTransmittance(origin, direction, distance, leadIn, leadOut, medium, gradientWeight, lengths, tracking,
+                                points);
         if (retrace) {
             break;
         }

@@ -30,6 +30,23 @@ std::string noGridNamed(const std::string& gridName, const std::vector<std::stri
     return "no grid named '" + gridName + "'; the file has " + list;
 }
 
+// OpenVDB lists grids of one name as name[0], name[1], ...: the grids meant by `gridName`.
+std::vector<std::string> vdbGridsNamed(const std::string& gridName, const std::vector<std::string>& names) {
+    std::vector<std::string> named;
+    for (const std::string& name : names) {
+        const bool indexed = name.size() > gridName.size() + 2 && name.compare(0, gridName.size(), gridName) == 0 &&
+                             name[gridName.size()] == '[' && name.back() == ']' &&
+                             name.find_first_not_of("0123456789", gridName.size() + 1) == name.size() - 1;
+        if (name == gridName || indexed) named.push_back(name);
+    }
+    return named;
+}
+
+// Several grids of the name: which one is meant is not known.
+std::string severalGridsNamed(const std::string& gridName, size_t count, const std::string& choice) {
+    return "the file has " + std::to_string(count) + " grids named '" + gridName + "'; " + choice;
+}
+
 void requireUsableTransform(const glm::dmat4& indexToLocal) {
     const std::string problem = indexTransformProblem(indexToLocal);
     if (!problem.empty()) throw Error(problem);
@@ -126,10 +143,13 @@ DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridNa
     initializeOpenVdb();
     openvdb::io::File vdb(file.string());
     vdb.open(false);
-    if (!vdb.hasGrid(gridName)) {
-        std::vector<std::string> names;
-        for (auto name = vdb.beginName(); name != vdb.endName(); ++name) names.push_back(*name);
-        throw Error(noGridNamed(gridName, names));
+    std::vector<std::string> names;
+    for (auto name = vdb.beginName(); name != vdb.endName(); ++name) names.push_back(*name);
+    const std::vector<std::string> named = vdbGridsNamed(gridName, names);
+    if (named.empty()) throw Error(noGridNamed(gridName, names));
+    if (named.size() > 1) {
+        throw Error(severalGridsNamed(gridName, named.size(),
+                                      "name one as OpenVDB does: '" + named[0] + "', '" + named[1] + "'..."));
     }
     const openvdb::GridBase::Ptr grid = vdb.readGrid(gridName);
     vdb.close();
@@ -187,11 +207,13 @@ DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gr
     const std::vector<nanovdb::io::GridMetaData> grids = nanovdb::io::readGridMetaData(file.string());
     std::vector<std::string> names;
     const nanovdb::io::GridMetaData* found = nullptr;
+    size_t sameName = 0;
     for (const nanovdb::io::GridMetaData& grid : grids) {
         names.push_back(grid.gridName);
-        if (grid.gridName == gridName && found == nullptr) found = &grid;
+        if (grid.gridName == gridName && sameName++ == 0) found = &grid;
     }
     if (found == nullptr) throw Error(noGridNamed(gridName, names));
+    if (sameName > 1) throw Error(severalGridsNamed(gridName, sameName, "rename all but one"));
     const nanovdb::GridType type = found->gridType;
     const bool isVector = Values::channels == 3 && type == nanovdb::GridType::Vec3f;
     if (type != nanovdb::GridType::Float && type != nanovdb::GridType::Double && !isVector) {

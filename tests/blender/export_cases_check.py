@@ -88,6 +88,28 @@ def vertex_colours(scene):
     bpy.context.object.data.color_attributes.new("Col", "FLOAT_COLOR", "POINT")
 
 
+def volume_cube(name, location):
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=location)
+    cube = bpy.context.object
+    cube.name = name
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    tree = material.node_tree
+    tree.links.new(tree.nodes.new("ShaderNodeVolumePrincipled").outputs[0],
+                   tree.nodes["Material Output"].inputs["Volume"])
+    cube.data.materials.append(material)
+
+
+def added_volumes(scene):
+    """A World fog and three volume cubes, two of them overlapping: Cycles adds up the
+    volumes where they overlap and the World's inside every cube."""
+    tree = new_world(scene, "Fog")
+    tree.links.new(tree.nodes.new("ShaderNodeVolumeScatter").outputs[0], tree.nodes["World Output"].inputs["Volume"])
+    volume_cube("Outer", (0.0, 0.0, 0.5))
+    volume_cube("Overlapping", (0.5, 0.0, 0.5))
+    volume_cube("Apart", (3.0, 0.0, 0.5))
+
+
 def hidden_lights(scene):
     """Area lamps in a collection disabled for rendering and in one the view layer excludes,
     and a mirrored one that renders."""
@@ -249,7 +271,8 @@ def orthographic_camera(scene):
 
 
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
-         "render_modifiers": render_modifiers, "vertex_colours": vertex_colours, "hidden_lights": hidden_lights,
+         "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
+         "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,

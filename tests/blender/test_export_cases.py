@@ -105,6 +105,15 @@ def test_colour_attributes_are_not_exported_as_vertex_colours(exported):
     assert not any("COLOR_0" in p["attributes"] for m in doc["meshes"] for p in m["primitives"])
 
 
+def test_volumes_that_cycles_adds_up_are_reported(exported):
+    warnings = own_warnings(exported, "added_volumes")
+    world = [w for w in warnings if w.startswith("world 'Fog'")]
+    assert len(world) == 1 and all(f"'{name}'" in world[0] for name in ("Outer", "Overlapping", "Apart"))
+    overlaps = [w for w in warnings if "boxes overlap" in w]
+    assert overlaps == ["objects 'Outer' and 'Overlapping': their volumes' boxes overlap; where the volumes do, "
+                        "Cycles adds them and vkdiffrender has the inner one's medium alone"]
+
+
 def test_lamps_that_cycles_does_not_render_are_not_exported_and_a_mirrored_one_still_shines_down(exported, cli):
     doc = document(exported, "hidden_lights")
     emitters = [m["name"] for m in doc["meshes"] if m["name"].endswith(".area")]

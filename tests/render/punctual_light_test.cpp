@@ -95,6 +95,36 @@ TEST_F(PunctualLightTest, PointLightIlluminatesAsInverseSquareTimesCosine) {
     expectPixelsMatch(image, kSpp, kFloatTolerance, pointLitPixel);
 }
 
+// In a scene-wide absorbing medium, 1000 from the origin, the light reaching the camera
+// is the closed form times exp(-sigma_a) of the camera's distance to the plane point and
+// of the point's distance to the light, the whole of both: the shadow ray starts off the
+// plane and stops short of the light by a surface point's offset there (0.01), and its
+// segment counts both stretches (its lead-in and lead-out); skipping them would make
+// the plane 2 % dark. The points are rounded to a few units in the last place of their
+// coordinates, sigma_a times that bounds the error.
+TEST_F(PunctualLightTest, PointLightInAnAbsorbingMediumFillingSpaceFarFromTheOrigin) {
+    constexpr double kSigma = 2.0;
+    const glm::vec3 shift(1000.0f, 0.0f, 0.0f);
+    TestGltf g = litPlane();
+    for (glm::vec3& position : g.meshes[0].positions) {
+        position += shift;
+    }
+    g.cameraPosition += shift;
+    g.lights = {light("bulb", "point", kColor, kIntensity)};
+    g.lightNodes = {{0, shift + glm::vec3(0.0f, 0.0f, kPlaneZ - kLightHeight)}};
+    g.extensions["VKDR_participating_media"] = {{"sigma_a", {kSigma, kSigma, kSigma}}};
+    Image image = renderFile(g.write(tempDir(), "point"), {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 3});
+    const double tolerance = kFloatTolerance + kSigma * 4.0 * 8.0 * 1.1920929e-7 * 1050.0;
+    expectPixelsMatch(image, kSpp, tolerance, [](int x, int y) {
+        return overPixel(x, y, glm::dvec3(kColor) * double(kIntensity), [](glm::dvec2 p) {
+            const double toLight2 = glm::dot(p, p) + kLightHeight * kLightHeight;
+            const double toCamera = std::sqrt(glm::dot(p, p) + double(kPlaneZ) * kPlaneZ);
+            return kAlbedo / std::numbers::pi * kLightHeight / (toLight2 * std::sqrt(toLight2)) *
+                   std::exp(-kSigma * (std::sqrt(toLight2) + toCamera));
+        });
+    });
+}
+
 // A black wall through the camera, which sees it edge on, reaching from z = 0.5 to 1.9
 // and `halfWidth` to each side of the view axis, turned `angle` about that axis from the
 // plane x = 0. A point light kLightHeight in front of the plane sits `behind` the wall

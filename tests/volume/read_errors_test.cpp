@@ -73,6 +73,24 @@ TEST(DensityGridErrors, NoGridOfThatNameListsTheNames) {
     expectReadError(directory / "smoke.nvdb", "density", {"no grid named 'density'", "'smoke'"});
 }
 
+// Which of several grids of one name is meant is not known: refused, naming them as
+// OpenVDB does (name[0], name[1]), by which names each still reads.
+TEST(DensityGridErrors, SeveralGridsOfTheNameAreNamedOneByOne) {
+    ScratchDirectory directory;
+    DensityGrid first = patternedGrid({0, 0, 0}, {2, 2, 2}, glm::dmat4(1.0));
+    DensityGrid second = patternedGrid({0, 0, 0}, {3, 3, 3}, glm::dmat4(1.0));
+    openvdb::io::File((directory / "twice.vdb").string())
+        .write(openvdb::GridPtrVec{openVdbGrid(first), openVdbGrid(second)});
+    expectReadError(directory / "twice.vdb", "density",
+                    {"has 2 grids named 'density'", "'density[0]', 'density[1]'"});
+    EXPECT_EQ(readDensityGrid(directory / "twice.vdb", "density[1]").size, glm::ivec3(3));
+    std::vector<nanovdb::GridHandle<>> handles;
+    handles.push_back(nanovdb::openToNanoVDB(*openVdbGrid(first)));
+    handles.push_back(nanovdb::openToNanoVDB(*openVdbGrid(second)));
+    nanovdb::io::writeGrids((directory / "twice.nvdb").string(), handles);
+    expectReadError(directory / "twice.nvdb", "density", {"has 2 grids named 'density'", "rename all but one"});
+}
+
 TEST(DensityGridErrors, VectorAndOtherNonScalarGrids) {
     ScratchDirectory directory;
     openvdb::Vec3SGrid::Ptr velocity = openvdb::Vec3SGrid::create();

@@ -7,6 +7,7 @@ which it drops, and a root-level extension), and the light intensities it does w
 be replaced as a whole; the JSON is the one interface that stays the same across exporter
 versions."""
 import contextlib
+import itertools
 import json
 import math
 import os
@@ -112,6 +113,29 @@ def warn_render_differences(view_layer, warnings):
         if rendered.in_collection_instance and obj.is_instancer and obj.instance_type != "COLLECTION":
             warnings.append(f"{what}: instances objects at its vertices, faces or particles inside an instanced "
                             f"collection; lights and volumes among them are not exported there")
+
+
+def warn_added_volumes(scene, view_layer, warnings):
+    """Cycles adds up the volumes a point is inside, the World's among them; vkdiffrender's
+    medium at a point is the innermost one's alone (docs/blender.md)."""
+    volumes = [r for r in rendered_objects(view_layer)
+               if r.object.type == "VOLUME" or (r.object.type == "MESH" and
+                                                any(node_graph.has_volume(s.material) for s in r.object.material_slots))]
+    if volumes and node_graph.has_volume(scene.world):
+        names = ", ".join(f"'{r.name}'" for r in volumes[:4]) + (f" and {len(volumes) - 4} more" if len(volumes) > 4 else "")
+        warnings.append(f"world '{scene.world.name}': Cycles adds its volume inside {names}, where vkdiffrender has "
+                        f"their own medium alone: add the World's coefficients to theirs for the same render")
+    boxes = [(r.name, world_box(r)) for r in volumes]
+    for (a, (low_a, high_a)), (b, (low_b, high_b)) in itertools.combinations(boxes, 2):
+        if all(low_a[k] < high_b[k] and low_b[k] < high_a[k] for k in range(3)):
+            warnings.append(f"objects '{a}' and '{b}': their volumes' boxes overlap; where the volumes do, Cycles "
+                            f"adds them and vkdiffrender has the inner one's medium alone")
+
+
+def world_box(rendered):
+    """The world-space bounds (lowest, highest corner) of a rendered object's box."""
+    corners = [rendered.matrix_world @ mathutils.Vector(corner) for corner in rendered.object.bound_box]
+    return ([min(c[k] for c in corners) for k in range(3)], [max(c[k] for c in corners) for k in range(3)])
 
 
 def add_material_media(doc, view_layer, warnings):
@@ -417,6 +441,7 @@ def export_scene(context, filepath):
             grid_media.add_grid_media(doc, scene, view_layer, staged, warnings)
             warn_bounce_limits(scene, warnings)
             warn_render_differences(view_layer, warnings)
+            warn_added_volumes(scene, view_layer, warnings)
         if EXTENSION in json.dumps(doc):
             gltf_json.use_extension(doc, EXTENSION)
         if "VKDR_background" in doc.get("extensions", {}):

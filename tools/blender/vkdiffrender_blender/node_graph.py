@@ -83,14 +83,26 @@ def volume_medium(node, warnings, what, overrides=None):
     return None
 
 
+def volume_input(owner):
+    """The Volume input of a material's or World's active output, or None."""
+    if owner is None or not owner.use_nodes:
+        return None
+    kind = "OUTPUT_WORLD" if owner.bl_rna.identifier == "World" else "OUTPUT_MATERIAL"
+    out = output_node(owner.node_tree, kind)
+    return out.inputs["Volume"] if out else None
+
+
+def has_volume(owner):
+    """Whether a material or World renders a volume (of any shader)."""
+    socket = volume_input(owner)
+    return socket is not None and socket.is_linked
+
+
 def material_volume_node(material):
     """The single volume node of a material or world whose Volume output it feeds directly
     (the node the Fit operator writes back into), else None."""
-    if material is None or not material.use_nodes:
-        return None
-    kind = "OUTPUT_WORLD" if material.bl_rna.identifier == "World" else "OUTPUT_MATERIAL"
-    out = output_node(material.node_tree, kind)
-    node = linked_node(out.inputs["Volume"]) if out else None
+    socket = volume_input(material)
+    node = linked_node(socket) if socket is not None else None
     return node if node is not None and node.bl_idname in VOLUME_NODES else None
 
 
