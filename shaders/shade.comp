@@ -177,9 +177,9 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
         float phase = hgPhase(mu, g);
         // hit.y: where the segment that found this collision ends.
         float distanceWeight = freeFlightNextEventWeight(m, origin, direction, hit.y, hit.x, light.wi, light.distance);
-        nextEvent(slot, NextEventQuery(position, medium, beta * distanceWeight, kVertexMedium, medium, vec3(0.0f),
-                                     0.0f), light,
-                  vec3(phase), phase, vec3(0.0f), hgPhaseDLogG(mu, g));
+        NextEventQuery query =
+            NextEventQuery(position, medium, beta * distanceWeight, kVertexMedium, medium, vec3(0.0f), 0.0f);
+        nextEvent(slot, query, light, vec3(phase), phase, vec3(0.0f), hgPhaseDLogG(mu, g));
     }
     vec4 u = segmentRandom(info, kDimScatter);
     vec3 wi = sampleHg(direction, g, u.xy);

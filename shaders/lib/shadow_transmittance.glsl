@@ -79,13 +79,13 @@ float gridSegmentOpticalLength(GpuMedium m, vec3 origin, vec3 direction, float l
 // is in the way. A ray spawned off a surface (and every ray after a boundary it crosses)
 // counts its lead-in, the stretch between the surface and where it is traced from
 // (spawnLeadIn), in the medium beyond the surface; its last segment counts its lead-out,
-// the stretch from its end on to the light (LightArrival.leadOut). In the adjoint pass it also records the length in each medium, and
-// with `gradientWeight` != 0 adds gradientWeight * d log T / d sigma_t (minus each
-// segment's length, or in a density grid the density's integral along it, estimated at
-// points of its own) to its medium's sigma_t gradient. A ray to a directional light
-// (distance kFar) ends in an unbounded segment, whose transmittance is 0 wherever
-// sigma_t > 0; where sigma_t = 0 its derivative is unbounded and left out, as for a
-// camera ray that escapes.
+// the stretch from its end on to the light (LightArrival.leadOut). In the adjoint pass
+// it also records the length in each medium, and with `gradientWeight` != 0 adds
+// gradientWeight * d log T / d sigma_t (minus each segment's length, or in a density grid
+// the density's integral along it, estimated at points of its own) to its medium's
+// sigma_t gradient. A ray to a directional light (distance kFar) ends in an unbounded
+// segment, whose transmittance is 0 wherever sigma_t > 0; where sigma_t = 0 its
+// derivative is unbounded and left out, as for a camera ray that escapes.
 vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, float leadOut, uint medium,
                          vec3 gradientWeight, inout MediumLengths lengths, inout TrackingRandom random,
                          inout TrackingRandom gradientPoints) {
