@@ -109,9 +109,9 @@ struct OptimizeResult {
 // naming the iteration, the parameter, its values and the likely cause when the loss or
 // a gradient is not finite, before anything of that iteration reaches `scene` or the
 // callbacks. On a SIGINT or SIGTERM (core/interrupt.h), noticed between iterations or
-// within one (by the LossGradient or by the renders of OptimizeCallbacks::measure), it calls the checkpoint callback with the state after the
-// last finished iteration (if one finished since the start or the resume) and rethrows
-// Interrupted.
+// within one (by the LossGradient or by the renders of OptimizeCallbacks::measure), it
+// calls the checkpoint callback with the state after the last finished iteration (if one
+// finished since the start or the resume) and rethrows Interrupted.
 // With `resume` (a LoopState from the checkpoint callback of a run with the same
 // options) it writes resume->values into `scene` and continues from resume->iteration;
 // its losses and times are part of the result.

@@ -43,12 +43,8 @@ std::string fitErrors(const ParameterFit& fit) {
             return formatText("relative L2 error %.2f%%", 100.0 * *error);
         }
         // True values all 0 (or not known): no error is relative to them.
-        if (fit.fitted.size() != fit.truth.size()) return "";
-        double squares = 0.0;
-        for (size_t i = 0; i < fit.fitted.size(); ++i) {
-            squares += (double(fit.fitted[i]) - fit.truth[i]) * (double(fit.fitted[i]) - fit.truth[i]);
-        }
-        return formatText("RMS error %.3g abs", std::sqrt(squares / double(fit.fitted.size())));
+        std::optional<double> error = rmsError(fit.fitted, fit.truth);
+        return error ? formatText("RMS error %.3g abs", *error) : "";
     }
     std::string text;
     for (size_t c = 0; c < fit.truth.size() && c < fit.fitted.size(); ++c) {

@@ -102,9 +102,11 @@ std::string summaryText(std::span<const float> values) {
                       summary.count);
 }
 
-std::optional<double> relativeL2Error(std::span<const float> values, std::span<const float> truth) {
-    if (values.size() != truth.size()) return std::nullopt;
-    const ErrorTotals totals = reduceInBlocks(
+namespace {
+
+// ||values - truth||^2 and ||truth||^2; the spans are the same size.
+ErrorTotals errorTotals(std::span<const float> values, std::span<const float> truth) {
+    return reduceInBlocks(
         values.size(), ErrorTotals{},
         [&](ErrorTotals& partial, size_t i) {
             const double difference = double(values[i]) - double(truth[i]);
@@ -114,8 +116,20 @@ std::optional<double> relativeL2Error(std::span<const float> values, std::span<c
         [](const ErrorTotals& left, const ErrorTotals& right) {
             return ErrorTotals{left.error + right.error, left.norm + right.norm};
         });
+}
+
+}  // namespace
+
+std::optional<double> relativeL2Error(std::span<const float> values, std::span<const float> truth) {
+    if (values.size() != truth.size()) return std::nullopt;
+    const ErrorTotals totals = errorTotals(values, truth);
     if (totals.norm == 0.0) return std::nullopt;
     return std::sqrt(totals.error / totals.norm);
+}
+
+std::optional<double> rmsError(std::span<const float> values, std::span<const float> truth) {
+    if (values.size() != truth.size() || values.empty()) return std::nullopt;
+    return std::sqrt(errorTotals(values, truth).error / double(values.size()));
 }
 
 }  // namespace vkdr

@@ -39,4 +39,8 @@ std::string summaryText(std::span<const float> values);
 // differ or the truth is all 0 (no scale to be relative to).
 std::optional<double> relativeL2Error(std::span<const float> values, std::span<const float> truth);
 
+// sqrt(mean (values - truth)^2) over every value; nothing where the sizes differ or there
+// are none.
+std::optional<double> rmsError(std::span<const float> values, std::span<const float> truth);
+
 }  // namespace vkdr

@@ -122,7 +122,9 @@ def warn_added_volumes(scene, view_layer, warnings):
                if r.object.type == "VOLUME" or (r.object.type == "MESH" and
                                                 any(node_graph.has_volume(s.material) for s in r.object.material_slots))]
     if volumes and node_graph.has_volume(scene.world):
-        names = ", ".join(f"'{r.name}'" for r in volumes[:4]) + (f" and {len(volumes) - 4} more" if len(volumes) > 4 else "")
+        names = ", ".join(f"'{r.name}'" for r in volumes[:4])
+        if len(volumes) > 4:
+            names += f" and {len(volumes) - 4} more"
         warnings.append(f"world '{scene.world.name}': Cycles adds its volume inside {names}, where vkdiffrender has "
                         f"their own medium alone: add the World's coefficients to theirs for the same render")
     boxes = [(r.name, world_box(r)) for r in volumes]

@@ -35,16 +35,25 @@ def shown_only_as_instances(obj):
     return obj.parent is not None and obj.parent.instance_type in {"VERTS", "FACES"}
 
 
-def instances_by_instancer(depsgraph):
+class Instances:
     """{instancer: [(object, world matrix) of each instance it places]} for the vertex,
-    face, particle and collection instancers of the scene itself, as DEPSGRAPH evaluates
-    them."""
-    instances = {}
-    for instance in depsgraph.object_instances:
-        if instance.is_instance and instance.parent is not None:
-            instances.setdefault(instance.parent.original, []).append(
-                (instance.object.original, instance.matrix_world.copy()))
-    return instances
+    face, particle and collection instancers of the scene itself, as the view layer's
+    depsgraph evaluates them; read from it once, when the first instancer asks."""
+
+    def __init__(self, view_layer):
+        self.view_layer = view_layer
+        self.by_instancer = None
+
+    def of(self, instancer):
+        if self.by_instancer is None:
+            depsgraph = self.view_layer.depsgraph
+            depsgraph.update()  # the instances as the objects are now
+            self.by_instancer = {}
+            for instance in depsgraph.object_instances:
+                if instance.is_instance and instance.parent is not None:
+                    self.by_instancer.setdefault(instance.parent.original, []).append(
+                        (instance.object.original, instance.matrix_world.copy()))
+        return self.by_instancer.get(instancer, [])
 
 
 def expand(obj, parent_matrix, prefix, depth, instances):
@@ -62,7 +71,7 @@ def expand(obj, parent_matrix, prefix, depth, instances):
             if not shown_only_as_instances(child):
                 yield from expand(child, placed, name + ".", depth + 1, instances)
     elif obj.is_instancer and depth == 0:
-        for index, (instanced, place) in enumerate(instances.get(obj, [])):
+        for index, (instanced, place) in enumerate(instances.of(obj)):
             if not instanced.hide_render:
                 yield RenderedObject(instanced, place, f"{name}.{index}.{instanced.name}", False)
 
@@ -77,9 +86,7 @@ def layer_objects(layer_collection):
 
 def rendered_objects(view_layer):
     """Every object VIEW_LAYER renders, once per place it is rendered at."""
-    depsgraph = view_layer.depsgraph
-    depsgraph.update()  # the instances as the objects are now
-    instances = instances_by_instancer(depsgraph)
+    instances = Instances(view_layer)
     seen = set()
     for obj in layer_objects(view_layer.layer_collection):
         if obj.name in seen:
