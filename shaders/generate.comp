@@ -31,7 +31,7 @@ void main() {
     vec3 direction = normalize(vec3(dot(camera.cameraToWorld[0].xyz, local),
                                     dot(camera.cameraToWorld[1].xyz, local),
                                     dot(camera.cameraToWorld[2].xyz, local)));
-    storeRay(slot, origin, direction, 0.0f);
+    storeRay(slot, origin, direction, kNoHit);
     storePathInfo(slot, info);
     P.beta.v[slot] = vec4(1.0f);
     if (kAdjoint) {

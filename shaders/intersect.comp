@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Stage 2: the closest hit of each of this segment's rays, traced from where the ray was
-// spawned and measured from where its segment starts (storeRay). The same in the primal
-// and the adjoint pass.
+// Stage 2: the closest hit of each of this segment's rays, traced from where its segment
+// starts, passing over the triangle it leaves (storeRay). The same in the primal and the
+// adjoint pass.
 #include "lib/stage_common.glsl"
 #include "lib/queues.glsl"
 #include "lib/bvh_traverse.glsl"
@@ -15,7 +15,6 @@ void main() {
     uint slot = queueItem(pass.currentRays, index);
     vec4 origin = P.rayOrigin.v[slot];
     vec3 direction = P.rayDirection.v[slot].xyz;
-    TraceHit hit = traceClosest(origin.xyz + origin.w * direction, direction, kFar, false);
-    float t = hit.triangle == kNoHit ? hit.t : hit.t + origin.w;
-    P.hit.v[slot] = vec4(t, hit.b1, hit.b2, uintBitsToFloat(hit.triangle));
+    TraceHit hit = traceClosest(origin.xyz, direction, kFar, false, uvec2(floatBitsToUint(origin.w), kNoHit));
+    P.hit.v[slot] = vec4(hit.t, hit.b1, hit.b2, uintBitsToFloat(hit.triangle));
 }

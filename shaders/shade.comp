@@ -24,15 +24,16 @@ uint nextRayQueue() {
     return pass.currentRays == kQueueRays0 ? kQueueRays1 : kQueueRays0;
 }
 
-// Queues the next segment of the path from `origin` along `direction`.
-void continuePath(uint slot, PathInfo info, vec3 origin, vec3 direction, float leadIn, uint medium) {
+// Queues the next segment of the path from `start` along `direction`, leaving the
+// triangle `leftTriangle` (kNoHit: none).
+void continuePath(uint slot, PathInfo info, vec3 start, vec3 direction, uint leftTriangle, uint medium) {
     ++info.segment;
     if (info.segment >= P.segmentLimit) {
         atomicAdd(P.queueCounters.c.truncatedPaths, 1u);
         return;
     }
     storePathInfo(slot, info);
-    storeRay(slot, origin, direction, leadIn);
+    storeRay(slot, start, direction, leftTriangle);
     P.vertexInfo.v[slot].x = medium;
     queueRay(nextRayQueue(), slot, medium);
 }
@@ -53,13 +54,12 @@ bool survivesRoulette(inout vec3 beta, uint depth, float u) {
 
 // A vertex and what its next-event estimate needs to know.
 struct NextEventQuery {
-    vec3 position;     // where the shadow ray starts
+    vec3 position;     // the vertex: where the shadow ray starts
     uint medium;       // medium the shadow ray starts in
     vec3 beta;
     uint vertexKind;
     uint index;        // material (surface) or medium (medium vertex)
-    vec3 normal;       // a surface vertex's: the shadow ray starts `offset` along it
-    float offset;      // 0 at a medium vertex
+    uint triangle;     // a surface vertex's, which the shadow ray leaves; kNoHit at a medium vertex
 };
 
 // Queues a shadow ray towards a sampled light carrying its MIS-weighted, unoccluded
@@ -79,8 +79,7 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
     float weight = lightSampleWeight(light, scatterPdf);
     ShadowRay ray = shadowRay(light, query.position);
     P.shadowOrigin.v[slot] = vec4(query.position, ray.distance);
-    float leadIn = query.offset > 0.0f ? spawnLeadIn(query.offset, query.normal, ray.direction) : 0.0f;
-    P.shadowLeads.v[slot] = vec2(leadIn, ray.leadOut);
+    P.shadowEnds.v[slot] = vec4(uintBitsToFloat(query.triangle), uintBitsToFloat(ray.endTriangle), ray.leadOut, 0.0f);
     P.shadowDirection.v[slot] = vec4(ray.direction, uintBitsToFloat(query.medium));
     // The segment keys the random numbers of ratio tracking through density grids.
     P.shadowContribution.v[slot] = vec4(query.beta * scatter * le * weight, uintBitsToFloat(P.pathInfo.v[slot].w));
@@ -104,9 +103,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     if (material.interiorMedium >= 0) {
         // A boundary changes the medium only: no vertex, no depth, same MIS vertex.
         bool entering = dot(direction, sp.normal) < 0.0f;
-        vec3 side = entering ? -sp.normal : sp.normal;
-        continuePath(slot, info, sp.position + side * sp.offset, direction,
-                     spawnLeadIn(sp.offset, sp.normal, direction),
+        continuePath(slot, info, sp.position, direction, triangle,
                      entering ? uint(material.interiorMedium) : sp.outsideMedium);
         return;
     }
@@ -135,7 +132,6 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     vec3 ns = shadingNormal(triangle, hit.y, hit.z, n);
     vec3 texture = baseColorTexture(material, sp.uv);
     vec3 albedo = material.baseColor.rgb * texture;
-    vec3 origin = sp.position + n * sp.offset;
     if (kAdjoint) {
         P.vertexUv.v[slot] = vec4(sp.uv, 0.0f, 0.0f);
     }
@@ -144,7 +140,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
         LightArrival light = sampleLightFor(info, sp.position);
         float cosine = dot(ns, light.wi);
         if (cosine > 0.0f && dot(n, light.wi) > 0.0f) {
-            nextEvent(slot, NextEventQuery(origin, medium, beta, kVertexSurface, sp.material, n, sp.offset), light,
+            nextEvent(slot, NextEventQuery(sp.position, medium, beta, kVertexSurface, sp.material, triangle), light,
                       albedo * (kInvPi * cosine), kInvPi * cosine, vec3(kInvPi * cosine), 0.0f);
         }
     }
@@ -160,7 +156,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     }
     P.beta.v[slot].rgb = beta;
     P.misVertex.v[slot] = vec4(sp.position, max(dot(ns, wi), 0.0f) * kInvPi);
-    continuePath(slot, info, origin, wi, spawnLeadIn(sp.offset, n, wi), medium);
+    continuePath(slot, info, sp.position, wi, triangle, medium);
 }
 
 void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 direction, vec4 hit, uint medium) {
@@ -178,7 +174,7 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
         // hit.y: where the segment that found this collision ends.
         float distanceWeight = freeFlightNextEventWeight(m, origin, direction, hit.y, hit.x, light.wi, light.distance);
         NextEventQuery query =
-            NextEventQuery(position, medium, beta * distanceWeight, kVertexMedium, medium, vec3(0.0f), 0.0f);
+            NextEventQuery(position, medium, beta * distanceWeight, kVertexMedium, medium, kNoHit);
         nextEvent(slot, query, light, vec3(phase), phase, vec3(0.0f), hgPhaseDLogG(mu, g));
     }
     vec4 u = segmentRandom(info, kDimScatter);
@@ -190,7 +186,7 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
     }
     P.beta.v[slot].rgb = beta;
     P.misVertex.v[slot] = vec4(position, hgPhase(mu, g));
-    continuePath(slot, info, position, wi, 0.0f, medium);
+    continuePath(slot, info, position, wi, kNoHit, medium);
 }
 
 void main() {
@@ -208,7 +204,7 @@ void main() {
     if (kQueueEnd == kBackEnd) {
         shadeSurface(slot, info, beta, direction, hit, vertex.x);
     } else if (kDensityGrids && vertex.y == kVertexPause) {
-        continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, 0.0f, vertex.x);
+        continuePath(slot, info, P.rayOrigin.v[slot].xyz + direction * hit.x, direction, kNoHit, vertex.x);
     } else {
         shadeMedium(slot, info, beta, P.rayOrigin.v[slot].xyz, direction, hit, vertex.x);
     }

@@ -41,7 +41,7 @@ void traceShadowRay() {
         return;
     }
     uint slot = queueItem(kQueueShadow, index);
-    vec4 origin = P.shadowOrigin.v[slot];
+    vec4 startAndDistance = P.shadowOrigin.v[slot];
     vec4 direction = P.shadowDirection.v[slot];
     uint medium = floatBitsToUint(direction.w);
     // Read as one vec4: lavapipe (Mesa 22.3) compiled a read of its .rgb and one of its .w
@@ -56,9 +56,9 @@ void traceShadowRay() {
         // For this contribution only: the stage never stores the replay state back.
         adjoint.derivativeChannels = P.shadowVertex.v[slot].z;
     }
-    vec2 leads = P.shadowLeads.v[slot];
-    vec3 tr = tracedShadowTransmittance(origin.xyz, direction.xyz, origin.w, leads.x, leads.y, medium,
-                                        perUnitTransmittance,
+    vec4 ends = P.shadowEnds.v[slot];
+    vec3 tr = tracedShadowTransmittance(startAndDistance.xyz, direction.xyz, startAndDistance.w,
+                                        floatBitsToUint(ends.xy), ends.z, medium, perUnitTransmittance,
                                         shadowRandom(slot, segment, kTrackingShadow),
                                         shadowRandom(slot, segment, kTrackingShadowGradient));
     vec3 contribution = tr * perUnitTransmittance;

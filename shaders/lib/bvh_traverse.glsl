@@ -80,12 +80,14 @@ bool segmentMayReachPlane(vec3 origin, vec3 end, vec3 v0, vec3 v1, vec3 v2) {
     return !(originOff && endNotPast);
 }
 
-// The closest hit within tMax. With stopAtOpaque, the first hit found on an opaque
-// triangle ends the search instead: a shadow ray is blocked by any opaque surface on
-// its way, whichever is nearest, and only medium boundaries need the closest hit. Such
-// a ray ends at tMax where that is finite, and an opaque triangle whose plane it
-// cannot reach (segmentMayReachPlane) is passed over.
-TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque) {
+// The closest hit within tMax, passing over the triangles in `skipped` (kNoHit: none):
+// the one a ray leaves from and the emitter triangle a shadow ray ends on, which it
+// would meet at a rounded distance near 0 or tMax. With stopAtOpaque, the first hit
+// found on an opaque triangle ends the search instead: a shadow ray is blocked by any
+// opaque surface on its way, whichever is nearest, and only medium boundaries need the
+// closest hit. Such a ray ends at tMax where that is finite, and an opaque triangle
+// whose plane it cannot reach (segmentMayReachPlane) is passed over.
+TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque, uvec2 skipped) {
     TraceHit best = TraceHit(tMax, 0.0f, 0.0f, kNoHit);
     bool endsAtTMax = tMax < kFar;
     vec3 end = origin + direction * (endsAtTMax ? tMax : 0.0f);
@@ -136,6 +138,9 @@ TraceHit traceClosest(vec3 origin, vec3 direction, float tMax, bool stopAtOpaque
         }
         ++steps;
         for (uint i = link.x; i < link.x + link.y; ++i) {
+            if (i == skipped.x || i == skipped.y) {
+                continue;
+            }
             vec3 v0 = P.triangleVertices.v[3u * i].xyz;
             vec3 v1 = P.triangleVertices.v[3u * i + 1u].xyz;
             vec3 v2 = P.triangleVertices.v[3u * i + 2u].xyz;

@@ -123,7 +123,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
 // allocation, its share of the bytes per path and its upload follow from it
 // (src/render/path_buffers.h). Arrays of every render:
 #define VKDR_PATH_ARRAYS(X) \
-    X(rayOrigin, Vec4Buffer)          /* xyz: where the segment starts; w: its lead-in (storeRay) */ \
+    X(rayOrigin, Vec4Buffer)          /* xyz: where the segment starts; w: the triangle it leaves (uint bits, storeRay) */ \
     X(rayDirection, Vec4Buffer)       /* xyz, unit length */ \
     X(beta, Vec4Buffer)               /* rgb path throughput / pdf */ \
     X(radiance, Vec4Buffer)           /* rgb radiance gathered so far; L_rem in the adjoint pass */ \
@@ -131,10 +131,10 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(hit, Vec4Buffer)                /* x: t, y: b1, z: b2, w: triangle (uint bits) or kNoHit */ \
     X(pathInfo, UVec4Buffer)          /* x: pixel, y: sample, z: depth, w: segment */ \
     X(vertexInfo, UVec4Buffer)        /* x: current medium, y: vertex kind */ \
-    X(shadowOrigin, Vec4Buffer)       /* xyz; w: the shadow ray's length */ \
+    X(shadowOrigin, Vec4Buffer)       /* xyz: where it starts; w: its length to the light */ \
     X(shadowDirection, Vec4Buffer)    /* xyz; w: medium at the origin (uint bits) */ \
     X(shadowContribution, Vec4Buffer) /* rgb: unoccluded next-event contribution; w: the segment (uint bits) */ \
-    X(shadowLeads, Vec2Buffer)        /* x: the lead-in before the origin (spawnLeadIn); y: the lead-out after the end */
+    X(shadowEnds, Vec4Buffer)         /* x, y: the triangles it leaves and ends on (uint bits); z: its lead-out */
 
 // Arrays of the adjoint pass only (AdjointBuffers), allocated when gradients are enabled.
 #define VKDR_ADJOINT_PATH_ARRAYS(X) \

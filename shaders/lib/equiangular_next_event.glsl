@@ -57,7 +57,8 @@ void equiangularNextEvent(uint slot, uint medium, float tEnd, vec3 beta) {
         return;
     }
     ShadowRay ray = shadowRay(light, position);
-    vec3 tr = tracedShadowTransmittance(position, ray.direction, ray.distance, 0.0f, ray.leadOut, medium, unoccluded,
+    vec3 tr = tracedShadowTransmittance(position, ray.direction, ray.distance, uvec2(kNoHit, ray.endTriangle),
+                                        ray.leadOut, medium, unoccluded,
                                         segmentTrackingRandom(info, kTrackingEquiangularShadow),
                                         segmentTrackingRandom(info, kTrackingEquiangularShadowGradient));
     vec3 contribution = unoccluded * tr;

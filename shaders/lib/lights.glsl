@@ -14,7 +14,7 @@ struct LightSample {
     uint material;   // the emitter's material
     float pdfArea;   // pmf of the triangle / its area; a punctual light's pmf
     uint punctual;   // index into P.punctualLights, or kNoPunctualLight for a triangle
-    float offset;    // how far off an emitter's surface shadow rays end; 0 for a punctual light
+    uint triangle;   // the emitter triangle, kNoHit for a punctual light
 };
 
 // First index i with cdf[i + 1] > u, by binary search (log2 of the light count steps).
@@ -37,12 +37,12 @@ LightSample sampleLight(vec3 u) {
     if ((source & kPunctualEmitter) != 0u) {
         uint index = source & ~kPunctualEmitter;
         GpuPunctualLight light = P.punctualLights.v[index];
-        return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, index, 0.0f);
+        return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, index, kNoHit);
     }
     vec2 b = sampleUniformTriangle(u.yz);
     SurfacePoint sp = surfacePoint(source, b.x, b.y);
     return LightSample(sp.position, sp.normal, sp.uv, sp.material,
-                       P.triangleInfo.v[source].lightPmf / sp.area, kNoPunctualLight, sp.offset);
+                       P.triangleInfo.v[source].lightPmf / sp.area, kNoPunctualLight, source);
 }
 
 // Solid-angle density of reaching a point on an emitter from `from` by light sampling.
@@ -73,8 +73,9 @@ struct LightArrival {
     float pdf;
     bool isDelta;   // a punctual light: no other strategy finds it, so no MIS
     uint emitter;   // the material, or kPunctualEmitter | the punctual light
-    vec3 end;       // where shadow rays towards a sample at a finite distance end
-    float leadOut;  // from there on to the light along the ray: in the medium there, not traced
+    vec3 end;            // the light's point, where shadow rays towards a sample at a finite distance end
+    uint endTriangle;    // the emitter triangle it lies on, which they pass over; kNoHit
+    float leadOut;       // the stretch before a punctual light: not traced, in the medium there
 };
 
 // The factor of a next event's contribution beta * scatter * Le * this: the power
@@ -84,27 +85,32 @@ float lightSampleWeight(LightArrival light, float scatterPdf) {
     return (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
 }
 
-// The part of a shadow ray's length by which it stops short of a point or spot light.
+// The part of a shadow ray's length by which it stops short of a point or spot light,
+// and the least it stops short by relative to the light's coordinates: a surface point
+// there is rounded by a few units in their last place (1e-7 each).
 const float kShadowEpsilon = 1.0e-4f;
+const float kLightOffsetPerMagnitude = 1.0e-5f;
 
-// A shadow ray: its direction and length (kFar towards a directional light), and its
-// lead-out (LightArrival.leadOut).
+// A shadow ray: its direction and length to the light (kFar towards a directional
+// light), the emitter triangle it ends on, and its lead-out, the end of that length left
+// untraced (LightArrival).
 struct ShadowRay {
     vec3 direction;
     float distance;
+    uint endTriangle;
     float leadOut;
 };
 
-// The shadow ray of a light sample from `origin`, the vertex lit or a point spawned off
-// it: to the sample's end, off the emitter on the vertex's side, or along the light's
-// direction without end.
-ShadowRay shadowRay(LightArrival light, vec3 origin) {
+// The shadow ray of a light sample from the vertex lit at `start`: to the light's
+// point, or along the light's direction without end.
+ShadowRay shadowRay(LightArrival light, vec3 start) {
     if (light.distance >= kFar) {
-        return ShadowRay(light.wi, kFar, 0.0f);
+        return ShadowRay(light.wi, kFar, kNoHit, 0.0f);
     }
-    vec3 toEnd = light.end - origin;
+    vec3 toEnd = light.end - start;
     float distance = length(toEnd);
-    return distance > 0.0f ? ShadowRay(toEnd / distance, distance, light.leadOut) : ShadowRay(light.wi, 0.0f, 0.0f);
+    return distance > 0.0f ? ShadowRay(toEnd / distance, distance, light.endTriangle, min(light.leadOut, distance))
+                           : ShadowRay(light.wi, 0.0f, kNoHit, 0.0f);
 }
 
 LightArrival lightArrival(LightSample ls, vec3 from) {
@@ -118,12 +124,9 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
         a.pdf = lightPdfSolidAngle(ls.pdfArea, from, ls.position, ls.normal);
         a.isDelta = false;
         a.emitter = ls.material;
-        // Off the emitter towards the vertex, by at most half the vertex's height above
-        // the emitter's plane, so that the end never passes the vertex.
-        float height = dot(ls.normal, from - ls.position);
-        float offset = min(ls.offset, 0.5f * abs(height));
-        a.end = ls.position + sign(height) * offset * ls.normal;
-        a.leadOut = spawnLeadIn(offset, ls.normal, a.wi);
+        a.end = ls.position;
+        a.endTriangle = ls.triangle;
+        a.leadOut = 0.0f;
         return a;
     }
     GpuPunctualLight light = P.punctualLights.v[ls.punctual];
@@ -132,6 +135,7 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
     a.isDelta = true;
     a.emitter = kPunctualEmitter | ls.punctual;
     a.end = light.position;
+    a.endTriangle = kNoHit;
     if (light.type == kLightDirectional) {
         // From infinitely far: a medium filling all space extinguishes it, as it does the background.
         a.wi = -light.direction;
@@ -144,13 +148,12 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
     float dist2 = dot(d, d);
     a.distance = sqrt(dist2);
     a.wi = d / a.distance;
-    // Short of the light by a surface point's offset at its coordinates, or by 1e-4 of
-    // the distance (pbrt's ShadowEpsilon) where larger: a light placed on a surface lights
-    // what faces it, as it would a hair's breadth in front of it, instead of meeting that
-    // surface at the end.
-    float offset = max(kSpawnOffsetPerMagnitude * maxComponent(abs(light.position)), kShadowEpsilon * a.distance);
+    // Traced to short of the light by far more than a surface point's rounding at its
+    // coordinates, or by 1e-4 of the distance (pbrt's ShadowEpsilon) where larger: a
+    // light placed on a surface lights what faces it, as it would a hair's breadth in
+    // front of it, instead of meeting that surface at the end.
+    float offset = max(kLightOffsetPerMagnitude * maxComponent(abs(light.position)), kShadowEpsilon * a.distance);
     a.leadOut = a.distance > 0.0f ? min(offset, 0.5f * a.distance) : 0.0f;
-    a.end = light.position - a.leadOut * a.wi;
     float falloff = light.type == kLightSpot ? spotFalloff(light, dot(light.direction, -a.wi)) : 1.0f;
     a.perUnit = vec3(dist2 > 0.0f ? falloff / dist2 : 0.0f);
     return a;

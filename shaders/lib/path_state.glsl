@@ -38,10 +38,9 @@ TrackingRandom segmentTrackingRandom(PathInfo info, uint purpose) {
     return trackingRandom(info.pixel, stream.y, stream.x, info.segment, purpose, P.seed);
 }
 
-// A ray traced from `spawn`, whose segment starts `leadIn` before it (spawnLeadIn): the
-// segment's distances, and the medium along it, count from where it starts.
-void storeRay(uint slot, vec3 spawn, vec3 direction, float leadIn) {
-    P.rayOrigin.v[slot] = vec4(spawn - leadIn * direction, leadIn);
+// A ray from `start` that passes over the triangle it leaves (kNoHit: none; traceClosest).
+void storeRay(uint slot, vec3 start, vec3 direction, uint leftTriangle) {
+    P.rayOrigin.v[slot] = vec4(start, uintBitsToFloat(leftTriangle));
     P.rayDirection.v[slot] = vec4(direction, 0.0f);
 }
 

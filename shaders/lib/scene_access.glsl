@@ -3,24 +3,6 @@
 #define VKDR_SCENE_ACCESS_GLSL
 #include "constants.glsl"
 
-// How far off a surface, relative to the magnitude of the coordinates its point was
-// interpolated from, rays spawned there start: far above the float rounding of the
-// interpolation and of the next intersection test (a few ulps, 1e-7 each), and below
-// any feature a scene resolves.
-const float kSpawnOffsetPerMagnitude = 1.0e-5f;
-
-// A ray spawned off a surface starts `offset` from it, so the first stretch of its
-// segment, offset / |cos| long, is not traced: its lead-in, which the segment counts
-// (path_state.glsl's storeRay, shadowTransmittance) so that the medium beyond the
-// surface keeps its full length, wherever the surface is. Below this cosine the ray
-// grazes the surface and its lead-in stops short of the surface, so that it cannot reach
-// far along it.
-const float kLeadInMinCosine = 1.0f / 16.0f;
-
-float spawnLeadIn(float offset, vec3 normal, vec3 direction) {
-    return offset / max(abs(dot(normal, direction)), kLeadInMinCosine);
-}
-
 struct SurfacePoint {
     vec3 position;
     vec3 normal;      // geometric, unit, on the front (counter-clockwise) side
@@ -28,7 +10,6 @@ struct SurfacePoint {
     float area;       // of the triangle
     uint material;
     uint outsideMedium;
-    float offset;     // how far off the surface rays spawned here start, scene units
 };
 
 SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
@@ -52,12 +33,6 @@ SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
     sp.area = 0.5f * doubleArea;
     sp.material = info.material;
     sp.outsideMedium = info.outsideMedium;
-    // The rounding error of the interpolated position is relative to the terms it sums
-    // (pbrt-v4's bound), so the offset follows the point, not the scene's extent: a
-    // far-away object leaves the rest of the scene's geometry resolved as finely. The
-    // triangle's size bounds it below where those terms vanish, at a vertex on the origin.
-    vec3 magnitude = abs((1.0f - b1 - b2) * v0) + abs(b1 * v1) + abs(b2 * v2);
-    sp.offset = kSpawnOffsetPerMagnitude * max(maxComponent(magnitude), sqrt(doubleArea));
     return sp;
 }
 

@@ -75,36 +75,34 @@ float gridSegmentOpticalLength(GpuMedium m, vec3 origin, vec3 direction, float l
                                   nextTrackingRandom(gradientPoints).x, dot(voxelWeight, sigmaT(m)));
 }
 
-// Transmittance from the shadow ray's origin to its end, zero when something opaque
-// is in the way. A ray spawned off a surface (and every ray after a boundary it crosses)
-// counts its lead-in, the stretch between the surface and where it is traced from
-// (spawnLeadIn), in the medium beyond the surface; its last segment counts its lead-out,
-// the stretch from its end on to the light (LightArrival.leadOut). In the adjoint pass
+// Transmittance from the shadow ray's start to the light `distance` along it, zero when
+// something opaque is in the way. The ray passes over the triangles in `skipped`, the
+// one it leaves and the emitter triangle it ends on (traceClosest), and over each
+// boundary it crosses as it leaves it; it is traced to `leadOut` before the light
+// (LightArrival.leadOut), a stretch that counts in the medium there. In the adjoint pass
 // it also records the length in each medium, and with `gradientWeight` != 0 adds
 // gradientWeight * d log T / d sigma_t (minus each segment's length, or in a density grid
 // the density's integral along it, estimated at points of its own) to its medium's
 // sigma_t gradient. A ray to a directional light (distance kFar) ends in an unbounded
 // segment, whose transmittance is 0 wherever sigma_t > 0; where sigma_t = 0 its
 // derivative is unbounded and left out, as for a camera ray that escapes.
-vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, float leadOut, uint medium,
+vec3 shadowTransmittance(vec3 start, vec3 direction, float distance, uvec2 skipped, float leadOut, uint medium,
                          vec3 gradientWeight, inout MediumLengths lengths, inout TrackingRandom random,
                          inout TrackingRandom gradientPoints) {
     vec3 tr = vec3(1.0f);
     bool toInfinity = distance >= kFar;
-    vec3 end = origin + direction * distance;
+    vec3 end = start + direction * distance;
     // A trace for the gradients alone (a weight is given) needs no transmittance.
     bool forGradientsOnly = maxComponent(abs(gradientWeight)) > 0.0f;
     uint trackingStepsLeft = kMaxTransmittanceSteps;
     bool truncated = false;
     for (uint crossing = 0u; crossing <= kMaxBoundaryCrossings; ++crossing) {
-        TraceHit hit = traceClosest(origin, direction, distance, true);
+        TraceHit hit = traceClosest(start, direction, toInfinity ? kFar : distance - leadOut, true, skipped);
         if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
             return vec3(0.0f);
         }
-        // The segment in the medium: from its lead-in's start to the hit, or to the end and
-        // on to the light.
-        vec3 start = origin - leadIn * direction;
-        float segment = hit.triangle == kNoHit ? distance + leadIn + leadOut : min(hit.t, distance) + leadIn;
+        // The segment in the medium: from its start to the hit, or to the light.
+        float segment = hit.triangle == kNoHit ? distance : hit.t;
         if (kMedia && medium != kNoMediumIndex) {
             GpuMedium m = P.media.v[medium];
             // d log T / d sigma_t = -(the optical length per unit sigma_t): the segment's
@@ -152,18 +150,17 @@ vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, float lead
         GpuMaterial material = P.materials.v[sp.material];
         bool entering = dot(direction, sp.normal) < 0.0f;
         medium = entering ? uint(material.interiorMedium) : sp.outsideMedium;
-        // Step past the boundary along the ray's side of it, and aim again at the end:
-        // the step's sideways part must not carry the end onto the emitter.
-        origin = sp.position + (entering ? -sp.normal : sp.normal) * sp.offset;
+        // On from the boundary, aimed again at the light.
+        start = sp.position;
+        skipped.x = hit.triangle;
         if (!toInfinity) {
-            vec3 toEnd = end - origin;
+            vec3 toEnd = end - start;
             if (dot(toEnd, direction) <= 0.0f) {
                 return tr;
             }
             distance = length(toEnd);
             direction = toEnd / distance;
         }
-        leadIn = spawnLeadIn(sp.offset, sp.normal, direction);
     }
     flagTruncatedLoop();
     return vec3(0.0f);
@@ -190,7 +187,7 @@ void addRecordedTransmittanceGradients(vec3 weight, MediumLengths lengths, Track
 // MediumLengths keeps is traced a second time for them, with the same random numbers, by
 // the same code in a loop: on a CPU device a shader's code runs where it stands, whether
 // any lane takes it or not, and a second call would run a whole trace for every ray.
-vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, float leadIn, float leadOut, uint medium,
+vec3 tracedShadowTransmittance(vec3 start, vec3 direction, float distance, uvec2 skipped, float leadOut, uint medium,
                                vec3 perUnitTransmittance, TrackingRandom random, TrackingRandom gradientPoints) {
     vec3 tr = vec3(0.0f);
     vec3 gradientWeight = vec3(0.0f);  // 0 for the first trace
@@ -200,7 +197,7 @@ vec3 tracedShadowTransmittance(vec3 origin, vec3 direction, float distance, floa
         TrackingRandom tracking = random;
         TrackingRandom points = gradientPoints;
         vec3 traced =
-            shadowTransmittance(origin, direction, distance, leadIn, leadOut, medium, gradientWeight, lengths, tracking,
+            shadowTransmittance(start, direction, distance, skipped, leadOut, medium, gradientWeight, lengths, tracking,
                                 points);
         if (retrace) {
             break;

@@ -97,10 +97,10 @@ TEST_F(PunctualLightTest, PointLightIlluminatesAsInverseSquareTimesCosine) {
 
 // In a scene-wide absorbing medium, 1000 from the origin, the light reaching the camera
 // is the closed form times exp(-sigma_a) of the camera's distance to the plane point and
-// of the point's distance to the light, the whole of both: the shadow ray starts off the
-// plane and stops short of the light by a surface point's offset there (0.01), and its
-// segment counts both stretches (its lead-in and lead-out); skipping them would make
-// the plane 2 % dark. The points are rounded to a few units in the last place of their
+// of the point's distance to the light, the whole of both: the shadow ray starts on the
+// plane and stops short of the light by 1e-5 of its coordinates (0.01), and its segment
+// counts that stretch (its lead-out); skipping it, or a start 0.01 off the plane, would
+// make the plane 1 % dark each. The points are rounded to a few units in the last place of their
 // coordinates, sigma_a times that bounds the error.
 TEST_F(PunctualLightTest, PointLightInAnAbsorbingMediumFillingSpaceFarFromTheOrigin) {
     constexpr double kSigma = 2.0;
@@ -211,12 +211,13 @@ void expectDirectionalLight(const std::filesystem::path& dir, double alpha, std:
 }
 
 // Sunlight through an absorbing slab between the camera and the plane, 1000 from the
-// origin, where a surface's spawn offset is 0.01 long: every segment counts the stretch
-// its ray skipped at a boundary (spawnLeadIn), so a pixel is the sun's closed form times
-// exp(-sigma_a thickness / cos) along the shadow ray and along the camera's ray. The
-// points where the rays cross the slab's faces are rounded to a few units in the last
-// place of their coordinates: sigma_a times that over the cosine, at each of the four
-// crossings, bounds the error (a skipped offset would be about 4 % dark).
+// origin: rays go on from each boundary from the point they cross it (passing over its
+// triangle), so a pixel is the sun's closed form times exp(-sigma_a thickness / cos)
+// along the shadow ray and along the camera's ray. The points where the rays cross the
+// slab's faces are rounded to a few units in the last place of their coordinates:
+// sigma_a times that over the cosine, at each of the four crossings, bounds the error
+// (a ray going on from 1e-5 of the coordinates, 0.01, off each face would be about 4 %
+// dark).
 TEST_F(PunctualLightTest, SunlightThroughAnAbsorbingSlabFarFromTheOrigin) {
     constexpr double kAlpha = 0.5;
     constexpr double kSigma = 1.0;
