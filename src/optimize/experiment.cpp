@@ -16,6 +16,7 @@
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
+#include "scene/gltf_diagnostics.h"
 #include "scene/parameters.h"
 
 namespace vkdr {
@@ -197,13 +198,21 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
         options.learningRate = reader.positive(document["learning_rate"], "learning_rate");
     }
     if (document.contains("learning_rate_decay")) {
-        options.learningRateDecay = reader.positive(document["learning_rate_decay"], "learning_rate_decay");
-        if (options.learningRateDecay > 1.0) reader.fail("learning_rate_decay", "expected a number in (0, 1]");
+        const Json& decay = document["learning_rate_decay"];
+        if (!decay.is_number() ||
+            !(decay.get<double>() >= OptimizeOptions::kLeastLearningRateDecay && decay.get<double>() <= 1.0)) {
+            reader.fail("learning_rate_decay", "expected a number in [" +
+                                                   formatNumber(OptimizeOptions::kLeastLearningRateDecay) + ", 1]");
+        }
+        options.learningRateDecay = decay.get<double>();
     }
     if (document.contains("learning_rate_decay_start")) {
         const Json& start = document["learning_rate_decay_start"];
-        if (!start.is_number() || !(start.get<double>() >= 0.0 && start.get<double>() < 1.0)) {
-            reader.fail("learning_rate_decay_start", "expected a number in [0, 1)");
+        if (!start.is_number() ||
+            !(start.get<double>() >= 0.0 && start.get<double>() <= OptimizeOptions::kMostLearningRateDecayStart)) {
+            reader.fail("learning_rate_decay_start", "expected a number in [0, " +
+                                                         formatNumber(OptimizeOptions::kMostLearningRateDecayStart) +
+                                                         "]");
         }
         options.learningRateDecayStart = start.get<double>();
     }
@@ -229,13 +238,21 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
             options.learningRates[name] = reader.positive(rate, "learning_rates." + name);
         }
     }
-    try {
-        if (document.contains("optimizer")) {
-            options.optimizer = parseOptimizerKind(reader.string(document["optimizer"], "optimizer"));
+    if (document.contains("optimizer")) {
+        const std::string name = reader.string(document["optimizer"], "optimizer");
+        try {
+            options.optimizer = parseOptimizerKind(name);
+        } catch (const Error& e) {
+            reader.fail("optimizer", e.what());
         }
-        if (document.contains("loss")) experiment.loss = parseLossKind(reader.string(document["loss"], "loss"));
-    } catch (const Error& e) {
-        reader.fail("", e.what());
+    }
+    if (document.contains("loss")) {
+        const std::string name = reader.string(document["loss"], "loss");
+        try {
+            experiment.loss = parseLossKind(name);
+        } catch (const Error& e) {
+            reader.fail("loss", e.what());
+        }
     }
     if (document.contains("parameters")) {
         options.parameters = reader.strings(document["parameters"], "parameters");

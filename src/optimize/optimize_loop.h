@@ -28,9 +28,12 @@ struct OptimizeOptions {
     // learningRateDecayStart * (iterations - 1) to 1 at the last iteration. Below 1 it damps
     // the noise-driven wandering around the minimum that a constant rate keeps up.
     double learningRateDecay = 1.0;
+    static constexpr double kLeastLearningRateDecay = 1e-9;
     // The fraction of the iterations that run at the full rate before the decay starts,
-    // in [0, 1): the values can travel to the minimum first, then settle on it.
+    // up to kMostLearningRateDecayStart: the values can travel to the minimum first, then
+    // settle on it.
     double learningRateDecayStart = 0.0;
+    static constexpr double kMostLearningRateDecayStart = 0.999;
     // The weights of the priors (optimize/grid_priors.h) added to the loss for every
     // density grid optimised; 0 for none.
     double smoothness = 0.0;

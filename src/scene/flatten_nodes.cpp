@@ -404,6 +404,28 @@ std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model,
     return {roots, "nodes"};
 }
 
+// glTF gives a node one place, as a root of the scene or as a child of one node. A node
+// listed in several is rendered at each, as an instance; say so, since it is more often
+// a slip than meant.
+void warnOfNodesPlacedTwice(const tinygltf::Model& model, const std::vector<int>& roots, const std::string& rootsField,
+                            GltfDiagnostics& diagnostics) {
+    std::vector<uint32_t> places(model.nodes.size(), 0);
+    auto count = [&](int node) {
+        if (node >= 0 && size_t(node) < places.size()) ++places[size_t(node)];
+    };
+    for (int root : roots) count(root);
+    for (const tinygltf::Node& node : model.nodes) {
+        for (int child : node.children) count(child);
+    }
+    for (size_t n = 0; n < places.size(); ++n) {
+        if (places[n] > 1) {
+            diagnostics.warn(indexed("nodes", n), "listed " + std::to_string(places[n]) + " times in " + rootsField +
+                                                      " and the nodes' children; glTF gives a node one place, and "
+                                                      "it is rendered at each");
+        }
+    }
+}
+
 }  // namespace
 
 glm::mat4 localTransform(const tinygltf::Node& node) {
@@ -429,6 +451,7 @@ glm::mat4 localTransform(const tinygltf::Node& node) {
 std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnostics& diagnostics,
                                        Scene& scene) {
     auto [roots, field] = rootNodes(model, diagnostics);
+    warnOfNodesPlacedTwice(model, roots, field, diagnostics);
     NodeFlattener flattener(model, diagnostics, scene, field);
     for (size_t r = 0; r < roots.size(); ++r) {
         flattener.visit(roots[r], glm::mat4(1.0f), {-1, r});

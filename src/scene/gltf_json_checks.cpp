@@ -122,10 +122,12 @@ void requireNumbers(const json& object, const std::string& field, const std::str
     }
 }
 
+bool isWholeNumber(const json& value) {
+    return value.is_number() && value.get<double>() >= 0.0 && value.get<double>() == std::floor(value.get<double>());
+}
+
 void requireIndex(const json& value, const std::string& field, const GltfDiagnostics& diagnostics) {
-    bool index = value.is_number() && value.get<double>() >= 0.0 &&
-                 value.get<double>() == std::floor(value.get<double>());
-    if (!index) {
+    if (!isWholeNumber(value)) {
         diagnostics.fail(field, "expected an index (a whole number >= 0), got " + describeValue(value));
     }
 }
@@ -133,6 +135,26 @@ void requireIndex(const json& value, const std::string& field, const GltfDiagnos
 void requireIndexMember(const json& object, const std::string& field, const std::string& key,
                         const GltfDiagnostics& diagnostics) {
     if (object.contains(key)) requireIndex(object[key], member(field, key), diagnostics);
+}
+
+// A byte offset or a primitive's mode, which tinygltf reads as its default where it is
+// negative, fractional or text: geometry from the wrong bytes, or drawn in the wrong mode.
+void requireWholeNumberMember(const json& object, const std::string& field, const std::string& key,
+                              const GltfDiagnostics& diagnostics) {
+    if (object.contains(key) && !isWholeNumber(object[key])) {
+        diagnostics.fail(member(field, key), "expected a whole number >= 0, got " + describeValue(object[key]));
+    }
+}
+
+// glTF's bounds on a buffer view's stride, which tinygltf words as if 4 did not divide 252.
+void checkByteStride(const json& view, const std::string& field, const GltfDiagnostics& diagnostics) {
+    if (!view.contains("byteStride")) return;
+    const json& stride = view["byteStride"];
+    if (!isWholeNumber(stride) || stride.get<double>() < 4.0 || stride.get<double>() > 252.0 ||
+        std::fmod(stride.get<double>(), 4.0) != 0.0) {
+        diagnostics.fail(member(field, "byteStride"),
+                         "must be a multiple of 4 from 4 to 252, got " + describeValue(stride));
+    }
 }
 
 // A number the loader needs above `bound`; absent is allowed where the schema allows it.
@@ -226,9 +248,10 @@ void checkMaterial(const json& material, const std::string& field, GltfDiagnosti
     }
 }
 
-void checkPrimitiveIndices(const json& primitive, const std::string& field, const GltfDiagnostics& diagnostics) {
+void checkPrimitiveMembers(const json& primitive, const std::string& field, const GltfDiagnostics& diagnostics) {
     if (!primitive.is_object()) return;
     for (const char* key : {"indices", "material"}) requireIndexMember(primitive, field, key, diagnostics);
+    requireWholeNumberMember(primitive, field, "mode", diagnostics);
     if (primitive.contains("attributes") && primitive["attributes"].is_object()) {
         for (const auto& [name, accessor] : primitive["attributes"].items()) {
             requireIndex(accessor, member(member(field, "attributes"), name), diagnostics);
@@ -314,7 +337,7 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
             diagnostics.fail(member(field, "primitives"), "a mesh needs an array of at least one primitive");
         }
         for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
-            checkPrimitiveIndices(mesh["primitives"][p], indexed(member(field, "primitives"), p), diagnostics);
+            checkPrimitiveMembers(mesh["primitives"][p], indexed(member(field, "primitives"), p), diagnostics);
         }
     });
     // tinygltf reads an index that is negative, fractional or text as "none" (a
@@ -332,11 +355,14 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
     });
     forEachEntry(document, "accessors", [&](const json& accessor, const std::string& field) {
         requireIndexMember(accessor, field, "bufferView", diagnostics);
+        requireWholeNumberMember(accessor, field, "byteOffset", diagnostics);
         // glTF's minimum; a primitive reading none would be dropped without a word.
         requireAbove(accessor, field, "count", 0.0, "0", diagnostics);
     });
     forEachEntry(document, "bufferViews", [&](const json& view, const std::string& field) {
         requireIndexMember(view, field, "buffer", diagnostics);
+        requireWholeNumberMember(view, field, "byteOffset", diagnostics);
+        checkByteStride(view, field, diagnostics);
     });
     forEachEntry(document, "textures", [&](const json& texture, const std::string& field) {
         for (const char* key : {"source", "sampler"}) requireIndexMember(texture, field, key, diagnostics);

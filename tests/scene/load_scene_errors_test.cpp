@@ -373,6 +373,23 @@ TEST(LoadSceneErrors, IndicesThatAreNotWholeNumbersAreRefusedEverywhere) {
     expectLoadError(changed([](json& d) { d["bufferViews"][0]["buffer"] = -1; }), {"bufferViews[0].buffer", expected});
     expectLoadError(changed([](json& d) { d["materials"][0]["emissiveTexture"] = {{"index", -1}}; }),
                     {"materials[0].emissiveTexture.index", expected});
+    // Offsets and modes tinygltf would read as their defaults: vertices from another
+    // part of the buffer, or triangles instead of a strip.
+    const std::string whole = "expected a whole number >= 0";
+    expectLoadError(changed([](json& d) { d["accessors"][0]["byteOffset"] = -12; }),
+                    {"accessors[0].byteOffset", whole + ", got -12"});
+    expectLoadError(changed([](json& d) { d["accessors"][0]["byteOffset"] = "12"; }),
+                    {"accessors[0].byteOffset", whole});
+    expectLoadError(changed([](json& d) { d["bufferViews"][0]["byteOffset"] = 1.5; }),
+                    {"bufferViews[0].byteOffset", whole});
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["mode"] = "5"; }),
+                    {"meshes[0].primitives[0].mode", whole});
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["mode"] = -1; }),
+                    {"meshes[0].primitives[0].mode", whole});
+    for (const json& stride : {json(-12), json("12"), json(2), json(300), json(14)}) {
+        expectLoadError(changed([&](json& d) { d["bufferViews"][0]["byteStride"] = stride; }),
+                        {"bufferViews[0].byteStride", "must be a multiple of 4 from 4 to 252"});
+    }
     // Valid glTF that the loader does not read: an accessor of zeros, without a buffer view.
     expectLoadError(changed([](json& d) { d["accessors"][0].erase("bufferView"); }), {"accessors[0]", "no bufferView"});
 }
@@ -457,6 +474,25 @@ TEST(LoadSceneErrors, VertexColoursAreIgnoredWithAWarning) {
         << loaded.warnings[0];
 }
 
+// glTF gives a node one place; a node listed in several is rendered at each, and said.
+TEST(LoadSceneErrors, ANodeListedTwiceIsNamedInAWarning) {
+    TemporaryDirectory directory;
+    GltfBuilder gltf;
+    gltf.addNode({{"mesh", gltf.addMesh("box", box(glm::vec3(-1.0f), glm::vec3(1.0f)))}});
+    gltf.document()["scenes"][0]["nodes"] = {0, 0};
+    LoadedScene loaded = loadScene(gltf.writeGltf(directory / "twice.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("nodes[0]: listed 2 times"), std::string::npos) << loaded.warnings[0];
+    EXPECT_EQ(loaded.scene.triangles.size(), 24u);
+
+    gltf.document()["scenes"][0]["nodes"] = {1, 2};
+    gltf.document()["nodes"].push_back({{"children", {0}}});
+    gltf.document()["nodes"].push_back({{"children", {0}}, {"translation", {3.0, 0.0, 0.0}}});
+    loaded = loadScene(gltf.writeGltf(directory / "two_parents.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("nodes[0]: listed 2 times"), std::string::npos) << loaded.warnings[0];
+}
+
 TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {
     TemporaryDirectory directory;
     const std::string lights = "extensions.KHR_lights_punctual.lights[0]";
@@ -506,6 +542,10 @@ TEST(LoadSceneErrors, PunctualLightWarnings) {
     const std::vector<std::string> sceneChecks = sceneWarnings(loaded.scene);
     ASSERT_EQ(sceneChecks.size(), 1u);
     EXPECT_EQ(sceneChecks[0], "light 'unplaced' is placed by no node and lights nothing");
+    // glTF wants a range above 0; one at or below is no more used.
+    loaded = loadScene(floorWithLights({{{"type", "point"}, {"range", -1.0}}}).writeGltf(directory / "negative.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("lights[0].range: ignored"), std::string::npos) << loaded.warnings[0];
 }
 
 }  // namespace
