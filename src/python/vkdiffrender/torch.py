@@ -14,10 +14,27 @@ replays the paths with random numbers independent of the forward image's: the gr
 is then free of the covariance between the image and its own derivative, the bias a
 nonlinear loss would otherwise get (docs/python.md, "Why the backward pass renders
 again").
+
+Each pass holds the scene's lock from setting the parameters to rendering with them, so
+that threads sharing a scene never render or differentiate each other's values.
 """
+import threading
+import weakref
+
 import torch
 
 __all__ = ["render"]
+
+_scene_locks = weakref.WeakKeyDictionary()
+_scene_locks_guard = threading.Lock()
+
+
+def _lock_of(scene):
+    with _scene_locks_guard:
+        lock = _scene_locks.get(scene)
+        if lock is None:
+            lock = _scene_locks[scene] = threading.Lock()
+        return lock
 
 
 def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8, camera="", paths_per_pass=0,
@@ -32,6 +49,12 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
     settings = dict(spp=spp, seed=seed, width=width, height=height, max_depth=max_depth, camera=camera,
                     paths_per_pass=paths_per_pass, equiangular=equiangular)
     names = list(parameters)
+    for name in names:
+        # torch.as_tensor copies a list's values and drops the graph of tensors in it.
+        if isinstance(parameters[name], (list, tuple)) and any(
+                isinstance(item, torch.Tensor) and item.requires_grad for item in parameters[name]):
+            raise TypeError(f"{name}: a list of tensors that require grad loses their gradients; "
+                            "pass torch.stack(...) of them instead")
     tensors = [torch.as_tensor(parameters[name]) for name in names]
     for name, tensor in zip(names, tensors):
         # Converting to float32 would drop an imaginary part with a mere warning.
@@ -43,20 +66,21 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
 class _Render(torch.autograd.Function):
     @staticmethod
     def forward(ctx, scene, names, settings, *tensors):
-        # A pass that fails (an unknown name, a value out of range, a bad keyword) leaves
-        # the scene as it found it.
-        before = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
-        try:
-            for name, tensor in zip(names, tensors):
-                scene[name] = tensor.detach().to("cpu", torch.float32).numpy()
-            image = scene.render(**settings)
-        except BaseException:
-            for name, value in before.items():
-                scene[name] = value
-            raise
-        # Every parameter, not only the tensors': the backward pass must differentiate the
-        # scene this pass rendered, whatever is set in between (another view, say).
-        ctx.values = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
+        with _lock_of(scene):
+            # A pass that fails (an unknown name, a value out of range, a bad keyword)
+            # leaves the scene as it found it.
+            before = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
+            try:
+                for name, tensor in zip(names, tensors):
+                    scene[name] = tensor.detach().to("cpu", torch.float32).numpy()
+                image = scene.render(**settings)
+            except BaseException:
+                for name, value in before.items():
+                    scene[name] = value
+                raise
+            # Every parameter, not only the tensors': the backward pass must differentiate
+            # the scene this pass rendered, whatever is set in between (another view, say).
+            ctx.values = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
         ctx.scene, ctx.names, ctx.settings = scene, names, settings
         ctx.tensor_shapes = [(tensor.shape, tensor.dtype, tensor.device) for tensor in tensors]
         device = tensors[0].device if tensors else torch.device("cpu")
@@ -68,10 +92,11 @@ class _Render(torch.autograd.Function):
         wanted = [name for name, needed in zip(ctx.names, ctx.needs_input_grad[3:]) if needed]
         if not wanted:
             return (None, None, None) + (None,) * len(ctx.names)
-        for name, value in ctx.values.items():
-            ctx.scene[name] = value
         adjoint = image_gradient.detach().to("cpu", torch.float32).contiguous().numpy()
-        gradients = ctx.scene.backpropagate(adjoint, wanted, **ctx.settings)
+        with _lock_of(ctx.scene):
+            for name, value in ctx.values.items():
+                ctx.scene[name] = value
+            gradients = ctx.scene.backpropagate(adjoint, wanted, **ctx.settings)
         results = []
         for name, (shape, dtype, device) in zip(ctx.names, ctx.tensor_shapes):
             if name not in gradients:
