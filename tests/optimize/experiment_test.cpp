@@ -100,6 +100,21 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
     experiment.erase("scene");
     expectReadError(scratch, experiment, {"missing \"scene\""});
 
+    // Named once, with the key.
+    for (auto [key, value] : {std::pair{"optimizer", json("newton")}, std::pair{"optimizer", json(5)},
+                              std::pair{"loss", json("l3")}, std::pair{"loss", json(2)}}) {
+        experiment = fogExperiment(scratch.path());
+        experiment[key] = value;
+        try {
+            readExperiment(writeExperiment(scratch, experiment));
+            ADD_FAILURE() << key << " " << value << " was read";
+        } catch (const Error& error) {
+            const std::string message = error.what();
+            EXPECT_NE(message.find("experiment.json: " + std::string(key) + ": "), std::string::npos) << message;
+            EXPECT_EQ(message.find("experiment.json", message.find("experiment.json") + 1), std::string::npos)
+                << message;
+        }
+    }
     experiment = fogExperiment(scratch.path());
     experiment["optimizer"] = "newton";
     expectReadError(scratch, experiment, {"experiment.json", "newton", "adam or sgd"});
@@ -137,6 +152,10 @@ TEST(Experiment, RejectsNumbersOutOfRangeNamingTheKeyAndTheRange) {
     expectRefused("iterations", 18446744073709551615u, {"[1, 1000000]"});
     expectRefused("spp", json::parse("100000000000000000000000000000"), {"[1, 1048576]"});
     expectRefused("learning_rate", 0.0, {"finite number > 0"});
+    // The command line's ranges (--lr-decay, --lr-decay-start).
+    expectRefused("learning_rate_decay", 1e-12, {"[1e-09, 1]"});
+    expectRefused("learning_rate_decay", 2.0, {"[1e-09, 1]"});
+    expectRefused("learning_rate_decay_start", 0.9999, {"[0, 0.999]"});
     expectRefused("adam_epsilon", -1e-8, {"finite number > 0"});
     expectRefused("learning_rates", {{"media/fog/sigma_a", -2.0}}, {"learning_rates.media/fog/sigma_a", "> 0"});
     expectRefused("start", {{"media/fog/sigma_a", 1e39}}, {"start.media/fog/sigma_a", "float range"});
