@@ -79,25 +79,15 @@ uint subgroupCopyOfSum(uint copyStride, uint first) {
 }
 
 // Adds the first `channels` of g to the sums first, first + 1, ... of this subgroup's
-// copy (copies `copyStride` sums apart; kGradientCopies in device_types.h). Most lanes of
-// a subgroup add to the same few parameters, so with kSubgroupGradientSums the lanes that
-// share `first` add together (addFixedPoint sums their digits first): the loop peels off
-// one distinct `first` per iteration. A call site must pass one buffer for all its lanes,
-// since the lanes are grouped by `first` alone.
+// copy (copies `copyStride` sums apart; kGradientCopies in device_types.h), each lane its
+// own terms. Lanes grouped by `first` with subgroup sums (one lane adding each group's
+// total) gave wrong gradients on an NVIDIA GPU, where the lanes of divergent code need
+// not run a loop's subgroup operations together, and saved under 5 % of its time there
+// (docs/performance.md, "NVIDIA H200").
 void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec4 g, uint channels) {
     uint sum = subgroupCopyOfSum(copyStride, first);
-    if (!kSubgroupGradientSums) {
-        for (uint c = 0u; c < channels; ++c) {
-            addFixedPointFromOneLane(gradients, sum + c * kFixedPointWordsPerSum, g[c]);
-        }
-        return;
-    }
-    for (;;) {
-        uint leader = subgroupBroadcastFirst(first);
-        if (first == leader) {
-            addFixedPoint(gradients, sum, g, channels);
-            break;
-        }
+    for (uint c = 0u; c < channels; ++c) {
+        addFixedPointFromOneLane(gradients, sum + c * kFixedPointWordsPerSum, g[c]);
     }
 }
 

@@ -58,11 +58,9 @@ void addFixedPoint(Int64Buffer sums, uint sum, vec4 x, uint channels) {
     }
 }
 
-// Adds x to the one sum at `sum` from this lane alone, with no subgroup operation: for
-// sums the lanes of a subgroup seldom share (a grid's voxels), where grouping the lanes
-// by sum would take one round per lane, and on a device whose lanes run one after
-// another (kSubgroupGradientSums). Integer additions are exact, so the total is the same
-// in any order.
+// Adds x to the one sum at `sum` from this lane alone, with no subgroup operation: the
+// gradients' additions, made in divergent code (addGradient). Integer additions are
+// exact, so the total is the same in any order.
 void addFixedPointFromOneLane(Int64Buffer sums, uint sum, float x) {
     addFixedPointSteps(sums, sum, fixedPointAdditionOf(fixedPointTerm(x)));
 }

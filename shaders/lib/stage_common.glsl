@@ -48,12 +48,6 @@ layout(constant_id = 7) const bool kEquiangularSampling = true;
 // The end of its queue that a stage with a pipeline for each end walks (kFrontEnd or
 // kBackEnd, queues.glsl): medium_sample and shade.
 layout(constant_id = 8) const uint kQueueEnd = 1u;
-// Whether the lanes of a subgroup that add to one gradient sum add their terms together
-// first, with subgroup reductions, so that one lane does the atomics (a GPU, whose lanes
-// would contend for the address), or each lane adds its own (a CPU device, whose lanes
-// run one after another, so that the reductions cost more than the atomics they save).
-// The sums are exact in either way, so the gradients have the same bits.
-layout(constant_id = 9) const bool kSubgroupGradientSums = true;
 
 #define P params.p
 

@@ -20,7 +20,7 @@ constexpr size_t kCachedRenderers = 4;
 bool sameView(const RenderSettings& a, const RenderSettings& b) {
     return a.camera == b.camera && a.width == b.width && a.height == b.height && a.spp == b.spp &&
            a.maxDepth == b.maxDepth && a.pathsPerPass == b.pathsPerPass &&
-           a.equiangularSampling == b.equiangularSampling && a.gradientSums == b.gradientSums;
+           a.equiangularSampling == b.equiangularSampling;
 }
 
 }  // namespace

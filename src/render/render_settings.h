@@ -27,13 +27,6 @@ struct RenderSettings {
     // the light (equiangular sampling, combined with the free flight's by MIS). Off: only the
     // free flight's collisions estimate direct light: cheaper, and noisier near lights.
     bool equiangularSampling = true;
-    // How the adjoint pass adds its lanes' gradients to their fixed-point sums; the
-    // gradients have the same bits either way (shaders/lib/stage_common.glsl,
-    // kSubgroupGradientSums). Auto: a subgroup's lanes together on a GPU, whose lanes would
-    // contend for one address, and each lane alone on a CPU device, where that is faster
-    // (docs/performance.md).
-    enum class GradientSums { Auto, PerSubgroup, PerLane };
-    GradientSums gradientSums = GradientSums::Auto;
 };
 
 }  // namespace vkdr

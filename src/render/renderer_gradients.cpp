@@ -11,19 +11,6 @@
 #include "vk/dispatch_timer.h"
 
 namespace vkdr {
-namespace {
-
-// RenderSettings::GradientSums for this device: a subgroup's lanes add together on a
-// GPU, each lane alone on a CPU device (docs/performance.md, "What the code does for
-// speed").
-bool addsGradientsPerSubgroup(const VulkanContext& context, RenderSettings::GradientSums sums) {
-    if (sums == RenderSettings::GradientSums::Auto) {
-        return context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
-    }
-    return sums == RenderSettings::GradientSums::PerSubgroup;
-}
-
-}  // namespace
 
 DerivativeTargets DerivativeTargets::of(std::initializer_list<ParameterKind> wanted) {
     DerivativeTargets targets{0};
@@ -84,8 +71,7 @@ void Renderer::compileGradientPipelines(uint32_t kinds) {
     MediaFeatures media = media_;
     media.emission = media.emission || DerivativeTargets{kinds}.wants(ParameterKind::MediumEmission);
     if (!pipelines_.gradient || pipelines_.gradient->kinds != kinds || pipelines_.gradient->media != media) {
-        pipelines_.gradient = std::make_unique<GradientPipelines>(
-            context_, kinds, media, addsGradientsPerSubgroup(context_, settings_.gradientSums));
+        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, kinds, media);
     }
 }
 

@@ -28,13 +28,12 @@ namespace {
 
 // The pipeline of a stage; of a stage with an adjoint variant, the primal or the adjoint one
 // for the gradients of `gradientKinds`, for the media features `media` (specialization
-// constants 0 to 7 of shaders/lib/stage_common.glsl), for the end of its queue it walks
-// (constant 8: medium_sample and shade), and adding gradients a subgroup's lanes together
-// or each lane alone (constant 9). The dispatch timer's scope, not the name, tells the
-// variants apart.
+// constants 0 to 7 of shaders/lib/stage_common.glsl), and for the end of its queue it
+// walks (constant 8: medium_sample and shade). The dispatch timer's scope, not the name,
+// tells the variants apart.
 ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool adjoint = false,
                               uint32_t gradientKinds = 0, MediaFeatures media = {},
-                              uint32_t queueEnd = gpu::kBackEnd, bool subgroupGradientSums = true) {
+                              uint32_t queueEnd = gpu::kBackEnd) {
     const StageInfo& info = stageInfo(stage);
     assert(info.hasAdjointVariant || !adjoint);
     std::vector<uint32_t> specialization;
@@ -43,33 +42,27 @@ ComputePipeline stagePipeline(const VulkanContext& context, Stage stage, bool ad
                           media.densityGrids ? 1u : 0u,  media.emission ? 1u : 0u,
                           media.emissionGrids ? 1u : 0u, media.albedoGrids ? 1u : 0u,
                           media.anyMedium ? 1u : 0u,     media.equiangularSampling ? 1u : 0u,
-                          queueEnd,                      subgroupGradientSums ? 1u : 0u};
+                          queueEnd};
     }
     return ComputePipeline(context, info.name, stageSpirv(stage), sizeof(PushConstants), specialization);
 }
 
 }  // namespace
 
-PathStages::PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media,
-                       bool subgroupGradientSums)
+PathStages::PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media)
     : generate(stagePipeline(context, Stage::Generate, adjoint, gradientKinds, media)),
-      mediumSampleInVacuum(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, MediaFeatures{},
-                                         gpu::kBackEnd, subgroupGradientSums)),
-      shadeSurfaces(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kBackEnd,
-                                  subgroupGradientSums)),
-      shadow(stagePipeline(context, Stage::Shadow, adjoint, gradientKinds, media, gpu::kBackEnd,
-                           subgroupGradientSums)) {
+      mediumSampleInVacuum(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, MediaFeatures{})),
+      shadeSurfaces(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media)),
+      shadow(stagePipeline(context, Stage::Shadow, adjoint, gradientKinds, media)) {
     if (media.anyMedium) {
-        mediumSampleInMedia.emplace(stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, media,
-                                                  gpu::kFrontEnd, subgroupGradientSums));
-        shadeMedia.emplace(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kFrontEnd,
-                                         subgroupGradientSums));
+        mediumSampleInMedia.emplace(
+            stagePipeline(context, Stage::MediumSample, adjoint, gradientKinds, media, gpu::kFrontEnd));
+        shadeMedia.emplace(stagePipeline(context, Stage::Shade, adjoint, gradientKinds, media, gpu::kFrontEnd));
     }
 }
 
-GradientPipelines::GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media,
-                                     bool subgroupGradientSums)
-    : kinds(gradientKinds), media(media), adjoint(context, true, gradientKinds, media, subgroupGradientSums),
+GradientPipelines::GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media)
+    : kinds(gradientKinds), media(media), adjoint(context, true, gradientKinds, media),
       loss(stagePipeline(context, Stage::Loss)),
       gradientValues(stagePipeline(context, Stage::GradientValues)) {}
 

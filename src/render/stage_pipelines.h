@@ -34,11 +34,9 @@ struct MediaFeatures {
 
 // The stages that follow a path (render/stages.h), compiled once as primal and once as
 // adjoint pipelines; the adjoint ones add the gradients of `gradientKinds` (bit
-// 1 << ParameterKind) alone, a subgroup's lanes together or each lane alone
-// (RenderSettings::GradientSums).
+// 1 << ParameterKind) alone.
 struct PathStages {
-    PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media,
-               bool subgroupGradientSums = true);
+    PathStages(const VulkanContext& context, bool adjoint, uint32_t gradientKinds, MediaFeatures media);
 
     // medium_sample and shade have a pipeline for each end of their queue (queues.glsl):
     // the back's (rays in vacuum, surface vertices) always, the front's (rays in a
@@ -54,8 +52,7 @@ struct PathStages {
 // What only differentiation needs; compiled on first use, since a plain render
 // should not pay for it, and again for other kinds of gradient or media features.
 struct GradientPipelines {
-    GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media,
-                      bool subgroupGradientSums);
+    GradientPipelines(const VulkanContext& context, uint32_t gradientKinds, MediaFeatures media);
 
     uint32_t kinds;  // the kinds of parameter whose gradients the adjoint stages add
     MediaFeatures media;

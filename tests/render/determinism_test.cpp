@@ -121,33 +121,5 @@ TEST_F(DeterminismTest, ARenderDoesNotDependOnWhatTheRendererDifferentiates) {
     EXPECT_NE(evaluation.image.rgb, notScattering.renderWithGradients().image.rgb);
 }
 
-// The adjoint pass adds a subgroup's lanes together on a GPU and each lane alone on a CPU
-// device (RenderSettings::GradientSums): fixed-point sums are exact, so both give the
-// same bits, here for every kind of parameter the scene has (its media's and materials').
-TEST_F(DeterminismTest, GradientsAddedPerLaneArePerSubgroupGradients) {
-    Scene scene = loadScene(smokeInGlowingBox(glm::vec3(2.0f)).write(tempDir(), "scene")).scene;
-    Bvh bvh = buildBvh(scene.positions, scene.triangles);
-    RenderSettings settings{.width = 12, .height = 8, .spp = 4, .maxDepth = 4, .seed = 3};
-    const Image target = Renderer(testContext(), scene, bvh, settings).render();
-    scene.media[0].sigma_s = glm::vec3(1.0f, 1.5f, 2.5f);
-    scene.media[0].g = 0.1f;
-    auto gradients = [&](RenderSettings::GradientSums sums) {
-        settings.gradientSums = sums;
-        Renderer renderer(testContext(), scene, bvh, settings);
-        renderer.enableGradients(target, LossKind::L2, DerivativeTargets{});
-        return renderer.renderWithGradients().gradients;
-    };
-    const SceneGradients perLane = gradients(RenderSettings::GradientSums::PerLane);
-    const SceneGradients perSubgroup = gradients(RenderSettings::GradientSums::PerSubgroup);
-    EXPECT_EQ(perLane.media, perSubgroup.media);
-    EXPECT_EQ(perLane.baseColors, perSubgroup.baseColors);
-    EXPECT_EQ(perLane.emissions, perSubgroup.emissions);
-    for (uint32_t component : {gpu::kMediumGradientSigmaA, gpu::kMediumGradientSigmaS, gpu::kMediumGradientG}) {
-        EXPECT_NE(perLane.media[component], 0.0f) << "medium gradient component " << component;
-    }
-    EXPECT_NE(perLane.baseColors[0], 0.0f);
-    EXPECT_NE(perLane.emissions[0], 0.0f);
-}
-
 }  // namespace
 }  // namespace vkdr::test
