@@ -123,7 +123,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
 // allocation, its share of the bytes per path and its upload follow from it
 // (src/render/path_buffers.h). Arrays of every render:
 #define VKDR_PATH_ARRAYS(X) \
-    X(rayOrigin, Vec4Buffer)          /* xyz: where the segment starts; w: the triangle it leaves (uint bits, storeRay) */ \
+    X(rayOrigin, Vec4Buffer)          /* xyz: segment start; w: the triangle it leaves (uint bits) */ \
     X(rayDirection, Vec4Buffer)       /* xyz, unit length */ \
     X(beta, Vec4Buffer)               /* rgb path throughput / pdf */ \
     X(radiance, Vec4Buffer)           /* rgb radiance gathered so far; L_rem in the adjoint pass */ \

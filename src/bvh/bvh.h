@@ -46,7 +46,7 @@ struct RayHit {
     float b1, b2;       // barycentrics of vertices 1 and 2
 };
 
-// Moller-Trumbore with the same conventions as shaders/lib/intersect_triangle.glsl.
+// The watertight test of shaders/lib/intersect_triangle.glsl, formula for formula.
 // Two-sided; hits with t in (0, tMax). The returned hit's triangle is 0: the caller
 // knows which triangle it tested.
 std::optional<RayHit> intersectTriangle(const glm::vec3& origin, const glm::vec3& direction,

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "bvh/bvh.h"
@@ -38,23 +39,65 @@ struct BoxRay {
     }
 };
 
+
+// a * b - c * d with one rounding (Kahan's algorithm with fused multiply-adds).
+float differenceOfProducts(float a, float b, float c, float d) {
+    float cd = c * d;
+    return std::fma(a, b, -cd) + std::fma(-c, d, cd);
+}
+
+// n machine epsilons' worth of relative rounding, bounded (pbrt's gamma).
+float roundingGamma(float n) {
+    constexpr float kUnitRoundoff = 5.9604645e-8f;  // 2^-24
+    return n * kUnitRoundoff / (1.0f - n * kUnitRoundoff);
+}
+
 }  // namespace
 
 std::optional<RayHit> intersectTriangle(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& v0,
                                         const glm::vec3& v1, const glm::vec3& v2, float tMax) {
-    glm::vec3 e1 = v1 - v0;
-    glm::vec3 e2 = v2 - v0;
-    glm::vec3 p = glm::cross(direction, e2);
-    float det = glm::dot(e1, p);
+    glm::vec3 a = glm::abs(direction);
+    int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    int kx = kz == 2 ? 0 : kz + 1;
+    int ky = kx == 2 ? 0 : kx + 1;
+    glm::vec3 d(direction[kx], direction[ky], direction[kz]);
+    glm::vec3 r0 = v0 - origin, r1 = v1 - origin, r2 = v2 - origin;
+    glm::vec3 p0(r0[kx], r0[ky], r0[kz]);
+    glm::vec3 p1(r1[kx], r1[ky], r1[kz]);
+    glm::vec3 p2(r2[kx], r2[ky], r2[kz]);
+    float sx = -d.x / d.z, sy = -d.y / d.z, sz = 1.0f / d.z;
+    p0.x += sx * p0.z;
+    p0.y += sy * p0.z;
+    p1.x += sx * p1.z;
+    p1.y += sy * p1.z;
+    p2.x += sx * p2.z;
+    p2.y += sy * p2.z;
+    float e0 = differenceOfProducts(p1.x, p2.y, p1.y, p2.x);
+    float e1 = differenceOfProducts(p2.x, p0.y, p2.y, p0.x);
+    float e2 = differenceOfProducts(p0.x, p1.y, p0.y, p1.x);
+    if ((e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f)) return std::nullopt;
+    float det = e0 + e1 + e2;
     if (det == 0.0f || !std::isfinite(det)) return std::nullopt;
-    float inv = 1.0f / det;
-    glm::vec3 s = origin - v0;
-    float b1 = glm::dot(s, p) * inv;
-    glm::vec3 q = glm::cross(s, e1);
-    float b2 = glm::dot(direction, q) * inv;
-    float t = glm::dot(e2, q) * inv;
-    if (b1 >= 0.0f && b2 >= 0.0f && b1 + b2 <= 1.0f && t > 0.0f && t < tMax) return RayHit{t, 0, b1, b2};
-    return std::nullopt;
+    p0.z *= sz;
+    p1.z *= sz;
+    p2.z *= sz;
+    float tScaled = e0 * p0.z + e1 * p1.z + e2 * p2.z;
+    if (det < 0.0f ? (tScaled >= 0.0f || tScaled < tMax * det) : (tScaled <= 0.0f || tScaled > tMax * det)) {
+        return std::nullopt;
+    }
+    float invDet = 1.0f / det;
+    float t = tScaled * invDet;
+    float maxZ = std::max({std::abs(p0.z), std::abs(p1.z), std::abs(p2.z)});
+    float maxX = std::max({std::abs(p0.x), std::abs(p1.x), std::abs(p2.x)});
+    float maxY = std::max({std::abs(p0.y), std::abs(p1.y), std::abs(p2.y)});
+    float deltaZ = roundingGamma(3.0f) * maxZ;
+    float deltaX = roundingGamma(5.0f) * (maxX + maxZ);
+    float deltaY = roundingGamma(5.0f) * (maxY + maxZ);
+    float deltaE = 2.0f * (roundingGamma(2.0f) * maxX * maxY + deltaY * maxX + deltaX * maxY);
+    float maxE = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+    float deltaT = 3.0f * (roundingGamma(3.0f) * maxE * maxZ + deltaE * maxZ + deltaZ * maxE) * std::abs(invDet);
+    if (!(t > deltaT) || !(t < tMax)) return std::nullopt;
+    return RayHit{t, 0, e1 * invDet, e2 * invDet};
 }
 
 std::optional<RayHit> closestHit(const Bvh& bvh, std::span<const glm::vec3> positions,

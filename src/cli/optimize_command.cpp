@@ -318,11 +318,13 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
     overrides.learningRateDecay =
         command->add_option("--lr-decay", options->optimize.learningRateDecay,
                             "The learning rate at the last iteration as a fraction of --lr (exponential decay)")
-            ->default_val(options->optimize.learningRateDecay)->check(finiteNumberIn(OptimizeOptions::kLeastLearningRateDecay, 1.0));
+            ->default_val(options->optimize.learningRateDecay)
+            ->check(finiteNumberIn(OptimizeOptions::kLeastLearningRateDecay, 1.0));
     overrides.learningRateDecayStart =
         command->add_option("--lr-decay-start", options->optimize.learningRateDecayStart,
                             "The fraction of the iterations run at the full rate before the decay starts")
-            ->default_val(options->optimize.learningRateDecayStart)->check(finiteNumberIn(0.0, OptimizeOptions::kMostLearningRateDecayStart));
+            ->default_val(options->optimize.learningRateDecayStart)
+            ->check(finiteNumberIn(0.0, OptimizeOptions::kMostLearningRateDecayStart));
     overrides.logParameters =
         command->add_option("--log-param", options->optimize.logParameters,
                             "Optimise this parameter (one of the --param, positive) as the logarithm of its value: "

@@ -60,12 +60,14 @@ double roundingTolerance(const TestMesh& slab, double cosine = std::cos(0.5 * kY
     return kFilmRounding + sigmaMax * 2.0 * kUnitsInTheLastPlace * largest / cosine;
 }
 
-void expectBeerLambert(const Image& image, double tolerance) {
-    expectPixelsMatch(image, kSpp, tolerance, [](int x, int y) {
+// Each pixel against the closed form at 16 x 16 points of it, for the path length
+// `path(x, y)` through the medium at image position (x, y) in pixels.
+void expectBeerLambert(const Image& image, double tolerance, double (*path)(double, double) = slabPath) {
+    expectPixelsMatch(image, kSpp, tolerance, [path](int x, int y) {
         constexpr int kSub = 16;
         std::vector<double> distances;
         for (int s = 0; s < kSub * kSub; ++s) {
-            distances.push_back(slabPath(x + (s % kSub + 0.5) / kSub, y + (s / kSub + 0.5) / kSub));
+            distances.push_back(path(x + (s % kSub + 0.5) / kSub, y + (s / kSub + 0.5) / kSub));
         }
         return absorbedEmitter(glm::dvec3(kLe), glm::dvec3(kSigmaA), distances);
     });
@@ -157,14 +159,7 @@ TEST_F(BeerLambertTest, APrismFarFromTheOriginKeepsItsTransmittance) {
         const Image image = renderFile(file, {.width = kSide, .height = kSide, .spp = kSpp, .maxDepth = 4});
         // The rays cross the prism's faces at 45 degrees, give or take half the field of view.
         const double tolerance = roundingTolerance(scene.meshes[1], std::cos(std::numbers::pi / 4.0 + kYfov));
-        expectPixelsMatch(image, kSpp, tolerance, [](int x, int y) {
-            constexpr int kSub = 16;
-            std::vector<double> distances;
-            for (int s = 0; s < kSub * kSub; ++s) {
-                distances.push_back(prismPath(x + (s % kSub + 0.5) / kSub, y + (s / kSub + 0.5) / kSub));
-            }
-            return absorbedEmitter(glm::dvec3(kLe), glm::dvec3(kSigmaA), distances);
-        });
+        expectBeerLambert(image, tolerance, prismPath);
     }
 }
 
