@@ -238,22 +238,17 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
             options.learningRates[name] = reader.positive(rate, "learning_rates." + name);
         }
     }
-    if (document.contains("optimizer")) {
-        const std::string name = reader.string(document["optimizer"], "optimizer");
+    // A name read by `parse`, whose error is given with the file and the key.
+    auto parsedName = [&](const char* key, auto parse) {
+        const std::string name = reader.string(document[key], key);
         try {
-            options.optimizer = parseOptimizerKind(name);
+            return parse(name);
         } catch (const Error& e) {
-            reader.fail("optimizer", e.what());
+            reader.fail(key, e.what());
         }
-    }
-    if (document.contains("loss")) {
-        const std::string name = reader.string(document["loss"], "loss");
-        try {
-            experiment.loss = parseLossKind(name);
-        } catch (const Error& e) {
-            reader.fail("loss", e.what());
-        }
-    }
+    };
+    if (document.contains("optimizer")) options.optimizer = parsedName("optimizer", parseOptimizerKind);
+    if (document.contains("loss")) experiment.loss = parsedName("loss", parseLossKind);
     if (document.contains("parameters")) {
         options.parameters = reader.strings(document["parameters"], "parameters");
     } else {
