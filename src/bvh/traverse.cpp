@@ -39,7 +39,6 @@ struct BoxRay {
     }
 };
 
-
 // a * b - c * d with one rounding (Kahan's algorithm with fused multiply-adds).
 float differenceOfProducts(float a, float b, float c, float d) {
     float cd = c * d;

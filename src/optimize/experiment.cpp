@@ -104,6 +104,14 @@ public:
         return value.get<double>();
     }
 
+    // A number in [minimum, maximum], as the command line's finiteNumberIn takes it.
+    double numberIn(const Json& value, const std::string& key, double minimum, double maximum) const {
+        if (!value.is_number() || !(value.get<double>() >= minimum && value.get<double>() <= maximum)) {
+            fail(key, "expected a number in [" + formatNumber(minimum) + ", " + formatNumber(maximum) + "]");
+        }
+        return value.get<double>();
+    }
+
     // Parameter values and camera coordinates are floats.
     float finiteFloat(const Json& value, const std::string& key) const {
         if (!value.is_number() || !(std::abs(value.get<double>()) <= double(std::numeric_limits<float>::max()))) {
@@ -198,23 +206,13 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
         options.learningRate = reader.positive(document["learning_rate"], "learning_rate");
     }
     if (document.contains("learning_rate_decay")) {
-        const Json& decay = document["learning_rate_decay"];
-        if (!decay.is_number() ||
-            !(decay.get<double>() >= OptimizeOptions::kLeastLearningRateDecay && decay.get<double>() <= 1.0)) {
-            reader.fail("learning_rate_decay", "expected a number in [" +
-                                                   formatNumber(OptimizeOptions::kLeastLearningRateDecay) + ", 1]");
-        }
-        options.learningRateDecay = decay.get<double>();
+        options.learningRateDecay = reader.numberIn(document["learning_rate_decay"], "learning_rate_decay",
+                                                    OptimizeOptions::kLeastLearningRateDecay, 1.0);
     }
     if (document.contains("learning_rate_decay_start")) {
-        const Json& start = document["learning_rate_decay_start"];
-        if (!start.is_number() ||
-            !(start.get<double>() >= 0.0 && start.get<double>() <= OptimizeOptions::kMostLearningRateDecayStart)) {
-            reader.fail("learning_rate_decay_start", "expected a number in [0, " +
-                                                         formatNumber(OptimizeOptions::kMostLearningRateDecayStart) +
-                                                         "]");
-        }
-        options.learningRateDecayStart = start.get<double>();
+        options.learningRateDecayStart = reader.numberIn(document["learning_rate_decay_start"],
+                                                         "learning_rate_decay_start", 0.0,
+                                                         OptimizeOptions::kMostLearningRateDecayStart);
     }
     for (auto [key, weight] : {std::pair{"smoothness", &options.smoothness}, std::pair{"sparsity", &options.sparsity},
                                std::pair{"total_variation", &options.totalVariation}}) {
