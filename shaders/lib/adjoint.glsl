@@ -240,8 +240,8 @@ void addEmitterGradient(uint emitter, vec3 g) {
 }
 
 // g = dLoss/d(texture value at uv), spread over the texels the lookup blends.
-void addTexelGradients(int textureIndex, vec2 uv, vec3 g) {
-    BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
+void addTexelGradients(TextureMap map, vec2 uv, vec3 g) {
+    BilinearFootprint footprint = bilinearFootprint(map, uv);
     for (int corner = 0; corner < 4; ++corner) {
         addGradient(P.texelGradients, P.texelGradientsCopyStride, footprint.texel[corner] * kColorGradientStride,
                     g * footprint.weight[corner], 3u);
@@ -254,7 +254,7 @@ void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
     GpuMaterial m = P.materials.v[material];
     addBaseColorGradient(material, g * baseColorTexture(m, uv));
     if (gradientWanted(kGradientKindBaseColorTexture) && m.baseColorTexture >= 0) {
-        addTexelGradients(m.baseColorTexture, uv, g * m.baseColor.rgb);
+        addTexelGradients(baseColorMap(m), uv, g * m.baseColor.rgb);
     }
 }
 

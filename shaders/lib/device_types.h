@@ -187,6 +187,11 @@ const uint kQueueCount = 4u;
 const uint kFrontEnd = 0u;
 const uint kBackEnd = 1u;
 
+// Texture wrap modes (TextureWrap in src/scene/scene.h).
+const uint kWrapRepeat = 0u;
+const uint kWrapClampToEdge = 1u;
+const uint kWrapMirroredRepeat = 2u;
+
 struct GpuMaterial {
     vec4 baseColor;            // rgb: Lambertian albedo factor
     vec4 emission;             // rgb: emitted radiance
@@ -194,6 +199,10 @@ struct GpuMaterial {
     int emissionTexture;       // index into the texture table, -1: none
     int interiorMedium;        // >= 0: pass-through boundary around media[i]
     uint doubleSided;          // 1: emits from both sides
+    // Each texture's uv transform: u' = dot(xyz of row 0, (u, v, 1)), v' = with row 1.
+    vec4 baseColorUvRows[2];
+    vec4 emissionUvRows[2];
+    uvec4 wrap;                // kWrap*: base colour along u, along v; emission along u, along v
 };
 
 // A punctual light as placed in the scene (Scene::lightPlacements, with its light's values).

@@ -54,24 +54,65 @@ bool isOpaque(uint triangle) {
     return P.materials.v[P.triangleInfo.v[triangle].material].interiorMedium < 0;
 }
 
-// i mod n for negative i too (GLSL leaves % of negative operands undefined).
-ivec2 wrapRepeat(ivec2 i, ivec2 n) {
-    return i - n * ivec2(floor(vec2(i) / vec2(n)));
+// How a material looks up one of its textures: the uv transform's rows and the wrap
+// modes along u and v.
+struct TextureMap {
+    int texture;               // index into the texture table, -1: none
+    vec4 uRow;
+    vec4 vRow;
+    uvec2 wrap;
+};
+
+TextureMap baseColorMap(GpuMaterial m) {
+    return TextureMap(m.baseColorTexture, m.baseColorUvRows[0], m.baseColorUvRows[1], m.wrap.xy);
 }
 
-// The four texels a bilinear lookup with repeat wrapping blends, and their weights;
-// uv (0, 0) is the top-left corner of the image. The adjoint spreads a texture value's
-// gradient over the same texels with the same weights.
+TextureMap emissionMap(GpuMaterial m) {
+    return TextureMap(m.emissionTexture, m.emissionUvRows[0], m.emissionUvRows[1], m.wrap.zw);
+}
+
+// A texture coordinate brought into one period of its wrap mode in float, before it is
+// scaled to texels: far from [0, 1) (|uv| up to float's range is valid glTF) a texel
+// coordinate would leave int range. Where float holds only whole periods (beyond about
+// 2^24, or a transform's product beyond float's range) this is the corner, as at 0.
+float foldCoordinate(float x, uint wrap) {
+    if (wrap == kWrapClampToEdge) {
+        // Beyond [-1, 2] every texel of the footprint clamps to the same edge anyway.
+        return isnan(x) ? 0.0f : clamp(x, -1.0f, 2.0f);
+    }
+    if (isinf(x) || isnan(x)) {
+        return 0.0f;
+    }
+    return wrap == kWrapMirroredRepeat ? x - 2.0f * floor(0.5f * x) : fract(x);
+}
+
+// Texel index i of n along one axis, wrapped (GLSL leaves % of negative operands
+// undefined, hence floor division).
+int wrapTexel(int i, int n, uint wrap) {
+    if (wrap == kWrapClampToEdge) {
+        return clamp(i, 0, n - 1);
+    }
+    if (wrap == kWrapMirroredRepeat) {
+        int k = i - 2 * n * int(floor(float(i) / float(2 * n)));
+        return k < n ? k : 2 * n - 1 - k;
+    }
+    return i - n * int(floor(float(i) / float(n)));
+}
+
+// The four texels a bilinear lookup blends, and their weights; uv (0, 0) is the top-left
+// corner of the image. The adjoint spreads a texture value's gradient over the same
+// texels with the same weights.
 struct BilinearFootprint {
     uint texel[4];  // indices into P.texels
     vec4 weight;
 };
 
-BilinearFootprint bilinearFootprint(int textureIndex, vec2 uv) {
-    GpuTexture tex = P.textures.v[textureIndex];
-    // Repeat wrapping in float first: far from [0, 1) (|uv| up to float's range is valid
-    // glTF) the texel coordinate would leave int range.
-    vec2 st = fract(uv) * vec2(tex.width, tex.height) - 0.5f;
+BilinearFootprint bilinearFootprint(TextureMap map, vec2 uv) {
+    GpuTexture tex = P.textures.v[map.texture];
+    vec3 uv1 = vec3(uv, 1.0f);
+    vec2 folded = vec2(foldCoordinate(dot(map.uRow.xyz, uv1), map.wrap.x),
+                       foldCoordinate(dot(map.vRow.xyz, uv1), map.wrap.y));
+    vec2 st = folded * vec2(tex.width, tex.height) - 0.5f;
     vec2 cell = floor(st);
     vec2 f = st - cell;
     ivec2 size = ivec2(tex.width, tex.height);
@@ -79,16 +120,17 @@ BilinearFootprint bilinearFootprint(int textureIndex, vec2 uv) {
     BilinearFootprint footprint;
     for (int corner = 0; corner < 4; ++corner) {
         ivec2 offset = ivec2(corner & 1, corner >> 1);
-        // Clamped too: a coordinate interpolated beyond float range is NaN after fract.
-        ivec2 c = clamp(wrapRepeat(c0 + offset, size), ivec2(0), size - 1);
+        ivec2 c = ivec2(wrapTexel(c0.x + offset.x, size.x, map.wrap.x), wrapTexel(c0.y + offset.y, size.y, map.wrap.y));
+        // Clamped too, so that no rounding can read outside the texture's texels.
+        c = clamp(c, ivec2(0), size - 1);
         footprint.texel[corner] = tex.firstTexel + uint(c.y) * tex.width + uint(c.x);
         footprint.weight[corner] = (offset.x == 1 ? f.x : 1.0f - f.x) * (offset.y == 1 ? f.y : 1.0f - f.y);
     }
     return footprint;
 }
 
-vec3 textureLookup(int textureIndex, vec2 uv) {
-    BilinearFootprint footprint = bilinearFootprint(textureIndex, uv);
+vec3 textureLookup(TextureMap map, vec2 uv) {
+    BilinearFootprint footprint = bilinearFootprint(map, uv);
     vec3 sum = vec3(0.0f);
     for (int corner = 0; corner < 4; ++corner) {
         sum += footprint.weight[corner] * P.texels.v[footprint.texel[corner]].rgb;
@@ -102,7 +144,7 @@ vec3 emissionPerUnit(GpuMaterial m, vec3 normal, vec2 uv, vec3 toViewer) {
     if (m.doubleSided == 0u && dot(normal, toViewer) <= 0.0f) {
         return vec3(0.0f);
     }
-    return m.emissionTexture >= 0 ? textureLookup(m.emissionTexture, uv) : vec3(1.0f);
+    return m.emissionTexture >= 0 ? textureLookup(emissionMap(m), uv) : vec3(1.0f);
 }
 
 // Radiance leaving the surface towards `toViewer`.
@@ -112,7 +154,7 @@ vec3 emittedRadiance(GpuMaterial m, vec3 normal, vec2 uv, vec3 toViewer) {
 
 // The base colour texture's value (1 without a texture): albedo = baseColor * this.
 vec3 baseColorTexture(GpuMaterial m, vec2 uv) {
-    return m.baseColorTexture >= 0 ? textureLookup(m.baseColorTexture, uv) : vec3(1.0f);
+    return m.baseColorTexture >= 0 ? textureLookup(baseColorMap(m), uv) : vec3(1.0f);
 }
 
 vec3 sigmaT(GpuMedium medium) {

@@ -2,12 +2,16 @@
 #include <cstddef>
 
 #include "device_types.h"
+#include "scene/scene.h"
 #include "vk/commands.h"
 
 namespace vkdr::gpu {
 
-static_assert(sizeof(GpuMaterial) == 48);
-static_assert(offsetof(GpuMaterial, baseColorTexture) == 32);
+static_assert(sizeof(GpuMaterial) == 128);
+static_assert(offsetof(GpuMaterial, baseColorTexture) == 32 && offsetof(GpuMaterial, baseColorUvRows) == 48);
+static_assert(offsetof(GpuMaterial, wrap) == 112);
+static_assert(kWrapRepeat == uint32_t(TextureWrap::Repeat) && kWrapClampToEdge == uint32_t(TextureWrap::ClampToEdge) &&
+              kWrapMirroredRepeat == uint32_t(TextureWrap::MirroredRepeat));
 static_assert(sizeof(GpuMedium) == 64);
 static_assert(offsetof(GpuMedium, g) == 12 && offsetof(GpuMedium, sigma_s) == 16);
 static_assert(offsetof(GpuMedium, densityGrid) == 28 && offsetof(GpuMedium, emission) == 32);

@@ -27,8 +27,18 @@ uint32_t mediumIndex(int32_t medium) {
 std::vector<gpu::GpuMaterial> deviceMaterials(const Scene& scene) {
     std::vector<gpu::GpuMaterial> out;
     for (const Material& m : scene.materials) {
-        out.push_back({glm::vec4(m.baseColor, 0.0f), glm::vec4(m.emission, 0.0f), m.baseColorTexture,
-                       m.emissionTexture, m.interiorMedium, m.doubleSided ? 1u : 0u});
+        const TextureMapping& base = m.baseColorMapping;
+        const TextureMapping& emission = m.emissionMapping;
+        out.push_back({glm::vec4(m.baseColor, 0.0f),
+                       glm::vec4(m.emission, 0.0f),
+                       m.baseColorTexture,
+                       m.emissionTexture,
+                       m.interiorMedium,
+                       m.doubleSided ? 1u : 0u,
+                       {glm::vec4(base.uRow, 0.0f), glm::vec4(base.vRow, 0.0f)},
+                       {glm::vec4(emission.uRow, 0.0f), glm::vec4(emission.vRow, 0.0f)},
+                       glm::uvec4(uint32_t(base.wrapS), uint32_t(base.wrapT), uint32_t(emission.wrapS),
+                                  uint32_t(emission.wrapT))});
     }
     return out;
 }

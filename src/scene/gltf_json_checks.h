@@ -8,8 +8,7 @@
 namespace vkdr {
 
 // Whether the loader reads `extension`, or loses only detail without it (with a warning):
-// the extensions whose JSON is checked, and, but for KHR_texture_transform, that a file
-// may require.
+// the extensions whose JSON is checked, and that a file may require.
 bool isUnderstoodExtension(std::string_view extension);
 
 // Refuses, naming the field, what tinygltf would read without a word as something else:

@@ -117,14 +117,18 @@ void readMaterials(const tinygltf::Model& model, GltfDiagnostics& diagnostics, S
         material.baseColor = rgbFromFactor(diagnostics, source.pbrMetallicRoughness.baseColorFactor,
                                            baseColorField);
         requireRange(diagnostics, material.baseColor, 0.0f, 1.0f, baseColorField);
-        material.baseColorTexture = textures.textureFor(
-            source.pbrMetallicRoughness.baseColorTexture, field + ".pbrMetallicRoughness.baseColorTexture");
+        const auto baseColorMap = textures.textureFor(source.pbrMetallicRoughness.baseColorTexture,
+                                                      field + ".pbrMetallicRoughness.baseColorTexture");
+        material.baseColorTexture = baseColorMap.texture;
+        material.baseColorMapping = baseColorMap.mapping;
 
         if (!source.emissiveFactor.empty()) {
             material.emission = emission(source, i, diagnostics);
         }
         material.emitter = material.isEmissive();
-        material.emissionTexture = textures.textureFor(source.emissiveTexture, field + ".emissiveTexture");
+        const auto emissionMap = textures.textureFor(source.emissiveTexture, field + ".emissiveTexture");
+        material.emissionTexture = emissionMap.texture;
+        material.emissionMapping = emissionMap.mapping;
         scene.materials.push_back(std::move(material));
     }
 }

@@ -3,8 +3,12 @@
 #include <cmath>
 #include <cstring>
 
+#include "scene/gltf_values.h"
+
 namespace vkdr {
 namespace {
+
+constexpr const char* kTransformExtension = "KHR_texture_transform";
 
 // Channel i of texel `texel`, scaled to [0, 1], for 8- and 16-bit images.
 float channel(const tinygltf::Image& image, size_t texel, int i) {
@@ -34,9 +38,11 @@ float srgbToLinear(float encoded) {
                                : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
-int32_t SrgbTextureCache::textureFor(const tinygltf::TextureInfo& info, std::string_view field) {
+SrgbTextureCache::MappedTexture SrgbTextureCache::textureFor(const tinygltf::TextureInfo& info,
+                                                              std::string_view field) {
+    MappedTexture mapped;
     if (info.index < 0) {
-        return -1;
+        return mapped;
     }
     std::string indexField = std::string(field) + ".index";
     if (size_t(info.index) >= model_.textures.size()) {
@@ -44,12 +50,19 @@ int32_t SrgbTextureCache::textureFor(const tinygltf::TextureInfo& info, std::str
                                           " out of range (" +
                                           std::to_string(model_.textures.size()) + " textures)");
     }
-    if (info.texCoord != 0) {
-        diagnostics_.warn(std::string(field) + ".texCoord",
-                          "only TEXCOORD_0 is read; the texture is looked up with it");
+    // The transform's texCoord, where it has one, replaces the texture's.
+    std::string texCoordField = std::string(field) + ".texCoord";
+    double texCoord = info.texCoord;
+    if (auto transform = info.extensions.find(kTransformExtension); transform != info.extensions.end()) {
+        const std::string transformField = std::string(field) + ".extensions." + kTransformExtension;
+        mapped.mapping = transformOf(transform->second, transformField);
+        if (transform->second.Has("texCoord")) {
+            texCoordField = member(transformField, "texCoord");
+            texCoord = readNumber(diagnostics_, transform->second, transformField, "texCoord", 0.0);
+        }
     }
-    if (info.extensions.count("KHR_texture_transform")) {
-        diagnostics_.warn(field, "KHR_texture_transform is ignored");
+    if (texCoord != 0.0) {
+        diagnostics_.warn(texCoordField, "only TEXCOORD_0 is read; the texture is looked up with it");
     }
     const tinygltf::Texture& texture = model_.textures[size_t(info.index)];
     std::string textureField = indexed("textures", size_t(info.index));
@@ -65,13 +78,43 @@ int32_t SrgbTextureCache::textureFor(const tinygltf::TextureInfo& info, std::str
                                   std::to_string(model_.samplers.size()) + " samplers)");
         }
         const tinygltf::Sampler& sampler = model_.samplers[size_t(texture.sampler)];
-        if (sampler.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT ||
-            sampler.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT) {
-            diagnostics_.warn(indexed("samplers", size_t(texture.sampler)),
-                              "only repeat wrapping is supported; textures repeat");
-        }
+        std::string samplerField = indexed("samplers", size_t(texture.sampler));
+        mapped.mapping.wrapS = wrapOf(sampler.wrapS, samplerField, "wrapS");
+        mapped.mapping.wrapT = wrapOf(sampler.wrapT, samplerField, "wrapT");
     }
-    return decodedImage(texture.source);
+    mapped.texture = decodedImage(texture.source);
+    return mapped;
+}
+
+TextureWrap SrgbTextureCache::wrapOf(int mode, const std::string& samplerField, const char* key) const {
+    switch (mode) {
+        case TINYGLTF_TEXTURE_WRAP_REPEAT: return TextureWrap::Repeat;
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::MirroredRepeat;
+        default:
+            diagnostics_.fail(member(samplerField, key),
+                              "must be 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT), got " +
+                                  std::to_string(mode));
+    }
+}
+
+// KHR_texture_transform: uv' = translation(offset) * rotation * scale * uv, where the
+// rotation takes (u, v) to (cos r u + sin r v, -sin r u + cos r v): counter-clockwise in
+// texture space, whose v runs down (glTF issue 1563; as Blender, Babylon.js and Khronos'
+// sample viewer and TextureTransformTest model have it; the GLSL in the extension's text
+// turns the other way).
+TextureMapping SrgbTextureCache::transformOf(const tinygltf::Value& transform, const std::string& field) const {
+    if (!transform.IsObject()) {
+        diagnostics_.fail(field, "expected an object");
+    }
+    const glm::vec2 offset = readVec2(diagnostics_, transform, field, "offset", glm::vec2(0.0f));
+    const double rotation = readNumber(diagnostics_, transform, field, "rotation", 0.0);
+    const glm::vec2 scale = readVec2(diagnostics_, transform, field, "scale", glm::vec2(1.0f));
+    const float c = float(std::cos(rotation)), s = float(std::sin(rotation));
+    TextureMapping mapping;
+    mapping.uRow = glm::vec3(c * scale.x, s * scale.y, offset.x);
+    mapping.vRow = glm::vec3(-s * scale.x, c * scale.y, offset.y);
+    return mapping;
 }
 
 int32_t SrgbTextureCache::decodedImage(int imageIndex) {

@@ -23,12 +23,19 @@ public:
                      std::vector<Texture>& textures)
         : model_(model), diagnostics_(diagnostics), textures_(textures) {}
 
-    // Index into Scene::textures, or -1 when `info` references no texture. `field` is
-    // the path of `info`, e.g. "materials[0].pbrMetallicRoughness.baseColorTexture".
-    int32_t textureFor(const tinygltf::TextureInfo& info, std::string_view field);
+    // Index into Scene::textures, or -1 when `info` references no texture, and how it
+    // is looked up (its sampler's wrap modes and KHR_texture_transform). `field` is the
+    // path of `info`, e.g. "materials[0].pbrMetallicRoughness.baseColorTexture".
+    struct MappedTexture {
+        int32_t texture = -1;
+        TextureMapping mapping;
+    };
+    MappedTexture textureFor(const tinygltf::TextureInfo& info, std::string_view field);
 
 private:
     int32_t decodedImage(int imageIndex);
+    TextureWrap wrapOf(int mode, const std::string& samplerField, const char* key) const;
+    TextureMapping transformOf(const tinygltf::Value& transform, const std::string& field) const;
 
     const tinygltf::Model& model_;
     GltfDiagnostics& diagnostics_;

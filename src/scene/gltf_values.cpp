@@ -59,6 +59,20 @@ glm::vec3 readRgbOrScalar(const GltfDiagnostics& diagnostics, const tinygltf::Va
     return rgb;
 }
 
+glm::vec2 readVec2(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
+                   std::string_view field, const std::string& key, glm::vec2 fallback) {
+    if (!object.Has(key)) {
+        return fallback;
+    }
+    const tinygltf::Value& value = object.Get(key);
+    std::string path = member(field, key);
+    if (!value.IsArray() || value.ArrayLen() != 2) {
+        diagnostics.fail(path, "expected an array of 2 numbers");
+    }
+    return glm::vec2(float(finiteNumber(diagnostics, value.Get(0), indexed(path, 0))),
+                     float(finiteNumber(diagnostics, value.Get(1), indexed(path, 1))));
+}
+
 std::string readString(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
                        std::string_view field, const std::string& key,
                        const std::string& fallback) {

@@ -21,6 +21,10 @@ double readNumber(const GltfDiagnostics& diagnostics, const tinygltf::Value& obj
 glm::vec3 readRgbOrScalar(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
                           std::string_view field, const std::string& key, glm::vec3 fallback);
 
+// An array of exactly two numbers.
+glm::vec2 readVec2(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
+                   std::string_view field, const std::string& key, glm::vec2 fallback);
+
 std::string readString(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
                        std::string_view field, const std::string& key,
                        const std::string& fallback);

@@ -17,9 +17,7 @@ namespace {
 void requireUnderstoodExtensions(const tinygltf::Model& model, const GltfDiagnostics& diagnostics) {
     for (size_t i = 0; i < model.extensionsRequired.size(); ++i) {
         const std::string& name = model.extensionsRequired[i];
-        // Texture transforms are read and ignored (with a warning): a file that requires
-        // them would have its textures misplaced.
-        if (!isUnderstoodExtension(name) || name == "KHR_texture_transform") {
+        if (!isUnderstoodExtension(name)) {
             diagnostics.fail(indexed("extensionsRequired", i), name + " is not supported");
         }
     }

@@ -31,12 +31,27 @@ struct Texture {
     std::vector<glm::vec4> texels;
 };
 
+// What a texture is looked up with outside [0, 1]: glTF's sampler wrap modes.
+enum class TextureWrap : uint32_t { Repeat = 0, ClampToEdge = 1, MirroredRepeat = 2 };
+
+// How a material looks up one of its textures: the texture coordinates are transformed
+// (KHR_texture_transform: (u', v') = (dot(uRow, (u, v, 1)), dot(vRow, (u, v, 1)))), then
+// wrapped along each axis by the texture's sampler.
+struct TextureMapping {
+    glm::vec3 uRow{1.0f, 0.0f, 0.0f};
+    glm::vec3 vRow{0.0f, 1.0f, 0.0f};
+    TextureWrap wrapS = TextureWrap::Repeat;  // along u
+    TextureWrap wrapT = TextureWrap::Repeat;  // along v
+};
+
 struct Material {
     std::string name;                     // glTF name, or its index as text when unnamed
     glm::vec3 baseColor{1.0f};            // Lambertian albedo factor (linear RGB)
     int32_t baseColorTexture = -1;        // index into Scene::textures, multiplies baseColor
+    TextureMapping baseColorMapping;
     glm::vec3 emission{0.0f};             // emitted radiance: emissiveFactor * emissive_strength
     int32_t emissionTexture = -1;         // index into Scene::textures, multiplies emission
+    TextureMapping emissionMapping;
     bool doubleSided = false;             // emits from both sides when true, else the front only
     // Emits in the file as loaded: its emission is the parameter lights/<name>/emission,
     // whatever value that is later set to (0 included), so the names stay the same.

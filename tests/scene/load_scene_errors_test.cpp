@@ -275,10 +275,37 @@ TEST(LoadSceneErrors, UnsupportedRequiredExtension) {
     builder.document()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
     expectLoadError(builder.writeGltf(directory / "draco.gltf"),
                     {"extensionsRequired[0]", "KHR_draco_mesh_compression is not supported"});
-    // Ignored where only used (with a warning); required, the textures would be misplaced.
-    builder.document()["extensionsRequired"] = {"KHR_materials_volume", "KHR_texture_transform"};
-    expectLoadError(builder.writeGltf(directory / "transform.gltf"),
-                    {"extensionsRequired[1]", "KHR_texture_transform is not supported"});
+    builder.document()["extensionsRequired"] = {"KHR_materials_volume", "EXT_meshopt_compression"};
+    expectLoadError(builder.writeGltf(directory / "meshopt.gltf"),
+                    {"extensionsRequired[1]", "EXT_meshopt_compression is not supported"});
+}
+
+// A quad whose base colour texture has `sampler` and the texture transform `transform`.
+GltfBuilder quadWithTextureMapping(json sampler, json transform) {
+    GltfBuilder builder;
+    builder.document()["images"] = {
+        {{"uri", "data:image/bmp;base64," + base64(bmpImage(1, 1, {{255, 255, 255}}))}}};
+    builder.document()["samplers"] = {std::move(sampler)};
+    builder.document()["textures"] = {{{"source", 0}, {"sampler", 0}}};
+    int material = builder.addMaterial(
+        {{"pbrMetallicRoughness",
+          {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", std::move(transform)}}}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
+    return builder;
+}
+
+TEST(LoadSceneErrors, UnknownWrapModesAndMalformedTextureTransforms) {
+    TemporaryDirectory directory;
+    const std::string field = "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform";
+    expectLoadError(quadWithTextureMapping({{"wrapS", 33071}, {"wrapT", 1234}}, json::object())
+                        .writeGltf(directory / "wrap.gltf"),
+                    {"samplers[0].wrapT", "must be 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497"});
+    expectLoadError(quadWithTextureMapping(json::object(), {{"offset", {1.0}}}).writeGltf(directory / "offset.gltf"),
+                    {field + ".offset", "expected an array of 2 numbers"});
+    expectLoadError(quadWithTextureMapping(json::object(), {{"scale", {1.0, "2"}}}).writeGltf(directory / "scale.gltf"),
+                    {field + ".scale[1]", "expected a number"});
+    expectLoadError(quadWithTextureMapping(json::object(), {{"rotation", 1e39}}).writeGltf(directory / "rotation.gltf"),
+                    {field + ".rotation", "beyond float range"});
 }
 
 // A floor and the KHR_lights_punctual definitions `lights`, light 0 placed by a node.

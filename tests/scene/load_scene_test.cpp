@@ -144,6 +144,40 @@ TEST(LoadScene, DecodesSrgbTexturesWithTheTopRowFirst) {
     EXPECT_EQ(textured.emissionTexture, 0);
 }
 
+TEST(LoadScene, ReadsSamplerWrapModesAndTextureTransforms) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.document()["images"] = {
+        {{"uri", "data:image/bmp;base64," + base64(bmpImage(1, 1, {{255, 255, 255}}))}}};
+    builder.document()["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}}};
+    builder.document()["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 0}}};
+    // A quarter turn, a scale of (2, 3) and an offset of (0.5, 0.25) take (u, v) = (1, 0)
+    // to (0.5, -1.75): scaled to (2, 0), turned counter-clockwise in texture space (whose
+    // v runs down) to (0, -2), then moved.
+    json transform = {{"offset", {0.5, 0.25}}, {"rotation", std::acos(-1.0) / 2.0}, {"scale", {2, 3}}};
+    int material = builder.addMaterial(
+        {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+         {"emissiveFactor", {1, 1, 1}},
+         {"emissiveTexture", {{"index", 1}, {"extensions", {{"KHR_texture_transform", transform}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
+    builder.document()["extensionsRequired"] = {"KHR_texture_transform"};
+    Scene scene = loadScene(builder.writeGltf(directory / "mapping.gltf")).scene;
+
+    const Material& m = scene.materials[0];
+    EXPECT_EQ(m.baseColorMapping.wrapS, TextureWrap::ClampToEdge);
+    EXPECT_EQ(m.baseColorMapping.wrapT, TextureWrap::MirroredRepeat);
+    EXPECT_EQ(m.baseColorMapping.uRow, glm::vec3(1, 0, 0));
+    EXPECT_EQ(m.baseColorMapping.vRow, glm::vec3(0, 1, 0));
+    EXPECT_EQ(m.emissionMapping.wrapS, TextureWrap::Repeat);  // no sampler: repeat
+    EXPECT_EQ(m.emissionMapping.wrapT, TextureWrap::Repeat);
+    const glm::vec3 corner(1.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(glm::dot(m.emissionMapping.uRow, corner), 0.5f, 1e-6f);
+    EXPECT_NEAR(glm::dot(m.emissionMapping.vRow, corner), -1.75f, 1e-6f);
+    const glm::vec3 other(0.0f, 1.0f, 1.0f);  // (0, 3) turned to (3, 0), then moved
+    EXPECT_NEAR(glm::dot(m.emissionMapping.uRow, other), 3.5f, 1e-6f);
+    EXPECT_NEAR(glm::dot(m.emissionMapping.vRow, other), 0.25f, 1e-6f);
+}
+
 TEST(LoadScene, MultipliesEmissionByEmissiveStrength) {
     TemporaryDirectory directory;
     GltfBuilder builder;
