@@ -87,7 +87,7 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
         P.shadowScatterGradient.v[slot] = vec4(query.beta * dScatter * le * weight, dLogPhase);
         P.shadowEmissionGradient.v[slot] =
             vec4(query.beta * scatter * light.perUnit * weight, uintBitsToFloat(light.emitter));
-        P.shadowVertex.v[slot] = uvec4(query.vertexKind, query.index, adjoint.derivativeChannels, 0u);
+        P.shadowVertex.v[slot] = uvec4(query.vertexKind, query.index, derivativeChannels(adjoint), 0u);
     }
     queuePush(kQueueShadow, slot);
 }

@@ -52,9 +52,15 @@ void traceShadowRay() {
     beginReplay(slot);
     holdMediumGradients(medium);
     if (kAdjoint) {
-        // The derivative channels as they were at the vertex, before its continuation.
+        // The derivative channels as they were at the vertex, before its continuation
+        // (a channel never leaves derivative mode, nor changes the parameter it follows).
         // For this contribution only: the stage never stores the replay state back.
-        adjoint.derivativeChannels = P.shadowVertex.v[slot].z;
+        uint atVertex = P.shadowVertex.v[slot].z;
+        for (uint c = 0u; c < 3u; ++c) {
+            if ((atVertex & (1u << c)) == 0u) {
+                adjoint.targets[c] = kTargetNone;
+            }
+        }
     }
     vec4 ends = P.shadowEnds.v[slot];
     vec3 tr = tracedShadowTransmittance(startAndDistance.xyz, direction.xyz, startAndDistance.w,

@@ -7,8 +7,9 @@
 // radiance but not its derivative. The replay then keeps the channel going in
 // derivative mode: its throughput becomes the path's derivative with respect to that
 // one parameter (the factor replaced by its derivative), and what it later gathers is
-// added straight to that parameter's gradient. A path follows one such parameter; a
-// second zero factor makes the derivative zero, as it should.
+// added straight to that parameter's gradient. Each channel follows its own parameter
+// (a zero red base colour and a zero green sigma_s on one path are both followed); a
+// second zero factor in a channel makes its derivative zero, as it should.
 #ifndef VKDR_ADJOINT_GLSL
 #define VKDR_ADJOINT_GLSL
 #include "fixed_point_sums.glsl"
@@ -21,28 +22,33 @@ const uint kPendingBaseColor = 1u;        // Lambertian continuation weight (alb
 const uint kPendingPhaseG = 2u;           // phase-function continuation weight (pdf held fixed)
 
 struct AdjointState {
-    uint derivativeChannels;  // bit c: channel c is in derivative mode
-    uint targetKind;
-    uint targetIndex;
+    // Per channel, the parameter it follows in derivative mode: kTargetNone while the
+    // channel is in normal mode, else the kind (kTarget*) | the parameter's index << 2.
+    uvec3 targets;
     uint pending;             // pending kind | index << 8
 };
 
 AdjointState loadAdjointState(uint slot) {
     uvec4 v = P.adjointState.v[slot];
-    return AdjointState(v.x, v.y, v.z, v.w);
+    return AdjointState(v.xyz, v.w);
 }
 
 void storeAdjointState(uint slot, AdjointState s) {
-    P.adjointState.v[slot] = uvec4(s.derivativeChannels, s.targetKind, s.targetIndex, s.pending);
+    P.adjointState.v[slot] = uvec4(s.targets, s.pending);
 }
 
 vec3 derivativeMask(AdjointState s) {
-    return vec3((s.derivativeChannels & 1u) != 0u ? 1.0f : 0.0f, (s.derivativeChannels & 2u) != 0u ? 1.0f : 0.0f,
-                (s.derivativeChannels & 4u) != 0u ? 1.0f : 0.0f);
+    return vec3(notEqual(s.targets, uvec3(kTargetNone)));
 }
 
 vec3 normalMask(AdjointState s) {
     return vec3(1.0f) - derivativeMask(s);
+}
+
+// Bit c set where channel c is in derivative mode.
+uint derivativeChannels(AdjointState s) {
+    uvec3 inDerivativeMode = uvec3(notEqual(s.targets, uvec3(kTargetNone)));
+    return inDerivativeMode.x | inDerivativeMode.y << 1u | inDerivativeMode.z << 2u;
 }
 
 // dLoss/dI of the path's pixel, already divided by the samples per pixel; with a
@@ -258,12 +264,22 @@ void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
     }
 }
 
-// g = the gradient gathered by a path's derivative channels, for the parameter they follow.
+// g = the gradient gathered by a path's derivative channels: channel c's part goes to
+// the parameter it follows, once for all the channels that follow the same one.
 void addTargetGradient(vec3 g) {
-    if (adjoint.targetKind == kTargetMediumScattering) {
-        addSigmaSGradient(adjoint.targetIndex, g);
-    } else if (adjoint.targetKind == kTargetBaseColor) {
-        addBaseColorGradient(adjoint.targetIndex, g);
+    for (uint c = 0u; c < 3u; ++c) {
+        uint target = adjoint.targets[c];
+        bool followedByAnEarlierChannel = (c > 0u && adjoint.targets[0] == target) ||
+                                          (c > 1u && adjoint.targets[1] == target);
+        if (target == kTargetNone || followedByAnEarlierChannel) {
+            continue;
+        }
+        vec3 part = g * vec3(equal(adjoint.targets, uvec3(target)));
+        if ((target & 3u) == kTargetMediumScattering) {
+            addSigmaSGradient(target >> 2u, part);
+        } else {
+            addBaseColorGradient(target >> 2u, part);
+        }
     }
 }
 
@@ -301,14 +317,9 @@ vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind
     if (!wanted) {
         return betaAfter;  // no gradient of this kind is wanted: the path ends as in the primal pass
     }
-    bool sameTarget = adjoint.targetKind == kTargetNone ||
-                      (adjoint.targetKind == kind && adjoint.targetIndex == index);
     for (uint c = 0u; c < 3u; ++c) {
-        bool normal = (adjoint.derivativeChannels & (1u << c)) == 0u;
-        if (factor[c] == 0.0f && normal && sameTarget && derivative[c] != 0.0f) {
-            adjoint.derivativeChannels |= 1u << c;
-            adjoint.targetKind = kind;
-            adjoint.targetIndex = index;
+        if (factor[c] == 0.0f && adjoint.targets[c] == kTargetNone && derivative[c] != 0.0f) {
+            adjoint.targets[c] = kind | index << 2u;
             betaAfter[c] = derivative[c];
         }
     }

@@ -159,6 +159,33 @@ TEST_F(RenderTest, UnwantedZeroFactorsLeaveTheOtherGradientsAlone) {
     EXPECT_NE(all.parameters[3].gradient[1], 0.0);  // and the green base colour's
 }
 
+// Each channel of a path follows its own zero factor in derivative mode: a path whose
+// green channel follows the fog's green sigma_s (0) still finds, in its red channel, the
+// gradient of the walls' red base colour (0), and the other way round. So each
+// parameter's gradient estimates the same whether or not the other is asked for: their
+// means over seeds agree within 5 combined standard errors.
+TEST_F(RenderTest, ZeroFactorsInDifferentChannelsAreEachFollowed) {
+    Scene scene = loadScene(foggyRoom().write(tempDir(), "scene")).scene;
+    applyAssignment(scene, "media/fog/sigma_s=0.3,0,0.3");
+    applyAssignment(scene, "materials/walls/base_color=0,0.5,0.5");
+    Image grey{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.5f)};
+    auto overSeeds = [&](const std::vector<std::string>& names) {
+        RenderedLossGradient lg(testContext(), scene, {{"", grey}}, names, {.spp = 8, .maxDepth = 6}, LossKind::L2);
+        return gradientOverSeeds(lg, scene, 12);
+    };
+    const auto baseColorAlone = overSeeds({"materials/walls/base_color"});
+    const auto scatteringAlone = overSeeds({"media/fog/sigma_s"});
+    const auto both = overSeeds({"materials/walls/base_color", "media/fog/sigma_s"});
+    auto expectSame = [](const MeanAndError& alone, const MeanAndError& together, const char* what) {
+        EXPECT_NEAR(alone.mean, together.mean, 5.0 * std::hypot(alone.error, together.error))
+            << what << ": alone " << alone.mean << " +- " << alone.error << ", with the other " << together.mean
+            << " +- " << together.error;
+        EXPECT_GT(std::abs(alone.mean), 3.0 * alone.error) << what;
+    };
+    expectSame(baseColorAlone[0][0], both[0][0], "base_color[0]");
+    expectSame(scatteringAlone[0][1], both[1][1], "sigma_s[1]");
+}
+
 // A fog that scatters in no channel is passed through, weighted by its transmittance,
 // unless the gradient of sigma_s is wanted: only sampled collisions find that gradient
 // (derivative mode), so then the fog is sampled as any other. Both estimate the same
