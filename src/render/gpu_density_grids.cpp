@@ -19,10 +19,11 @@ constexpr uint64_t kGridShareOfDeviceMemory = 2;
 constexpr int32_t kLargestIndexCoordinate = 1 << 24;
 
 void requireFits(const VulkanContext& context, const SceneDensityGrid& placed, uint64_t valuesBefore) {
-    const glm::ivec3 first = placed.grid.firstVoxel;
-    const glm::ivec3 last = first + placed.grid.size - 1;
-    if (glm::any(glm::lessThan(first, glm::ivec3(-kLargestIndexCoordinate + 1))) ||
-        glm::any(glm::greaterThan(last, glm::ivec3(kLargestIndexCoordinate - 1)))) {
+    // In 64 bits: a box that ends at int32's largest coordinate would overflow.
+    const glm::i64vec3 first(placed.grid.firstVoxel);
+    const glm::i64vec3 last = first + glm::i64vec3(placed.grid.size) - int64_t(1);
+    if (glm::any(glm::lessThan(first, glm::i64vec3(-kLargestIndexCoordinate + 1))) ||
+        glm::any(glm::greaterThan(last, glm::i64vec3(kLargestIndexCoordinate - 1)))) {
         throw Error(placed.file.string() + ": grid '" + placed.grid.name + "' has voxels at index coordinates beyond " +
                     std::to_string(kLargestIndexCoordinate - 1) +
                     " in magnitude, which the renderer cannot address exactly; move its voxels nearer the origin");

@@ -1,7 +1,9 @@
 #include "scene/gltf_density_grids.h"
 
+#include <cmath>
 
 #include "core/error.h"
+#include "core/format_text.h"
 #include "scene/flatten_nodes.h"
 #include "scene/gltf_media.h"
 #include "scene/gltf_values.h"
@@ -43,10 +45,22 @@ glm::dmat4 nodeToWorld(const tinygltf::Model& model, int index, const std::strin
     return transform;
 }
 
-// The same rule as for the grid file's own transform, applied to where the node puts it.
+// The same rule as for the grid file's own transform, applied to where the node puts it;
+// and the renderer takes world to index coordinates in float, so the inverse must fit.
 void requireInvertible(const glm::dmat4& indexToWorld, const std::string& field, const GltfDiagnostics& diagnostics) {
+    const std::string what = "the grid's placement (the node's transform times the grid's own): ";
     if (std::string problem = indexTransformProblem(indexToWorld); !problem.empty()) {
-        diagnostics.fail(field, "the grid's placement (the node's transform times the grid's own): " + problem);
+        diagnostics.fail(field, what + problem);
+    }
+    const glm::dmat4 worldToIndex = glm::inverse(indexToWorld);
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 3; ++row) {
+            if (!std::isfinite(float(worldToIndex[column][row]))) {
+                diagnostics.fail(field, what + formatText("its inverse has an entry of %g, beyond float's range: "
+                                                          "the voxels are too small for the renderer",
+                                                          worldToIndex[column][row]));
+            }
+        }
     }
 }
 
@@ -66,6 +80,10 @@ int32_t readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& dens
     const std::string uri = readString(diagnostics, density, field, "uri", "");
     if (isDataUri(uri)) {
         diagnostics.fail(field + ".uri", "a grid must be a .vdb or .nvdb file, not a data: URI");
+    }
+    if (const std::string scheme = uriScheme(uri); !scheme.empty()) {
+        diagnostics.fail(field + ".uri", "'" + uri + "': URIs with a scheme (" + scheme +
+                                             ") are not read; give the grid file's path relative to the scene file");
     }
     const ResolvedFile resolved = files.resolveUri(uri);
     if (!resolved.problem.empty()) {

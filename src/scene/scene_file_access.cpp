@@ -10,17 +10,6 @@ namespace {
 constexpr const char* kOptOut = "; a scene reads only files in its own directory and below unless "
                                 "--allow-outside-files is given";
 
-// RFC 3986: a scheme is a letter, then letters, digits, '+', '-' or '.', then ':'.
-std::string schemeOf(const std::string& uri) {
-    if (uri.empty() || !std::isalpha(static_cast<unsigned char>(uri[0]))) return "";
-    for (size_t i = 1; i < uri.size(); ++i) {
-        unsigned char c = static_cast<unsigned char>(uri[i]);
-        if (c == ':') return uri.substr(0, i + 1);
-        if (!std::isalnum(c) && c != '+' && c != '-' && c != '.') return "";
-    }
-    return "";
-}
-
 bool isInside(const std::filesystem::path& file, const std::filesystem::path& directory) {
     std::filesystem::path relative = file.lexically_relative(directory);
     return !relative.empty() && *relative.begin() != "..";
@@ -35,6 +24,17 @@ int hexValue(char c) {
 
 }  // namespace
 
+// RFC 3986: a scheme is a letter, then letters, digits, '+', '-' or '.', then ':'.
+std::string uriScheme(const std::string& uri) {
+    if (uri.empty() || !std::isalpha(static_cast<unsigned char>(uri[0]))) return "";
+    for (size_t i = 1; i < uri.size(); ++i) {
+        unsigned char c = static_cast<unsigned char>(uri[i]);
+        if (c == ':') return uri.substr(0, i + 1);
+        if (!std::isalnum(c) && c != '+' && c != '-' && c != '.') return "";
+    }
+    return "";
+}
+
 SceneFiles::SceneFiles(const std::filesystem::path& sceneFile, SceneFileAccess access) : access_(access) {
     std::error_code ec;
     std::filesystem::path directory = std::filesystem::absolute(sceneFile, ec).parent_path();
@@ -43,7 +43,7 @@ SceneFiles::SceneFiles(const std::filesystem::path& sceneFile, SceneFileAccess a
 }
 
 ResolvedFile SceneFiles::resolveUri(const std::string& uri) const {
-    std::string scheme = schemeOf(uri);
+    std::string scheme = uriScheme(uri);
     if (!scheme.empty()) {
         return {{}, "'" + uri + "': URIs with a scheme (" + scheme + ") are not read; give a path relative to "
                     "the scene file, or a data: URI"};

@@ -146,7 +146,9 @@ DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridNa
     std::vector<std::string> names;
     for (auto name = vdb.beginName(); name != vdb.endName(); ++name) names.push_back(*name);
     const std::vector<std::string> named = vdbGridsNamed(gridName, names);
-    if (named.empty()) throw Error(noGridNamed(gridName, names));
+    // OpenVDB numbers names only where several grids share one: a lone 'density[1]' is
+    // that grid's own name, not a copy of 'density'.
+    if (named.empty() || (named.size() == 1 && named[0] != gridName)) throw Error(noGridNamed(gridName, names));
     if (named.size() > 1) {
         throw Error(severalGridsNamed(gridName, named.size(),
                                       "name one as OpenVDB does: '" + named[0] + "', '" + named[1] + "'..."));

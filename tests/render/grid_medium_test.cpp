@@ -1,10 +1,12 @@
 // Density grid media against closed forms: single scattering in a medium whose density
 // rises linearly along the view axis against quadrature (delta tracking of the camera
 // ray, ratio tracking of the light's), a constant grid against the homogeneous medium
-// it equals, absorption by a density ramp against Beer-Lambert (ratio tracking), and
+// it equals, absorption by a density ramp against Beer-Lambert (ratio tracking),
 // furnaces with heterogeneous conservative media: nested, and one whose majorant is so
-// loose that free flight pauses at its step bound and continues in the next segment.
+// loose that free flight pauses at its step bound and continues in the next segment;
+// and the refusals of what tracking cannot render right.
 #include <cmath>
+#include <limits>
 
 #include "bvh/bvh.h"
 #include "furnace_scene.h"
@@ -200,6 +202,26 @@ TEST_F(GridMediumTest, SegmentsTooLongToTrackRefuseTheRenderNamingTheMedium) {
         const std::string expected = "the density grid medium 'sparse' needed more than " +
                                      std::to_string(gpu::kMaxTransmittanceSteps) + " tracking steps";
         EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+}
+
+// The renderer addresses voxels by index coordinates in float, exact up to 2^24: a grid
+// reaching beyond is refused, including one whose box ends at int32's largest coordinate
+// (where its last index, computed in 32 bits, would wrap round).
+TEST_F(GridMediumTest, GridsBeyondTheExactIndexRangeAreRefused) {
+    Scene scene = loadScene(furnaceWithOneDenseVoxelPerCell(glm::vec3(0.5f), {.sigmaS = glm::vec3(1.0f)}, 0, 0.0f,
+                                                           tempDir()))
+                      .scene;
+    const Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    const int32_t width = scene.densityGrids[0].grid.size.x;
+    for (int32_t lastX : {(1 << 24), std::numeric_limits<int32_t>::max()}) {
+        scene.densityGrids[0].grid.firstVoxel.x = lastX - width + 1;
+        try {
+            Renderer(testContext(), scene, bvh, {.width = 4, .height = 4, .spp = 1, .maxDepth = 1}).render();
+            ADD_FAILURE() << "a grid ending at x = " << lastX << " was rendered";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("index coordinates beyond 16777215"), std::string::npos) << e.what();
+        }
     }
 }
 

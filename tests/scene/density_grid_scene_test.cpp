@@ -126,6 +126,9 @@ TEST(DensityGridScene, BadReferencesNameTheField) {
     sheared.document()["nodes"][1] = {{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 1, 1, 1e-9, 0, 0, 0, 0, 1}}};
     expectLoadError(sheared.writeGltf(directory / "sheared.gltf"), {field, "placement", "singular"});
     expectLoadError(write({{"uri", "../smoke.vdb"}}), {field + ".uri", "outside"});
+    expectLoadError(write({{"uri", "file:///smoke.vdb"}}), {field + ".uri", "(file:) are not read", "relative"});
+    // Voxels so small that world-to-index coordinates leave float's range.
+    expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 1}}, 1e-40), {field, "placement", "beyond float's range"});
 }
 
 // An emission grid: its own entry among the grids, white emission unless given, its own

@@ -71,6 +71,11 @@ TEST(DensityGridErrors, NoGridOfThatNameListsTheNames) {
     expectReadError(directory / "two.vdb", "density", {"no grid named 'density'", "'smoke'", "'fire'"});
     writeDensityGridNanoVdb(directory / "smoke.nvdb", smoke);
     expectReadError(directory / "smoke.nvdb", "density", {"no grid named 'density'", "'smoke'"});
+    // OpenVDB numbers names only where grids share one: a lone 'density[1]' is its own name.
+    smoke.name = "density[1]";
+    openvdb::io::File((directory / "bracket.vdb").string()).write(openvdb::GridPtrVec{openVdbGrid(smoke)});
+    expectReadError(directory / "bracket.vdb", "density", {"no grid named 'density'", "'density[1]'"});
+    EXPECT_EQ(readDensityGrid(directory / "bracket.vdb", "density[1]").size, glm::ivec3(2));
 }
 
 // Which of several grids of one name is meant is not known: refused, naming them as
