@@ -1,10 +1,10 @@
 #include "cli/target_views.h"
 
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <system_error>
 
+#include "cli/warnings.h"
 #include "core/error.h"
 #include "image/finite_pixels.h"
 #include "image/image.h"
@@ -72,6 +72,10 @@ TargetView readTarget(const std::string& argument, const Scene& scene) {
     if (std::optional<std::string> pixel = unrepresentablePixel(target)) {
         throw Error("--target " + argument + ": " + *pixel);
     }
+    if (std::optional<std::string> negative = negativePixels(target)) {
+        printWarning("--target " + argument + ": " + *negative +
+                     "; a render is never negative, so the loss cannot reach 0 there");
+    }
     return {camera, std::move(target)};
 }
 
@@ -83,10 +87,8 @@ std::vector<TargetView> readTargets(const std::vector<std::string>& arguments, c
         const std::string& camera = views.back().camera.empty() ? scene.cameras.front().name : views.back().camera;
         auto [earlier, first] = argumentOfCamera.emplace(camera, argument);
         if (!first) {
-            std::fprintf(stderr,
-                         "warning: --target %s and --target %s both view camera '%s': the loss compares its one "
-                         "render with both\n",
-                         earlier->second.c_str(), argument.c_str(), camera.c_str());
+            printWarning("--target " + earlier->second + " and --target " + argument + " both view camera '" +
+                         camera + "': the loss compares its one render with both");
         }
     }
     return views;

@@ -1,5 +1,6 @@
 #include "image/finite_pixels.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -37,6 +38,22 @@ std::optional<std::string> unrepresentablePixel(const Image& image) {
         }
     }
     return std::nullopt;
+}
+
+std::optional<std::string> negativePixels(const Image& image) {
+    size_t count = 0;
+    float least = 0.0f;
+    for (float value : image.rgb) {
+        if (value < 0.0f) {
+            ++count;
+            least = std::min(least, value);
+        }
+    }
+    if (count == 0) {
+        return std::nullopt;
+    }
+    return std::to_string(count) + (count == 1 ? " channel value is" : " channel values are") + " below 0 (the least " +
+           valueText(least) + ")";
 }
 
 }  // namespace vkdr

@@ -17,4 +17,9 @@ inline constexpr float kMaxPixelMagnitude = 1e18f;
 // is none.
 std::optional<std::string> unrepresentablePixel(const Image& image);
 
+// How many channel values are below 0, and the least, as "12 channel values are below 0
+// (the least -0.31)"; nullopt when none is. No render has such pixels, so a target that
+// does cannot be matched there.
+std::optional<std::string> negativePixels(const Image& image);
+
 }  // namespace vkdr

@@ -148,6 +148,16 @@ TEST_F(NumberChecksTest, TwoTargetsOfOneCameraWarnOnce) {
     EXPECT_NE(r.err.find("both view camera 'camera'"), std::string::npos) << r.err;
 }
 
+TEST_F(NumberChecksTest, ATargetWithNegativePixelsIsWarnedOf) {
+    const fs::path target = targetWith(-0.31f, 3, 4, 2);
+    RunResult r = run("grad " + fog() + " --target " + target.string() + " --param media/fog/g --spp 1");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(count(r.err, "warning: "), 1u) << r.err;
+    EXPECT_NE(r.err.find("--target " + target.string() + ": 1 channel value is below 0 (the least -0.31)"),
+              std::string::npos)
+        << r.err;
+}
+
 TEST_F(NumberChecksTest, ASceneWithoutLightWarnsAfterTheOverrides) {
     RunResult dark = run("render " + fog() + " --width 8 --height 8 --spp 1 --set lights/light/emission=0 -o " +
                          (dir_ / "dark.exr").string());
