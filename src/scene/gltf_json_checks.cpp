@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <string>
 
@@ -29,6 +30,9 @@ constexpr std::array<std::string_view, 10> kSceneMediumMembers = {
 constexpr std::array<std::string_view, 5> kGridReferenceMembers = {"uri", "grid", "node", "extensions", "extras"};
 constexpr std::array<std::string_view, 3> kBackgroundMembers = {"radiance", "extensions", "extras"};
 constexpr std::array<std::string_view, 3> kGridReferences = {"density", "emissionGrid", "albedoGrid"};
+constexpr const char* kTextureTransformExtension = "KHR_texture_transform";
+constexpr std::array<std::string_view, 6> kTextureTransformMembers = {"offset",   "rotation",   "scale",
+                                                                      "texCoord", "extensions", "extras"};
 
 // A rotation whose length is further than this from 1 is not an exporter's rounding.
 constexpr double kUnitQuaternionTolerance = 1e-3;
@@ -122,13 +126,22 @@ void requireNumbers(const json& object, const std::string& field, const std::str
     }
 }
 
-bool isWholeNumber(const json& value) {
-    return value.is_number() && value.get<double>() >= 0.0 && value.get<double>() == std::floor(value.get<double>());
+// tinygltf reads an integer member only where the JSON writes it as an integer (1, not
+// 1.0), and casts indices, modes and wrap modes to int: anything else gives the member's
+// default, or a wrapped value. Byte offsets it reads as 64-bit.
+constexpr int64_t kLargestInt = std::numeric_limits<int32_t>::max();
+
+bool isWholeNumber(const json& value, int64_t most = kLargestInt) {
+    return value.is_number_integer() && value.get<int64_t>() >= 0 && value.get<int64_t>() <= most;
+}
+
+std::string wholeNumberUpTo(int64_t most) {
+    return "an integer from 0 to " + std::to_string(most) + ", without a decimal point";
 }
 
 void requireIndex(const json& value, const std::string& field, const GltfDiagnostics& diagnostics) {
     if (!isWholeNumber(value)) {
-        diagnostics.fail(field, "expected an index (a whole number >= 0), got " + describeValue(value));
+        diagnostics.fail(field, "expected an index (" + wholeNumberUpTo(kLargestInt) + "), got " + describeValue(value));
     }
 }
 
@@ -137,12 +150,13 @@ void requireIndexMember(const json& object, const std::string& field, const std:
     if (object.contains(key)) requireIndex(object[key], member(field, key), diagnostics);
 }
 
-// A byte offset or a primitive's mode, which tinygltf reads as its default where it is
-// negative, fractional or text: geometry from the wrong bytes, or drawn in the wrong mode.
+// A byte offset, a primitive's mode or a sampler's wrap mode, which tinygltf reads as its
+// default where it is negative, fractional or text: geometry from the wrong bytes, drawn
+// in the wrong mode, or a texture repeated where it should be clamped.
 void requireWholeNumberMember(const json& object, const std::string& field, const std::string& key,
-                              const GltfDiagnostics& diagnostics) {
-    if (object.contains(key) && !isWholeNumber(object[key])) {
-        diagnostics.fail(member(field, key), "expected a whole number >= 0, got " + describeValue(object[key]));
+                              const GltfDiagnostics& diagnostics, int64_t most = kLargestInt) {
+    if (object.contains(key) && !isWholeNumber(object[key], most)) {
+        diagnostics.fail(member(field, key), "expected " + wholeNumberUpTo(most) + ", got " + describeValue(object[key]));
     }
 }
 
@@ -221,12 +235,28 @@ void checkCamera(const json& camera, const std::string& field, const GltfDiagnos
     }
 }
 
-// The `index` of a texture reference (`baseColorTexture` and the like) in `object`.
-void requireTextureIndex(const json& object, const std::string& field, const char* key,
-                         const GltfDiagnostics& diagnostics) {
-    if (object.contains(key) && object[key].is_object()) {
-        requireIndexMember(object[key], member(field, key), "index", diagnostics);
+// A texture reference (`baseColorTexture` and the like) in `object`: its `index` and
+// `texCoord`, and its KHR_texture_transform, whose empty or misspelt members tinygltf
+// would drop for their defaults.
+void checkTextureReference(const json& object, const std::string& field, const char* key,
+                           GltfDiagnostics& diagnostics) {
+    if (!object.contains(key) || !object[key].is_object()) return;
+    const json& reference = object[key];
+    const std::string referenceField = member(field, key);
+    requireIndexMember(reference, referenceField, "index", diagnostics);
+    requireIndexMember(reference, referenceField, "texCoord", diagnostics);
+    requireObjectExtensions(reference, referenceField, diagnostics);
+    if (!reference.contains("extensions") || !reference["extensions"].contains(kTextureTransformExtension)) return;
+    const json& transform = reference["extensions"][kTextureTransformExtension];
+    const std::string transformField = member(member(referenceField, "extensions"), kTextureTransformExtension);
+    checkOwnMembers(transform, transformField, kTextureTransformMembers, diagnostics);
+    requireNumbers(transform, transformField, "offset", 2, diagnostics);
+    requireNumbers(transform, transformField, "scale", 2, diagnostics);
+    if (transform.contains("rotation") && !transform["rotation"].is_number()) {
+        diagnostics.fail(member(transformField, "rotation"), "expected a number, got " +
+                                                                 describeValue(transform["rotation"]));
     }
+    requireIndexMember(transform, transformField, "texCoord", diagnostics);
 }
 
 void checkMaterial(const json& material, const std::string& field, GltfDiagnostics& diagnostics) {
@@ -236,11 +266,11 @@ void checkMaterial(const json& material, const std::string& field, GltfDiagnosti
         const std::string pbrField = member(field, "pbrMetallicRoughness");
         requireNumbers(pbr, pbrField, "baseColorFactor", 4, diagnostics);
         for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"}) {
-            requireTextureIndex(pbr, pbrField, key, diagnostics);
+            checkTextureReference(pbr, pbrField, key, diagnostics);
         }
     }
     for (const char* key : {"emissiveTexture", "normalTexture", "occlusionTexture"}) {
-        requireTextureIndex(material, field, key, diagnostics);
+        checkTextureReference(material, field, key, diagnostics);
     }
     requireObjectExtensions(material, field, diagnostics);
     if (material.contains("extensions")) {
@@ -329,6 +359,11 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
                  [&](const json& camera, const std::string& field) { checkCamera(camera, field, diagnostics); });
     forEachEntry(document, "materials",
                  [&](const json& material, const std::string& field) { checkMaterial(material, field, diagnostics); });
+    forEachEntry(document, "samplers", [&](const json& sampler, const std::string& field) {
+        for (const char* key : {"wrapS", "wrapT", "magFilter", "minFilter"}) {
+            requireWholeNumberMember(sampler, field, key, diagnostics);
+        }
+    });
     forEachEntry(document, "buffers", [&](const json& buffer, const std::string& field) {
         checkDataUriBuffer(buffer, field, diagnostics);
     });
@@ -355,13 +390,13 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
     });
     forEachEntry(document, "accessors", [&](const json& accessor, const std::string& field) {
         requireIndexMember(accessor, field, "bufferView", diagnostics);
-        requireWholeNumberMember(accessor, field, "byteOffset", diagnostics);
+        requireWholeNumberMember(accessor, field, "byteOffset", diagnostics, std::numeric_limits<int64_t>::max());
         // glTF's minimum; a primitive reading none would be dropped without a word.
         requireAbove(accessor, field, "count", 0.0, "0", diagnostics);
     });
     forEachEntry(document, "bufferViews", [&](const json& view, const std::string& field) {
         requireIndexMember(view, field, "buffer", diagnostics);
-        requireWholeNumberMember(view, field, "byteOffset", diagnostics);
+        requireWholeNumberMember(view, field, "byteOffset", diagnostics, std::numeric_limits<int64_t>::max());
         checkByteStride(view, field, diagnostics);
     });
     forEachEntry(document, "textures", [&](const json& texture, const std::string& field) {

@@ -81,6 +81,10 @@ SrgbTextureCache::MappedTexture SrgbTextureCache::textureFor(const tinygltf::Tex
         std::string samplerField = indexed("samplers", size_t(texture.sampler));
         mapped.mapping.wrapS = wrapOf(sampler.wrapS, samplerField, "wrapS");
         mapped.mapping.wrapT = wrapOf(sampler.wrapT, samplerField, "wrapT");
+        if (sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) {
+            diagnostics_.warn(member(samplerField, "magFilter"),
+                              "NEAREST (9728) is not supported; the texture is looked up bilinearly");
+        }
     }
     mapped.texture = decodedImage(texture.source);
     return mapped;

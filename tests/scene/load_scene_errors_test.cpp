@@ -303,9 +303,23 @@ TEST(LoadSceneErrors, UnknownWrapModesAndMalformedTextureTransforms) {
     expectLoadError(quadWithTextureMapping(json::object(), {{"offset", {1.0}}}).writeGltf(directory / "offset.gltf"),
                     {field + ".offset", "expected an array of 2 numbers"});
     expectLoadError(quadWithTextureMapping(json::object(), {{"scale", {1.0, "2"}}}).writeGltf(directory / "scale.gltf"),
-                    {field + ".scale[1]", "expected a number"});
+                    {field + ".scale", "expected an array of 2 numbers"});
     expectLoadError(quadWithTextureMapping(json::object(), {{"rotation", 1e39}}).writeGltf(directory / "rotation.gltf"),
                     {field + ".rotation", "beyond float range"});
+    // What tinygltf would drop for the default, silently: a wrap mode not written as an
+    // integer, a transform that is not an object, empty members.
+    expectLoadError(quadWithTextureMapping({{"wrapS", 33071.0}}, json::object()).writeGltf(directory / "float.gltf"),
+                    {"samplers[0].wrapS", "expected an integer", "got 33071.0"});
+    expectLoadError(quadWithTextureMapping({{"wrapT", "REPEAT"}}, json::object()).writeGltf(directory / "text.gltf"),
+                    {"samplers[0].wrapT", "expected an integer"});
+    expectLoadError(quadWithTextureMapping(json::object(), {1, 2}).writeGltf(directory / "array.gltf"),
+                    {field, "expected an object"});
+    expectLoadError(quadWithTextureMapping(json::object(), {{"offset", json::array()}}).writeGltf(directory / "e.gltf"),
+                    {field + ".offset", "is empty"});
+    expectLoadError(quadWithTextureMapping(json::object(), {{"rotation", json::object()}}).writeGltf(directory / "r.gltf"),
+                    {field + ".rotation", "is empty"});
+    expectLoadError(quadWithTextureMapping(json::object(), {{"texCoord", 0.5}}).writeGltf(directory / "t.gltf"),
+                    {field + ".texCoord", "expected an index"});
 }
 
 // A floor and the KHR_lights_punctual definitions `lights`, light 0 placed by a node.
@@ -384,10 +398,14 @@ TEST(LoadSceneErrors, IndicesThatAreNotWholeNumbersAreRefusedEverywhere) {
         change(builder.document());
         return builder.writeGltf(directory / "index.gltf");
     };
-    const std::string expected = "expected an index (a whole number >= 0)";
+    const std::string expected = "expected an index (an integer from 0 to 2147483647, without a decimal point)";
     expectLoadError(changed([](json& d) { d["scene"] = -1; }), {"scene", expected + ", got -1"});
     expectLoadError(changed([](json& d) { d["scene"] = 0.5; }), {"scene", expected});
     expectLoadError(changed([](json& d) { d["scene"] = "0"; }), {"scene", expected});
+    // tinygltf reads neither 0.0 nor a number beyond int's range as the index it means.
+    expectLoadError(changed([](json& d) { d["scene"] = 0.0; }), {"scene", expected + ", got 0.0"});
+    expectLoadError(changed([](json& d) { d["nodes"][0]["mesh"] = int64_t(1) << 32; }),
+                    {"nodes[0].mesh", expected + ", got 4294967296"});
     expectLoadError(changed([](json& d) { d["scenes"] = {{{"nodes", {-1}}}}; }), {"scenes[0].nodes[0]", expected});
     expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["material"] = -1; }),
                     {"meshes[0].primitives[0].material", expected});
@@ -402,9 +420,9 @@ TEST(LoadSceneErrors, IndicesThatAreNotWholeNumbersAreRefusedEverywhere) {
                     {"materials[0].emissiveTexture.index", expected});
     // Offsets and modes tinygltf would read as their defaults: vertices from another
     // part of the buffer, or triangles instead of a strip.
-    const std::string whole = "expected a whole number >= 0";
+    const std::string whole = "expected an integer from 0 to";
     expectLoadError(changed([](json& d) { d["accessors"][0]["byteOffset"] = -12; }),
-                    {"accessors[0].byteOffset", whole + ", got -12"});
+                    {"accessors[0].byteOffset", whole, "got -12"});
     expectLoadError(changed([](json& d) { d["accessors"][0]["byteOffset"] = "12"; }),
                     {"accessors[0].byteOffset", whole});
     expectLoadError(changed([](json& d) { d["bufferViews"][0]["byteOffset"] = 1.5; }),
@@ -428,7 +446,7 @@ TEST(LoadSceneErrors, NodesOutsideTheGltfSchema) {
         builder.document()["nodes"][0].update(node);
         return builder.writeGltf(directory / "node.gltf");
     };
-    expectLoadError(boxAt({{"mesh", -1}}), {"nodes[0].mesh", "expected an index (a whole number >= 0), got -1"});
+    expectLoadError(boxAt({{"mesh", -1}}), {"nodes[0].mesh", "expected an index (an integer from 0 to 2147483647, without a decimal point), got -1"});
     expectLoadError(boxAt({{"children", {0.5}}}), {"nodes[0].children[0]", "expected an index"});
     expectLoadError(boxAt({{"translation", {1.0, 2.0}}}), {"nodes[0].translation", "expected an array of 3 numbers"});
     expectLoadError(boxAt({{"scale", 2.0}}), {"nodes[0].scale", "expected an array of 3 numbers, got 2.0"});

@@ -149,7 +149,7 @@ TEST(LoadScene, ReadsSamplerWrapModesAndTextureTransforms) {
     GltfBuilder builder;
     builder.document()["images"] = {
         {{"uri", "data:image/bmp;base64," + base64(bmpImage(1, 1, {{255, 255, 255}}))}}};
-    builder.document()["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}}};
+    builder.document()["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}}};
     builder.document()["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 0}}};
     // A quarter turn, a scale of (2, 3) and an offset of (0.5, 0.25) take (u, v) = (1, 0)
     // to (0.5, -1.75): scaled to (2, 0), turned counter-clockwise in texture space (whose
@@ -161,9 +161,12 @@ TEST(LoadScene, ReadsSamplerWrapModesAndTextureTransforms) {
          {"emissiveTexture", {{"index", 1}, {"extensions", {{"KHR_texture_transform", transform}}}}}});
     builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
     builder.document()["extensionsRequired"] = {"KHR_texture_transform"};
-    Scene scene = loadScene(builder.writeGltf(directory / "mapping.gltf")).scene;
+    LoadedScene loaded = loadScene(builder.writeGltf(directory / "mapping.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("samplers[0].magFilter: NEAREST (9728) is not supported"), std::string::npos)
+        << loaded.warnings[0];
 
-    const Material& m = scene.materials[0];
+    const Material& m = loaded.scene.materials[0];
     EXPECT_EQ(m.baseColorMapping.wrapS, TextureWrap::ClampToEdge);
     EXPECT_EQ(m.baseColorMapping.wrapT, TextureWrap::MirroredRepeat);
     EXPECT_EQ(m.baseColorMapping.uRow, glm::vec3(1, 0, 0));
