@@ -8,6 +8,7 @@ For each scene, at each of the two seeds in turn, vkdiffrender renders it (a sub
 LP_NUM_THREADS for lavapipe) and then Cycles renders it: imported with the project's add-on
 (media as Principled Volumes, the background), surfaces made Lambertian as vkdiffrender
 renders them, and configured as an unbiased reference (tools/blender/cycles_reference.py).
+Materials must be constant: a scene with textures is refused, naming the material.
 From each renderer's pair of images: the per-pixel relative noise of one render (as
 src/bench/image_noise.cpp computes it), its efficiency 1 / (noise^2 x seconds), and the
 image mean with its standard error. Prints a markdown table and writes DIR/comparison.json;

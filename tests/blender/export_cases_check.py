@@ -266,6 +266,47 @@ def world_named_like_a_material(scene):
     bpy.context.object.data.materials.append(material)
 
 
+def image_texture(name, colour_space="sRGB"):
+    image = bpy.data.images.new(name, 4, 4)
+    image.pixels = [value for i in range(16) for value in ((1.0, 0.2, 0.1, 1.0) if i % 3 else (0.1, 0.3, 0.9, 1.0))]
+    image.colorspace_settings.name = colour_space
+    return image
+
+
+def textured_emitter(nodes, links, image, colour):
+    """An Emission shader whose Color is the image, its unlinked Color `colour`."""
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Color"].default_value = colour
+    emission.inputs["Strength"].default_value = 2.0
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    links.new(texture.outputs["Color"], emission.inputs["Color"])
+    links.new(emission.outputs[0], nodes["Material Output"].inputs["Surface"])
+    return texture
+
+
+def textured_materials(scene):
+    """Two planes whose Emission shaders are image textures: one looked up as glTF can
+    carry (an sRGB image, linear, repeated, by the UV map); one clipped, nearest-texel, of
+    Non-Color data, by generated coordinates through a Mapping node turned about X. Both
+    Emission shaders' unlinked colours are red, which Cycles does not use."""
+    for name, location in (("Plain", (-1.0, 0.0, 0.5)), ("Odd", (1.0, 0.0, 0.5))):
+        bpy.ops.mesh.primitive_plane_add(size=1.0, location=location)
+        material = bpy.data.materials.new(name)
+        material.use_nodes = True
+        nodes, links = material.node_tree.nodes, material.node_tree.links
+        nodes.remove(nodes["Principled BSDF"])
+        texture = textured_emitter(nodes, links, image_texture(name, "sRGB" if name == "Plain" else "Non-Color"),
+                                   (1.0, 0.0, 0.0, 1.0))
+        if name == "Odd":
+            texture.extension, texture.interpolation = "CLIP", "Closest"
+            coordinates, mapping = nodes.new("ShaderNodeTexCoord"), nodes.new("ShaderNodeMapping")
+            mapping.inputs["Rotation"].default_value = (0.3, 0.0, 0.0)
+            links.new(coordinates.outputs["Generated"], mapping.inputs["Vector"])
+            links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+        bpy.context.object.data.materials.append(material)
+
+
 def orthographic_camera(scene):
     scene.camera.data.type = "ORTHO"
 
@@ -276,7 +317,8 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
-         "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera}
+         "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera,
+         "textured_materials": textured_materials}
 
 
 def failing_export(scene, directory):

@@ -192,6 +192,25 @@ def test_glass_is_exported_opaque_with_a_warning_and_loads(exported, cli):
     render_mean(cli, exported, "glass")
 
 
+def test_textured_emitters_keep_their_texture_and_what_glTF_cannot_carry_is_reported(exported, cli):
+    doc = document(exported, "textured_materials")
+    warnings = own_warnings(exported, "textured_materials")
+    for name in ("Plain", "Odd"):
+        material = next(m for m in doc["materials"] if m["name"] == name)
+        assert "emissiveTexture" in material
+        # The texture times Strength 2, not times the unlinked red Cycles does not use.
+        strength = material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"]
+        assert [strength * c for c in material["emissiveFactor"]] == pytest.approx([2.0, 2.0, 2.0])
+    plain = [w for w in warnings if "'Plain'" in w]
+    assert plain == []
+    odd = [w for w in warnings if w.startswith("material 'Odd': image texture")]
+    for expected in ("extension Clip is exported as Extend", "Closest interpolation is exported as Linear",
+                     "colour space 'Non-Color'", "cannot be exported as a texture transform",
+                     "output 'Generated', which glTF cannot carry"):
+        assert sum(expected in w for w in odd) == 1, (expected, odd)
+    render_mean(cli, exported, "textured_materials")
+
+
 def test_only_light_nodes_that_change_the_light_are_reported(exported):
     warned = [w for w in own_warnings(exported, "light_nodes") if "shader nodes" in w]
     assert len(warned) == 1 and warned[0].startswith("light 'Five'")

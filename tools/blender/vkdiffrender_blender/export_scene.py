@@ -19,7 +19,7 @@ import mathutils
 from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper
 
-from . import gltf_json, grid_media, mappings, node_graph
+from . import gltf_json, grid_media, mappings, node_graph, texture_lookups
 from .axes import blender_to_gltf
 from .gltf_json import EXTENSION, TRANSMISSION_EXTENSIONS, medium_json
 from .rendered_objects import rendered_objects
@@ -172,14 +172,18 @@ def set_surfaces(doc, warnings):
             continue
         what = f"material '{blender_material.name}'"
         pbr = material.setdefault("pbrMetallicRoughness", {})
+        # A Color the exporter wrote as a texture is that texture times a factor of 1.
+        textured = {"Color": (1.0, 1.0, 1.0, 1.0)}
         if node.bl_idname == "ShaderNodeBsdfDiffuse":
-            albedo = mappings.base_color_to_albedo(node_graph.constant(node, "Color", warnings, what))
+            albedo = mappings.base_color_to_albedo(node_graph.constant(
+                node, "Color", warnings, what, textured if "baseColorTexture" in pbr else None))
             pbr["baseColorFactor"] = [*albedo, 1.0]
             if node.inputs["Roughness"].default_value > 0.0 or node.inputs["Roughness"].is_linked:
                 warnings.append(f"{what}: Diffuse BSDF roughness (Oren-Nayar) is exported as Lambertian")
         elif node.bl_idname == "ShaderNodeEmission":
-            radiance = mappings.emission_to_radiance(node_graph.constant(node, "Color", warnings, what),
-                                                     node_graph.constant(node, "Strength", warnings, what))
+            radiance = mappings.emission_to_radiance(
+                node_graph.constant(node, "Color", warnings, what, textured if "emissiveTexture" in material else None),
+                node_graph.constant(node, "Strength", warnings, what))
             emission = mappings.radiance_to_emission(radiance)
             pbr["baseColorFactor"] = [0.0, 0.0, 0.0, 1.0]
             material["emissiveFactor"] = list(emission["color"])
@@ -436,6 +440,7 @@ def export_scene(context, filepath):
             with open(staged, encoding="utf-8") as f:
                 doc = json.load(f)
             set_surfaces(doc, warnings)
+            texture_lookups.warn_texture_lookups(doc, warnings)
             add_material_media(doc, view_layer, warnings)
             add_world(doc, scene, warnings)
             set_punctual_lights(doc, warnings)
