@@ -1,5 +1,7 @@
 #include "cli/target_views.h"
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <map>
 #include <system_error>
@@ -75,6 +77,16 @@ TargetView readTarget(const std::string& argument, const Scene& scene) {
     if (std::optional<std::string> negative = negativePixels(target)) {
         printWarning("--target " + argument + ": " + *negative +
                      "; a render is never negative, so the loss cannot reach 0 there");
+    }
+    std::string extension = file.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".exr") {
+        if (std::optional<std::string> atOne = valuesAtOne(target)) {
+            printWarning("--target " + argument + ": " + *atOne +
+                         ", the most its format holds; where the scene is brighter the image was clipped, and the "
+                         "loss takes 1 there, which biases a fit; give an EXR target");
+        }
     }
     return {camera, std::move(target)};
 }

@@ -56,4 +56,15 @@ std::optional<std::string> negativePixels(const Image& image) {
            valueText(least) + ")";
 }
 
+std::optional<std::string> valuesAtOne(const Image& image) {
+    // Between the decodings of the two largest 16-bit codes (0.99996 and 1).
+    constexpr float kLargestCode = 0.99999f;
+    const size_t count = size_t(std::count_if(image.rgb.begin(), image.rgb.end(),
+                                              [](float value) { return value >= kLargestCode; }));
+    if (count == 0) {
+        return std::nullopt;
+    }
+    return std::to_string(count) + (count == 1 ? " channel value is 1" : " channel values are 1");
+}
+
 }  // namespace vkdr

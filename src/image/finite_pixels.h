@@ -22,4 +22,9 @@ std::optional<std::string> unrepresentablePixel(const Image& image);
 // does cannot be matched there.
 std::optional<std::string> negativePixels(const Image& image);
 
+// How many channel values are at the most an 8- or 16-bit image holds (1 after decoding),
+// as "40 channel values are 1"; nullopt when none is. In a PNG or JPEG of a render they
+// are where the render was clipped, if it was brighter there.
+std::optional<std::string> valuesAtOne(const Image& image);
+
 }  // namespace vkdr

@@ -1,5 +1,6 @@
 #include "scene/gltf_materials.h"
 
+#include <algorithm>
 #include <set>
 
 #include "scene/gltf_media.h"
@@ -125,7 +126,11 @@ void readMaterials(const tinygltf::Model& model, GltfDiagnostics& diagnostics, S
         if (!source.emissiveFactor.empty()) {
             material.emission = emission(source, i, diagnostics);
         }
-        material.emitter = material.isEmissive();
+        // A factor times a strength of 0 still marks an emitter, as a fitted scene whose
+        // emission reached 0 is written, so that its parameter stays.
+        material.emitter = material.isEmissive() ||
+                           std::any_of(source.emissiveFactor.begin(), source.emissiveFactor.end(),
+                                       [](double factor) { return factor > 0.0; });
         const auto emissionMap = textures.textureFor(source.emissiveTexture, field + ".emissiveTexture");
         material.emissionTexture = emissionMap.texture;
         material.emissionMapping = emissionMap.mapping;

@@ -137,9 +137,18 @@ void writeBaseColor(json& material, glm::vec3 baseColor) {
     pbr["baseColorFactor"] = factor;
 }
 
-// glTF caps emissiveFactor at 1; the strength extension carries the rest.
-void writeEmission(json& document, json& material, glm::vec3 emission) {
-    if (emission == glm::vec3(0.0f) && !material.contains("emissiveFactor")) {
+// glTF caps emissiveFactor at 1; the strength extension carries the rest. An emitter
+// whose emission is 0 is written as a factor of 1 times a strength of 0, which the
+// loader still reads as an emitter, so a fitted scene keeps its emission parameter.
+void writeEmission(json& document, json& material, const Material& source) {
+    const glm::vec3 emission = source.emission;
+    if (!source.emitter && emission == glm::vec3(0.0f) && !material.contains("emissiveFactor")) {
+        return;
+    }
+    if (source.emitter && emission == glm::vec3(0.0f)) {
+        material["emissiveFactor"] = rgbJson(glm::vec3(1.0f));
+        material["extensions"][kStrengthExtension]["emissiveStrength"] = 0;
+        declareExtensionUsed(document, kStrengthExtension);
         return;
     }
     float strength = std::max(1.0f, largestChannel(emission));
@@ -155,7 +164,7 @@ void writeEmission(json& document, json& material, glm::vec3 emission) {
 
 void writeSurface(json& document, json& material, const Material& source) {
     writeBaseColor(material, source.baseColor);
-    writeEmission(document, material, source.emission);
+    writeEmission(document, material, source);
 }
 
 // The loader gives primitives without a material glTF's default material, named

@@ -158,6 +158,21 @@ TEST_F(NumberChecksTest, ATargetWithNegativePixelsIsWarnedOf) {
         << r.err;
 }
 
+// A PNG render is clipped at 1: where the scene is brighter (the lamp), the target's 1
+// is not what the render gives, and a fit would be biased there.
+TEST_F(NumberChecksTest, AnEightBitTargetWithValuesAtItsMaximumIsWarnedOf) {
+    render("--spp 4", "target.png");
+    const std::string png = (dir_ / "target.png").string();
+    RunResult r = run("grad " + fog() + " --target " + png + " --param media/fog/g --spp 1");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(count(r.err, "warning: "), 1u) << r.err;
+    EXPECT_NE(r.err.find("channel values are 1, the most its format holds"), std::string::npos) << r.err;
+    render("--spp 4", "target.exr");
+    RunResult exr = run("grad " + fog() + " --target " + (dir_ / "target.exr").string() +
+                        " --param media/fog/g --spp 1");
+    EXPECT_EQ(exr.err.find("warning: "), std::string::npos) << exr.err;
+}
+
 TEST_F(NumberChecksTest, ASceneWithoutLightWarnsAfterTheOverrides) {
     RunResult dark = run("render " + fog() + " --width 8 --height 8 --spp 1 --set lights/light/emission=0 -o " +
                          (dir_ / "dark.exr").string());

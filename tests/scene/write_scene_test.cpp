@@ -111,6 +111,16 @@ TEST(WriteScene, SplitsEmissionIntoAFactorAtMostOneAndAStrength) {
     lamp = readJson(directory / "dim.gltf")["materials"][1];
     EXPECT_EQ(lamp["emissiveFactor"], json({0.5, 0.5, 0.5}));
     EXPECT_FALSE(lamp.contains("extensions"));
+
+    // Fitted to 0, the lamp is still an emitter of the written scene, so a further fit
+    // finds its parameter.
+    set(scene, "lights/lamp/emission", {0.0f});
+    writeSceneWithParameters(original, scene, directory / "off.gltf");
+    lamp = readJson(directory / "off.gltf")["materials"][1];
+    EXPECT_EQ(lamp["emissiveFactor"], json({1.0, 1.0, 1.0}));
+    EXPECT_EQ(lamp["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"], 0);
+    Scene off = loadScene(directory / "off.gltf").scene;
+    EXPECT_EQ(getParameter(off, "lights/lamp/emission"), std::vector<float>(3, 0.0f));
 }
 
 // A box of the Khronos-spelled medium "ink" with `values` set, written and reloaded
