@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/process_start.h"
 #include "image/atomic_write.h"
 #include "optimize/checkpoint.h"
 #include "optimize/difference_image.h"
@@ -144,7 +145,6 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     std::optional<GridPriorLossGradient> withPriors;
     if (!priors.empty()) withPriors.emplace(imageLossGradient, std::move(priors));
     LossGradient& lossGradient = withPriors ? static_cast<LossGradient&>(*withPriors) : imageLossGradient;
-    const auto startTime = std::chrono::steady_clock::now();
     const std::filesystem::path& directory = job.outputDirectory;
     const std::vector<std::string>& names = job.options.parameters;
     RunIdentity identity = runIdentity(job.sceneFile, job.options, job.loss, job.inputs);
@@ -189,7 +189,7 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     writePng(directory / "final.png", finalImage);
     writePng(directory / "diff.png", difference.image);
     writeText(directory / "loss.svg", lossChartSvg(report.result.losses, lossKindName(job.loss)));
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - kProcessStart).count();
     writeText(directory / "report.html", reportHtml(runReportPage(job, report, std::move(startRenders), seconds)));
     // Last: it reads the scene file again, which may have changed during a long run
     // (scene/write_scene.h refuses that), and the other outputs stand without it.
