@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <system_error>
 
 #include "cli/warnings.h"
 #include "core/error.h"
+#include "core/format_text.h"
 #include "image/finite_pixels.h"
 #include "image/image.h"
 #include "render/render_settings.h"
@@ -54,6 +56,26 @@ TargetFile parseTargetArgument(const std::string& argument, const Scene& scene) 
     return {"", argument};
 }
 
+namespace {
+
+const Camera& cameraNamed(const Scene& scene, const std::string& name) {
+    return *std::find_if(scene.cameras.begin(), scene.cameras.end(), [&](const Camera& c) { return c.name == name; });
+}
+
+// A view renders at its target's size, so a target of another shape than the camera's
+// aspectRatio widens or narrows the horizontal field of view.
+void warnOfAnotherAspect(const std::string& argument, const Image& target, const Camera& camera) {
+    const double aspect = double(target.width) / double(target.height);
+    if (camera.aspectRatio > 0.0f && std::abs(aspect / camera.aspectRatio - 1.0) > 0.01) {
+        printWarning(formatText("--target %s is %dx%d (aspect %.4g), but camera '%s' has aspectRatio %.4g: the view "
+                                "renders at the target's aspect, with the camera's vertical field of view",
+                                argument.c_str(), target.width, target.height, aspect, camera.name.c_str(),
+                                double(camera.aspectRatio)));
+    }
+}
+
+}  // namespace
+
 TargetView readTarget(const std::string& argument, const Scene& scene) {
     const TargetFile named = parseTargetArgument(argument, scene);
     const std::string& camera = named.camera;
@@ -88,6 +110,7 @@ TargetView readTarget(const std::string& argument, const Scene& scene) {
                          "loss takes 1 there, which biases a fit; give an EXR target");
         }
     }
+    warnOfAnotherAspect(argument, target, camera.empty() ? scene.cameras.front() : cameraNamed(scene, camera));
     return {camera, std::move(target)};
 }
 

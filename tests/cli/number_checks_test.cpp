@@ -173,6 +173,15 @@ TEST_F(NumberChecksTest, AnEightBitTargetWithValuesAtItsMaximumIsWarnedOf) {
     EXPECT_EQ(exr.err.find("warning: "), std::string::npos) << exr.err;
 }
 
+TEST_F(NumberChecksTest, ATargetOfAnotherAspectThanItsCameraIsWarnedOf) {
+    const fs::path wide = dir_ / "wide.exr";  // the fog box's camera is square
+    writeExr(wide, Image{8, 4, std::vector<float>(8 * 4 * 3, 0.2f)});
+    RunResult r = run("grad " + fog() + " --target " + wide.string() + " --param media/fog/g --spp 1");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(count(r.err, "warning: "), 1u) << r.err;
+    EXPECT_NE(r.err.find("is 8x4 (aspect 2), but camera 'camera' has aspectRatio 1"), std::string::npos) << r.err;
+}
+
 TEST_F(NumberChecksTest, ASceneWithoutLightWarnsAfterTheOverrides) {
     RunResult dark = run("render " + fog() + " --width 8 --height 8 --spp 1 --set lights/light/emission=0 -o " +
                          (dir_ / "dark.exr").string());
