@@ -299,7 +299,7 @@ def textured_materials(scene):
         texture = textured_emitter(nodes, links, image_texture(name, "sRGB" if name == "Plain" else "Non-Color"),
                                    (1.0, 0.0, 0.0, 1.0))
         if name == "Odd":
-            texture.extension, texture.interpolation = "CLIP", "Closest"
+            texture.extension, texture.interpolation, texture.projection = "CLIP", "Closest", "BOX"
             coordinates, mapping = nodes.new("ShaderNodeTexCoord"), nodes.new("ShaderNodeMapping")
             mapping.inputs["Rotation"].default_value = (0.3, 0.0, 0.0)
             links.new(coordinates.outputs["Generated"], mapping.inputs["Vector"])

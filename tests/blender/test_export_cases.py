@@ -205,6 +205,7 @@ def test_textured_emitters_keep_their_texture_and_what_glTF_cannot_carry_is_repo
     assert plain == []
     odd = [w for w in warnings if w.startswith("material 'Odd': image texture")]
     for expected in ("extension Clip is exported as Extend", "Closest interpolation is exported as Linear",
+                     "Box projection is exported as Flat",
                      "colour space 'Non-Color'", "cannot be exported as a texture transform",
                      "output 'Generated', which glTF cannot carry"):
         assert sum(expected in w for w in odd) == 1, (expected, odd)

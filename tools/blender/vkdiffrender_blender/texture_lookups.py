@@ -41,6 +41,9 @@ def warn_texture_lookups(doc, warnings):
             if node.extension == "CLIP":
                 warnings.append(f"{what}: extension Clip is exported as Extend (glTF has no clipping): "
                                 f"vkdiffrender shows the image's edge where Cycles shows black")
+            if node.projection != "FLAT":
+                warnings.append(f"{what}: {node.projection.capitalize()} projection is exported as Flat "
+                                f"(a lookup by the texture coordinates alone)")
             if node.interpolation != "Linear":
                 warnings.append(f"{what}: {node.interpolation} interpolation is exported as Linear "
                                 f"(vkdiffrender looks textures up bilinearly)")
