@@ -54,7 +54,7 @@ def test_exported_plume_renders(exported, cli):
     medium = plume_medium(doc)
     medium["sigma_a"] = medium["sigma_s"] = [0.0, 0.0, 0.0]
     (exported / "clear.gltf").write_text(json.dumps(doc))
-    settings = ["--spp", "4", "--width", "16", "--height", "16", "--max-depth", "2"]
+    settings = ["--spp", "4", "--width", "16", "--max-depth", "2"]  # the height from the camera's aspect
     render = subprocess.run([cli, "render", str(exported / "clear.gltf"), "-o", str(exported / "clear.exr"),
                              *settings], capture_output=True, text=True)
     assert render.returncode == 0, render.stderr
