@@ -1,7 +1,5 @@
 #include "cli/target_views.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -12,6 +10,7 @@
 #include "core/format_text.h"
 #include "image/finite_pixels.h"
 #include "image/image.h"
+#include "render/camera_setup.h"
 #include "render/render_settings.h"
 
 namespace vkdr {
@@ -58,10 +57,6 @@ TargetFile parseTargetArgument(const std::string& argument, const Scene& scene) 
 
 namespace {
 
-const Camera& cameraNamed(const Scene& scene, const std::string& name) {
-    return *std::find_if(scene.cameras.begin(), scene.cameras.end(), [&](const Camera& c) { return c.name == name; });
-}
-
 // A view renders at its target's size, so a target of another shape than the camera's
 // aspectRatio widens or narrows the horizontal field of view.
 void warnOfAnotherAspect(const std::string& argument, const Image& target, const Camera& camera) {
@@ -100,17 +95,14 @@ TargetView readTarget(const std::string& argument, const Scene& scene) {
         printWarning("--target " + argument + ": " + *negative +
                      "; a render is never negative, so the loss cannot reach 0 there");
     }
-    std::string extension = file.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    if (extension != ".exr") {
+    if (lowercaseExtension(file) != ".exr") {
         if (std::optional<std::string> atOne = valuesAtOne(target)) {
             printWarning("--target " + argument + ": " + *atOne +
                          ", the most its format holds; where the scene is brighter the image was clipped, and the "
                          "loss takes 1 there, which biases a fit; give an EXR target");
         }
     }
-    warnOfAnotherAspect(argument, target, camera.empty() ? scene.cameras.front() : cameraNamed(scene, camera));
+    warnOfAnotherAspect(argument, target, findCamera(scene, camera));
     return {camera, std::move(target)};
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace vkdr {
@@ -22,5 +23,8 @@ void writePng(const std::filesystem::path& file, const Image& image);
 // Reads an EXR (R, G, B channels; Y alone is grey) or a PNG/JPEG (sRGB decoded to
 // linear). Throws vkdr::Error naming the file on anything it cannot read.
 Image readImage(const std::filesystem::path& file);
+
+// The file's extension in lower case (".exr"), by which readImage picks its reader.
+std::string lowercaseExtension(const std::filesystem::path& file);
 
 }  // namespace vkdr

@@ -9,13 +9,18 @@
 
 namespace vkdr {
 
+std::string lowercaseExtension(const std::filesystem::path& file) {
+    std::string extension = file.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
+}
+
 Image readImage(const std::filesystem::path& file) {
     std::string reason = notRegularFileReason(file);
     if (!reason.empty()) throw Error("cannot read image '" + file.string() + "': " + reason);
 
-    std::string extension = file.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string extension = lowercaseExtension(file);
     if (extension == ".exr") return readExr(file);
     if (extension == ".png" || extension == ".jpg" || extension == ".jpeg") return readPngOrJpeg(file);
     throw Error("cannot read image '" + file.string() + "': unknown extension '" + extension +

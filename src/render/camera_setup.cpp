@@ -11,6 +11,8 @@ namespace {
 
 constexpr int kDefaultWidth = 512;
 
+}  // namespace
+
 const Camera& findCamera(const Scene& scene, const std::string& name) {
     requirePerspectiveCamera(scene, "");
     if (name.empty()) {
@@ -25,8 +27,6 @@ const Camera& findCamera(const Scene& scene, const std::string& name) {
     }
     throw Error("--camera " + name + ": no such camera; the scene has: " + names);
 }
-
-}  // namespace
 
 void requirePerspectiveCamera(const Scene& scene, const std::string& file) {
     if (scene.cameras.empty()) {

@@ -11,6 +11,7 @@
 
 #include "scene/gltf_lights.h"
 #include "scene/gltf_media.h"
+#include "scene/gltf_textures.h"
 #include "scene/scene_file_access.h"
 
 namespace vkdr {
@@ -20,7 +21,7 @@ using nlohmann::json;
 
 constexpr std::array<std::string_view, 8> kUnderstoodExtensions = {
     "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_volume",            "KHR_texture_transform",      kPunctualLightsExtension,
+    "KHR_materials_volume",            kTextureTransformExtension,   kPunctualLightsExtension,
     kMediumExtension,                  kBackgroundExtension};
 
 // The members of vkdiffrender's own extensions; "extensions" and "extras" are allowed on
@@ -30,7 +31,6 @@ constexpr std::array<std::string_view, 10> kSceneMediumMembers = {
 constexpr std::array<std::string_view, 5> kGridReferenceMembers = {"uri", "grid", "node", "extensions", "extras"};
 constexpr std::array<std::string_view, 3> kBackgroundMembers = {"radiance", "extensions", "extras"};
 constexpr std::array<std::string_view, 3> kGridReferences = {"density", "emissionGrid", "albedoGrid"};
-constexpr const char* kTextureTransformExtension = "KHR_texture_transform";
 constexpr std::array<std::string_view, 6> kTextureTransformMembers = {"offset",   "rotation",   "scale",
                                                                       "texCoord", "extensions", "extras"};
 

@@ -8,8 +8,6 @@
 namespace vkdr {
 namespace {
 
-constexpr const char* kTransformExtension = "KHR_texture_transform";
-
 // Channel i of texel `texel`, scaled to [0, 1], for 8- and 16-bit images.
 float channel(const tinygltf::Image& image, size_t texel, int i) {
     size_t offset = texel * size_t(image.component) + size_t(i);
@@ -53,8 +51,8 @@ SrgbTextureCache::MappedTexture SrgbTextureCache::textureFor(const tinygltf::Tex
     // The transform's texCoord, where it has one, replaces the texture's.
     std::string texCoordField = std::string(field) + ".texCoord";
     double texCoord = info.texCoord;
-    if (auto transform = info.extensions.find(kTransformExtension); transform != info.extensions.end()) {
-        const std::string transformField = std::string(field) + ".extensions." + kTransformExtension;
+    if (auto transform = info.extensions.find(kTextureTransformExtension); transform != info.extensions.end()) {
+        const std::string transformField = std::string(field) + ".extensions." + kTextureTransformExtension;
         mapped.mapping = transformOf(transform->second, transformField);
         if (transform->second.Has("texCoord")) {
             texCoordField = member(transformField, "texCoord");

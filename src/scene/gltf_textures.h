@@ -11,6 +11,8 @@
 
 namespace vkdr {
 
+inline constexpr const char* kTextureTransformExtension = "KHR_texture_transform";
+
 // sRGB transfer function -> linear, for one channel value in [0, 1].
 float srgbToLinear(float encoded);
 
