@@ -93,7 +93,7 @@ void nextEvent(uint slot, NextEventQuery query, LightArrival light, vec3 scatter
 }
 
 LightArrival sampleLightFor(PathInfo info, vec3 from) {
-    return lightArrival(sampleLight(segmentRandom(info, kDimLight).xyz), from);
+    return lightArrival(sampleLight(segmentRandom(info, kDimLight).xyz, from), from);
 }
 
 void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit, uint medium) {
@@ -115,7 +115,7 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
         float weight = 1.0f;
         if (mis.w > 0.0f) {
             float pdfArea = P.triangleInfo.v[triangle].lightPmf / sp.area;
-            weight = powerHeuristic(mis.w, lightPdfSolidAngle(pdfArea, mis.xyz, sp.position, sp.normal));
+            weight = powerHeuristic(mis.w, nextEventPdf(triangle, pdfArea, mis.xyz, sp.position, sp.normal));
         }
         gather(slot, beta * le * weight);
         if (kAdjoint) {

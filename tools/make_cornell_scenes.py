@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Writes scenes/cornell_box.gltf, cornell_fog.gltf, cornell_smoke.gltf, cornell_plume.gltf and
-cornell_fire.gltf.
+"""Writes scenes/cornell_box.gltf, cornell_fog.gltf, cornell_smoke.gltf, cornell_plume.gltf,
+cornell_fire.gltf and cornell_softbox.gltf.
 
 The geometry is the published Cornell box data (https://www.graphics.cornell.edu/online/box/data.html),
 kept in millimetres in the buffer and scaled to metres by the root node, so the box is
@@ -10,7 +10,9 @@ that its front face points into the room (walls), out of the block (blocks), or 
 
 cornell_plume.gltf reads the density grid cornell_plume.vdb beside it, which
 `vkdr-make-plume --resolution 64 --seed 1 scenes/cornell_plume.vdb` writes;
-cornell_fire.gltf the same smoke burning at its base, its emission following the flame
+cornell_softbox.gltf hangs a light panel 300 mm square (a softbox) 120 mm above the tall
+block in place of the ceiling light: the scene where sampling an emitter by its solid
+angle rather than its area matters. cornell_fire.gltf the same smoke burning at its base, its emission following the flame
 grid cornell_fire_flame.vdb (`vkdr-make-plume --resolution 64 --seed 1 --flame
 scenes/cornell_fire_flame.vdb`).
 
@@ -36,6 +38,8 @@ WALLS = [
 ]
 # Just below the ceiling (548.8), so the light and the ceiling are not coplanar.
 LIGHT = ("light", "light", [[(343, 548.7, 227), (343, 548.7, 332), (213, 548.7, 332), (213, 548.7, 227)]], (0, -1, 0))
+# A large panel low in the room, facing down, about as powerful as LIGHT.
+SOFTBOX = ("softbox", "softbox", [[(428, 450, 130), (428, 450, 430), (128, 450, 430), (128, 450, 130)]], (0, -1, 0))
 SHORT_BLOCK = ("short_block", "white", [
     [(130, 165, 65), (82, 165, 225), (240, 165, 272), (290, 165, 114)],
     [(290, 0, 114), (290, 165, 114), (240, 165, 272), (240, 0, 272)],
@@ -81,6 +85,11 @@ MATERIALS = {
         "pbrMetallicRoughness": {"baseColorFactor": [0.78, 0.78, 0.78, 1.0], "metallicFactor": 0.0},
         "emissiveFactor": [1.0, 0.7059, 0.2353],
         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 17.0}},
+    },
+    "softbox": {
+        "pbrMetallicRoughness": {"baseColorFactor": [0.78, 0.78, 0.78, 1.0], "metallicFactor": 0.0},
+        "emissiveFactor": [1.0, 0.7059, 0.2353],
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.6}},
     },
     "smoke": {"extensions": {"VKDR_participating_media": {
         "sigma_a": [0.05, 0.05, 0.05], "sigma_s": [4.0, 4.0, 4.0], "g": 0.3}}},
@@ -235,6 +244,7 @@ def main():
         "cornell_smoke.gltf": build(WALLS + [LIGHT, SHORT_BLOCK, SMOKE_BOX], None),
         "cornell_plume.gltf": with_plume_placement(build(WALLS + [LIGHT, SHORT_BLOCK, PLUME_BOX], None)),
         "cornell_fire.gltf": with_plume_placement(build(WALLS + [LIGHT, SHORT_BLOCK, FIRE_BOX], None)),
+        "cornell_softbox.gltf": build(WALLS + [SOFTBOX, SHORT_BLOCK, TALL_BLOCK], None),
     }
     for name, gltf in scenes.items():
         (out / name).write_text(to_text(gltf) + "\n")

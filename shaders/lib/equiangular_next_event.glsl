@@ -29,7 +29,9 @@ void equiangularNextEvent(uint slot, uint medium, float tEnd, vec3 beta) {
         return;
     }
     vec4 u = segmentRandom(info, kDimEquiangular);
-    LightSample ls = sampleLight(u.xyz);
+    // The point on the light comes first, and sets the distance's density, so it is
+    // sampled in area; its MIS weight is that of next-event estimation at the point lit.
+    LightSample ls = sampleLightPoint(u.xyz);
     if (isDirectional(ls)) {
         return;
     }
@@ -45,6 +47,9 @@ void equiangularNextEvent(uint slot, uint medium, float tEnd, vec3 beta) {
     LightArrival light = lightArrival(ls, position);
     if (!(light.pdf > 0.0f)) {
         return;
+    }
+    if (!light.isDelta) {
+        light.misPdf = nextEventPdf(ls.triangle, ls.pdfArea, position, ls.position, ls.normal);
     }
     float mu = dot(direction, light.wi);
     float phase = hgPhase(mu, m.g);

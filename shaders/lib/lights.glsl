@@ -1,9 +1,12 @@
 // The lights of next-event estimation: emissive triangles and punctual lights (point,
-// spot, directional), chosen in proportion to their power (host-built CDF).
+// spot, directional), chosen in proportion to their power (host-built CDF). A triangle
+// seen from the vertex under a large enough solid angle is sampled uniformly in that
+// solid angle, others uniformly in area.
 #ifndef VKDR_LIGHTS_GLSL
 #define VKDR_LIGHTS_GLSL
 #include "scene_access.glsl"
 #include "sampling.glsl"
+#include "spherical_triangle.glsl"
 
 const uint kNoPunctualLight = 0xffffffffu;
 
@@ -13,6 +16,7 @@ struct LightSample {
     vec2 uv;
     uint material;   // the emitter's material
     float pdfArea;   // pmf of the triangle / its area; a punctual light's pmf
+    float pdfSolidAngle;  // pmf of the triangle / its solid angle where sampled in it, else 0
     uint punctual;   // index into P.punctualLights, or kNoPunctualLight for a triangle
     uint triangle;   // the emitter triangle, kNoHit for a punctual light
 };
@@ -32,25 +36,94 @@ uint findLight(float u) {
     return lo;
 }
 
-LightSample sampleLight(vec3 u) {
+// A light chosen by u.x; a triangle's point by u.yz uniformly in its area.
+LightSample sampleLightPoint(vec3 u) {
     uint source = P.lightSources.v[findLight(u.x)];
     if ((source & kPunctualEmitter) != 0u) {
         uint index = source & ~kPunctualEmitter;
         GpuPunctualLight light = P.punctualLights.v[index];
-        return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, index, kNoHit);
+        return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, 0.0f, index, kNoHit);
     }
     vec2 b = sampleUniformTriangle(u.yz);
     SurfacePoint sp = surfacePoint(source, b.x, b.y);
     return LightSample(sp.position, sp.normal, sp.uv, sp.material,
-                       P.triangleInfo.v[source].lightPmf / sp.area, kNoPunctualLight, source);
+                       P.triangleInfo.v[source].lightPmf / sp.area, 0.0f, kNoPunctualLight, source);
 }
 
-// Solid-angle density of reaching a point on an emitter from `from` by light sampling.
+// The directions from `from` to a triangle's corners.
+struct TriangleView {
+    vec3 a;
+    vec3 b;
+    vec3 c;
+    float solidAngle;
+};
+
+TriangleView triangleView(uint triangle, vec3 from) {
+    TriangleView view;
+    view.a = normalize(P.triangleVertices.v[3u * triangle].xyz - from);
+    view.b = normalize(P.triangleVertices.v[3u * triangle + 1u].xyz - from);
+    view.c = normalize(P.triangleVertices.v[3u * triangle + 2u].xyz - from);
+    view.solidAngle = sphericalTriangleArea(view.a, view.b, view.c);
+    return view;
+}
+
+// The barycentrics (b1, b2) where the ray from `from` along `direction` meets the plane
+// of the triangle, clamped into it (a direction sampled in the triangle's solid angle
+// meets it up to rounding at its edges).
+vec2 planeBarycentrics(uint triangle, vec3 from, vec3 direction) {
+    vec3 v0 = P.triangleVertices.v[3u * triangle].xyz;
+    vec3 e1 = P.triangleVertices.v[3u * triangle + 1u].xyz - v0;
+    vec3 e2 = P.triangleVertices.v[3u * triangle + 2u].xyz - v0;
+    vec3 pv = cross(direction, e2);
+    float det = dot(e1, pv);
+    vec3 s = from - v0;
+    vec3 qv = cross(s, e1);
+    float b1 = clamp(dot(s, pv) / det, 0.0f, 1.0f);
+    float b2 = clamp(dot(direction, qv) / det, 0.0f, 1.0f);
+    float sum = b1 + b2;
+    return sum > 1.0f ? vec2(b1, b2) / sum : vec2(b1, b2);
+}
+
+// The light sample of next-event estimation at the vertex `from`: a light chosen by u.x,
+// and on a triangle that `from` sees under a solid angle that float resolves
+// (samplesBySolidAngle), a direction uniform in that solid angle; elsewhere a point
+// uniform in the triangle's area.
+LightSample sampleLight(vec3 u, vec3 from) {
+    LightSample ls = sampleLightPoint(u);
+    if (ls.triangle == kNoHit) {
+        return ls;
+    }
+    TriangleView view = triangleView(ls.triangle, from);
+    if (!samplesBySolidAngle(view.solidAngle)) {
+        return ls;
+    }
+    vec3 direction = sampleSphericalTriangle(view.a, view.b, view.c, view.solidAngle, u.yz);
+    vec2 b = planeBarycentrics(ls.triangle, from, direction);
+    SurfacePoint sp = surfacePoint(ls.triangle, b.x, b.y);
+    ls.position = sp.position;
+    ls.uv = sp.uv;
+    ls.pdfSolidAngle = P.triangleInfo.v[ls.triangle].lightPmf / view.solidAngle;
+    return ls;
+}
+
+// Solid-angle density of reaching a point on an emitter from `from` by sampling the
+// emitter's area with density pdfArea.
 float lightPdfSolidAngle(float pdfArea, vec3 from, vec3 lightPosition, vec3 lightNormal) {
     vec3 d = lightPosition - from;
     float dist2 = dot(d, d);
     float cosLight = abs(dot(lightNormal, d)) / sqrt(dist2);
     return cosLight > 0.0f ? pdfArea * dist2 / cosLight : 0.0f;
+}
+
+// Solid-angle density with which next-event estimation at `from` (sampleLight) finds
+// the point `lightPosition` on the emitter triangle `triangle`, whose density in area
+// sampling is pdfArea.
+float nextEventPdf(uint triangle, float pdfArea, vec3 from, vec3 lightPosition, vec3 lightNormal) {
+    float solidAngle = triangleView(triangle, from).solidAngle;
+    if (samplesBySolidAngle(solidAngle)) {
+        return P.triangleInfo.v[triangle].lightPmf / solidAngle;
+    }
+    return lightPdfSolidAngle(pdfArea, from, lightPosition, lightNormal);
 }
 
 // glTF's spot cone (KHR_lights_punctual): full intensity inside the inner cone, none
@@ -65,12 +138,16 @@ float spotFalloff(GpuPunctualLight light, float cosAngle) {
 // arriving (from a punctual light: the irradiance on a plane facing it) per unit of the
 // emitter's parameter (emission or intensity), that parameter, and the density of the
 // sample in solid angle, or for a punctual light its pmf, the weight of a delta.
+// `misPdf` is next-event estimation's density at the point lit (sampleLight): the pdf
+// where the sample came from it, and what MIS weighs any other sample by, so that the
+// weights of all strategies sum to one.
 struct LightArrival {
     vec3 wi;
     float distance;
     vec3 perUnit;
     vec3 parameter;
     float pdf;
+    float misPdf;
     bool isDelta;   // a punctual light: no other strategy finds it, so no MIS
     uint emitter;   // the material, or kPunctualEmitter | the punctual light
     vec3 end;            // the light's point, where shadow rays towards a sample at a finite distance end
@@ -82,7 +159,7 @@ struct LightArrival {
 // heuristic's weight against the scattering strategy, which would find the light with
 // density `scatterPdf` (none finds a punctual light), over the light sample's density.
 float lightSampleWeight(LightArrival light, float scatterPdf) {
-    return (light.isDelta ? 1.0f : powerHeuristic(light.pdf, scatterPdf)) / light.pdf;
+    return (light.isDelta ? 1.0f : powerHeuristic(light.misPdf, scatterPdf)) / light.pdf;
 }
 
 // The part of a shadow ray's length by which it stops short of a point or spot light,
@@ -121,7 +198,8 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
         GpuMaterial light = P.materials.v[ls.material];
         a.perUnit = emissionPerUnit(light, ls.normal, ls.uv, -a.wi);
         a.parameter = light.emission.rgb;
-        a.pdf = lightPdfSolidAngle(ls.pdfArea, from, ls.position, ls.normal);
+        a.pdf = ls.pdfSolidAngle > 0.0f ? ls.pdfSolidAngle : lightPdfSolidAngle(ls.pdfArea, from, ls.position, ls.normal);
+        a.misPdf = a.pdf;
         a.isDelta = false;
         a.emitter = ls.material;
         a.end = ls.position;
@@ -132,6 +210,7 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
     GpuPunctualLight light = P.punctualLights.v[ls.punctual];
     a.parameter = light.intensity;
     a.pdf = ls.pdfArea;
+    a.misPdf = a.pdf;
     a.isDelta = true;
     a.emitter = kPunctualEmitter | ls.punctual;
     a.end = light.position;

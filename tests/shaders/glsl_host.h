@@ -35,6 +35,7 @@ HostRenderParams P;
 #include "phase_hg.glsl"
 #include "medium.glsl"
 #include "equiangular.glsl"
+#include "spherical_triangle.glsl"
 #include "fixed_point.glsl"
 #include "tracking_random.glsl"
 #include "density_grid.glsl"
