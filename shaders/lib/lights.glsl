@@ -98,6 +98,12 @@ LightSample sampleLight(vec3 u, vec3 from) {
         return ls;
     }
     vec3 direction = sampleSphericalTriangle(view.a, view.b, view.c, view.solidAngle, u.yz);
+    if (!(dot(direction, direction) < 2.0f)) {
+        // Not a number from a triangle at the edge of float's reach: a sample of
+        // density 0, which lights nothing, rather than a non-finite contribution.
+        ls.pdfArea = 0.0f;
+        return ls;
+    }
     vec2 b = planeBarycentrics(ls.triangle, from, direction);
     SurfacePoint sp = surfacePoint(ls.triangle, b.x, b.y);
     ls.position = sp.position;
