@@ -10,11 +10,13 @@ that its front face points into the room (walls), out of the block (blocks), or 
 
 cornell_plume.gltf reads the density grid cornell_plume.vdb beside it, which
 `vkdr-make-plume --resolution 64 --seed 1 scenes/cornell_plume.vdb` writes;
-cornell_softbox.gltf hangs a light panel 300 mm square (a softbox) 120 mm above the tall
-block in place of the ceiling light: the scene where sampling an emitter by its solid
-angle rather than its area matters. cornell_fire.gltf the same smoke burning at its base, its emission following the flame
+cornell_fire.gltf the same smoke burning at its base, its emission following the flame
 grid cornell_fire_flame.vdb (`vkdr-make-plume --resolution 64 --seed 1 --flame
 scenes/cornell_fire_flame.vdb`).
+
+cornell_softbox.gltf hangs a light panel 300 mm square (a softbox) 120 mm above the tall
+block in place of the ceiling light: the scene where sampling an emitter by its solid
+angle rather than its area matters.
 
 Usage: tools/make_cornell_scenes.py [OUTPUT_DIR]   (default: scenes/ next to tools/)
 """

@@ -18,8 +18,8 @@ bool isDirectional(LightSample ls) {
 // The segment [0, tEnd) of the ray in `slot` through `medium`, entered with throughput
 // beta, gathers C = beta sigma_s T(t) phase Le Tr w / (p_light p_t) from a light point
 // (the light chosen as at a vertex, the point uniform in its area) and a distance t
-// sampled towards it, Tr being the shadow ray's
-// transmittance and w the product of the light-against-phase and the distance weights.
+// sampled towards it, Tr being the shadow ray's transmittance and w the product of the
+// light-against-phase and the distance weights.
 // The adjoint pass adds C's log-derivatives: -t for sigma_t, 1 / sigma_s (as C per unit
 // sigma_s, so that a channel without scattering still has its gradient), the phase's in g,
 // the emitter's, and the shadow ray's media.
