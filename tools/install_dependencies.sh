@@ -11,7 +11,7 @@ gltf_validator=gltf-validator@2.0.0-dev.3.10
 
 packages=(
   cmake g++ make pkg-config
-  libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
+  libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools spirv-tools
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libglm-dev libtbb-dev libcli11-dev
   libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev libboost-dev

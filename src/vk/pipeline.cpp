@@ -1,6 +1,7 @@
 #include "vk/pipeline.h"
 
 #include "vk/context.h"
+#include "vk/specialized_spirv.h"
 
 namespace vkdr {
 
@@ -9,9 +10,12 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string
                                  const std::vector<uint32_t>& specialization)
     : pushConstantBytes_(pushConstantBytes), name_(name) {
     const VkDevice device = context.device();
+    const std::vector<uint32_t> specialized =
+        specialization.empty() ? std::vector<uint32_t>(spirv.begin(), spirv.end())
+                               : specializedSpirv(name, spirv, specialization);
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = spirv.size_bytes();
-    moduleInfo.pCode = spirv.data();
+    moduleInfo.codeSize = specialized.size() * sizeof(uint32_t);
+    moduleInfo.pCode = specialized.data();
     VkShaderModule rawModule;
     checkVk(vkCreateShaderModule(device, &moduleInfo, nullptr, &rawModule), ("creating shader " + name).c_str());
     // Needed only until the pipeline is made.
@@ -25,18 +29,11 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string
     checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout), "vkCreatePipelineLayout");
     layout_ = PipelineLayoutHandle(device, layout);
 
-    std::vector<VkSpecializationMapEntry> entries;
-    for (uint32_t i = 0; i < specialization.size(); ++i) {
-        entries.push_back({i, static_cast<uint32_t>(i * sizeof(uint32_t)), sizeof(uint32_t)});
-    }
-    VkSpecializationInfo specializationInfo{static_cast<uint32_t>(entries.size()), entries.data(),
-                                            specialization.size() * sizeof(uint32_t), specialization.data()};
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module.get();
     info.stage.pName = "main";
-    info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specializationInfo;
     info.layout = layout;
     VkPipeline pipeline;
     checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),

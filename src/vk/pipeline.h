@@ -16,7 +16,8 @@ class VulkanContext;
 class ComputePipeline {
 public:
     ComputePipeline() = default;
-    // `specialization[i]` is the value of constant_id i.
+    // `specialization[i]` is the value of constant_id i, fixed in the SPIR-V before the
+    // driver sees it (specializedSpirv).
     ComputePipeline(const VulkanContext& context, const std::string& name, std::span<const uint32_t> spirv,
                     uint32_t pushConstantBytes, const std::vector<uint32_t>& specialization = {});
 
