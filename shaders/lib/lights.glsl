@@ -36,22 +36,33 @@ uint findLight(float u) {
     return lo;
 }
 
+LightSample punctualLightSample(uint index) {
+    GpuPunctualLight light = P.punctualLights.v[index];
+    return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, 0.0f, index, kNoHit);
+}
+
+// The point at barycentrics b of the emitter triangle `triangle`, with the density of
+// sampling it uniformly in area.
+LightSample emitterPoint(uint triangle, vec2 b) {
+    SurfacePoint sp = surfacePoint(triangle, b.x, b.y);
+    return LightSample(sp.position, sp.normal, sp.uv, sp.material,
+                       P.triangleInfo.v[triangle].lightPmf / sp.area, 0.0f, kNoPunctualLight, triangle);
+}
+
 // A light chosen by u.x; a triangle's point by u.yz uniformly in its area.
 LightSample sampleLightPoint(vec3 u) {
     uint source = P.lightSources.v[findLight(u.x)];
     if ((source & kPunctualEmitter) != 0u) {
-        uint index = source & ~kPunctualEmitter;
-        GpuPunctualLight light = P.punctualLights.v[index];
-        return LightSample(light.position, vec3(0.0f), vec2(0.0f), 0u, light.pmf, 0.0f, index, kNoHit);
+        return punctualLightSample(source & ~kPunctualEmitter);
     }
-    vec2 b = sampleUniformTriangle(u.yz);
-    SurfacePoint sp = surfacePoint(source, b.x, b.y);
-    return LightSample(sp.position, sp.normal, sp.uv, sp.material,
-                       P.triangleInfo.v[source].lightPmf / sp.area, 0.0f, kNoPunctualLight, source);
+    return emitterPoint(source, sampleUniformTriangle(u.yz));
 }
 
-// The directions from `from` to a triangle's corners.
+// A triangle's corners, and the directions from `from` to them.
 struct TriangleView {
+    vec3 v0;
+    vec3 v1;
+    vec3 v2;
     vec3 a;
     vec3 b;
     vec3 c;
@@ -60,9 +71,12 @@ struct TriangleView {
 
 TriangleView triangleView(uint triangle, vec3 from) {
     TriangleView view;
-    view.a = normalize(P.triangleVertices.v[3u * triangle].xyz - from);
-    view.b = normalize(P.triangleVertices.v[3u * triangle + 1u].xyz - from);
-    view.c = normalize(P.triangleVertices.v[3u * triangle + 2u].xyz - from);
+    view.v0 = P.triangleVertices.v[3u * triangle].xyz;
+    view.v1 = P.triangleVertices.v[3u * triangle + 1u].xyz;
+    view.v2 = P.triangleVertices.v[3u * triangle + 2u].xyz;
+    view.a = normalize(view.v0 - from);
+    view.b = normalize(view.v1 - from);
+    view.c = normalize(view.v2 - from);
     view.solidAngle = sphericalTriangleArea(view.a, view.b, view.c);
     return view;
 }
@@ -70,13 +84,12 @@ TriangleView triangleView(uint triangle, vec3 from) {
 // The barycentrics (b1, b2) where the ray from `from` along `direction` meets the plane
 // of the triangle, clamped into it (a direction sampled in the triangle's solid angle
 // meets it up to rounding at its edges).
-vec2 planeBarycentrics(uint triangle, vec3 from, vec3 direction) {
-    vec3 v0 = P.triangleVertices.v[3u * triangle].xyz;
-    vec3 e1 = P.triangleVertices.v[3u * triangle + 1u].xyz - v0;
-    vec3 e2 = P.triangleVertices.v[3u * triangle + 2u].xyz - v0;
+vec2 planeBarycentrics(TriangleView view, vec3 from, vec3 direction) {
+    vec3 e1 = view.v1 - view.v0;
+    vec3 e2 = view.v2 - view.v0;
     vec3 pv = cross(direction, e2);
     float det = dot(e1, pv);
-    vec3 s = from - v0;
+    vec3 s = from - view.v0;
     vec3 qv = cross(s, e1);
     float b1 = clamp(dot(s, pv) / det, 0.0f, 1.0f);
     float b2 = clamp(dot(direction, qv) / det, 0.0f, 1.0f);
@@ -89,26 +102,24 @@ vec2 planeBarycentrics(uint triangle, vec3 from, vec3 direction) {
 // (samplesBySolidAngle), a direction uniform in that solid angle; elsewhere a point
 // uniform in the triangle's area.
 LightSample sampleLight(vec3 u, vec3 from) {
-    LightSample ls = sampleLightPoint(u);
-    if (ls.triangle == kNoHit) {
-        return ls;
+    uint source = P.lightSources.v[findLight(u.x)];
+    if ((source & kPunctualEmitter) != 0u) {
+        return punctualLightSample(source & ~kPunctualEmitter);
     }
-    TriangleView view = triangleView(ls.triangle, from);
+    TriangleView view = triangleView(source, from);
     if (!samplesBySolidAngle(view.solidAngle)) {
-        return ls;
+        return emitterPoint(source, sampleUniformTriangle(u.yz));
     }
     vec3 direction = sampleSphericalTriangle(view.a, view.b, view.c, view.solidAngle, u.yz);
     if (!(dot(direction, direction) < 2.0f)) {
         // Not a number from a triangle at the edge of float's reach: a sample of
         // density 0, which lights nothing, rather than a non-finite contribution.
-        ls.pdfArea = 0.0f;
-        return ls;
+        LightSample unlit = emitterPoint(source, sampleUniformTriangle(u.yz));
+        unlit.pdfArea = 0.0f;
+        return unlit;
     }
-    vec2 b = planeBarycentrics(ls.triangle, from, direction);
-    SurfacePoint sp = surfacePoint(ls.triangle, b.x, b.y);
-    ls.position = sp.position;
-    ls.uv = sp.uv;
-    ls.pdfSolidAngle = P.triangleInfo.v[ls.triangle].lightPmf / view.solidAngle;
+    LightSample ls = emitterPoint(source, planeBarycentrics(view, from, direction));
+    ls.pdfSolidAngle = P.triangleInfo.v[source].lightPmf / view.solidAngle;
     return ls;
 }
 
@@ -146,7 +157,9 @@ float spotFalloff(GpuPunctualLight light, float cosAngle) {
 // sample in solid angle, or for a punctual light its pmf, the weight of a delta.
 // `misPdf` is next-event estimation's density at the point lit (sampleLight): the pdf
 // where the sample came from it, and what MIS weighs any other sample by, so that the
-// weights of all strategies sum to one.
+// weights of all strategies sum to one. `areaPdf` is the density, in the same solid
+// angle, of the same light point sampled uniformly in area (sampleLightPoint), as the
+// equiangular next event samples it (distance_mis.glsl).
 struct LightArrival {
     vec3 wi;
     float distance;
@@ -154,6 +167,7 @@ struct LightArrival {
     vec3 parameter;
     float pdf;
     float misPdf;
+    float areaPdf;
     bool isDelta;   // a punctual light: no other strategy finds it, so no MIS
     uint emitter;   // the material, or kPunctualEmitter | the punctual light
     vec3 end;            // the light's point, where shadow rays towards a sample at a finite distance end
@@ -204,7 +218,8 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
         GpuMaterial light = P.materials.v[ls.material];
         a.perUnit = emissionPerUnit(light, ls.normal, ls.uv, -a.wi);
         a.parameter = light.emission.rgb;
-        a.pdf = ls.pdfSolidAngle > 0.0f ? ls.pdfSolidAngle : lightPdfSolidAngle(ls.pdfArea, from, ls.position, ls.normal);
+        a.areaPdf = lightPdfSolidAngle(ls.pdfArea, from, ls.position, ls.normal);
+        a.pdf = ls.pdfSolidAngle > 0.0f ? ls.pdfSolidAngle : a.areaPdf;
         a.misPdf = a.pdf;
         a.isDelta = false;
         a.emitter = ls.material;
@@ -217,6 +232,7 @@ LightArrival lightArrival(LightSample ls, vec3 from) {
     a.parameter = light.intensity;
     a.pdf = ls.pdfArea;
     a.misPdf = a.pdf;
+    a.areaPdf = a.pdf;
     a.isDelta = true;
     a.emitter = kPunctualEmitter | ls.punctual;
     a.end = light.position;
