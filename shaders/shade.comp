@@ -172,7 +172,7 @@ void shadeMedium(uint slot, PathInfo info, vec3 beta, vec3 origin, vec3 directio
         float mu = dot(direction, light.wi);
         float phase = hgPhase(mu, g);
         // hit.y: where the segment that found this collision ends.
-        float distanceWeight = freeFlightNextEventWeight(m, origin, direction, hit.y, hit.x, light.wi, light.distance);
+        float distanceWeight = freeFlightNextEventWeight(m, origin, direction, hit.y, hit.x, light);
         NextEventQuery query =
             NextEventQuery(position, medium, beta * distanceWeight, kVertexMedium, medium, kNoHit);
         nextEvent(slot, query, light, vec3(phase), phase, vec3(0.0f), hgPhaseDLogG(mu, g));

@@ -55,7 +55,8 @@ void equiangularNextEvent(uint slot, uint medium, float tEnd, vec3 beta) {
     float mu = dot(direction, light.wi);
     float phase = hgPhase(mu, m.g);
     vec3 sigma_t = sigmaT(m);
-    float weight = lightSampleWeight(light, phase) * powerHeuristic(pdfT, freeFlightPdf(sigma_t, t)) / pdfT;
+    float distanceWeight = distanceStrategyWeight(pdfT, light.pdf, freeFlightPdf(sigma_t, t), light.misPdf);
+    float weight = lightSampleWeight(light, phase) * distanceWeight / pdfT;
     // Per unit of sigma_s and of the emitter's parameter.
     vec3 perUnit = beta * transmittance(sigma_t, t) * (phase * weight) * light.perUnit;
     vec3 unoccluded = perUnit * m.sigma_s * light.parameter;

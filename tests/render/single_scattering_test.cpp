@@ -57,5 +57,17 @@ TEST_F(RenderTest, SingleScatteringNearALightMatchesQuadratureWithLessNoise) {
     }
 }
 
+// An emitter that points of the ray see under up to 2 sr: next-event estimation at a
+// free-flight collision samples it in solid angle, the equiangular next event in area,
+// and the two distance strategies weigh each other with both densities of the light
+// point (distance_mis.glsl). Weights that did not sum to one would bias the pixel.
+TEST_F(RenderTest, SingleScatteringBesideALargeLightMatchesQuadrature) {
+    FogSetup fog;
+    fog.lightX = 0.5;
+    fog.lightHalf = 0.5;
+    auto file = fog.scene().write(tempDir(), "large");
+    expectPixelNear(pixelOverSeeds(file, {.spp = 4096, .maxDepth = 1}, 16), singleScattering(fog).radiance);
+}
+
 }  // namespace
 }  // namespace vkdr::test
