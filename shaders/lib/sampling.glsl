@@ -30,13 +30,14 @@ vec2 sampleUniformTriangle(vec2 u) {
 // The power heuristic's MIS weight pdfA^2 / (pdfA^2 + pdfB^2), from the ratio of the
 // smaller pdf to the larger: squaring a pdf would overflow above 1.8e19 (an emitter seen
 // almost edge-on has an unbounded solid-angle pdf) and give inf / inf. Any pdf in
-// [0, inf] gives a weight in [0, 1]; 0 when pdfA is 0.
+// [0, inf] gives a weight in [0, 1]; 0 when pdfA is 0, and a half each for equal pdfs,
+// two infinite ones included.
 float powerHeuristic(float pdfA, float pdfB) {
     if (!(pdfA > 0.0f)) {
         return 0.0f;
     }
     if (pdfB >= pdfA) {
-        float r = pdfA / pdfB;
+        float r = pdfA < pdfB ? pdfA / pdfB : 1.0f;
         return r * r / (1.0f + r * r);
     }
     float r = pdfB / pdfA;

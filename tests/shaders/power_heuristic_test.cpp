@@ -30,6 +30,7 @@ TEST(PowerHeuristic, StaysAWeightForExtremePdfs) {
     EXPECT_EQ(glsl::powerHeuristic(infinity, 2.0f), 1.0f);
     EXPECT_EQ(glsl::powerHeuristic(2.0f, infinity), 0.0f);
     EXPECT_FLOAT_EQ(glsl::powerHeuristic(largest, largest), 0.5f);
+    EXPECT_FLOAT_EQ(glsl::powerHeuristic(infinity, infinity), 0.5f);
     EXPECT_FLOAT_EQ(glsl::powerHeuristic(tiny, tiny), 0.5f);
     EXPECT_EQ(glsl::powerHeuristic(0.0f, 0.0f), 0.0f);
     EXPECT_EQ(glsl::powerHeuristic(0.0f, 1.0f), 0.0f);
