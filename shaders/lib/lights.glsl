@@ -49,15 +49,6 @@ LightSample emitterPoint(uint triangle, vec2 b) {
                        P.triangleInfo.v[triangle].lightPmf / sp.area, 0.0f, kNoPunctualLight, triangle);
 }
 
-// A light chosen by u.x; a triangle's point by u.yz uniformly in its area.
-LightSample sampleLightPoint(vec3 u) {
-    uint source = P.lightSources.v[findLight(u.x)];
-    if ((source & kPunctualEmitter) != 0u) {
-        return punctualLightSample(source & ~kPunctualEmitter);
-    }
-    return emitterPoint(source, sampleUniformTriangle(u.yz));
-}
-
 // A triangle's corners, and the directions from `from` to them.
 struct TriangleView {
     vec3 v0;
@@ -97,30 +88,44 @@ vec2 planeBarycentrics(TriangleView view, vec3 from, vec3 direction) {
     return sum > 1.0f ? vec2(b1, b2) / sum : vec2(b1, b2);
 }
 
-// The light sample of next-event estimation at the vertex `from`: a light chosen by u.x,
-// and on a triangle that `from` sees under a solid angle that float resolves
-// (samplesBySolidAngle), a direction uniform in that solid angle; elsewhere a point
-// uniform in the triangle's area.
-LightSample sampleLight(vec3 u, vec3 from) {
+// A light chosen by u.x, and on a triangle a point by u.yz: when `inSolidAngle` and
+// `from` sees the triangle under a solid angle that float resolves (samplesBySolidAngle),
+// where a direction uniform in that solid angle meets it; elsewhere uniform in its area.
+LightSample sampleLightSource(vec3 u, bool inSolidAngle, vec3 from) {
     uint source = P.lightSources.v[findLight(u.x)];
     if ((source & kPunctualEmitter) != 0u) {
         return punctualLightSample(source & ~kPunctualEmitter);
     }
-    TriangleView view = triangleView(source, from);
-    if (!samplesBySolidAngle(view.solidAngle)) {
-        return emitterPoint(source, sampleUniformTriangle(u.yz));
+    bool unlit = false;
+    if (inSolidAngle) {
+        TriangleView view = triangleView(source, from);
+        if (samplesBySolidAngle(view.solidAngle)) {
+            vec3 direction = sampleSphericalTriangle(view.a, view.b, view.c, view.solidAngle, u.yz);
+            if (dot(direction, direction) < 2.0f) {
+                LightSample ls = emitterPoint(source, planeBarycentrics(view, from, direction));
+                ls.pdfSolidAngle = P.triangleInfo.v[source].lightPmf / view.solidAngle;
+                return ls;
+            }
+            // Not a number from a triangle at the edge of float's reach: a sample of
+            // density 0, which lights nothing, rather than a non-finite contribution.
+            unlit = true;
+        }
     }
-    vec3 direction = sampleSphericalTriangle(view.a, view.b, view.c, view.solidAngle, u.yz);
-    if (!(dot(direction, direction) < 2.0f)) {
-        // Not a number from a triangle at the edge of float's reach: a sample of
-        // density 0, which lights nothing, rather than a non-finite contribution.
-        LightSample unlit = emitterPoint(source, sampleUniformTriangle(u.yz));
-        unlit.pdfArea = 0.0f;
-        return unlit;
+    LightSample ls = emitterPoint(source, sampleUniformTriangle(u.yz));
+    if (unlit) {
+        ls.pdfArea = 0.0f;
     }
-    LightSample ls = emitterPoint(source, planeBarycentrics(view, from, direction));
-    ls.pdfSolidAngle = P.triangleInfo.v[source].lightPmf / view.solidAngle;
     return ls;
+}
+
+// A light chosen by u.x; a triangle's point by u.yz uniformly in its area.
+LightSample sampleLightPoint(vec3 u) {
+    return sampleLightSource(u, false, vec3(0.0f));
+}
+
+// The light sample of next-event estimation at the vertex `from`.
+LightSample sampleLight(vec3 u, vec3 from) {
+    return sampleLightSource(u, true, from);
 }
 
 // Solid-angle density of reaching a point on an emitter from `from` by sampling the

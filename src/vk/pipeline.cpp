@@ -10,12 +10,14 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string
                                  const std::vector<uint32_t>& specialization)
     : pushConstantBytes_(pushConstantBytes), name_(name) {
     const VkDevice device = context.device();
-    const std::vector<uint32_t> specialized =
-        specialization.empty() ? std::vector<uint32_t>(spirv.begin(), spirv.end())
-                               : specializedSpirv(name, spirv, specialization);
+    std::vector<uint32_t> specialized;
+    if (!specialization.empty()) {
+        specialized = specializedSpirv(name, spirv, specialization);
+        spirv = specialized;
+    }
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = specialized.size() * sizeof(uint32_t);
-    moduleInfo.pCode = specialized.data();
+    moduleInfo.codeSize = spirv.size_bytes();
+    moduleInfo.pCode = spirv.data();
     VkShaderModule rawModule;
     checkVk(vkCreateShaderModule(device, &moduleInfo, nullptr, &rawModule), ("creating shader " + name).c_str());
     // Needed only until the pipeline is made.

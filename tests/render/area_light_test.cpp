@@ -1,7 +1,8 @@
 // Direct light from an area light at oblique angles, against Lambert's closed form for
 // the irradiance of a polygon of constant radiance: the Cornell box's side wall, lit
 // from the ceiling lamp at grazing angles, where next-event estimation and BSDF sampling
-// share the work through MIS; and a floor under a lamp vastly larger than it.
+// share the work through MIS; a floor under a lamp vastly larger than it; and a floor
+// under a strip lamp whose triangles are slivers.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -139,6 +140,66 @@ TEST_F(RenderTest, AFloorUnderAVastLampMatchesLambertsFormula) {
     expectUniformRadiance(renderFile(file, {.width = 16, .height = 16, .spp = 64, .maxDepth = 1}),
                           albedo * std::numbers::inv_pi * le * irradiance);
 }
+
+// A strip lamp 2 long and 2w wide, 1 above a floor, seen by a camera halfway between:
+// each of its two triangles is a sliver (an angle of atan(w)), which the floor sees
+// under about 1.4 w sr, on either side of the solid angle below which next-event
+// estimation samples by area instead (kMinSphericalSamplingArea, 0.01 sr). The image's
+// mean is the floor's radiance under Lambert's formula, averaged over the square of
+// floor the camera sees.
+class SliverLampTest : public RenderTest, public ::testing::WithParamInterface<float> {};
+
+TEST_P(SliverLampTest, LightsAFloorAsLambertsFormulaSays) {
+    const float halfWidth = GetParam();
+    const glm::dvec3 le(1.0, 2.0, 3.0), albedo(0.5, 0.6, 0.7);
+    constexpr float kLampHeight = 1.0f, kCameraHeight = 0.5f, kYfov = 0.5f;
+    TestGltf scene;
+    scene.materials = {diffuseMaterial("floor", glm::vec3(albedo)), emissiveMaterial("lamp", glm::vec3(le), false)};
+    scene.meshes = {quadZ(0.0f, 0.0f, 1.0f, 0.0f, true, 0),
+                    rectangleZ(glm::vec2(-1.0f, -halfWidth), glm::vec2(1.0f, halfWidth), kLampHeight, false, 1)};
+    scene.cameraPosition = glm::vec3(0.0f, 0.0f, kCameraHeight);
+    scene.cameraLooksAlongPlusZ = false;
+    scene.yfov = kYfov;
+    const double w = halfWidth;
+    const std::vector<glm::dvec3> lamp = {{-1.0, -w, kLampHeight}, {1.0, -w, kLampHeight}, {1.0, w, kLampHeight},
+                                          {-1.0, w, kLampHeight}};
+    // The camera looks straight down, so its pixels cover the square |x|, |y| < s of the
+    // floor evenly; the irradiance is smooth there and a 256 x 256 midpoint rule is
+    // exact to far below the renders' noise.
+    const double s = kCameraHeight * std::tan(0.5 * kYfov);
+    constexpr int kGrid = 256;
+    double meanIrradiance = 0.0;
+    for (int i = 0; i < kGrid; ++i) {
+        for (int j = 0; j < kGrid; ++j) {
+            const glm::dvec3 p(s * ((2.0 * i + 1.0) / kGrid - 1.0), s * ((2.0 * j + 1.0) / kGrid - 1.0), 0.0);
+            meanIrradiance += polygonIrradiance(lamp, p, glm::dvec3(0.0, 0.0, 1.0)) / (kGrid * kGrid);
+        }
+    }
+    const glm::dvec3 expected = albedo * std::numbers::inv_pi * le * meanIrradiance;
+
+    constexpr uint32_t kSide = 16;
+    const auto file = scene.write(tempDir(), "sliver_lamp");
+    std::vector<Image> renders;
+    for (uint32_t seed : {1u, 2u}) {
+        renders.push_back(renderFile(file, {.width = kSide, .height = kSide, .spp = 256, .maxDepth = 1, .seed = seed}));
+    }
+    // The pixels are independent estimates, and the two seeds' differences give the
+    // variance of their mean. 5 standard errors, plus float rounding.
+    constexpr double kPixels = kSide * kSide;
+    for (int c = 0; c < 3; ++c) {
+        double rendered = 0.0, variance = 0.0;
+        for (uint32_t y = 0; y < kSide; ++y) {
+            for (uint32_t x = 0; x < kSide; ++x) {
+                const double a = renders[0].pixel(x, y)[c], b = renders[1].pixel(x, y)[c];
+                rendered += 0.5 * (a + b) / kPixels;
+                variance += 0.25 * (a - b) * (a - b) / (kPixels * kPixels);
+            }
+        }
+        EXPECT_NEAR(rendered, expected[c], 5.0 * std::sqrt(variance) + 1e-5 * expected[c]) << "channel " << c;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(HalfWidths, SliverLampTest, ::testing::Values(0.002f, 0.005f, 0.01f, 0.03f));
 
 // A one-sided lamp 2e10 wide seen from below its emitting face: its cross product's
 // squares leave float range, and its facing must still be found. Emitters only (max

@@ -78,17 +78,21 @@ TestMesh sphere(glm::vec3 centre, float radius, int subdivisions, int material) 
     return m;
 }
 
-TestMesh quadZ(float cx, float cy, float halfSize, float z, bool facingPlusZ, int material) {
+TestMesh rectangleZ(glm::vec2 lo, glm::vec2 hi, float z, bool facingPlusZ, int material) {
     TestMesh m;
     m.material = material;
-    glm::vec3 a(cx - halfSize, cy - halfSize, z), b(cx + halfSize, cy - halfSize, z);
-    glm::vec3 c(cx + halfSize, cy + halfSize, z), d(cx - halfSize, cy + halfSize, z);
+    glm::vec3 a(lo.x, lo.y, z), b(hi.x, lo.y, z), c(hi.x, hi.y, z), d(lo.x, hi.y, z);
     if (facingPlusZ) {
         appendQuad(m, a, b, c, d);
     } else {
         appendQuad(m, a, d, c, b);
     }
     return m;
+}
+
+TestMesh quadZ(float cx, float cy, float halfSize, float z, bool facingPlusZ, int material) {
+    return rectangleZ(glm::vec2(cx - halfSize, cy - halfSize), glm::vec2(cx + halfSize, cy + halfSize), z,
+                      facingPlusZ, material);
 }
 
 std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const std::string& name) const {

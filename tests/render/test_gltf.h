@@ -28,6 +28,8 @@ struct TestLightNode {
 TestMesh box(glm::vec3 lo, glm::vec3 hi, int material);
 // Icosphere (`subdivisions` times split), normals pointing out.
 TestMesh sphere(glm::vec3 centre, float radius, int subdivisions, int material);
+// Rectangle [lo, hi] in the plane z = `z`, facing +z when `facingPlusZ`.
+TestMesh rectangleZ(glm::vec2 lo, glm::vec2 hi, float z, bool facingPlusZ, int material);
 // Square in the plane z = `z`, centred on (cx, cy), facing +z when `facingPlusZ`.
 TestMesh quadZ(float cx, float cy, float halfSize, float z, bool facingPlusZ, int material);
 
