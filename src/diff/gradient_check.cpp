@@ -78,9 +78,9 @@ std::vector<std::vector<FiniteDifferenceStep>> finiteDifferenceSteps(const Scene
             }
             const double h = fittedStep(x, description.finiteDifferenceStep(x), range);
             if (!(float(x + h) != x || float(x - h) != x)) {
-                throw Error(formatText("--check: %s[%zu] = %g has no room for a finite difference: its range here is "
-                                       "%g to %g%s",
-                                       name.c_str(), c, double(x), range.lower, upperEnd(range),
+                throw Error(formatText("--check: %s[%zu] = %g has no room for a finite difference: a step of %g "
+                                       "leaves it unchanged as a float, in its range here of %g to %g%s",
+                                       name.c_str(), c, double(x), h, range.lower, upperEnd(range),
                                        coupled ? " (a scene-wide medium's emission / (sigma_a + sigma_s) may not "
                                                  "exceed 1e12)"
                                                : ""));

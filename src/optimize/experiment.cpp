@@ -162,6 +162,8 @@ public:
         }
         ExperimentCamera camera;
         camera.name = string(value["name"], where + ".name");
+        // In "views", "" stands for the scene's first camera.
+        if (camera.name.empty()) fail(where + ".name", "must not be empty");
         camera.position = vector3(value["position"], where + ".position");
         camera.lookAt = vector3(value["look_at"], where + ".look_at");
         if (value.contains("up")) camera.up = vector3(value["up"], where + ".up");

@@ -92,11 +92,8 @@ int32_t readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& dens
     const std::string gridName = readString(diagnostics, density, field, "grid", defaultGrid);
     glm::dmat4 placement(1.0);
     if (density.Has("node")) {
-        const tinygltf::Value& node = density.Get("node");
-        if (!node.IsInt()) {
-            diagnostics.fail(field + ".node", "expected a node index");
-        }
-        placement = nodeToWorld(model, node.GetNumberAsInt(), field + ".node", diagnostics);
+        // An index, as the JSON checks require (gltf_json_checks.cpp).
+        placement = nodeToWorld(model, density.Get("node").GetNumberAsInt(), field + ".node", diagnostics);
     }
     SceneDensityGrid placed;
     placed.file = resolved.file;

@@ -98,22 +98,6 @@ void checkOwnMembers(const json& object, const std::string& field, std::span<con
     }
 }
 
-void checkMedium(const json& extensions, const std::string& extensionsField, bool sceneWide,
-                 GltfDiagnostics& diagnostics) {
-    if (!extensions.is_object() || !extensions.contains(kMediumExtension)) return;
-    const json& medium = extensions[kMediumExtension];
-    const std::string field = member(extensionsField, kMediumExtension);
-    // A material's medium takes the material's name.
-    std::span<const std::string_view> known(kSceneMediumMembers);
-    checkOwnMembers(medium, field, sceneWide ? known : known.subspan(1), diagnostics);
-    for (std::string_view reference : kGridReferences) {
-        const std::string key(reference);
-        if (medium.contains(key) && medium[key].is_object()) {
-            checkOwnMembers(medium[key], member(field, key), kGridReferenceMembers, diagnostics);
-        }
-    }
-}
-
 void requireNumbers(const json& object, const std::string& field, const std::string& key, size_t count,
                     const GltfDiagnostics& diagnostics) {
     if (!object.contains(key)) return;
@@ -148,6 +132,23 @@ void requireIndex(const json& value, const std::string& field, const GltfDiagnos
 void requireIndexMember(const json& object, const std::string& field, const std::string& key,
                         const GltfDiagnostics& diagnostics) {
     if (object.contains(key)) requireIndex(object[key], member(field, key), diagnostics);
+}
+
+void checkMedium(const json& extensions, const std::string& extensionsField, bool sceneWide,
+                 GltfDiagnostics& diagnostics) {
+    if (!extensions.is_object() || !extensions.contains(kMediumExtension)) return;
+    const json& medium = extensions[kMediumExtension];
+    const std::string field = member(extensionsField, kMediumExtension);
+    // A material's medium takes the material's name.
+    std::span<const std::string_view> known(kSceneMediumMembers);
+    checkOwnMembers(medium, field, sceneWide ? known : known.subspan(1), diagnostics);
+    for (std::string_view reference : kGridReferences) {
+        const std::string key(reference);
+        if (medium.contains(key) && medium[key].is_object()) {
+            checkOwnMembers(medium[key], member(field, key), kGridReferenceMembers, diagnostics);
+            requireIndexMember(medium[key], member(field, key), "node", diagnostics);
+        }
+    }
 }
 
 // A byte offset, a primitive's mode or a sampler's wrap mode, which tinygltf reads as its
@@ -345,9 +346,20 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
         }
         if (extensions.contains(kPunctualLightsExtension)) {
             const json& lights = extensions[kPunctualLightsExtension];
+            const std::string lightsField = member(member("extensions", kPunctualLightsExtension), "lights");
             if (lights.contains("lights") && !lights["lights"].is_array()) {
-                diagnostics.fail(member(member("extensions", kPunctualLightsExtension), "lights"),
-                                 "expected an array, got " + describeValue(lights["lights"]));
+                diagnostics.fail(lightsField, "expected an array, got " + describeValue(lights["lights"]));
+            } else if (lights.contains("lights")) {
+                // Here, where a range written as 0 (not allowed by glTF, and ignored too)
+                // differs from none: tinygltf reads an absent one as 0.
+                for (size_t i = 0; i < lights["lights"].size(); ++i) {
+                    const json& light = lights["lights"][i];
+                    if (light.is_object() && light.contains("range")) {
+                        diagnostics.warn(member(indexed(lightsField, i), "range"),
+                                         "ignored: a light's intensity falls off with the inverse square of "
+                                         "distance, with no cut-off");
+                    }
+                }
             }
         }
     }

@@ -85,11 +85,6 @@ std::vector<PunctualLight> readPunctualLights(const tinygltf::Model& model, Gltf
         if (light.type == PunctualLight::Type::Spot) {
             readSpotCones(source, field, diagnostics, light);
         }
-        // tinygltf reads an absent range as 0, which glTF does not allow: any other value was given.
-        if (source.range != 0.0) {
-            diagnostics.warn(field + ".range", "ignored: a light's intensity falls off with the inverse square of "
-                                               "distance, with no cut-off");
-        }
         for (size_t j = 0; j < lights.size(); ++j) {
             if (lights[j].name == light.name) {
                 diagnostics.fail(field + ".name", "'" + light.name + "' already names " + lightField(j) +

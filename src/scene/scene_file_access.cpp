@@ -43,6 +43,9 @@ SceneFiles::SceneFiles(const std::filesystem::path& sceneFile, SceneFileAccess a
 }
 
 ResolvedFile SceneFiles::resolveUri(const std::string& uri) const {
+    // The file system would read the name only up to it; and the URI is not quoted, so
+    // that the message carries no NUL either.
+    if (uri.find('\0') != std::string::npos) return {{}, "contains a NUL character (\\u0000)"};
     std::string scheme = uriScheme(uri);
     if (!scheme.empty()) {
         return {{}, "'" + uri + "': URIs with a scheme (" + scheme + ") are not read; give a path relative to "

@@ -18,6 +18,7 @@
 #include "image/regular_file.h"
 #include "volume/grid_file_type.h"
 #include "volume/index_transform.h"
+#include "volume/nanovdb_grid_extent.h"
 #include "volume/openvdb_support.h"
 
 namespace vkdr {
@@ -196,6 +197,7 @@ glm::dmat4 indexToLocalOf(const nanovdb::Map& map) {
 template <typename Values, typename ValueT>
 DensityGrid denseBoxOfNanoGrid(const nanovdb::NanoGrid<ValueT>* grid, const std::string& gridName) {
     if (grid == nullptr) throw Error("the grid's header and its contents disagree on its value type");
+    requireNodesWithinGrid(*grid);
     const std::string damage = nanovdb::GridValidator<ValueT>::check(*grid, true);
     if (!damage.empty()) throw Error("the grid is damaged (" + damage + ")");
     const glm::dmat4 indexToLocal = indexToLocalOf(grid->map());
@@ -217,11 +219,15 @@ DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gr
     if (found == nullptr) throw Error(noGridNamed(gridName, names));
     if (sameName > 1) throw Error(severalGridsNamed(gridName, sameName, "rename all but one"));
     const nanovdb::GridType type = found->gridType;
+    if (uint32_t(type) >= uint32_t(nanovdb::GridType::End)) {
+        throw Error(formatText("the grid is damaged (its type is %u, which NanoVDB does not define)", unsigned(type)));
+    }
     const bool isVector = Values::channels == 3 && type == nanovdb::GridType::Vec3f;
     if (type != nanovdb::GridType::Float && type != nanovdb::GridType::Double && !isVector) {
         throw Error(std::string("the grid holds ") + nanovdb::toStr(type) + " values, not " + Values::expected);
     }
     const nanovdb::GridHandle<nanovdb::HostBuffer> handle = nanovdb::io::readGrid(file.string(), gridName);
+    requireGridWithinBuffer(handle.data(), handle.size());
     if (type == nanovdb::GridType::Float) return denseBoxOfNanoGrid<Values>(handle.grid<float>(), gridName);
     if constexpr (Values::channels == 3) {
         if (isVector) return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Vec3f>(), gridName);
@@ -249,7 +255,11 @@ DensityGrid readGrid(const std::filesystem::path& file, const std::string& gridN
         requireReadableFile(file);
         return *type == GridFileType::Vdb ? readVdb<Values>(file, gridName) : readNanoVdb<Values>(file, gridName);
     } catch (const std::bad_alloc&) {
-        throw;
+        // A damaged file can make OpenVDB's or NanoVDB's reader ask for any amount.
+        std::error_code ignored;
+        throw Error(context + formatText("reading it asked for more memory than this machine has; the file (%llu "
+                                         "bytes) may be truncated or damaged",
+                                         (unsigned long long)std::filesystem::file_size(file, ignored)));
     } catch (const Error& error) {
         throw Error(context + error.what());
     } catch (const std::exception& error) {

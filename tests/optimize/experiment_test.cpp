@@ -273,6 +273,8 @@ TEST(Experiment, AddsItsCamerasToTheScene) {
 
     experiment["cameras"][0]["look_at"] = {0, 2, -4};
     expectReadError(scratch, experiment, {"cameras[0]", "look_at must differ"});
+    experiment["cameras"][0]["name"] = "";
+    expectReadError(scratch, experiment, {"cameras[0].name", "must not be empty"});
 }
 
 TEST(Experiment, RecoversTheTrueValuesWithAnAnalyticBackend) {

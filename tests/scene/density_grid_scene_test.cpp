@@ -119,7 +119,8 @@ TEST(DensityGridScene, BadReferencesNameTheField) {
     expectLoadError(write("smoke.vdb"), {field, "expected an object"});
     expectLoadError(write({{"uri", "data:application/octet-stream;base64,AAAA"}}), {field + ".uri", "data: URI"});
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 7}}), {field + ".node", "out of range"});
-    expectLoadError(write({{"uri", "smoke.vdb"}, {"node", "one"}}), {field + ".node", "node index"});
+    expectLoadError(write({{"uri", "smoke.vdb"}, {"node", "one"}}), {field + ".node", "expected an index"});
+    expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 2147483648ll}}), {field + ".node", "2147483648"});
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 1}}, 0.0), {field, "singular"});
     // A placement that shears the voxels to within 1e-6 of a plane: the rule for a grid file's own transform.
     GltfBuilder sheared = boxScene(gridMedium({{"uri", "smoke.vdb"}, {"node", 1}}));

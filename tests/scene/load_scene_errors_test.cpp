@@ -587,10 +587,15 @@ TEST(LoadSceneErrors, PunctualLightWarnings) {
     const std::vector<std::string> sceneChecks = sceneWarnings(loaded.scene);
     ASSERT_EQ(sceneChecks.size(), 1u);
     EXPECT_EQ(sceneChecks[0], "light 'unplaced' is placed by no node and lights nothing");
-    // glTF wants a range above 0; one at or below is no more used.
-    loaded = loadScene(floorWithLights({{{"type", "point"}, {"range", -1.0}}}).writeGltf(directory / "negative.gltf"));
-    ASSERT_EQ(loaded.warnings.size(), 1u);
-    EXPECT_NE(loaded.warnings[0].find("lights[0].range: ignored"), std::string::npos) << loaded.warnings[0];
+    // glTF wants a range above 0; one at or below is no more used, 0 included (which
+    // tinygltf reads for an absent range).
+    for (double range : {-1.0, 0.0}) {
+        loaded = loadScene(floorWithLights({{{"type", "point"}, {"range", range}}}).writeGltf(directory / "low.gltf"));
+        ASSERT_EQ(loaded.warnings.size(), 1u) << "range " << range;
+        EXPECT_NE(loaded.warnings[0].find("lights[0].range: ignored"), std::string::npos) << loaded.warnings[0];
+    }
+    loaded = loadScene(floorWithLights({{{"type", "point"}}}).writeGltf(directory / "none.gltf"));
+    EXPECT_TRUE(loaded.warnings.empty());
 }
 
 }  // namespace

@@ -112,6 +112,7 @@ TEST(SceneFileAccess, RefusesUrisWithASchemeAndBadEscapes) {
     expectRefused(s.withBufferUri(fileUri), {"buffers[0].uri", "file:"}, {true});
     expectRefused(s.withBufferUri("box%2.bin"), {"buffers[0].uri", "two hex digits"});
     expectRefused(s.withBufferUri("box.bin%00.txt"), {"buffers[0].uri", "two hex digits"});
+    expectRefused(s.withBufferUri(std::string("box.bin\0.txt", 12)), {"buffers[0].uri", "NUL character"});
 }
 
 TEST(SceneFileAccess, RefusesWhatIsNotARegularFile) {

@@ -209,6 +209,56 @@ TEST(DensityGridErrors, DamagedNanoVdbGrid) {
     expectReadError(directory / "grid.nvdb", "density", {"damaged", "checksum"});
 }
 
+// NanoVDB's reader believes the file's metadata (the grid's type and size) and the grid's
+// own offsets; each, damaged, is an error, not a read past the buffer.
+TEST(DensityGridErrors, NanoVdbMetadataAndOffsetsOutOfRange) {
+    ScratchDirectory directory;
+    writeDensityGridNanoVdb(directory / "grid.nvdb", patternedGrid({0, 0, 0}, {12, 12, 12}, glm::dmat4(1.0)));
+    const std::string bytes = fileBytes(directory / "grid.nvdb");
+    // The file's header, then the one grid's metadata.
+    const size_t metadata = sizeof(nanovdb::io::Header);
+    auto withField = [&](size_t offset, auto value) {
+        std::string damaged = bytes;
+        damaged.replace(offset, sizeof(value), std::string(reinterpret_cast<const char*>(&value), sizeof(value)));
+        return damaged;
+    };
+
+    writeBytes(directory / "type.nvdb", withField(metadata + offsetof(nanovdb::io::MetaData, gridType), uint32_t(30)));
+    expectReadError(directory / "type.nvdb", "density", {"damaged", "type is 30"});
+
+    const nanovdb::GridHandle<> handle = nanovdb::io::readGrid((directory / "grid.nvdb").string());
+    const uint64_t gridSize = handle.size();
+    writeBytes(directory / "short.nvdb",
+               withField(metadata + offsetof(nanovdb::io::MetaData, gridSize), uint64_t(gridSize - 4096)));
+    expectReadError(directory / "short.nvdb", "density", {"damaged", std::to_string(gridSize) + " bytes"});
+    writeBytes(directory / "tiny.nvdb", withField(metadata + offsetof(nanovdb::io::MetaData, gridSize), uint64_t(64)));
+    expectReadError(directory / "tiny.nvdb", "density", {"damaged", "fewer than its headers"});
+
+    // The tree's offset to its root, then a lower node's to a leaf, far past the grid's
+    // end, in grids without a checksum (as NanoVDB allows), which nothing else would catch.
+    // The grid's bytes end the file.
+    const nanovdb::NanoGrid<float>* grid = handle.grid<float>();
+    const auto* gridBytes = reinterpret_cast<const char*>(grid);
+    auto inGrid = [&](const void* field) {
+        return bytes.size() - gridSize + size_t(static_cast<const char*>(field) - gridBytes);
+    };
+    auto unchecked = [&](size_t offset, auto value) {
+        std::string damaged = withField(offset, value);
+        const size_t checksum = inGrid(&grid->data()->mChecksum);
+        damaged.replace(checksum, sizeof(uint64_t), std::string(8, '\xff'));
+        return damaged;
+    };
+    const auto* tree = reinterpret_cast<const nanovdb::NanoTree<float>::DataType*>(&grid->tree());
+    writeBytes(directory / "root.nvdb", unchecked(inGrid(&tree->mNodeOffset[3]), uint64_t(1) << 40));
+    expectReadError(directory / "root.nvdb", "density", {"damaged", "root node"});
+
+    const auto* lower = grid->tree().getFirstNode<1>()->data();
+    auto child = lower->mChildMask.beginOn();
+    ASSERT_TRUE(child);
+    writeBytes(directory / "leaf.nvdb", unchecked(inGrid(&lower->mTable[*child].child), int64_t(1) << 40));
+    expectReadError(directory / "leaf.nvdb", "density", {"damaged", "leaf node"});
+}
+
 TEST(DensityGridErrors, BoxTooLargeToHoldDensely) {
     ScratchDirectory directory;
     openvdb::FloatGrid::Ptr vdb = gridWithVoxel({2000, 2000, 2000}, 1.0f);

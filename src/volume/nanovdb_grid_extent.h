@@ -1,0 +1,44 @@
+#pragma once
+// Whether a NanoVDB grid read from a file lies within the bytes read. NanoVDB's reader
+// sizes its buffer by the file's metadata and then follows the grid's own sizes and
+// offsets, and its validator checks neither the root's table against the buffer nor the
+// leaf nodes, so a damaged file would be read past its end.
+#include <cstdint>
+#include <string>
+
+#include <nanovdb/NanoVDB.h>
+
+#include "core/error.h"
+
+namespace vkdr {
+
+// Throws vkdr::Error unless the `held` bytes at `bytes` hold a grid's and its tree's
+// headers, and the whole of the size that header gives the grid.
+void requireGridWithinBuffer(const uint8_t* bytes, uint64_t held);
+
+// Throws vkdr::Error unless every node of `grid` (root table, internal nodes, leaves)
+// lies within its gridSize() bytes, aligned. Requires requireGridWithinBuffer first.
+template <typename ValueT>
+void requireNodesWithinGrid(const nanovdb::NanoGrid<ValueT>& grid) {
+    const uintptr_t begin = reinterpret_cast<uintptr_t>(&grid);
+    const uint64_t size = grid.gridSize();
+    auto within = [&](const void* node, uint64_t bytes, const char* what) {
+        const uintptr_t at = reinterpret_cast<uintptr_t>(node);
+        if (at < begin || at - begin > size || size - (at - begin) < bytes || at % NANOVDB_DATA_ALIGNMENT != 0) {
+            throw Error(std::string("the grid is damaged (") + what + " lies outside its " + std::to_string(size) +
+                        " bytes)");
+        }
+    };
+    const auto& root = grid.tree().root();
+    within(&root, sizeof(root), "its root node");
+    within(&root, root.memUsage(), "its root node's table");
+    for (auto upper = root.beginChild(); upper; ++upper) {
+        within(&*upper, sizeof(*upper), "an upper internal node");
+        for (auto lower = upper->beginChild(); lower; ++lower) {
+            within(&*lower, sizeof(*lower), "a lower internal node");
+            for (auto leaf = lower->beginChild(); leaf; ++leaf) within(&*leaf, sizeof(*leaf), "a leaf node");
+        }
+    }
+}
+
+}  // namespace vkdr
