@@ -222,8 +222,9 @@ std::vector<ParameterGradient> SceneSession::namedGradients(const std::vector<Gr
         result.push_back({slot.name, getParameter(loaded_.scene, slot.name), gatherGradient(slot, gradients)});
         for (double value : result.back().gradient) {
             if (!std::isfinite(value)) {
-                throw Error("the gradient of " + slot.name + " is not finite: the image adjoint (or the target's "
-                            "difference from the image) is too large to sum");
+                throw Error("the gradient of " + slot.name + " is not finite: it exceeds float's range (a large "
+                            "image adjoint, or target's difference from the image, or a parameter near 0 that "
+                            "the image depends on through its inverse, as a medium's emission over sigma_t)");
             }
         }
     }

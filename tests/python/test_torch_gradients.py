@@ -141,6 +141,21 @@ def test_a_failing_forward_pass_leaves_the_scene_as_it_was(scene, parameters, se
         assert np.array_equal(scene[name], value), name
 
 
+@pytest.mark.parametrize("call,message", [
+    (lambda scene: vt.render(None, {"media/fog/sigma_a": torch.tensor(0.3)}), "scene: expected a vkdiffrender.Scene"),
+    (lambda scene: vt.render(scene, [("media/fog/sigma_a", torch.tensor(0.3))]), "parameters: expected a dict"),
+    (lambda scene: vt.render(scene, {"media/fog/sigma_a": None}), "media/fog/sigma_a: expected a tensor or numbers"),
+    (lambda scene: vt.render(scene, {"media/fog/sigma_a": "0.3"}), "media/fog/sigma_a: expected a tensor or numbers"),
+    (lambda scene: vt.render(scene, {"media/fog/sigma_a": torch.zeros(3, device="meta")}),
+     "media/fog/sigma_a: a tensor on the meta device"),
+])
+def test_arguments_of_the_wrong_kind_name_themselves(scene, call, message):
+    before = scene["media/fog/sigma_a"].copy()
+    with pytest.raises(TypeError, match=message):
+        call(scene)
+    assert np.array_equal(scene["media/fog/sigma_a"], before)
+
+
 def test_complex_values_are_refused_not_cut_to_their_real_part(scene):
     before = scene["media/fog/sigma_a"].copy()
     with pytest.raises(TypeError, match="media/fog/sigma_a: expected real numbers"):

@@ -20,8 +20,11 @@ that threads sharing a scene never render or differentiate each other's values.
 """
 import threading
 import weakref
+from collections.abc import Mapping
 
 import torch
+
+from . import Scene
 
 __all__ = ["render"]
 
@@ -46,21 +49,34 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
     A tensor may have the parameter's shape (scene.parameter(name).shape) or a single
     element, which sets every channel (and texel); its gradient then sums theirs.
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene: expected a vkdiffrender.Scene, got {type(scene).__name__}")
+    if not isinstance(parameters, Mapping):
+        raise TypeError(f"parameters: expected a dict of parameter name -> tensor, got {type(parameters).__name__}")
     settings = dict(spp=spp, seed=seed, width=width, height=height, max_depth=max_depth, camera=camera,
                     paths_per_pass=paths_per_pass, equiangular=equiangular)
     names = list(parameters)
-    for name in names:
-        # torch.as_tensor copies a list's values and drops the graph of tensors in it.
-        if isinstance(parameters[name], (list, tuple)) and any(
-                isinstance(item, torch.Tensor) and item.requires_grad for item in parameters[name]):
-            raise TypeError(f"{name}: a list of tensors that require grad loses their gradients; "
-                            "pass torch.stack(...) of them instead")
-    tensors = [torch.as_tensor(parameters[name]) for name in names]
-    for name, tensor in zip(names, tensors):
-        # Converting to float32 would drop an imaginary part with a mere warning.
-        if tensor.is_complex():
-            raise TypeError(f"{name}: expected real numbers, got a tensor of {tensor.dtype}")
+    tensors = [_tensor_of(name, parameters[name]) for name in names]
     return _Render.apply(scene, names, settings, *tensors)
+
+
+def _tensor_of(name, value):
+    """`value` as a tensor of real numbers with values, or a TypeError naming the parameter."""
+    # torch.as_tensor copies a list's values and drops the graph of tensors in it.
+    if isinstance(value, (list, tuple)) and any(isinstance(item, torch.Tensor) and item.requires_grad
+                                                for item in value):
+        raise TypeError(f"{name}: a list of tensors that require grad loses their gradients; "
+                        "pass torch.stack(...) of them instead")
+    try:
+        tensor = torch.as_tensor(value)
+    except (TypeError, ValueError, RuntimeError) as error:
+        raise TypeError(f"{name}: expected a tensor or numbers, got {type(value).__name__} ({error})") from error
+    # Converting to float32 would drop an imaginary part with a mere warning.
+    if tensor.is_complex():
+        raise TypeError(f"{name}: expected real numbers, got a tensor of {tensor.dtype}")
+    if tensor.device.type == "meta":
+        raise TypeError(f"{name}: a tensor on the meta device holds no values")
+    return tensor
 
 
 class _Render(torch.autograd.Function):
