@@ -112,7 +112,13 @@ uint32_t integerIn(const char* keyword, const py::object& value, int64_t low, in
                              std::string(py::str(value.get_type().attr("__name__"))));
     }
     const auto number = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
-    if (!number) throw py::error_already_set();
+    if (!number) {
+        // What claims to be an integer and is not one (a numpy array of several, or of one
+        // element and a shape): numpy's own message would not name the keyword.
+        const py::error_already_set error;
+        throw py::type_error(std::string(keyword) + ": expected an integer, got " +
+                             std::string(py::str(value.get_type().attr("__name__"))) + " (" + error.what() + ")");
+    }
     auto below = [&](int64_t bound) {
         return PyObject_RichCompareBool(number.ptr(), py::int_(bound).ptr(), Py_LT) == 1;
     };

@@ -247,6 +247,9 @@ def test_integer_keywords_take_integers_only(scene):
     for keyword, value in [("spp", np.float32(1.7)), ("width", 8.0), ("spp", True)]:
         with pytest.raises(TypeError, match=f"^{keyword}: expected an integer, got {type(value).__name__}$"):
             scene.render(**{"width": WIDTH, "spp": 1, keyword: value})
+    # numpy arrays claim to be integers, and are not one unless of one element and no shape.
+    with pytest.raises(TypeError, match="^width: expected an integer, got ndarray"):
+        scene.render(width=np.array([WIDTH]), spp=1)
     with pytest.raises(vkdiffrender.Error, match=r"^spp: must be an integer from 1 to \d+, got 9223372036854775808$"):
         scene.render(width=WIDTH, spp=2**63)
     with pytest.raises(vkdiffrender.Error, match=r"^seed: must be a 32-bit unsigned integer .*, got 18446744073709551616$"):
