@@ -311,6 +311,65 @@ def orthographic_camera(scene):
     scene.camera.data.type = "ORTHO"
 
 
+def volume_material(name, density):
+    """A material whose Volume is a Principled Volume of DENSITY, with no Surface."""
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    volume = nodes.new("ShaderNodeVolumePrincipled")
+    volume.inputs["Density"].default_value = density
+    material.node_tree.links.new(volume.outputs[0], nodes["Material Output"].inputs["Volume"])
+    return material
+
+
+def nan_density(scene):
+    """A NaN, as a driver or a script can give a socket."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5)
+    bpy.context.object.data.materials.append(volume_material("NanFog", float("nan")))
+
+
+def nan_light_power(scene):
+    add_light("POINT", "Bulb", (0.0, 0.0, 2.0), float("nan"), scene.collection)
+
+
+def area_light_of_no_size(scene):
+    add_light("AREA", "Panel", (0.0, 0.0, 2.0), 100.0, scene.collection)
+    bpy.data.objects["Panel"].data.size = 0.0
+
+
+def area_emitter_named_like_a_material(scene):
+    add_light("AREA", "Lamp", (0.0, 0.0, 2.0), 100.0, scene.collection)
+    bpy.ops.mesh.primitive_cube_add(size=0.5)
+    material = bpy.data.materials.new("Lamp.area")
+    bpy.context.object.data.materials.append(material)
+
+
+def world_named_like_two_materials(scene):
+    """A World fog named World, and fog cubes whose materials are World and World (World)."""
+    tree = new_world(scene, "World")
+    fog = tree.nodes.new("ShaderNodeVolumeScatter")
+    fog.inputs["Density"].default_value = 0.01
+    tree.links.new(fog.outputs[0], tree.nodes["World Output"].inputs["Volume"])
+    for name, x in (("World", -1.0), ("World (World)", 1.0)):
+        bpy.ops.mesh.primitive_cube_add(size=0.5, location=(x, 0.0, 0.5))
+        bpy.context.object.data.materials.append(volume_material(name, 1.0))
+
+
+def packed_texture(scene):
+    """A plane textured with a packed image named photo, which the export writes as
+    photo.png."""
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 0.5))
+    material = bpy.data.materials.new("Photo")
+    material.use_nodes = True
+    texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+    texture.image = image_texture("photo")
+    texture.image.pack()
+    material.node_tree.links.new(texture.outputs["Color"],
+                                 material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+    bpy.context.object.data.materials.append(material)
+
+
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
@@ -318,7 +377,10 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
          "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera,
-         "textured_materials": textured_materials}
+         "textured_materials": textured_materials, "nan_density": nan_density, "nan_light_power": nan_light_power,
+         "area_light_of_no_size": area_light_of_no_size,
+         "area_emitter_named_like_a_material": area_emitter_named_like_a_material,
+         "world_named_like_two_materials": world_named_like_two_materials}
 
 
 def failing_export(scene, directory):
@@ -360,6 +422,16 @@ def main():
     failing.mkdir()
     (failing / "scene.gltf").write_text("the previous export")
     export_case(out, "failing_export", lambda scene: failing_export(scene, failing), failing / "scene.gltf")
+    # A file of the user's where the export would write a texture; then the same export
+    # twice into a folder of its own, the second replacing the first's texture.
+    users = out / "users_folder"
+    users.mkdir()
+    (users / "photo.png").write_text("the user's photo")
+    export_case(out, "users_photo", packed_texture, users / "scene.gltf")
+    twice = out / "twice_folder"
+    twice.mkdir()
+    export_case(out, "exported_once", packed_texture, twice / "scene.gltf")
+    export_case(out, "exported_twice", packed_texture, twice / "scene.gltf")
     (out / "link.gltf").symlink_to(out / "elsewhere.gltf")
     export_case(out, "symbolic_link", lambda scene: None, out / "link.gltf")
     export_case(out, "missing_directory", lambda scene: None, out / "no such directory" / "scene.gltf")

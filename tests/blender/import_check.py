@@ -67,6 +67,24 @@ def import_and_read(gltf, out):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     vkdiffrender_blender.register()
     result["numpy_bool_before"] = hasattr(numpy, "bool")
+    result["unreadable"] = {}
+    (out / "not_gltf.gltf").write_text("these are not the bytes of a glTF file")
+    for name in ("not_gltf.gltf", "missing.gltf"):
+        try:
+            bpy.ops.import_scene.vkdiffrender(filepath=str(out / name))
+        except RuntimeError as error:  # an operator's error report, as Python sees it
+            result["unreadable"][name] = str(error)
+    # A medium's coefficient as text, beside the file so that its buffer resolves.
+    doc = json.loads(gltf.read_text())
+    medium = next(m["extensions"]["VKDR_participating_media"] for m in doc["materials"]
+                  if "VKDR_participating_media" in m.get("extensions", {}))
+    medium["sigma_a"] = "lots"
+    (gltf.parent / "text_medium.gltf").write_text(json.dumps(doc))
+    try:
+        bpy.ops.import_scene.vkdiffrender(filepath=str(gltf.parent / "text_medium.gltf"))
+    except RuntimeError as error:
+        result["unreadable"]["text_medium.gltf"] = str(error)
+    bpy.ops.wm.read_factory_settings(use_empty=True)  # the add-on stays registered
     bpy.ops.import_scene.vkdiffrender(filepath=str(gltf))
     result["numpy_bool_after"] = hasattr(numpy, "bool")
     result["media"] = {m.name: medium_values(m) for m in bpy.data.materials if medium_values(m) is not None}

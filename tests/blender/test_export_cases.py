@@ -239,6 +239,24 @@ def test_a_world_named_like_a_material_gets_a_medium_name_of_its_own(exported, c
     render_mean(cli, exported, "world_named_like_a_material")  # medium names must be unique to load
 
 
+def test_a_world_named_like_two_materials_gets_a_medium_name_of_its_own(exported, cli):
+    doc = document(exported, "world_named_like_two_materials")
+    assert doc["extensions"]["VKDR_participating_media"]["name"] == "World (World 2)"
+    render_mean(cli, exported, "world_named_like_two_materials")
+
+
+def test_a_file_of_the_users_is_not_replaced_by_a_texture_and_an_export_replaces_its_own(exported, cli):
+    error = result(exported, "users_photo")["error"]
+    assert "photo.png" in error and "move it, or export to another folder" in error
+    users = exported / "users_folder"
+    assert (users / "photo.png").read_text() == "the user's photo"
+    assert sorted(p.name for p in users.iterdir()) == ["photo.png"], "nothing written, no staging folder left"
+    assert "error" not in result(exported, "exported_once") and "error" not in result(exported, "exported_twice")
+    twice = exported / "twice_folder"
+    assert sorted(p.name for p in twice.iterdir()) == ["photo.png", "scene.bin", "scene.gltf"]
+    render_mean(cli, twice.parent, twice.name)
+
+
 def test_an_export_that_fails_leaves_the_previous_one(exported):
     assert "scene.bin" in result(exported, "failing_export")["error"]
     failing = exported / "failing"
@@ -251,6 +269,10 @@ def test_an_export_that_fails_leaves_the_previous_one(exported):
     ("orthographic_camera", "camera 'camera': ortho cameras are not supported"),
     ("symbolic_link", "link.gltf: is a symbolic link"),
     ("missing_directory", "no such directory: the directory does not exist"),
+    ("nan_density", "material 'NanFog': input 'Density' of node 'Principled Volume' is not a finite number"),
+    ("nan_light_power", "light 'Bulb': its energy is not a finite number"),
+    ("area_light_of_no_size", "light 'Panel': an area light of no area"),
+    ("area_emitter_named_like_a_material", "light 'Lamp': its emitter's material would be named 'Lamp.area'"),
 ])
 def test_what_cannot_be_exported_is_refused_before_anything_is_written(exported, case, message):
     assert message in result(exported, case)["error"]

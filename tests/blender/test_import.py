@@ -8,6 +8,7 @@ relative, a few float32 roundings). Blender's own importer, run on the same file
 fail on numpy.bool where numpy lacks it (Debian 12), which is what the add-on works
 around, and the add-on must leave numpy as it found it."""
 import json
+import re
 import subprocess
 
 import pytest
@@ -85,3 +86,14 @@ def test_export_warns_of_cycles_settings_vkdiffrender_cannot_follow(imported):
     clipping = [w for w in warnings["defaults"] if "Clip Start (0.1)" in w]
     assert len(clipping) == 1 and "1.2 % darker" in clipping[0]
     assert [w for w in warnings["defaults"] if "bounce limits Diffuse 4, Glossy 4, Volume 0" in w]
+
+
+def test_a_file_that_is_not_gltf_is_missing_or_holds_a_medium_of_text_gives_one_line_naming_it(imported):
+    unreadable = imported[2]["unreadable"]
+    assert "not_gltf.gltf: Blender's glTF importer cannot read it" in unreadable["not_gltf.gltf"]
+    assert "missing.gltf: no such file" in unreadable["missing.gltf"]
+    field = r"materials\[\d+\]\.extensions\.VKDR_participating_media\.sigma_a"
+    assert re.search(field + r": expected a number or three, got \"lots\"", unreadable["text_medium.gltf"])
+    for message in unreadable.values():
+        assert "Traceback" not in message and len(message.splitlines()) == 1, message
+

@@ -19,7 +19,7 @@ import mathutils
 from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper
 
-from . import gltf_json, grid_media, mappings, node_graph, texture_lookups
+from . import export_checks, gltf_json, grid_media, mappings, node_graph, texture_lookups
 from .axes import blender_to_gltf
 from .gltf_json import EXTENSION, TRANSMISSION_EXTENSIONS, medium_json
 from .rendered_objects import rendered_objects
@@ -353,6 +353,13 @@ def add_area_lights(doc, view_layer, warnings):
         warn_light_nodes(obj, warnings)
         corners = [blender_to_gltf(p) for p in area_light_polygon(obj, rendered.matrix_world)]
         area = polygon_area(corners)
+        if not area > 0.0:
+            raise ExportError(f"light '{obj.name}': an area light of no area (size {light.size:g}, scale "
+                              f"{tuple(round(v, 6) for v in rendered.matrix_world.to_scale())}); give it a size")
+        emitter = area_light_material_name(rendered.name)
+        if any(m.get("name") == emitter for m in doc.get("materials", [])):
+            raise ExportError(f"light '{obj.name}': its emitter's material would be named '{emitter}', which a "
+                              f"material of the scene is named already; rename one of them")
         radiance = mappings.area_light_radiance(light.color, light.energy, area)
         emission = mappings.radiance_to_emission(radiance)
         material = {"name": area_light_material_name(rendered.name), "doubleSided": False,
@@ -419,6 +426,26 @@ def check_cameras(scene, view_layer, warnings):
                         f"given `--camera NAME` (the scene camera is '{scene.camera.name}')")
 
 
+def check_finite_values(scene, view_layer):
+    """ExportError naming the light, or the material or World and the node input, of a
+    value that is not a finite number, before the glTF exporter meets it."""
+    materials = set()
+    for rendered in rendered_objects(view_layer):
+        obj = rendered.object
+        if obj.type == "LIGHT":
+            name = export_checks.non_finite_light_value(obj.data)
+            if name is not None:
+                raise ExportError(f"light '{obj.name}': its {name} is not a finite number")
+        materials.update(slot.material for slot in getattr(obj, "material_slots", []) if slot.material is not None)
+    owners = [(m, "OUTPUT_MATERIAL", f"material '{m.name}'") for m in sorted(materials, key=lambda m: m.name)]
+    if scene.world is not None:
+        owners.append((scene.world, "OUTPUT_WORLD", f"world '{scene.world.name}'"))
+    for owner, kind, what in owners:
+        found = export_checks.non_finite_node_input(owner, kind)
+        if found is not None:
+            raise ExportError(f"{what}: input '{found[1]}' of node '{found[0]}' is not a finite number")
+
+
 def export_scene(context, filepath):
     """Writes FILEPATH (.gltf, with its .bin beside it) for vkdiffrender; returns the
     warnings. Raises ExportError, before writing anything, for a scene or path that
@@ -428,6 +455,7 @@ def export_scene(context, filepath):
     filepath = checked_output_path(filepath)
     warnings = []
     check_cameras(scene, view_layer, warnings)
+    check_finite_values(scene, view_layer)
     # Every file is written into a staging folder beside FILEPATH and moved in only once
     # the whole scene is complete: a failure leaves the previous export as it was.
     directory = os.path.dirname(filepath)
@@ -454,7 +482,16 @@ def export_scene(context, filepath):
         if "VKDR_background" in doc.get("extensions", {}):
             gltf_json.use_extension(doc, "VKDR_background")
         gltf_json.drop_unused_extensions(doc)
+        non_finite = export_checks.first_non_finite(doc)
+        if non_finite is not None:  # what the checks above do not reach; no glTF reader parses it
+            raise ExportError(f"{non_finite}{export_checks.owner_of(doc, non_finite)}: not a finite number")
         gltf_json.write_atomically(staged, doc, mode_of=filepath)
+        taken = export_checks.files_it_would_replace(staging, directory, os.path.basename(filepath))
+        if taken:
+            raise ExportError(f"{', '.join(taken)}: in {directory} already, not written by an export of "
+                              f"{os.path.basename(filepath)} there; the export would replace "
+                              f"{'it' if len(taken) == 1 else 'them'}: move {'it' if len(taken) == 1 else 'them'}, "
+                              f"or export to another folder")
         names = sorted(os.listdir(staging), key=lambda name: name == os.path.basename(filepath))
         for name in names:  # the .gltf last, once what it refers to is in place
             os.replace(os.path.join(staging, name), os.path.join(directory, name))

@@ -3,6 +3,7 @@ background and light values it does not know restored as Cycles nodes."""
 import contextlib
 import json
 import math
+import os
 import struct
 
 import bpy
@@ -44,7 +45,12 @@ def medium_from_json(entry, where):
     KHR_materials_volume's attenuation (sigma_a = -ln(colour) / distance)."""
     def rgb(key):
         value = entry.get(key, 0.0)
-        return (float(value),) * 3 if isinstance(value, (int, float)) else tuple(float(v) for v in value[:3])
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return (float(value),) * 3
+        if not (isinstance(value, list) and len(value) >= 3 and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) for v in value[:3])):
+            raise ValueError(f"{where}.{key}: expected a number or three, got {json.dumps(value)}")
+        return tuple(float(v) for v in value[:3])
     if "attenuationColor" in entry or "attenuationDistance" in entry:
         distance = float(entry.get("attenuationDistance", math.inf))
         colour = entry.get("attenuationColor", [1.0, 1.0, 1.0])
@@ -102,7 +108,8 @@ def warn_renamed(renamed, warnings):
 def restore_media(doc, materials, warnings, renamed):
     for index, material in enumerate(doc.get("materials", [])):
         extensions = material.get("extensions", {})
-        entry = extensions.get(EXTENSION) or extensions.get("KHR_materials_volume")
+        key = EXTENSION if EXTENSION in extensions else "KHR_materials_volume"
+        entry = extensions.get(key)
         if entry is None:
             continue
         name = material.get("name", str(index))
@@ -111,7 +118,7 @@ def restore_media(doc, materials, warnings, renamed):
             warnings.append(f"material '{name}': not created by the importer (unused?); its medium is skipped")
             continue
         warn_grids(entry, f"material '{name}'", warnings)
-        set_volume(blender_material, medium_from_json(entry, f"materials[{index}]"), "OUTPUT_MATERIAL")
+        set_volume(blender_material, medium_from_json(entry, f"materials[{index}].extensions.{key}"), "OUTPUT_MATERIAL")
 
 
 GRID_KEYS = {"density": "density", "albedoGrid": "albedo", "emissionGrid": "emission"}
@@ -195,10 +202,20 @@ class IMPORT_OT_vkdiffrender(bpy.types.Operator, ImportHelper):
     filter_glob: StringProperty(default="*.gltf;*.glb", options={"HIDDEN"})
 
     def execute(self, context):
+        if not os.path.isfile(self.filepath):
+            self.report({"ERROR"}, f"{self.filepath}: no such file")
+            return {"CANCELLED"}
         try:
             warnings = import_scene(context, self.filepath)
         except (OSError, ValueError) as error:
             self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        except RuntimeError as error:
+            # Blender's glTF importer, which reports a file it cannot read (and its own
+            # failures, with a traceback) as a RuntimeError: its last line says what.
+            lines = [line.strip() for line in str(error).splitlines() if line.strip()]
+            self.report({"ERROR"}, f"{self.filepath}: Blender's glTF importer cannot read it "
+                                   f"({lines[-1] if lines else type(error).__name__})")
             return {"CANCELLED"}
         for warning in warnings:
             self.report({"WARNING"}, warning)

@@ -1,6 +1,8 @@
 """Reading Blender shader node trees into vkdiffrender values, and writing fitted values
 back into the same nodes. Only attribute access on bpy objects; the formulas are in
 mappings.py."""
+import itertools
+
 import bpy
 
 from . import mappings
@@ -125,11 +127,15 @@ def medium_of(owner, warnings, what, overrides=None):
 
 
 def world_medium_name(world):
-    """The scene medium's name: the World's, or "<World> (World)" where a material with a
-    volume has that name too (medium names must be unique)."""
-    material = bpy.data.materials.get(world.name)
-    clash = material is not None and material.users and medium_of(material, [], material.name) is not None
-    return f"{world.name} (World)" if clash else world.name
+    """The scene medium's name: the World's, or "<World> (World)", "<World> (World 2)"...,
+    the first that no material with a volume has (medium names must be unique)."""
+    def taken(name):
+        material = bpy.data.materials.get(name)
+        return material is not None and material.users and medium_of(material, [], material.name) is not None
+
+    candidates = itertools.chain([world.name, f"{world.name} (World)"],
+                                 (f"{world.name} (World {n})" for n in itertools.count(2)))
+    return next(name for name in candidates if not taken(name))
 
 
 def surface_node(material):
