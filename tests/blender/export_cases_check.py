@@ -329,6 +329,13 @@ def nan_density(scene):
     bpy.context.object.data.materials.append(volume_material("NanFog", float("nan")))
 
 
+def open_volume(scene):
+    """A plane, which encloses nothing, with a volume material."""
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 1.0))
+    bpy.context.object.name = "Sheet"
+    bpy.context.object.data.materials.append(volume_material("OpenFog", 1.0))
+
+
 def nan_light_power(scene):
     add_light("POINT", "Bulb", (0.0, 0.0, 2.0), float("nan"), scene.collection)
 
@@ -377,7 +384,8 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
          "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera,
-         "textured_materials": textured_materials, "nan_density": nan_density, "nan_light_power": nan_light_power,
+         "textured_materials": textured_materials, "nan_density": nan_density, "open_volume": open_volume,
+         "nan_light_power": nan_light_power,
          "area_light_of_no_size": area_light_of_no_size,
          "area_emitter_named_like_a_material": area_emitter_named_like_a_material,
          "world_named_like_two_materials": world_named_like_two_materials}

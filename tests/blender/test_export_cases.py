@@ -270,6 +270,7 @@ def test_an_export_that_fails_leaves_the_previous_one(exported):
     ("symbolic_link", "link.gltf: is a symbolic link"),
     ("missing_directory", "no such directory: the directory does not exist"),
     ("nan_density", "material 'NanFog': input 'Density' of node 'Principled Volume' is not a finite number"),
+    ("open_volume", "object 'Sheet': its faces of material 'OpenFog', a volume, do not close (4 edges"),
     ("nan_light_power", "light 'Bulb': its energy is not a finite number"),
     ("area_light_of_no_size", "light 'Panel': an area light of no area"),
     ("area_emitter_named_like_a_material", "light 'Lamp': its emitter's material would be named 'Lamp.area'"),

@@ -1,12 +1,13 @@
 """What the export refuses because vkdiffrender would refuse the scene, or because
 writing it would harm the user's files: numbers that are not finite (Blender stores a
 NaN a driver or a script gives a socket, and json writes it as a bare NaN, which no
-glTF reader parses), and files in the export folder that an export would replace
-without having written them."""
+glTF reader parses), a medium's boundary that is not closed, and files in the export
+folder that an export would replace without having written them."""
 import filecmp
 import json
 import math
 import os
+from collections import Counter
 from collections.abc import Mapping, Sequence
 
 from . import node_graph
@@ -63,6 +64,20 @@ def non_finite_node_input(owner, kind):
                     _non_finite(v) for v in _numbers(socket.default_value)):
                 return node.name, socket.name
     return None
+
+
+def open_boundary_edges(obj, material, depsgraph):
+    """How many edges of OBJ's faces of MATERIAL, as the render evaluates the object,
+    are not shared by exactly two of those faces: a medium's boundary must be closed."""
+    slots = {i for i, slot in enumerate(obj.material_slots) if slot.material == material}
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        faces_at = Counter(key for polygon in mesh.polygons if polygon.material_index in slots
+                           for key in polygon.edge_keys)
+    finally:
+        evaluated.to_mesh_clear()
+    return sum(1 for count in faces_at.values() if count != 2)
 
 
 def first_non_finite(value, path=""):

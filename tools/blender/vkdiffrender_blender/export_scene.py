@@ -140,6 +140,20 @@ def world_box(rendered):
     return ([min(c[k] for c in corners) for k in range(3)], [max(c[k] for c in corners) for k in range(3)])
 
 
+def require_closed_boundaries(material, view_layer):
+    """ExportError naming the object whose faces of MATERIAL, a medium's, do not close."""
+    objects = {r.object for r in rendered_objects(view_layer)
+               if r.object.type in {"MESH", "CURVE", "SURFACE", "FONT", "META"}}
+    for obj in sorted(objects, key=lambda o: o.name):
+        if not any(slot.material == material for slot in obj.material_slots):
+            continue
+        open_edges = export_checks.open_boundary_edges(obj, material, view_layer.depsgraph)
+        if open_edges:
+            raise ExportError(f"object '{obj.name}': its faces of material '{material.name}', a volume, do not close "
+                              f"({open_edges} edges are not shared by exactly two of them); vkdiffrender fills "
+                              f"only closed meshes with a medium")
+
+
 def add_material_media(doc, view_layer, warnings):
     """Volumes of materials: the glTF material of the same name becomes a medium boundary.
     Smoke simulation domains' materials are grid_media's."""
@@ -151,6 +165,7 @@ def add_material_media(doc, view_layer, warnings):
         medium = node_graph.medium_of(blender_material, warnings, f"material '{material.get('name')}'")
         if medium is None:
             continue
+        require_closed_boundaries(blender_material, view_layer)
         if node_graph.surface_node(blender_material) is not None:
             warnings.append(f"material '{blender_material.name}': has a Surface shader besides its volume; "
                             f"vkdiffrender renders the boundary clear (as Cycles does with no Surface)")
