@@ -329,6 +329,20 @@ def nan_density(scene):
     bpy.context.object.data.materials.append(volume_material("NanFog", float("nan")))
 
 
+def missing_image(scene):
+    """A plane textured with an image whose file is gone."""
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 0.5))
+    material = bpy.data.materials.new("Gone")
+    material.use_nodes = True
+    texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+    texture.image = bpy.data.images.new("gone", 4, 4)
+    texture.image.source = "FILE"
+    texture.image.filepath = "/nonexistent/gone.png"
+    material.node_tree.links.new(texture.outputs["Color"],
+                                 material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+    bpy.context.object.data.materials.append(material)
+
+
 def open_volume(scene):
     """A plane, which encloses nothing, with a volume material."""
     bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 1.0))
@@ -384,7 +398,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
          "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera,
-         "textured_materials": textured_materials, "nan_density": nan_density, "open_volume": open_volume,
+         "textured_materials": textured_materials, "nan_density": nan_density, "open_volume": open_volume, "missing_image": missing_image,
          "nan_light_power": nan_light_power,
          "area_light_of_no_size": area_light_of_no_size,
          "area_emitter_named_like_a_material": area_emitter_named_like_a_material,

@@ -257,6 +257,12 @@ def test_a_file_of_the_users_is_not_replaced_by_a_texture_and_an_export_replaces
     render_mean(cli, twice.parent, twice.name)
 
 
+def test_an_image_whose_file_is_missing_is_reported_and_the_scene_loads(exported, cli):
+    assert [w for w in own_warnings(exported, "missing_image")
+            if "material 'Gone': image 'gone' is not packed and /nonexistent/gone.png is no file" in w]
+    render_mean(cli, exported, "missing_image")
+
+
 def test_an_export_that_fails_leaves_the_previous_one(exported):
     assert "scene.bin" in result(exported, "failing_export")["error"]
     failing = exported / "failing"

@@ -10,6 +10,8 @@ import os
 from collections import Counter
 from collections.abc import Mapping, Sequence
 
+import bpy
+
 from . import node_graph
 from .gltf_json import EXTENSION
 
@@ -78,6 +80,25 @@ def open_boundary_edges(obj, material, depsgraph):
     finally:
         evaluated.to_mesh_clear()
     return sum(1 for count in faces_at.values() if count != 2)
+
+
+def missing_images(owner, kind):
+    """(image name, path) of the Image Texture nodes reaching the output of OWNER's node
+    tree whose image is neither packed nor a file on disk: the glTF exporter leaves them
+    out, where Cycles renders them magenta."""
+    tree = owner.node_tree if owner is not None and owner.use_nodes else None
+    output = node_graph.output_node(tree, kind) if tree is not None else None
+    if output is None:
+        return []
+    missing = []
+    for node in reachable_nodes(tree, output):
+        image = getattr(node, "image", None) if node.bl_idname == "ShaderNodeTexImage" else None
+        if image is None or image.packed_file is not None or image.source != "FILE":
+            continue
+        path = bpy.path.abspath(image.filepath, library=image.library)
+        if not os.path.isfile(path):
+            missing.append((image.name, path))
+    return missing
 
 
 def first_non_finite(value, path=""):

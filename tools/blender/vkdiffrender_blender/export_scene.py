@@ -441,9 +441,10 @@ def check_cameras(scene, view_layer, warnings):
                         f"given `--camera NAME` (the scene camera is '{scene.camera.name}')")
 
 
-def check_finite_values(scene, view_layer):
+def check_values(scene, view_layer, warnings):
     """ExportError naming the light, or the material or World and the node input, of a
-    value that is not a finite number, before the glTF exporter meets it."""
+    value that is not a finite number, before the glTF exporter meets it; a warning for
+    an image texture whose file is missing."""
     materials = set()
     for rendered in rendered_objects(view_layer):
         obj = rendered.object
@@ -459,6 +460,9 @@ def check_finite_values(scene, view_layer):
         found = export_checks.non_finite_node_input(owner, kind)
         if found is not None:
             raise ExportError(f"{what}: input '{found[1]}' of node '{found[0]}' is not a finite number")
+        for image, path in export_checks.missing_images(owner, kind):
+            warnings.append(f"{what}: image '{image}' is not packed and {path} is no file; exported without it "
+                            f"(Cycles renders it magenta)")
 
 
 def export_scene(context, filepath):
@@ -470,7 +474,7 @@ def export_scene(context, filepath):
     filepath = checked_output_path(filepath)
     warnings = []
     check_cameras(scene, view_layer, warnings)
-    check_finite_values(scene, view_layer)
+    check_values(scene, view_layer, warnings)
     # Every file is written into a staging folder beside FILEPATH and moved in only once
     # the whole scene is complete: a failure leaves the previous export as it was.
     directory = os.path.dirname(filepath)
