@@ -377,14 +377,16 @@ def world_named_like_two_materials(scene):
         bpy.context.object.data.materials.append(volume_material(name, 1.0))
 
 
-def packed_texture(scene):
+def packed_texture(scene, colour=None):
     """A plane textured with a packed image named photo, which the export writes as
-    photo.png."""
+    photo.png; all of COLOUR where given."""
     bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 0.5))
     material = bpy.data.materials.new("Photo")
     material.use_nodes = True
     texture = material.node_tree.nodes.new("ShaderNodeTexImage")
     texture.image = image_texture("photo")
+    if colour is not None:
+        texture.image.pixels = list(colour) * 16
     texture.image.pack()
     material.node_tree.links.new(texture.outputs["Color"],
                                  material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
@@ -444,8 +446,9 @@ def main():
     failing.mkdir()
     (failing / "scene.gltf").write_text("the previous export")
     export_case(out, "failing_export", lambda scene: failing_export(scene, failing), failing / "scene.gltf")
-    # A file of the user's where the export would write a texture; then the same export
-    # twice into a folder of its own, the second replacing the first's texture.
+    # A file of the user's where the export would write a texture; then the same scene,
+    # its texture repainted, exported twice into a folder of its own, the second export
+    # replacing the first's texture.
     users = out / "users_folder"
     users.mkdir()
     (users / "photo.png").write_text("the user's photo")
@@ -453,7 +456,7 @@ def main():
     twice = out / "twice_folder"
     twice.mkdir()
     export_case(out, "exported_once", packed_texture, twice / "scene.gltf")
-    export_case(out, "exported_twice", packed_texture, twice / "scene.gltf")
+    export_case(out, "exported_twice", lambda scene: packed_texture(scene, (0.2, 0.9, 0.1, 1.0)), twice / "scene.gltf")
     (out / "link.gltf").symlink_to(out / "elsewhere.gltf")
     export_case(out, "symbolic_link", lambda scene: None, out / "link.gltf")
     export_case(out, "missing_directory", lambda scene: None, out / "no such directory" / "scene.gltf")

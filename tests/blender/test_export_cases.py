@@ -254,6 +254,8 @@ def test_a_file_of_the_users_is_not_replaced_by_a_texture_and_an_export_replaces
     assert "error" not in result(exported, "exported_once") and "error" not in result(exported, "exported_twice")
     twice = exported / "twice_folder"
     assert sorted(p.name for p in twice.iterdir()) == ["photo.png", "scene.bin", "scene.gltf"]
+    photo = vkdiffrender.read_image(str(twice / "photo.png"))  # the second export's, all green
+    assert photo[..., 1].min() > photo[..., 0].max()
     render_mean(cli, twice.parent, twice.name)
 
 

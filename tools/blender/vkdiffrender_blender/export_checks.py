@@ -9,6 +9,7 @@ import math
 import os
 from collections import Counter
 from collections.abc import Mapping, Sequence
+from urllib.parse import unquote
 
 import bpy
 
@@ -146,7 +147,7 @@ def previous_export_files(gltf_path):
         for reference in medium.values() if isinstance(medium, Mapping) else []:
             if isinstance(reference, Mapping):
                 uris.append(reference.get("uri"))
-    return {os.path.normpath(uri) for uri in uris if isinstance(uri, str) and not uri.startswith("data:")}
+    return {os.path.normpath(unquote(uri)) for uri in uris if isinstance(uri, str) and not uri.startswith("data:")}
 
 
 def files_it_would_replace(staging, directory, gltf_name):
