@@ -343,6 +343,18 @@ def missing_image(scene):
     bpy.context.object.data.materials.append(material)
 
 
+def muted_volume(scene):
+    """A cube whose Principled Volume is muted, which Cycles renders empty."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
+    material = volume_material("Muted", 3.0)
+    material.node_tree.nodes["Principled Volume"].mute = True
+    bpy.context.object.data.materials.append(material)
+
+
+def blinding_light(scene):
+    add_light("POINT", "Blinding", (0.0, 0.0, 2.0), 1e30, scene.collection)
+
+
 def open_volume(scene):
     """A plane, which encloses nothing, with a volume material."""
     bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 1.0))
@@ -401,6 +413,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
          "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera,
          "textured_materials": textured_materials, "nan_density": nan_density, "open_volume": open_volume, "missing_image": missing_image,
+         "muted_volume": muted_volume, "blinding_light": blinding_light,
          "nan_light_power": nan_light_power,
          "area_light_of_no_size": area_light_of_no_size,
          "area_emitter_named_like_a_material": area_emitter_named_like_a_material,
@@ -460,6 +473,7 @@ def main():
     (out / "link.gltf").symlink_to(out / "elsewhere.gltf")
     export_case(out, "symbolic_link", lambda scene: None, out / "link.gltf")
     export_case(out, "missing_directory", lambda scene: None, out / "no such directory" / "scene.gltf")
+    export_case(out, "glb_path", lambda scene: None, out / "glb_path" / "scene.glb")
 
 
 main()

@@ -265,6 +265,12 @@ def test_an_image_whose_file_is_missing_is_reported_and_the_scene_loads(exported
     render_mean(cli, exported, "missing_image")
 
 
+def test_a_muted_volume_node_is_exported_as_cycles_renders_it_no_medium(exported):
+    doc = document(exported, "muted_volume")
+    muted = next(m for m in doc["materials"] if m["name"] == "Muted")
+    assert "VKDR_participating_media" not in muted.get("extensions", {})
+
+
 def test_an_export_that_fails_leaves_the_previous_one(exported):
     assert "scene.bin" in result(exported, "failing_export")["error"]
     failing = exported / "failing"
@@ -280,6 +286,9 @@ def test_an_export_that_fails_leaves_the_previous_one(exported):
     ("nan_density", "material 'NanFog': input 'Density' of node 'Principled Volume' is not a finite number"),
     ("open_volume", "object 'Sheet': its faces of material 'OpenFog', a volume, do not close (4 edges"),
     ("nan_light_power", "light 'Bulb': its energy is not a finite number"),
+    ("blinding_light", "extensions.KHR_lights_punctual.lights[0] ('Blinding'): emits 7.95775e+28 in its brightest "
+                       "channel, more than the 1e+12 vkdiffrender takes"),
+    ("glb_path", "scene.glb: the export writes a .gltf with a .bin beside it; give a path ending in .gltf"),
     ("area_light_of_no_size", "light 'Panel': an area light of no area"),
     ("area_emitter_named_like_a_material", "light 'Lamp': its emitter's material would be named 'Lamp.area'"),
 ])

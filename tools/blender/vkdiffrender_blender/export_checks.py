@@ -1,110 +1,26 @@
-"""What the export refuses because vkdiffrender would refuse the scene, or because
-writing it would harm the user's files: numbers that are not finite (Blender stores a
-NaN a driver or a script gives a socket, and json writes it as a bare NaN, which no
-glTF reader parses), a medium's boundary that is not closed, and files in the export
-folder that an export would replace without having written them."""
+"""What the export refuses in the glTF it has written, or in the folder it writes to:
+numbers that are not finite (json writes a NaN as a bare NaN, which no glTF reader
+parses), emission beyond what vkdiffrender takes, and files in the export folder that
+an export would replace without having written them. Plain Python on the JSON and the
+files, testable without Blender; scene_checks.py checks the Blender scene."""
 import filecmp
 import json
 import math
 import os
-from collections import Counter
 from collections.abc import Mapping, Sequence
 from urllib.parse import unquote
 
-import bpy
-
-from . import node_graph
 from .gltf_json import EXTENSION
 
 
-def _non_finite(value):
+def is_non_finite(value):
+    """Whether VALUE is a float that is NaN or infinite."""
     return isinstance(value, float) and not math.isfinite(value)
-
-
-def _numbers(value):
-    """The numbers of a socket's or a property's value: a float, or a colour or vector."""
-    if isinstance(value, (int, float)):
-        return [value]
-    try:
-        return [v for v in value if isinstance(v, (int, float))]
-    except TypeError:
-        return []
-
-
-def non_finite_light_value(light):
-    """The name of the first property of a light (Blender's light data) that is not a
-    finite number, or None. The glTF exporter fails on a NaN power with a traceback."""
-    for name in ("energy", "color", "shadow_soft_size", "spot_size", "spot_blend", "angle", "size", "size_y"):
-        if hasattr(light, name) and any(_non_finite(v) for v in _numbers(getattr(light, name))):
-            return name
-    return None
-
-
-def reachable_nodes(tree, output):
-    """The nodes whose outputs reach the node OUTPUT through links."""
-    seen, todo = set(), [output]
-    while todo:
-        node = todo.pop()
-        if node is None or node.name in seen:
-            continue
-        seen.add(node.name)
-        for socket in node.inputs:
-            todo.extend(link.from_node for link in socket.links)
-    return [tree.nodes[name] for name in seen]
-
-
-def non_finite_node_input(owner, kind):
-    """(node name, input name) of the first unlinked input, of a node that reaches the
-    output of OWNER's node tree (a material's, kind "OUTPUT_MATERIAL", or a World's,
-    "OUTPUT_WORLD"), whose value is not a finite number; or None."""
-    tree = owner.node_tree if owner is not None and owner.use_nodes else None
-    output = node_graph.output_node(tree, kind) if tree is not None else None
-    if output is None:
-        return None
-    for node in reachable_nodes(tree, output):
-        for socket in node.inputs:
-            if not socket.is_linked and hasattr(socket, "default_value") and any(
-                    _non_finite(v) for v in _numbers(socket.default_value)):
-                return node.name, socket.name
-    return None
-
-
-def open_boundary_edges(obj, material, depsgraph):
-    """How many edges of OBJ's faces of MATERIAL, as the render evaluates the object,
-    are not shared by exactly two of those faces: a medium's boundary must be closed."""
-    slots = {i for i, slot in enumerate(obj.material_slots) if slot.material == material}
-    evaluated = obj.evaluated_get(depsgraph)
-    mesh = evaluated.to_mesh()
-    try:
-        faces_at = Counter(key for polygon in mesh.polygons if polygon.material_index in slots
-                           for key in polygon.edge_keys)
-    finally:
-        evaluated.to_mesh_clear()
-    return sum(1 for count in faces_at.values() if count != 2)
-
-
-def missing_images(owner, kind):
-    """(image name, path) of the Image Texture nodes reaching the output of OWNER's node
-    tree whose image is neither packed nor a file on disk: the glTF exporter leaves them
-    out, where Cycles renders them magenta."""
-    tree = owner.node_tree if owner is not None and owner.use_nodes else None
-    output = node_graph.output_node(tree, kind) if tree is not None else None
-    if output is None:
-        return []
-    missing = []
-    for node in reachable_nodes(tree, output):
-        image = getattr(node, "image", None) if node.bl_idname == "ShaderNodeTexImage" else None
-        if image is None or image.packed_file is not None or image.source != "FILE":
-            continue
-        path = bpy.path.abspath(image.filepath, library=image.library)
-        if not os.path.isfile(path):
-            missing.append((image.name, path))
-    return missing
 
 
 def first_non_finite(value, path=""):
     """The JSON path of the first number in VALUE (a JSON document) that is not finite."""
-    if _non_finite(value):
+    if is_non_finite(value):
         return path
     if isinstance(value, Mapping):
         items = ((f"{path}.{key}" if path else key, item) for key, item in value.items())
@@ -119,14 +35,42 @@ def first_non_finite(value, path=""):
     return None
 
 
+# The most vkdiffrender takes of an emitted radiance or a light's intensity, per channel
+# (docs/scene-format.md).
+MAX_EMISSION = 1e12
+
+
+def first_beyond_emission_limit(doc):
+    """(JSON path, value) of the first light intensity, emission or background radiance of
+    the document beyond MAX_EMISSION in some channel, or None."""
+    lights = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    for i, light in enumerate(lights):
+        value = light.get("intensity", 1.0) * max(light.get("color", [1.0, 1.0, 1.0]))
+        if value > MAX_EMISSION:
+            return f"extensions.KHR_lights_punctual.lights[{i}]", value
+    for i, material in enumerate(doc.get("materials", [])):
+        strength = material.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get(
+            "emissiveStrength", 1.0)
+        value = strength * max(material.get("emissiveFactor", [0.0, 0.0, 0.0]))
+        if value > MAX_EMISSION:
+            return f"materials[{i}]", value
+    background = doc.get("extensions", {}).get("VKDR_background", {}).get("radiance", [0.0])
+    if max(background) > MAX_EMISSION:
+        return "extensions.VKDR_background", max(background)
+    return None
+
+
 def owner_of(doc, path):
-    """' (name)' of the top-level entry (a material, a node, a light) that PATH lies in."""
-    head = path.split(".", 1)[0]
-    if "[" not in head:
-        return ""
-    array, index = head[:-1].split("[")
-    entry = doc.get(array, [])[int(index)]
-    name = entry.get("name") if isinstance(entry, Mapping) else None
+    """' (name)' of the innermost named array entry (a material, a node, a light) that
+    the JSON path PATH lies in, or ''."""
+    name, value = None, doc
+    for segment in path.split("."):
+        key, *indices = segment.replace("]", "").split("[")
+        value = value.get(key) if isinstance(value, Mapping) else None
+        for index in indices:
+            value = value[int(index)] if isinstance(value, list) and int(index) < len(value) else None
+            if isinstance(value, Mapping) and isinstance(value.get("name"), str):
+                name = value["name"]
     return f" ('{name}')" if name else ""
 
 

@@ -19,7 +19,7 @@ import mathutils
 from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper
 
-from . import export_checks, gltf_json, grid_media, mappings, node_graph, texture_lookups
+from . import export_checks, gltf_json, grid_media, mappings, node_graph, scene_checks, texture_lookups
 from .axes import blender_to_gltf
 from .gltf_json import EXTENSION, TRANSMISSION_EXTENSIONS, medium_json
 from .rendered_objects import rendered_objects
@@ -147,7 +147,7 @@ def require_closed_boundaries(material, view_layer):
     for obj in sorted(objects, key=lambda o: o.name):
         if not any(slot.material == material for slot in obj.material_slots):
             continue
-        open_edges = export_checks.open_boundary_edges(obj, material, view_layer.depsgraph)
+        open_edges = scene_checks.open_boundary_edges(obj, material, view_layer.depsgraph)
         if open_edges:
             raise ExportError(f"object '{obj.name}': its faces of material '{material.name}', a volume, do not close "
                               f"({open_edges} edges are not shared by exactly two of them); vkdiffrender fills "
@@ -406,7 +406,8 @@ def warn_bounce_limits(scene, warnings):
 def checked_output_path(filepath):
     """FILEPATH made absolute (a '//' path is relative to the .blend), or ExportError where
     it cannot be written without harm: a directory, a symbolic link (whose target would
-    be left holding the glTF exporter's own output), a directory that does not exist."""
+    be left holding the glTF exporter's own output), a directory that does not exist, a
+    name that does not end in .gltf."""
     if filepath.startswith("//") and not bpy.data.filepath:
         raise ExportError(f"{filepath}: a path relative to the .blend file, which has not been saved")
     path = os.path.abspath(bpy.path.abspath(filepath))
@@ -416,6 +417,8 @@ def checked_output_path(filepath):
         raise ExportError(f"{path}: is a directory")
     if not os.path.isdir(os.path.dirname(path)):
         raise ExportError(f"{os.path.dirname(path)}: the directory does not exist")
+    if not path.lower().endswith(".gltf"):
+        raise ExportError(f"{path}: the export writes a .gltf with a .bin beside it; give a path ending in .gltf")
     return path
 
 
@@ -449,7 +452,7 @@ def check_values(scene, view_layer, warnings):
     for rendered in rendered_objects(view_layer):
         obj = rendered.object
         if obj.type == "LIGHT":
-            name = export_checks.non_finite_light_value(obj.data)
+            name = scene_checks.non_finite_light_value(obj.data)
             if name is not None:
                 raise ExportError(f"light '{obj.name}': its {name} is not a finite number")
         materials.update(slot.material for slot in getattr(obj, "material_slots", []) if slot.material is not None)
@@ -457,10 +460,10 @@ def check_values(scene, view_layer, warnings):
     if scene.world is not None:
         owners.append((scene.world, "OUTPUT_WORLD", f"world '{scene.world.name}'"))
     for owner, kind, what in owners:
-        found = export_checks.non_finite_node_input(owner, kind)
+        found = scene_checks.non_finite_node_input(owner, kind)
         if found is not None:
             raise ExportError(f"{what}: input '{found[1]}' of node '{found[0]}' is not a finite number")
-        for image, path in export_checks.missing_images(owner, kind):
+        for image, path in scene_checks.missing_images(owner, kind):
             warnings.append(f"{what}: image '{image}' is not packed and {path} is no file; exported without it "
                             f"(Cycles renders it magenta)")
 
@@ -504,6 +507,11 @@ def export_scene(context, filepath):
         non_finite = export_checks.first_non_finite(doc)
         if non_finite is not None:  # what the checks above do not reach; no glTF reader parses it
             raise ExportError(f"{non_finite}{export_checks.owner_of(doc, non_finite)}: not a finite number")
+        beyond = export_checks.first_beyond_emission_limit(doc)
+        if beyond is not None:
+            path, value = beyond
+            raise ExportError(f"{path}{export_checks.owner_of(doc, path)}: emits {value:g} in its brightest channel, "
+                              f"more than the {export_checks.MAX_EMISSION:g} vkdiffrender takes")
         gltf_json.write_atomically(staged, doc, mode_of=filepath)
         taken = export_checks.files_it_would_replace(staging, directory, os.path.basename(filepath))
         if taken:

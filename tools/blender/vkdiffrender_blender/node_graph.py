@@ -50,6 +50,9 @@ def volume_medium(node, warnings, what, overrides=None):
     `overrides` as for constant(), for a Principled Volume's inputs."""
     if node is None:
         return None
+    if node.mute:  # Cycles passes a muted node's closure input through, or nothing
+        through = [link.from_socket for link in node.internal_links if link.from_socket.type == "SHADER"]
+        return volume_medium(linked_node(through[0]), warnings, what, overrides) if through else None
     if node.bl_idname == "ShaderNodeVolumePrincipled":
         blackbody = node.inputs["Blackbody Intensity"]
         if blackbody.is_linked or blackbody.default_value > 0.0:
