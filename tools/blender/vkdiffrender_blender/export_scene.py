@@ -140,14 +140,13 @@ def world_box(rendered):
     return ([min(c[k] for c in corners) for k in range(3)], [max(c[k] for c in corners) for k in range(3)])
 
 
-def require_closed_boundaries(material, view_layer):
-    """ExportError naming the object whose faces of MATERIAL, a medium's, do not close."""
-    objects = {r.object for r in rendered_objects(view_layer)
-               if r.object.type in {"MESH", "CURVE", "SURFACE", "FONT", "META"}}
-    for obj in sorted(objects, key=lambda o: o.name):
+def require_closed_boundaries(material, bodies, depsgraph):
+    """ExportError naming the object of BODIES (rendered objects with faces) whose faces
+    of MATERIAL, a medium's, do not close."""
+    for obj in bodies:
         if not any(slot.material == material for slot in obj.material_slots):
             continue
-        open_edges = scene_checks.open_boundary_edges(obj, material, view_layer.depsgraph)
+        open_edges = scene_checks.open_boundary_edges(obj, material, depsgraph)
         if open_edges:
             raise ExportError(f"object '{obj.name}': its faces of material '{material.name}', a volume, do not close "
                               f"({open_edges} edges are not shared by exactly two of them); vkdiffrender fills "
@@ -158,6 +157,8 @@ def add_material_media(doc, view_layer, warnings):
     """Volumes of materials: the glTF material of the same name becomes a medium boundary.
     Smoke simulation domains' materials are grid_media's."""
     domains = grid_media.fluid_domain_materials(view_layer)
+    bodies = sorted({r.object for r in rendered_objects(view_layer)
+                     if r.object.type in {"MESH", "CURVE", "SURFACE", "FONT", "META"}}, key=lambda o: o.name)
     for material in doc.get("materials", []):
         blender_material = bpy.data.materials.get(material.get("name", ""))
         if blender_material is not None and blender_material.name in domains:
@@ -165,7 +166,7 @@ def add_material_media(doc, view_layer, warnings):
         medium = node_graph.medium_of(blender_material, warnings, f"material '{material.get('name')}'")
         if medium is None:
             continue
-        require_closed_boundaries(blender_material, view_layer)
+        require_closed_boundaries(blender_material, bodies, view_layer.depsgraph)
         if node_graph.surface_node(blender_material) is not None:
             warnings.append(f"material '{blender_material.name}': has a Surface shader besides its volume; "
                             f"vkdiffrender renders the boundary clear (as Cycles does with no Surface)")
@@ -456,14 +457,14 @@ def check_values(scene, view_layer, warnings):
             if name is not None:
                 raise ExportError(f"light '{obj.name}': its {name} is not a finite number")
         materials.update(slot.material for slot in getattr(obj, "material_slots", []) if slot.material is not None)
-    owners = [(m, "OUTPUT_MATERIAL", f"material '{m.name}'") for m in sorted(materials, key=lambda m: m.name)]
+    owners = [(m, f"material '{m.name}'") for m in sorted(materials, key=lambda m: m.name)]
     if scene.world is not None:
-        owners.append((scene.world, "OUTPUT_WORLD", f"world '{scene.world.name}'"))
-    for owner, kind, what in owners:
-        found = scene_checks.non_finite_node_input(owner, kind)
+        owners.append((scene.world, f"world '{scene.world.name}'"))
+    for owner, what in owners:
+        found = scene_checks.non_finite_node_input(owner)
         if found is not None:
             raise ExportError(f"{what}: input '{found[1]}' of node '{found[0]}' is not a finite number")
-        for image, path in scene_checks.missing_images(owner, kind):
+        for image, path in scene_checks.missing_images(owner):
             warnings.append(f"{what}: image '{image}' is not packed and {path} is no file; exported without it "
                             f"(Cycles renders it magenta)")
 

@@ -17,6 +17,15 @@ def output_node(tree, kind):
     return (active or candidates or [None])[0]
 
 
+def owner_output(owner):
+    """The output node Cycles uses of a material's or World's node tree, or None (no
+    owner, no nodes, no output)."""
+    if owner is None or not owner.use_nodes:
+        return None
+    kind = "OUTPUT_WORLD" if owner.bl_rna.identifier == "World" else "OUTPUT_MATERIAL"
+    return output_node(owner.node_tree, kind)
+
+
 def linked_node(socket):
     return socket.links[0].from_node if socket.is_linked and socket.links else None
 
@@ -90,10 +99,7 @@ def volume_medium(node, warnings, what, overrides=None):
 
 def volume_input(owner):
     """The Volume input of a material's or World's active output, or None."""
-    if owner is None or not owner.use_nodes:
-        return None
-    kind = "OUTPUT_WORLD" if owner.bl_rna.identifier == "World" else "OUTPUT_MATERIAL"
-    out = output_node(owner.node_tree, kind)
+    out = owner_output(owner)
     return out.inputs["Volume"] if out else None
 
 
@@ -114,10 +120,7 @@ def material_volume_node(material):
 def medium_of(owner, warnings, what, overrides=None):
     """The medium of a material's or world's Volume output, or None; `overrides` as for
     volume_medium()."""
-    if owner is None or not owner.use_nodes:
-        return None
-    kind = "OUTPUT_WORLD" if owner.bl_rna.identifier == "World" else "OUTPUT_MATERIAL"
-    out = output_node(owner.node_tree, kind)
+    out = owner_output(owner)
     if out is None:
         return None
     medium = volume_medium(linked_node(out.inputs["Volume"]), warnings, what, overrides)

@@ -30,8 +30,10 @@ def non_finite_light_value(light):
     return None
 
 
-def reachable_nodes(tree, output):
-    """The nodes whose outputs reach the node OUTPUT through links."""
+def rendered_nodes(owner):
+    """The nodes of a material's or World's tree whose outputs reach the output Cycles
+    uses, through links; none without nodes or an output."""
+    output = node_graph.owner_output(owner)
     seen, todo = set(), [output]
     while todo:
         node = todo.pop()
@@ -40,18 +42,13 @@ def reachable_nodes(tree, output):
         seen.add(node.name)
         for socket in node.inputs:
             todo.extend(link.from_node for link in socket.links)
-    return [tree.nodes[name] for name in seen]
+    return [owner.node_tree.nodes[name] for name in seen]
 
 
-def non_finite_node_input(owner, kind):
-    """(node name, input name) of the first unlinked input, of a node that reaches the
-    output of OWNER's node tree (a material's, kind "OUTPUT_MATERIAL", or a World's,
-    "OUTPUT_WORLD"), whose value is not a finite number; or None."""
-    tree = owner.node_tree if owner is not None and owner.use_nodes else None
-    output = node_graph.output_node(tree, kind) if tree is not None else None
-    if output is None:
-        return None
-    for node in reachable_nodes(tree, output):
+def non_finite_node_input(owner):
+    """(node name, input name) of the first unlinked input of a rendered node of OWNER (a
+    material or World) whose value is not a finite number, or None."""
+    for node in rendered_nodes(owner):
         for socket in node.inputs:
             if not socket.is_linked and hasattr(socket, "default_value") and any(
                     is_non_finite(v) for v in _numbers(socket.default_value)):
@@ -73,16 +70,12 @@ def open_boundary_edges(obj, material, depsgraph):
     return sum(1 for count in faces_at.values() if count != 2)
 
 
-def missing_images(owner, kind):
-    """(image name, path) of the Image Texture nodes reaching the output of OWNER's node
-    tree whose image is neither packed nor a file on disk: the glTF exporter leaves them
+def missing_images(owner):
+    """(image name, path) of the rendered Image Texture nodes of OWNER (a material or
+    World) whose image is neither packed nor a file on disk: the glTF exporter leaves them
     out, where Cycles renders them magenta."""
-    tree = owner.node_tree if owner is not None and owner.use_nodes else None
-    output = node_graph.output_node(tree, kind) if tree is not None else None
-    if output is None:
-        return []
     missing = []
-    for node in reachable_nodes(tree, output):
+    for node in rendered_nodes(owner):
         image = getattr(node, "image", None) if node.bl_idname == "ShaderNodeTexImage" else None
         if image is None or image.packed_file is not None or image.source != "FILE":
             continue
