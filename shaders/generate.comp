@@ -39,6 +39,7 @@ void main() {
         P.adjointState.v[slot] = uvec4(0u);
     } else {
         P.radiance.v[slot] = vec4(0.0f);
+        P.radianceRounding.v[slot] = vec4(0.0f);
     }
     P.misVertex.v[slot] = vec4(origin, 0.0f);
     P.vertexInfo.v[slot] = uvec4(camera.medium, kVertexSurface, 0u, 0u);

@@ -12,6 +12,7 @@
 // second zero factor in a channel makes its derivative zero, as it should.
 #ifndef VKDR_ADJOINT_GLSL
 #define VKDR_ADJOINT_GLSL
+#include "compensated_sum.glsl"
 #include "fixed_point_sums.glsl"
 #include "scene_access.glsl"
 
@@ -285,14 +286,18 @@ void addTargetGradient(vec3 g) {
 
 // The path gathers a contribution C. The primal pass adds it to the path's radiance.
 // The replay passes it: normal channels leave it behind in L_rem, derivative channels
-// add it to their parameter's gradient.
+// add it to their parameter's gradient. L and L_rem are compensated sums
+// (compensated_sum.glsl), the replay subtracting the very floats the primal pass added.
 void gather(uint slot, vec3 c) {
+    vec3 passed = c;
     if (kAdjoint) {
-        P.radiance.v[slot].rgb -= c * normalMask(adjoint);
+        passed = -c * normalMask(adjoint);
         addTargetGradient(delta * c * derivativeMask(adjoint));
-    } else {
-        P.radiance.v[slot].rgb += c;
     }
+    CompensatedSum radiance = CompensatedSum(P.radiance.v[slot].rgb, P.radianceRounding.v[slot].rgb);
+    radiance = addCompensated(radiance, passed);
+    P.radiance.v[slot].rgb = radiance.high;
+    P.radianceRounding.v[slot].rgb = radiance.low;
 }
 
 // delta * L_rem * d log f / d theta on the normal channels, for a factor f that

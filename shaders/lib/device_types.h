@@ -127,6 +127,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(rayDirection, Vec4Buffer)       /* xyz, unit length */ \
     X(beta, Vec4Buffer)               /* rgb path throughput / pdf */ \
     X(radiance, Vec4Buffer)           /* rgb radiance gathered so far; L_rem in the adjoint pass */ \
+    X(radianceRounding, Vec4Buffer)   /* rgb: what rounding radiance to floats left out (compensated_sum.glsl) */ \
     X(misVertex, Vec4Buffer)          /* xyz: last scattering vertex; w: its sampling pdf (0: no MIS) */ \
     X(hit, Vec4Buffer)                /* x: t, y: b1, z: b2, w: triangle (uint bits) or kNoHit */ \
     X(pathInfo, UVec4Buffer)          /* x: pixel, y: sample, z: depth, w: segment */ \

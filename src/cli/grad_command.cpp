@@ -103,10 +103,21 @@ void printText(const GradientResult& result, const std::vector<GradientCheckRow>
     }
     std::printf("\n%-34s %27s %27s %10s\n", "parameter", "adjoint +- std. error", "finite diff. +- std. error",
                 "step");
+    bool anyUnresolved = false;
     for (const GradientCheckRow& row : check) {
         std::string name = row.name + "[" + std::to_string(row.component) + "]";
-        std::printf("%-34s %13.6g +- %-10.3g %13.6g +- %-10.3g %10.3g\n", name.c_str(), row.adjoint,
-                    row.adjointError, row.finiteDifference, row.finiteDifferenceError, row.step);
+        std::printf("%-34s %13.6g +- %-10.3g ", name.c_str(), row.adjoint, row.adjointError);
+        if (row.finiteDifferenceResolved) {
+            std::printf("%13.6g +- %-10.3g", row.finiteDifference, row.finiteDifferenceError);
+        } else {
+            std::printf("%27s", "unresolved (*)");
+            anyUnresolved = true;
+        }
+        std::printf(" %10.3g\n", row.step);
+    }
+    if (anyUnresolved) {
+        std::printf("(*) no step changed the loss by a bit at any seed: the gradient is zero, or too small for a "
+                    "finite difference to see (a value tiny against the rest of the scene)\n");
     }
 }
 
@@ -127,6 +138,7 @@ void printJson(const GradientResult& result, const std::vector<GradientCheckRow>
                                     {"adjoint_error", row.adjointError},
                                     {"finite_difference", row.finiteDifference},
                                     {"finite_difference_error", row.finiteDifferenceError},
+                                    {"finite_difference_resolved", row.finiteDifferenceResolved},
                                     {"step", row.step}});
         }
     }

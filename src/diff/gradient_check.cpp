@@ -105,14 +105,21 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
             const double h = steps[p][c].step;
             const ValueRange& range = steps[p][c].range;
             std::vector<double> differences;
+            bool resolved = false;
             for (int s = 0; s < seeds; ++s) {
                 const uint32_t seed = firstSeed + kFiniteDifferenceSeedOffset + uint32_t(s);
-                auto loss = [&](double at) { return lossWith(lg, scene, parameters[p], int(c), float(at), seed); };
+                std::optional<double> firstLoss;
+                auto loss = [&](double at) {
+                    const double l = lossWith(lg, scene, parameters[p], int(c), float(at), seed);
+                    resolved = resolved || (firstLoss && l != *firstLoss);
+                    firstLoss = firstLoss.value_or(l);
+                    return l;
+                };
                 differences.push_back(finiteDifference(loss, x, h, range));
             }
             const MeanAndError& a = adjoint[p][c];
             const MeanAndError f = meanAndError(differences);
-            rows.push_back({parameters[p], int(c), a.mean, a.error, f.mean, f.error, h});
+            rows.push_back({parameters[p], int(c), a.mean, a.error, f.mean, f.error, h, resolved});
         }
     }
     return rows;

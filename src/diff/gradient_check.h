@@ -31,6 +31,10 @@ struct GradientCheckRow {
     double adjoint = 0.0, adjointError = 0.0;
     double finiteDifference = 0.0, finiteDifferenceError = 0.0;
     double step = 0.0;
+    // False where, at every seed, the losses the difference takes (at x + h and x - h, or
+    // at x, x + h and x + 2h) were equal bit for bit: the gradient is zero, or too small
+    // for a step to change any pixel's float, and the difference cannot tell which.
+    bool finiteDifferenceResolved = true;
 };
 
 // Each component's step is its kind's (scene/parameter_kinds.h). Where value - h would

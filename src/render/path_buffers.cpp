@@ -96,7 +96,7 @@ AdjointBuffers::AdjointBuffers(const VulkanContext& context, uint32_t capacity, 
     gradientValuesReadback =
         Buffer(context, uint64_t(gradientValueCount) * 4, MemoryUse::Readback, "gradient values (readback)");
     if (keptPaths > 0) {
-        keptRadiance = Buffer(context, keptPaths * 16, MemoryUse::Device, "kept radiance");
+        keptRadiance = Buffer(context, keptPaths * kKeptBytesPerPath, MemoryUse::Device, "kept radiance");
     }
 }
 

@@ -66,7 +66,10 @@ struct AdjointBuffers {
     Buffer gradientValues;  // the float bits of every accumulator's sums, in the order of the list
     Buffer gradientValuesReadback;  // their copy for the host, kept: a grid's is read in every iteration
     uint32_t gradientValueCount = 0;
-    Buffer keptRadiance;  // 16 bytes per kept path; empty (size 0) when none are kept
+    // The radiance and its rounding (radianceRounding) of every kept path, kKeptBytesPerPath
+    // each; empty (size 0) when none are kept.
+    Buffer keptRadiance;
+    static constexpr uint64_t kKeptBytesPerPath = 32;
 
     static constexpr uint64_t kBytesPerPath = 0 VKDR_ADJOINT_PATH_ARRAYS(VKDR_PATH_ARRAY_BYTES);
     uint64_t deviceBytes() const;

@@ -20,7 +20,7 @@ struct RenderSettings {
     // Upper bound on paths in flight per pass; 0 picks one from the device's memory.
     uint32_t pathsPerPass = 0;
     // Device memory a gradient evaluation may spend keeping half of its paths' radiance
-    // (16 bytes a path) instead of rendering them again (Renderer::renderWithGradients);
+    // (32 bytes a path) instead of rendering them again (Renderer::renderWithGradients);
     // at most an eighth of the device's memory is used whatever this says.
     uint64_t keptRadianceBytes = uint64_t(256) << 20;
     // Next-event estimation in scattering homogeneous media also samples distances towards

@@ -30,7 +30,7 @@ void Renderer::enableGradients(const Image& target, LossKind loss, const Derivat
     const uint64_t keptPaths = onePass ? 0 : pixels * (settings_.spp / 2);
     const uint64_t keptBudget = std::min(settings_.keptRadianceBytes, context_.deviceLocalHeapBytes() / 8);
     lossKind_ = loss;
-    allocateAdjoint(derivativeTargets, keptPaths * 16 <= keptBudget ? keptPaths : 0);
+    allocateAdjoint(derivativeTargets, keptPaths * AdjointBuffers::kKeptBytesPerPath <= keptBudget ? keptPaths : 0);
     adjointUse_ = AdjointUse::Loss;
     setTarget(target);
 }
@@ -203,15 +203,19 @@ void Renderer::recordLoss(CommandRecorder& recorder, uint32_t samples, uint32_t 
 }
 
 void Renderer::copyKeptRadiance(const PassRange& range, bool keep) {
-    // keptRadiance holds a path at sample * pixels + pixel, the slots of a pass from 0.
+    // keptRadiance holds a path's radiance at sample * pixels + pixel (the slots of a pass
+    // from 0), then in its second half the radiance's rounding in the same order.
     const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
     const uint64_t keptOffset = (range.firstSample * pixels + range.firstPixel) * 16;
+    const uint64_t roundingOffset = adjoint_->keptRadiance.size() / 2;
     const uint64_t bytes = uint64_t(range.pixelCount) * range.samplesInPass * 16;
     CommandRecorder recorder(context_);
     if (keep) {
         recorder.copyRange(paths_->radiance, 0, adjoint_->keptRadiance, keptOffset, bytes);
+        recorder.copyRange(paths_->radianceRounding, 0, adjoint_->keptRadiance, roundingOffset + keptOffset, bytes);
     } else {
         recorder.copyRange(adjoint_->keptRadiance, keptOffset, paths_->radiance, 0, bytes);
+        recorder.copyRange(adjoint_->keptRadiance, roundingOffset + keptOffset, paths_->radianceRounding, 0, bytes);
     }
     recorder.submitAndWait();
 }

@@ -202,8 +202,17 @@ TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
         for (const char* key : {"adjoint", "adjoint_error", "finite_difference", "finite_difference_error"}) {
             EXPECT_TRUE(row[key].is_number()) << key;
         }
+        EXPECT_EQ(row["finite_difference_resolved"], true);
         EXPECT_NEAR(row["step"].get<double>(), 0.15 * 0.002, 1e-9);
     }
+    // A sigma_s so small that its steps change no pixel's float: the finite difference
+    // is 0 whatever the gradient, and says it cannot see it.
+    RunResult tiny = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                         " --param media/fog/sigma_s --set media/fog/sigma_s=1e-12 --spp 2 --check --check-seeds 2");
+    ASSERT_EQ(tiny.exitCode, 0) << tiny.err;
+    EXPECT_NE(tiny.out.find("unresolved (*)"), std::string::npos) << tiny.out;
+    EXPECT_NE(tiny.out.find("the gradient is zero, or too small for a finite difference to see"), std::string::npos)
+        << tiny.out;
     // The check's seeds start at --seed: another seed is another check, the same one the same.
     const std::string seeded = "grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
                                " --param media/fog/g --spp 2 --check --check-seeds 2 --json --seed ";

@@ -186,6 +186,34 @@ TEST_F(RenderTest, ZeroFactorsInDifferentChannelsAreEachFollowed) {
     expectSame(scatteringAlone[0][1], both[1][1], "sigma_s[1]");
 }
 
+// A factor that is positive but tiny (1e-12) has the gradient of a zero one, which
+// derivative mode finds: their means over seeds agree within 5 combined standard errors.
+// The paths gather light of ordinary size (a wall's or the fog's next event) before the
+// tiny factor, so the gradient term there, L_rem / factor, needs L_rem to about 1e-12 of
+// L (shaders/lib/compensated_sum.glsl). Both take the same paths (a sigma_t of 0.15 +
+// 1e-12 is 0.15 in float) and differ only in how they compute that term, so their
+// standard errors must agree too: with L_rem in one float, off by about 6e-8 L, the
+// term is noise thousands of times the gradient, whose mean then passes the first check.
+TEST_F(RenderTest, TinyFactorsHaveTheGradientsOfZeroOnes) {
+    Image grey{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.5f)};
+    auto greenGradient = [&](const char* parameter, const std::string& green) {
+        Scene scene = loadScene(foggyRoom().write(tempDir(), "scene")).scene;
+        applyAssignment(scene, std::string(parameter) + "=0.3," + green + ",0.3");
+        RenderedLossGradient lg(testContext(), scene, {{"", grey}}, {parameter}, {.spp = 8, .maxDepth = 6},
+                                LossKind::L2);
+        return gradientOverSeeds(lg, scene, 12)[0][1];
+    };
+    for (const char* parameter : {"media/fog/sigma_s", "materials/walls/base_color"}) {
+        const MeanAndError tiny = greenGradient(parameter, "1e-12");
+        const MeanAndError zero = greenGradient(parameter, "0");
+        EXPECT_NEAR(tiny.mean, zero.mean, 5.0 * std::hypot(tiny.error, zero.error))
+            << parameter << "[1]: at 1e-12 " << tiny.mean << " +- " << tiny.error << ", at 0 " << zero.mean << " +- "
+            << zero.error;
+        EXPECT_LT(tiny.error, 2.0 * zero.error) << parameter;
+        EXPECT_GT(std::abs(zero.mean), 3.0 * zero.error) << parameter;
+    }
+}
+
 // A fog that scatters in no channel is passed through, weighted by its transmittance,
 // unless the gradient of sigma_s is wanted: only sampled collisions find that gradient
 // (derivative mode), so then the fog is sampled as any other. Both estimate the same

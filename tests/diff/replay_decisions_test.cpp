@@ -40,10 +40,12 @@ TEST_F(RenderTest, TheReplayTakesThePrimalPassesDecisions) {
     renderer.renderWithGradients();
     const std::vector<glm::vec4> left = renderer.pathRadiance();
 
-    // A path gathers at most 2 (maxDepth + 1) non-negative contributions; adding them
-    // and subtracting them again in float leaves a few ulps of their sum per operation,
-    // under 1e-5 L. A diverging decision leaves a whole contribution.
-    constexpr float kRounding = 1e-5f;
+    // A path gathers at most 2 (maxDepth + 1) non-negative contributions; adding them to
+    // a compensated sum (shaders/lib/compensated_sum.glsl) and subtracting them again
+    // leaves at most about 2^-47 L per operation, under 1e-12 L in all (in plain floats it
+    // would be about 1e-7 L, and a replayed contribution one ulp off from the primal
+    // pass's would leave as much). A diverging decision leaves a whole contribution.
+    constexpr float kRounding = 1e-12f;
     const int paths = kSide * kSide * 8;
     int litPaths = 0, diverged = 0;
     for (size_t slot = 0; slot < size_t(paths); ++slot) {
