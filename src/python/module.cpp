@@ -7,6 +7,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "core/error.h"
@@ -62,14 +63,37 @@ std::string shapeText(const std::vector<size_t>& shape) {
     return text + ")";
 }
 
+// Refuses a finite value of a wider float array that float32 cannot hold (numpy would
+// make it an infinity, with a warning), naming `what` and the value as the scene
+// loader does.
+void requireWithinFloatRange(const py::array& numbers, const std::string& what) {
+    if (numbers.dtype().kind() != 'f' || numbers.dtype().itemsize() <= 4) {
+        return;
+    }
+    // The least magnitude that rounds to an infinite float: FLT_MAX plus half its ulp.
+    const double overflow = std::ldexp(1.0, 128) - std::ldexp(1.0, 103);
+    const py::module_ numpy = py::module_::import("numpy");
+    const py::object flat = numbers.attr("reshape")(-1);
+    const py::object beyond = numpy.attr("logical_and")(
+        numpy.attr("isfinite")(flat), numpy.attr("greater_equal")(numpy.attr("abs")(flat), overflow));
+    if (py::cast<bool>(numpy.attr("any")(beyond))) {
+        // numpy's text of the value: a long double's may lie beyond a double's range too.
+        const std::string first = py::str(flat[numpy.attr("argmax")(beyond)]);
+        throw Error(what + ": must be finite, got " + first + ": beyond float range (magnitude at most 3.4e+38)");
+    }
+}
+
 // Numbers as numpy makes float32 of them. Refused, with a TypeError naming `what`: None
 // (numpy would make it NaN), text (numpy would parse "0.1"), complex numbers (numpy
 // would drop their imaginary part), and what numpy cannot make an array of numbers of,
-// with numpy's or PyTorch's reason (a tensor that requires grad, say).
+// with numpy's or PyTorch's reason (a tensor that requires grad, say); with a
+// vkdiffrender.Error, values beyond float's range.
 FloatArray floatArrayOf(const py::object& value, const std::string& what) {
     auto refuse = [&](const std::string& got) { throw py::type_error(what + ": expected numbers, got " + got); };
     if (value.is_none()) refuse("None");
-    if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) refuse("text");
+    if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::isinstance<py::bytearray>(value)) {
+        refuse("text");
+    }
     py::array numbers;
     try {
         numbers = py::module_::import("numpy").attr("asarray")(value);
@@ -82,6 +106,7 @@ FloatArray floatArrayOf(const py::object& value, const std::string& what) {
     if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
         refuse("an array of dtype " + std::string(py::str(numbers.dtype())));
     }
+    requireWithinFloatRange(numbers, what);
     return FloatArray(numbers);
 }
 

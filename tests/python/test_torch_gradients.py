@@ -156,6 +156,17 @@ def test_arguments_of_the_wrong_kind_name_themselves(scene, call, message):
     assert np.array_equal(scene["media/fog/sigma_a"], before)
 
 
+def test_a_gradient_beyond_a_half_precision_tensors_range_is_an_error_not_infinity(scene):
+    sigma_a = torch.tensor(0.05, dtype=torch.float16, requires_grad=True)
+    image = vt.render(scene, {"media/fog/sigma_a": sigma_a}, spp=2, width=WIDTH)
+    with pytest.raises(OverflowError, match=r"media/fog/sigma_a: its gradient \(up to .*\) exceeds the range of the "
+                                            r"tensor's torch.float16; pass it in a wider dtype"):
+        (image.sum() * 1e6).backward()
+    small = torch.tensor(0.05, dtype=torch.float16, requires_grad=True)
+    vt.render(scene, {"media/fog/sigma_a": small}, spp=2, width=WIDTH).mean().backward()
+    assert small.grad.dtype == torch.float16 and torch.isfinite(small.grad).all() and small.grad.item() != 0.0
+
+
 def test_complex_values_are_refused_not_cut_to_their_real_part(scene):
     before = scene["media/fog/sigma_a"].copy()
     with pytest.raises(TypeError, match="media/fog/sigma_a: expected real numbers"):

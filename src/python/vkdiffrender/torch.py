@@ -121,5 +121,11 @@ class _Render(torch.autograd.Function):
             gradient = torch.from_numpy(gradients[name])
             if shape.numel() == 1 and gradient.numel() != 1:
                 gradient = gradient.sum()
-            results.append(gradient.reshape(shape).to(dtype=dtype, device=device))
+            cast = gradient.reshape(shape).to(dtype=dtype)
+            # The renderer's gradients are finite floats: only a narrower dtype overflows.
+            if not torch.isfinite(cast).all():
+                raise OverflowError(f"{name}: its gradient (up to {gradient.abs().max().item():g} in magnitude) "
+                                    f"exceeds the range of the tensor's {dtype}; pass it in a wider dtype "
+                                    f"(torch.float32 or torch.float64)")
+            results.append(cast.to(device=device))
         return (None, None, None) + tuple(results)
