@@ -351,6 +351,25 @@ def muted_volume(scene):
     bpy.context.object.data.materials.append(material)
 
 
+def rerouted_volumes(scene):
+    """Three volume cubes of one Principled Volume: linked to the output directly, through
+    two Reroute nodes, and by a muted link, which Cycles renders empty."""
+    for name, x in (("Direct", -1.0), ("Rerouted", 0.0), ("MutedLink", 1.0)):
+        bpy.ops.mesh.primitive_cube_add(size=0.5, location=(x, 0.0, 0.5))
+        material = volume_material(name, 3.0)
+        tree = material.node_tree
+        volume, output = tree.nodes["Principled Volume"], tree.nodes["Material Output"]
+        volume.inputs["Anisotropy"].default_value = 0.4
+        if name == "Rerouted":
+            first, second = tree.nodes.new("NodeReroute"), tree.nodes.new("NodeReroute")
+            tree.links.new(volume.outputs[0], first.inputs[0])
+            tree.links.new(first.outputs[0], second.inputs[0])
+            tree.links.new(second.outputs[0], output.inputs["Volume"])
+        if name == "MutedLink":
+            output.inputs["Volume"].links[0].is_muted = True
+        bpy.context.object.data.materials.append(material)
+
+
 def blinding_light(scene):
     add_light("POINT", "Blinding", (0.0, 0.0, 2.0), 1e30, scene.collection)
 
@@ -413,7 +432,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
          "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera,
          "textured_materials": textured_materials, "nan_density": nan_density, "open_volume": open_volume, "missing_image": missing_image,
-         "muted_volume": muted_volume, "blinding_light": blinding_light,
+         "muted_volume": muted_volume, "rerouted_volumes": rerouted_volumes, "blinding_light": blinding_light,
          "nan_light_power": nan_light_power,
          "area_light_of_no_size": area_light_of_no_size,
          "area_emitter_named_like_a_material": area_emitter_named_like_a_material,

@@ -74,16 +74,25 @@ def import_and_read(gltf, out):
             bpy.ops.import_scene.vkdiffrender(filepath=str(out / name))
         except RuntimeError as error:  # an operator's error report, as Python sees it
             result["unreadable"][name] = str(error)
-    # A medium's coefficient as text, beside the file so that its buffer resolves.
+    # A medium's coefficient as text and a light index past the lights, each in a copy
+    # beside the file so that its buffer resolves.
     doc = json.loads(gltf.read_text())
     medium = next(m["extensions"]["VKDR_participating_media"] for m in doc["materials"]
                   if "VKDR_participating_media" in m.get("extensions", {}))
     medium["sigma_a"] = "lots"
     (gltf.parent / "text_medium.gltf").write_text(json.dumps(doc))
-    try:
-        bpy.ops.import_scene.vkdiffrender(filepath=str(gltf.parent / "text_medium.gltf"))
-    except RuntimeError as error:
-        result["unreadable"]["text_medium.gltf"] = str(error)
+    doc = json.loads(gltf.read_text())
+    next(n for n in doc["nodes"] if "KHR_lights_punctual" in n.get("extensions", {}))[
+        "extensions"]["KHR_lights_punctual"]["light"] = 99
+    (gltf.parent / "light_index.gltf").write_text(json.dumps(doc))
+    counts = lambda: {"objects": len(bpy.data.objects), "materials": len(bpy.data.materials)}  # noqa: E731
+    result["refused_import"] = {"before": counts()}
+    for name in ("text_medium.gltf", "light_index.gltf"):
+        try:
+            bpy.ops.import_scene.vkdiffrender(filepath=str(gltf.parent / name))
+        except RuntimeError as error:
+            result["unreadable"][name] = str(error)
+    result["refused_import"]["after"] = counts()
     bpy.ops.wm.read_factory_settings(use_empty=True)  # the add-on stays registered
     bpy.ops.import_scene.vkdiffrender(filepath=str(gltf))
     result["numpy_bool_after"] = hasattr(numpy, "bool")

@@ -271,6 +271,14 @@ def test_a_muted_volume_node_is_exported_as_cycles_renders_it_no_medium(exported
     assert "VKDR_participating_media" not in muted.get("extensions", {})
 
 
+def test_a_volume_through_reroutes_is_exported_and_one_through_a_muted_link_is_not(exported):
+    materials = {m["name"]: m.get("extensions", {}) for m in document(exported, "rerouted_volumes")["materials"]}
+    direct, rerouted = (materials[name]["VKDR_participating_media"] for name in ("Direct", "Rerouted"))
+    assert rerouted == direct
+    assert "VKDR_participating_media" not in materials["MutedLink"]
+    assert not [w for w in own_warnings(exported, "rerouted_volumes") if "Reroute" in w]
+
+
 def test_an_export_that_fails_leaves_the_previous_one(exported):
     assert "scene.bin" in result(exported, "failing_export")["error"]
     failing = exported / "failing"

@@ -90,10 +90,17 @@ def test_export_warns_of_cycles_settings_vkdiffrender_cannot_follow(imported):
 
 def test_a_file_that_is_not_gltf_is_missing_or_holds_a_medium_of_text_gives_one_line_naming_it(imported):
     unreadable = imported[2]["unreadable"]
-    assert "not_gltf.gltf: Blender's glTF importer cannot read it" in unreadable["not_gltf.gltf"]
+    assert "not_gltf.gltf: not a glTF file (its JSON does not parse" in unreadable["not_gltf.gltf"]
     assert "missing.gltf: no such file" in unreadable["missing.gltf"]
     field = r"materials\[\d+\]\.extensions\.VKDR_participating_media\.sigma_a"
-    assert re.search(field + r": expected a number or three, got \"lots\"", unreadable["text_medium.gltf"])
+    assert re.search(r"text_medium\.gltf: " + field + r": expected a finite number or three within float range, "
+                     r"got \"lots\"",
+                     unreadable["text_medium.gltf"])
+    assert re.search(r"light_index\.gltf: nodes\[\d+\]\.extensions\.KHR_lights_punctual\.light: expected the "
+                     r"index of one of the \d+ lights, got 99", unreadable["light_index.gltf"])
+    # The values are checked before Blender's importer runs: the refused files added nothing.
+    refused = imported[2]["refused_import"]
+    assert refused["after"] == refused["before"]
     for message in unreadable.values():
         assert "Traceback" not in message and len(message.splitlines()) == 1, message
 

@@ -194,7 +194,7 @@ def set_surfaces(doc, warnings):
             albedo = mappings.base_color_to_albedo(node_graph.constant(
                 node, "Color", warnings, what, textured if "baseColorTexture" in pbr else None))
             pbr["baseColorFactor"] = [*albedo, 1.0]
-            if node.inputs["Roughness"].default_value > 0.0 or node.inputs["Roughness"].is_linked:
+            if node.inputs["Roughness"].default_value > 0.0 or node_graph.is_fed(node.inputs["Roughness"]):
                 warnings.append(f"{what}: Diffuse BSDF roughness (Oren-Nayar) is exported as Lambertian")
         elif node.bl_idname == "ShaderNodeEmission":
             radiance = mappings.emission_to_radiance(
@@ -215,7 +215,7 @@ def set_surfaces(doc, warnings):
             extensions = material.get("extensions", {})
             for name in TRANSMISSION_EXTENSIONS:
                 extensions.pop(name, None)
-            if node.inputs["Transmission"].default_value > 0.0 or node.inputs["Transmission"].is_linked:
+            if node.inputs["Transmission"].default_value > 0.0 or node_graph.is_fed(node.inputs["Transmission"]):
                 warnings.append(f"{what}: Transmission is exported as an opaque surface (vkdiffrender does not "
                                 f"refract)")
         else:
@@ -314,7 +314,7 @@ def warn_light_nodes(obj, warnings):
     outputs = [n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputLight"]
     shader = node_graph.linked_node(outputs[0].inputs["Surface"]) if outputs else None
     if shader is not None and shader.bl_idname == "ShaderNodeEmission" and not any(
-            socket.is_linked for socket in shader.inputs) and shader.inputs["Strength"].default_value == 1.0 and \
+            node_graph.is_fed(socket) for socket in shader.inputs) and shader.inputs["Strength"].default_value == 1.0 and \
             tuple(shader.inputs["Color"].default_value[:3]) == (1.0, 1.0, 1.0):
         return
     warnings.append(f"light '{obj.name}': its shader nodes are not read (they change what Cycles emits); "

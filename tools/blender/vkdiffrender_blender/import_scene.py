@@ -1,5 +1,7 @@
 """File > Import > vkdiffrender (.gltf/.glb): Blender's glTF importer, then the media,
-background and light values it does not know restored as Cycles nodes."""
+background and light values it does not know restored as Cycles nodes. The values are
+read and checked before the importer runs, so that a file with a bad one changes
+nothing."""
 import contextlib
 import json
 import math
@@ -30,35 +32,90 @@ def numpy_bool_alias():
 
 
 def read_gltf_json(path):
+    """The JSON object of a .gltf or .glb file; ValueError naming the file where there is
+    none."""
     with open(path, "rb") as f:
         data = f.read()
     if data[:4] == b"glTF":
+        if len(data) < 20:
+            raise ValueError(f"{path}: a GLB file cut short ({len(data)} bytes)")
         length, kind = struct.unpack_from("<II", data, 12)
         if kind != 0x4E4F534A:
             raise ValueError(f"{path}: the first GLB chunk is not JSON")
-        return json.loads(data[20:20 + length])
-    return json.loads(data)
+        data = data[20:20 + length]
+    try:
+        doc = json.loads(data)
+    except (ValueError, RecursionError) as error:  # ValueError: undecodable bytes, bad JSON, huge integers
+        raise ValueError(f"{path}: not a glTF file (its JSON does not parse: {error})") from None
+    return json_object(doc, path)
+
+
+FLOAT_MAX = 3.4028234663852886e38
+
+
+def shown(value):
+    """A JSON value for a message, cut short where long."""
+    text = json.dumps(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def is_number(value):
+    """A JSON number a float holds: Python's json also reads NaN, Infinity and integers of
+    any size."""
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        return False
+    try:
+        return abs(float(value)) <= FLOAT_MAX
+    except OverflowError:
+        return False
+
+
+def number(entry, key, default, where):
+    value = entry.get(key, default)
+    if not is_number(value):
+        raise ValueError(f"{where}.{key}: expected a finite number within float range, got {shown(value)}")
+    return float(value)
+
+
+def rgb(entry, key, default, where):
+    """ENTRY[KEY] as three floats: a number broadcasts, a list gives its first three."""
+    value = entry.get(key, default)
+    if is_number(value):
+        return (float(value),) * 3
+    if not (isinstance(value, list) and len(value) >= 3 and all(is_number(v) for v in value[:3])):
+        raise ValueError(f"{where}.{key}: expected a finite number or three within float range, "
+                         f"got {shown(value)}")
+    return tuple(float(v) for v in value[:3])
+
+
+def json_object(value, where):
+    if not isinstance(value, dict):
+        raise ValueError(f"{where}: expected an object, got {shown(value)}")
+    return value
+
+
+GRID_KEYS = {"density": "density", "albedoGrid": "albedo", "emissionGrid": "emission"}
 
 
 def medium_from_json(entry, where):
     """A medium as vkdiffrender reads it: VKDR_participating_media (scalars broadcast), or
     KHR_materials_volume's attenuation (sigma_a = -ln(colour) / distance)."""
-    def rgb(key):
-        value = entry.get(key, 0.0)
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            return (float(value),) * 3
-        if not (isinstance(value, list) and len(value) >= 3 and all(
-                isinstance(v, (int, float)) and not isinstance(v, bool) for v in value[:3])):
-            raise ValueError(f"{where}.{key}: expected a number or three, got {json.dumps(value)}")
-        return tuple(float(v) for v in value[:3])
+    entry = json_object(entry, where)
+    for key in GRID_KEYS:
+        if key in entry:
+            json_object(entry[key], f"{where}.{key}")
     if "attenuationColor" in entry or "attenuationDistance" in entry:
-        distance = float(entry.get("attenuationDistance", math.inf))
-        colour = entry.get("attenuationColor", [1.0, 1.0, 1.0])
-        if any(c <= 0.0 for c in colour):
-            raise ValueError(f"{where}.attenuationColor: must be > 0, got {colour}")
+        distance = number(entry, "attenuationDistance", 0.0, where) if "attenuationDistance" in entry else math.inf
+        if distance <= 0.0:
+            raise ValueError(f"{where}.attenuationDistance: must be > 0, got {shown(entry['attenuationDistance'])}")
+        colour = rgb(entry, "attenuationColor", 1.0, where)
+        if any(not 0.0 < c <= 1.0 for c in colour):
+            raise ValueError(f"{where}.attenuationColor: must be in (0, 1], "
+                             f"got {shown(entry['attenuationColor'])}")
         sigma_a = tuple(-math.log(c) / distance for c in colour)
         return mappings.Medium(sigma_a, (0.0, 0.0, 0.0), 0.0)
-    return mappings.Medium(rgb("sigma_a"), rgb("sigma_s"), float(entry.get("g", 0.0)), rgb("emission"))
+    return mappings.Medium(rgb(entry, "sigma_a", 0.0, where), rgb(entry, "sigma_s", 0.0, where),
+                           number(entry, "g", 0.0, where), rgb(entry, "emission", 0.0, where))
 
 
 def set_volume(owner, medium, output_kind):
@@ -105,23 +162,43 @@ def warn_renamed(renamed, warnings):
                         f"file")
 
 
-def restore_media(doc, materials, warnings, renamed):
-    for index, material in enumerate(doc.get("materials", [])):
-        extensions = material.get("extensions", {})
+def json_list(value, where):
+    if not isinstance(value, list):
+        raise ValueError(f"{where}: expected an array, got {shown(value)}")
+    return value
+
+
+def member(obj, key, where, default=None):
+    """OBJ[KEY] as an object (DEFAULT, or an empty one, where absent)."""
+    return json_object(obj.get(key, {} if default is None else default), f"{where}.{key}" if where else key)
+
+
+def material_media(doc):
+    """(material name, medium entry, Medium) of every material of DOC with a medium."""
+    media = []
+    for index, material in enumerate(json_list(doc.get("materials", []), "materials")):
+        material = json_object(material, f"materials[{index}]")
+        extensions = member(material, "extensions", f"materials[{index}]")
         key = EXTENSION if EXTENSION in extensions else "KHR_materials_volume"
         entry = extensions.get(key)
-        if entry is None:
-            continue
-        name = material.get("name", str(index))
+        if entry is not None:
+            medium = medium_from_json(entry, f"materials[{index}].extensions.{key}")
+            name = material.get("name", str(index))
+            if not isinstance(name, str):
+                raise ValueError(f"materials[{index}].name: expected text, got {shown(name)}")
+            media.append((name, entry, medium))
+    return media
+
+
+def restore_media(media, materials, warnings, renamed):
+    for name, entry, medium in media:
         blender_material = match(materials, name, renamed)
         if blender_material is None:
             warnings.append(f"material '{name}': not created by the importer (unused?); its medium is skipped")
             continue
         warn_grids(entry, f"material '{name}'", warnings)
-        set_volume(blender_material, medium_from_json(entry, f"materials[{index}].extensions.{key}"), "OUTPUT_MATERIAL")
+        set_volume(blender_material, medium, "OUTPUT_MATERIAL")
 
-
-GRID_KEYS = {"density": "density", "albedoGrid": "albedo", "emissionGrid": "emission"}
 
 
 def warn_grids(entry, what, warnings):
@@ -134,61 +211,99 @@ def warn_grids(entry, what, warnings):
                             f"> OpenVDB for the grid)")
 
 
-def restore_world(doc, scene, warnings):
+def world_values(doc):
+    """The scene medium's entry and Medium (or None, None) and the background radiance (or
+    None) of DOC."""
+    extensions = member(doc, "extensions", "")
+    medium_entry, medium = extensions.get(EXTENSION), None
+    if medium_entry is not None:
+        medium = medium_from_json(medium_entry, "extensions." + EXTENSION)
+    background = extensions.get("VKDR_background")
+    if background is not None:
+        where = "extensions.VKDR_background"
+        background = rgb(json_object(background, where), "radiance", 0.0, where)
+    return medium_entry, medium, background
+
+
+def restore_world(world_values, scene, warnings):
     """The scene medium and background in a new World, so that a World the scene had (which
     other scenes may share) keeps its values."""
-    extensions = doc.get("extensions", {})
-    medium_entry, background = extensions.get(EXTENSION), extensions.get("VKDR_background")
+    medium_entry, medium, background = world_values
     if medium_entry is None and background is None:
         return
-    world = bpy.data.worlds.new(medium_entry.get("name", "World") if medium_entry else "World")
+    name = medium_entry.get("name", "World") if medium_entry else "World"
+    world = bpy.data.worlds.new(name if isinstance(name, str) else "World")
     scene.world = world
     world.use_nodes = True
     if medium_entry is not None:
         warn_grids(medium_entry, "the scene medium", warnings)
-        set_volume(world, medium_from_json(medium_entry, "extensions." + EXTENSION), "OUTPUT_WORLD")
+        set_volume(world, medium, "OUTPUT_WORLD")
     out = node_graph.output_node(world.node_tree, "OUTPUT_WORLD")
     node = node_graph.linked_node(out.inputs["Surface"])
     if node is None or node.bl_idname != "ShaderNodeBackground":
         node = world.node_tree.nodes.new("ShaderNodeBackground")
         world.node_tree.links.new(node.outputs[0], out.inputs["Surface"])
-    emission = mappings.radiance_to_emission(background["radiance"] if background else 0.0)
+    emission = mappings.radiance_to_emission(background if background else 0.0)
     node.inputs["Color"].default_value = (*emission["color"], 1.0)
     node.inputs["Strength"].default_value = emission["strength"]
 
 
-def restore_lights(doc, objects, renamed):
-    """KHR_lights_punctual in Cycles' units (the importer converts with its own factors)."""
-    lights = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
-    for node in doc.get("nodes", []):
-        index = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
-        obj = match([o for o in objects if o.type == "LIGHT"], node.get("name", ""), renamed)
-        if index is None or obj is None:
+def light_values(doc):
+    """(node name, colour x intensity, (outer, inner) cone angles) of every node of DOC
+    that holds a KHR_lights_punctual light."""
+    punctual = member(member(doc, "extensions", ""), "KHR_lights_punctual", "extensions")
+    lights = json_list(punctual.get("lights", []), "extensions.KHR_lights_punctual.lights")
+    values = []
+    for node_index, node in enumerate(json_list(doc.get("nodes", []), "nodes")):
+        where = f"nodes[{node_index}]"
+        node = json_object(node, where)
+        index = member(member(node, "extensions", where), "KHR_lights_punctual", where + ".extensions").get("light")
+        if index is None:
             continue
-        entry = lights[index]
-        value = tuple(c * float(entry.get("intensity", 1.0)) for c in entry.get("color", [1.0, 1.0, 1.0]))
+        if not (isinstance(index, int) and not isinstance(index, bool) and 0 <= index < len(lights)):
+            raise ValueError(f"nodes[{node_index}].extensions.KHR_lights_punctual.light: expected the index of one of "
+                             f"the {len(lights)} lights, got {shown(index)}")
+        where = f"extensions.KHR_lights_punctual.lights[{index}]"
+        entry = json_object(lights[index], where)
+        intensity = number(entry, "intensity", 1.0, where)
+        value = tuple(c * intensity for c in rgb(entry, "color", 1.0, where))
+        spot = member(entry, "spot", where)
+        cone = (number(spot, "outerConeAngle", math.pi / 4.0, where + ".spot"),
+                number(spot, "innerConeAngle", 0.0, where + ".spot"))
+        values.append((str(node.get("name", "")), value, cone))
+    return values
+
+
+def restore_lights(lights, objects, renamed):
+    """KHR_lights_punctual in Cycles' units (the importer converts with its own factors)."""
+    for name, value, cone in lights:
+        obj = match([o for o in objects if o.type == "LIGHT"], name, renamed)
+        if obj is None:
+            continue
         node_graph.set_light_value(obj.data, value)
         if obj.data.type != "SUN":
             obj.data.shadow_soft_size = 0.0
         if obj.data.type == "SPOT":
             # The importer's own blend is not the export's (mappings.spot_cone_angles).
-            spot = entry.get("spot", {})
-            obj.data.spot_size, obj.data.spot_blend = mappings.spot_size_and_blend(
-                spot.get("outerConeAngle", math.pi / 4.0), spot.get("innerConeAngle", 0.0))
+            obj.data.spot_size, obj.data.spot_blend = mappings.spot_size_and_blend(*cone)
 
 
 def import_scene(context, filepath):
     """Imports FILEPATH into the current scene; returns the warnings."""
+    doc = read_gltf_json(filepath)
+    try:
+        media, world, lights = material_media(doc), world_values(doc), light_values(doc)
+    except ValueError as error:
+        raise ValueError(f"{filepath}: {error}") from None
     materials_before = {m.name for m in bpy.data.materials}
     objects_before = {o.name for o in bpy.data.objects}
     with numpy_bool_alias():
         bpy.ops.import_scene.gltf(filepath=filepath)
-    doc = read_gltf_json(filepath)
     warnings, renamed = [], []
-    restore_media(doc, new_ids(bpy.data.materials, materials_before), warnings, renamed)
-    restore_world(doc, context.scene, warnings)
+    restore_media(media, new_ids(bpy.data.materials, materials_before), warnings, renamed)
+    restore_world(world, context.scene, warnings)
     new_objects = new_ids(bpy.data.objects, objects_before)
-    restore_lights(doc, new_objects, renamed)
+    restore_lights(lights, new_objects, renamed)
     warn_renamed(renamed, warnings)
     if context.scene.camera is None:  # Cycles renders through the scene camera
         context.scene.camera = next((o for o in new_objects if o.type == "CAMERA"), None)

@@ -26,17 +26,48 @@ def owner_output(owner):
     return output_node(owner.node_tree, kind)
 
 
+def live_links(socket):
+    """The links into SOCKET that Cycles follows: not muted, and not invalid (Blender marks
+    a link that closes a loop invalid)."""
+    return [link for link in socket.links if link.is_valid and not link.is_muted] if socket.is_linked else []
+
+
+def source_link(socket):
+    """The link that feeds SOCKET as Cycles renders it, or None: a muted or invalid link
+    feeds nothing, and a Reroute node passes on what feeds its input (a loop of Reroutes
+    feeds nothing)."""
+    seen = set()
+    while socket is not None and socket.as_pointer() not in seen:
+        seen.add(socket.as_pointer())
+        links = live_links(socket)
+        if not links:
+            return None
+        if links[0].from_node.bl_idname != "NodeReroute":
+            return links[0]
+        socket = links[0].from_node.inputs[0]
+    return None
+
+
+def is_fed(socket):
+    """Whether a link feeds SOCKET as Cycles renders it (source_link): where none does,
+    Cycles uses the socket's own value."""
+    return source_link(socket) is not None
+
+
 def linked_node(socket):
-    return socket.links[0].from_node if socket.is_linked and socket.links else None
+    """The node that feeds SOCKET (source_link), or None."""
+    link = source_link(socket)
+    return link.from_node if link else None
 
 
 def attribute_input(node, name):
     """The attribute name an input reads when a geometry Attribute node's Fac feeds it
     directly (a volume grid of that name, in a Volume object), else None."""
-    source = linked_node(node.inputs[name])
+    link = source_link(node.inputs[name])
+    source = link.from_node if link else None
     if source is None or source.bl_idname != "ShaderNodeAttribute" or source.attribute_type != "GEOMETRY":
         return None
-    return source.attribute_name if node.inputs[name].links[0].from_socket.name == "Fac" else None
+    return source.attribute_name if link.from_socket.name == "Fac" else None
 
 
 def constant(node, name, warnings, what, overrides=None):
@@ -46,7 +77,7 @@ def constant(node, name, warnings, what, overrides=None):
     if overrides and name in overrides:
         return overrides[name]
     socket = node.inputs[name]
-    if socket.is_linked:
+    if is_fed(socket):
         warnings.append(f"{what}: '{node.name}' input '{name}' is linked (a texture or attribute), which the "
                         f"export cannot follow; its unlinked value is used")
     value = socket.default_value
@@ -64,7 +95,7 @@ def volume_medium(node, warnings, what, overrides=None):
         return volume_medium(linked_node(through[0]), warnings, what, overrides) if through else None
     if node.bl_idname == "ShaderNodeVolumePrincipled":
         blackbody = node.inputs["Blackbody Intensity"]
-        if blackbody.is_linked or blackbody.default_value > 0.0:
+        if is_fed(blackbody) or blackbody.default_value > 0.0:
             warnings.append(f"{what}: '{node.name}' Blackbody Intensity: blackbody emission is not supported "
                             f"by vkdiffrender and is dropped")
         inputs = ("Color", "Density", "Absorption Color", "Anisotropy", "Emission Color", "Emission Strength")
@@ -106,7 +137,7 @@ def volume_input(owner):
 def has_volume(owner):
     """Whether a material or World renders a volume (of any shader)."""
     socket = volume_input(owner)
-    return socket is not None and socket.is_linked
+    return socket is not None and is_fed(socket)
 
 
 def material_volume_node(material):
@@ -160,7 +191,7 @@ def write_medium(node, medium, write_emission=True):
 
     def write(name, value):
         socket = node.inputs[name]
-        if socket.is_linked:
+        if is_fed(socket):
             warnings.append(f"'{node.name}' input '{name}' is linked (a texture or attribute); the fitted value "
                             f"goes to its unlinked default, which Cycles does not use")
         socket.default_value = value

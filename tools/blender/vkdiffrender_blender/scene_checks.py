@@ -41,7 +41,7 @@ def rendered_nodes(owner):
             continue
         seen.add(node.name)
         for socket in node.inputs:
-            todo.extend(link.from_node for link in socket.links)
+            todo.extend(link.from_node for link in node_graph.live_links(socket))
     return [owner.node_tree.nodes[name] for name in seen]
 
 
@@ -50,7 +50,7 @@ def non_finite_node_input(owner):
     material or World) whose value is not a finite number, or None."""
     for node in rendered_nodes(owner):
         for socket in node.inputs:
-            if not socket.is_linked and hasattr(socket, "default_value") and any(
+            if not node_graph.is_fed(socket) and hasattr(socket, "default_value") and any(
                     is_non_finite(v) for v in _numbers(socket.default_value)):
                 return node.name, socket.name
     return None

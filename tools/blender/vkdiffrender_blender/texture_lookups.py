@@ -3,6 +3,8 @@ glTF exporter writes the image, its extension as a sampler wrap mode and a Mappi
 as KHR_texture_transform where it can, and drops the rest without telling the add-on."""
 import bpy
 
+from . import node_graph
+
 # Mapping node types the glTF exporter turns into KHR_texture_transform.
 EXPORTED_MAPPINGS = {"POINT", "TEXTURE", "VECTOR"}
 
@@ -11,14 +13,14 @@ def coordinate_source(texture, warnings, what):
     """Follows the texture's Vector input back through Mapping nodes, warning of each one the
     exporter drops; returns the node and output name the coordinates come from, or None for
     an unlinked input (the UV map)."""
-    socket = texture.inputs["Vector"]
-    while socket.is_linked and socket.links:
-        link = socket.links[0]
+    socket, seen = texture.inputs["Vector"], set()
+    while (link := node_graph.source_link(socket)) is not None and link.from_node.name not in seen:
         node = link.from_node
+        seen.add(node.name)
         if node.bl_idname != "ShaderNodeMapping":
             return node, link.from_socket.name
         rotation = node.inputs["Rotation"].default_value
-        linked = [s.name for s in node.inputs if s.name != "Vector" and s.is_linked]
+        linked = [s.name for s in node.inputs if s.name != "Vector" and node_graph.is_fed(s)]
         if node.vector_type not in EXPORTED_MAPPINGS or rotation[0] != 0.0 or rotation[1] != 0.0 or linked:
             warnings.append(f"{what}: Mapping node '{node.name}' cannot be exported as a texture transform (only "
                             f"unlinked location, scale and rotation about Z of a Point, Texture or Vector "

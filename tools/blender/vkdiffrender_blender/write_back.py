@@ -95,7 +95,7 @@ def apply_fitted_values(scene, view_layer, params):
                 warnings.append(f"{name}: no Principled or Diffuse BSDF to write into")
                 continue
             socket = surface.inputs[SURFACE_COLOR_INPUTS[surface.bl_idname]]
-            if socket.is_linked:
+            if node_graph.is_fed(socket):
                 warnings.append(f"{name}: '{surface.name}' input '{socket.name}' is linked (a texture); the value "
                                 f"goes to its unlinked default, which Cycles does not use")
             socket.default_value = (*value[:3], 1.0)
