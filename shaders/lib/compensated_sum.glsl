@@ -5,7 +5,7 @@
 // of the throughput (a tiny sigma_s / sigma_t, a nearly black wall) the true L_rem is
 // about f L. In one float its rounding error is about 6e-8 L, which the vertex's
 // gradient term L_rem / f magnifies beyond use once f nears 1e-7; in the pair it is
-// about 4e-15 L (docs/gradients.md, "Limits").
+// about 4e-15 L (docs/gradients.md, "Small factors").
 //
 // `precise` keeps the compiler from fusing or reassociating the error terms, which
 // would make them zero.

@@ -19,6 +19,9 @@ using namespace glm;
 using namespace gpu;
 using uint = uint32_t;
 #define INOUT(Type) Type&
+// C++ neither fuses nor reassociates float operations here (no FMA in the x86-64
+// baseline, no -ffast-math), which `precise` asks of a shader compiler.
+#define precise
 // What the grid library reads through the device's RenderParams (device_types.h): a
 // test points these at its grid's voxels and majorant cells.
 struct HostFloats {
@@ -37,6 +40,7 @@ HostRenderParams P;
 #include "equiangular.glsl"
 #include "spherical_triangle.glsl"
 #include "fixed_point.glsl"
+#include "compensated_sum.glsl"
 #include "tracking_random.glsl"
 #include "density_grid.glsl"
 #include "grid_tracking.glsl"

@@ -314,7 +314,8 @@ def warn_light_nodes(obj, warnings):
     outputs = [n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputLight"]
     shader = node_graph.linked_node(outputs[0].inputs["Surface"]) if outputs else None
     if shader is not None and shader.bl_idname == "ShaderNodeEmission" and not any(
-            node_graph.is_fed(socket) for socket in shader.inputs) and shader.inputs["Strength"].default_value == 1.0 and \
+            node_graph.is_fed(socket) for socket in shader.inputs) and \
+            shader.inputs["Strength"].default_value == 1.0 and \
             tuple(shader.inputs["Color"].default_value[:3]) == (1.0, 1.0, 1.0):
         return
     warnings.append(f"light '{obj.name}': its shader nodes are not read (they change what Cycles emits); "
