@@ -152,6 +152,19 @@ def test_objects_made_without_init_raise_instead_of_crashing(tmp_path):
     assert not list(tmp_path.iterdir())
 
 
+def test_init_is_refused_on_a_loaded_scene_and_retried_after_a_failed_one(fog_scene_file, tmp_path):
+    scene = vkdiffrender.Scene(fog_scene_file)
+    with pytest.raises(TypeError, match="this Scene already holds .*; make a new vkdiffrender.Scene"):
+        scene.__init__(fog_scene_file)
+    assert scene.file == fog_scene_file.resolve() and scene.render(width=4, spp=1).shape == (4, 4, 3)
+    bare = vkdiffrender.Scene.__new__(vkdiffrender.Scene)
+    with pytest.raises(vkdiffrender.Error):
+        bare.__init__(tmp_path / "missing.gltf")
+    bare.__init__(fog_scene_file)
+    assert "media/fog/g" in bare
+    assert "file" in vkdiffrender.Scene.__init__.__doc__  # the signature help is kept
+
+
 def test_none_is_a_type_error(scene):
     with pytest.raises(TypeError, match="None"):
         scene["media/fog/sigma_a"] = None

@@ -11,6 +11,8 @@ operation. The documentation is docs/python.md in the source tree.
     image = scene.render(spp=64, seed=1, width=128)
     vkdiffrender.write_image("fog.exr", image)
 """
+import functools
+
 from ._vkdiffrender import (  # noqa: F401
     Error,
     Parameter,
@@ -22,3 +24,20 @@ from ._vkdiffrender import (  # noqa: F401
 )
 
 __all__ = ["Error", "Parameter", "Scene", "devices", "read_image", "write_image"]
+
+
+def _refuse_reloading(init):
+    """Scene.__init__ on a scene already loaded would load the file onto the device and
+    keep the old scene (pybind11 leaves a constructed object alone): refused instead."""
+    @functools.wraps(init)
+    def __init__(self, *args, **kwargs):
+        try:
+            loaded = self.file
+        except TypeError:  # made by __new__ and not loaded yet (or a failed __init__)
+            return init(self, *args, **kwargs)
+        raise TypeError(f"this Scene already holds {loaded}; make a new vkdiffrender.Scene(...) to load another "
+                        f"file")
+    return __init__
+
+
+Scene.__init__ = _refuse_reloading(Scene.__init__)
