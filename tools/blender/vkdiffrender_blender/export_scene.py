@@ -237,7 +237,7 @@ def add_world(doc, scene, warnings):
         doc.setdefault("extensions", {})[EXTENSION] = {"name": node_graph.world_medium_name(world),
                                                        **medium_json(medium)}
         warn_camera_clipping(scene, medium, warnings)
-    out = node_graph.output_node(world.node_tree, "OUTPUT_WORLD")
+    out = node_graph.owner_output(world)
     background = node_graph.linked_node(out.inputs["Surface"]) if out else None
     if background is not None and background.bl_idname == "ShaderNodeBackground":
         radiance = mappings.emission_to_radiance(

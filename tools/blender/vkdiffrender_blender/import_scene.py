@@ -238,7 +238,7 @@ def restore_world(world_values, scene, warnings):
     if medium_entry is not None:
         warn_grids(medium_entry, "the scene medium", warnings)
         set_volume(world, medium, "OUTPUT_WORLD")
-    out = node_graph.output_node(world.node_tree, "OUTPUT_WORLD")
+    out = node_graph.owner_output(world)
     node = node_graph.linked_node(out.inputs["Surface"])
     if node is None or node.bl_idname != "ShaderNodeBackground":
         node = world.node_tree.nodes.new("ShaderNodeBackground")

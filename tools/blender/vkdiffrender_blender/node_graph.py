@@ -176,9 +176,7 @@ def world_medium_name(world):
 
 
 def surface_node(material):
-    if material is None or not material.use_nodes:
-        return None
-    out = output_node(material.node_tree, "OUTPUT_MATERIAL")
+    out = owner_output(material)
     return linked_node(out.inputs["Surface"]) if out else None
 
 
