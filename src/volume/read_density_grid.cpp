@@ -12,6 +12,7 @@
 #include <nanovdb/util/GridValidator.h>
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/NanoToOpenVDB.h>
+#include <openvdb/io/Stream.h>
 
 #include "core/error.h"
 #include "core/format_text.h"
@@ -139,9 +140,27 @@ DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dm
     return dense;
 }
 
+// OpenVDB's File reads on past a file's end, using sizes and values the failed reads left
+// unset: a cut file can ask for a string of gigabytes or give voxels of garbage. Reading
+// the file whole through a stream that throws at its end first refuses such a file.
+void requireWholeVdb(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
+    try {
+        openvdb::io::Stream whole(in, /*delayLoad=*/false);
+    } catch (const std::ios_base::failure&) {
+        const uintmax_t bytes = std::filesystem::file_size(file);
+        // OpenVDB's magic number is 8 bytes: a shorter file is none.
+        if (bytes < 8) throw Error(formatText("not a VDB file (%llu bytes)", (unsigned long long)bytes));
+        throw Error(formatText("the file ends before its grids do (%llu bytes): it is truncated or damaged",
+                               (unsigned long long)bytes));
+    }
+}
+
 template <typename Values>
 DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridName) {
     initializeOpenVdb();
+    requireWholeVdb(file);
     openvdb::io::File vdb(file.string());
     vdb.open(false);
     std::vector<std::string> names;
