@@ -15,6 +15,7 @@
 #include "image/atomic_write.h"
 #include "image/regular_file.h"
 #include "optimize/base64.h"
+#include "optimize/json_without_repeated_keys.h"
 
 namespace vkdr {
 namespace {
@@ -78,9 +79,9 @@ public:
     Json parse() const {
         const std::string text = readRegularFile(file_);
         if (text.find_first_not_of(" \t\r\n") == std::string::npos) fail("", "empty");
-        Json document;
+        JsonWithRepeatedKey parsed;
         try {
-            document = Json::parse(text);
+            parsed = parseJsonNotingRepeatedKeys(text);
         } catch (const Json::parse_error& error) {
             // nlohmann's message starts with its own error id: "[json.exception.parse_error.101] ".
             const std::string message = error.what();
@@ -88,13 +89,16 @@ public:
             fail("", "not valid JSON (damaged or cut short): " +
                          (idEnd == std::string::npos ? message : message.substr(idEnd + 2)));
         }
+        // A checkpoint is written once per key; a repeated one was edited by hand.
+        if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, "given twice in one object; give each key once");
+        Json& document = parsed.document;
         if (!document.is_object()) fail("", std::string("expected a JSON object, got ") + document.type_name());
         if (!document.contains("format") ||
             (document["format"] != kFormat && document["format"] != kFormatWithArraysOnly)) {
             fail("format", std::string("not a checkpoint (expected \"") + kFormat + "\" or \"" +
                                kFormatWithArraysOnly + "\")");
         }
-        return document;
+        return std::move(document);
     }
 
     const Json& member(const Json& object, const std::string& key) const {

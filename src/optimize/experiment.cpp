@@ -13,6 +13,7 @@
 #include "optimize/coarse_grid_gradient.h"
 #include "optimize/density_grid_options.h"
 #include "optimize/grid_priors.h"
+#include "optimize/json_without_repeated_keys.h"
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
@@ -40,25 +41,11 @@ public:
     }
 
     Json parse() const {
-        std::string text = readRegularFile(file_);
-        // The parser keeps the last of two equal keys in one object without a word: a
-        // value edited in one place and not the other would silently win or lose.
-        std::vector<std::set<std::string>> openObjects;
-        std::string repeated;
-        auto noteKeys = [&](int, Json::parse_event_t event, Json& parsed) {
-            if (event == Json::parse_event_t::object_start) openObjects.emplace_back();
-            if (event == Json::parse_event_t::object_end) openObjects.pop_back();
-            if (event == Json::parse_event_t::key && !openObjects.back().insert(parsed.get<std::string>()).second &&
-                repeated.empty()) {
-                repeated = parsed.get<std::string>();
-            }
-            return true;
-        };
         try {
-            Json document = Json::parse(text, noteKeys);
-            if (!repeated.empty()) fail(repeated, "given twice in one object; give each key once");
-            if (!document.is_object()) fail("", "expected a JSON object");
-            return document;
+            const JsonWithRepeatedKey parsed = parseJsonNotingRepeatedKeys(readRegularFile(file_));
+            if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, "given twice in one object; give each key once");
+            if (!parsed.document.is_object()) fail("", "expected a JSON object");
+            return parsed.document;
         } catch (const Json::exception& e) {
             fail("", std::string("not valid JSON: ") + e.what());
         }

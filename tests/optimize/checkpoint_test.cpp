@@ -231,6 +231,11 @@ TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {
     writeBytes(scratch / kCheckpointFileName, "[1, 2]");
     expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); },
                           {"checkpoint.json", "expected a JSON object, got array"});
+    // A key edited twice: neither value is taken over the other.
+    writeBytes(scratch / kCheckpointFileName,
+               "{\"format\": \"vkdiffrender optimize checkpoint 1\", \"run\": {\"seed\": 1, \"seed\": 2}}");
+    expectErrorMentioning([&] { readCheckpoint(scratch / kCheckpointFileName); },
+                          {"checkpoint.json", "seed: given twice in one object"});
 }
 
 // Only a regular file is read: a directory is refused, and a FIFO without waiting for a writer.
