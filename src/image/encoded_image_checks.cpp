@@ -31,6 +31,36 @@ bool startsWith(const unsigned char* bytes, size_t size, const unsigned char* pr
     return size >= length && std::memcmp(bytes, prefix, length) == 0;
 }
 
+// The bit depths the PNG specification allows a colour type (its table 11.1), as a set of
+// bits 1 << depth; 0 for a colour type it does not define. Debian's stb_image decodes some
+// others (a 1-bit RGB image) as if they were allowed.
+uint32_t allowedPngBitDepths(unsigned colourType) {
+    switch (colourType) {
+        case 0: return 1u << 1 | 1u << 2 | 1u << 4 | 1u << 8 | 1u << 16;  // grey
+        case 3: return 1u << 1 | 1u << 2 | 1u << 4 | 1u << 8;             // palette
+        case 2:                                                            // RGB
+        case 4:                                                            // grey and alpha
+        case 6: return 1u << 8 | 1u << 16;                                 // RGBA
+        default: return 0;
+    }
+}
+
+std::string pngHeaderProblem(const unsigned char* data, uint32_t length) {
+    if (length != 13) return "the PNG header chunk holds " + std::to_string(length) + " bytes, not 13";
+    const unsigned bitDepth = data[8], colourType = data[9];
+    const uint32_t allowed = allowedPngBitDepths(colourType);
+    if (allowed == 0) return "the PNG colour type " + std::to_string(colourType) + " is not one PNG defines";
+    if (bitDepth > 16 || (allowed & (1u << bitDepth)) == 0) {
+        std::string list;
+        for (unsigned depth = 1; depth <= 16; ++depth) {
+            if (allowed & (1u << depth)) list += (list.empty() ? "" : ", ") + std::to_string(depth);
+        }
+        return "the PNG colour type " + std::to_string(colourType) + " has bit depth " + std::to_string(bitDepth) +
+               "; PNG allows it " + list;
+    }
+    return {};
+}
+
 }  // namespace
 
 bool isPngOrJpeg(const unsigned char* bytes, size_t size) {
@@ -52,6 +82,9 @@ std::string pngChunkProblem(const unsigned char* bytes, size_t size) {
                    std::to_string(length) + " bytes, but " + std::to_string(left) + " follow";
         }
         if (type == "IEND") return {};
+        if (type == "IHDR") {
+            if (std::string problem = pngHeaderProblem(bytes + offset + 8, length); !problem.empty()) return problem;
+        }
         offset += 8 + size_t(length) + std::min<size_t>(4, left - length);  // a cut-off CRC ends the walk
     }
     return {};

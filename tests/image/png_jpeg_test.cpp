@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 
+#include "core/error.h"
 #include "image/image.h"
 #include "image/srgb.h"
 #include "scratch_directory.h"
@@ -14,10 +15,12 @@ namespace vkdr {
 namespace {
 
 // A minimal PNG encoder for 16-bit samples, which stb_image_write cannot produce:
-// unfiltered rows in uncompressed ("stored") deflate blocks.
+// unfiltered rows in uncompressed ("stored") deflate blocks. `headerBitDepth` other than
+// 16 makes a header that disagrees with the samples, for the checks that refuse it.
 class Png16Encoder {
 public:
-    static std::string encode(int width, int height, int channels, const std::vector<uint16_t>& samples) {
+    static std::string encode(int width, int height, int channels, const std::vector<uint16_t>& samples,
+                              char headerBitDepth = 16) {
         std::string raw;
         for (int y = 0; y < height; ++y) {
             raw += '\0';  // filter: none
@@ -28,7 +31,7 @@ public:
             }
         }
         const char colourTypes[] = {0, 0, 4, 2, 6};  // by channel count: grey, grey+alpha, RGB, RGBA
-        std::string header = bigEndian(uint32_t(width)) + bigEndian(uint32_t(height)) + char(16) +
+        std::string header = bigEndian(uint32_t(width)) + bigEndian(uint32_t(height)) + headerBitDepth +
                              colourTypes[channels] + std::string(3, '\0');
         return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) + chunk("IDAT", zlibStored(raw)) +
                chunk("IEND", "");
@@ -110,6 +113,24 @@ TEST(Png, GreyAndAlphaLayoutsDecodeToRgb) {
     EXPECT_EQ(readImage(dir / "g.png").rgb, blackWhite);
     EXPECT_EQ(readImage(dir / "ga.png").rgb, blackWhite);
     EXPECT_EQ(readImage(dir / "rgba.png").rgb, (std::vector<float>{1, 0, 0, 0, 0, 1}));
+}
+
+// PNG allows RGB only 8 or 16 bits a sample; stb_image would decode a 1-bit RGB file.
+TEST(Png, BitDepthsPngDoesNotAllowAreRefused) {
+    test::ScratchDirectory dir;
+    test::writeBytes(dir / "rgb1.png", Png16Encoder::encode(2, 1, 3, {0, 1000, 30000, 65535, 12345, 54321}, 1));
+    test::writeBytes(dir / "grey3.png", Png16Encoder::encode(3, 1, 1, {0, 1000, 65535}, 3));
+    for (const auto& [file, parts] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+             {"rgb1.png", {"colour type 2 has bit depth 1", "allows it 8, 16"}},
+             {"grey3.png", {"colour type 0 has bit depth 3", "allows it 1, 2, 4, 8, 16"}}}) {
+        try {
+            readImage(dir / file);
+            ADD_FAILURE() << file << " was read";
+        } catch (const Error& e) {
+            for (const std::string& part : parts) EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(Png, SixteenBitSamplesKeepTheirPrecision) {
