@@ -25,9 +25,16 @@ void main() {
     // Box filter: a uniform position in the pixel's square; row 0 is the top of the image.
     vec2 jitter = segmentRandom(info, kDimCamera).xy;
     vec2 ndc = (vec2(pixel) + jitter) / vec2(camera.width, camera.height) * 2.0f - 1.0f;
-    vec3 local = normalize(vec3(ndc.x * camera.tanHalfFovY * camera.aspect,
-                                -ndc.y * camera.tanHalfFovY, -1.0f));
-    vec3 origin = vec3(camera.cameraToWorld[0].w, camera.cameraToWorld[1].w, camera.cameraToWorld[2].w);
+    // Perspective: from the camera through the point at depth 1. Orthographic: from the
+    // point on the camera's plane, straight ahead.
+    bool orthographic = camera.orthographicHalfHeight > 0.0f;
+    vec2 extent = orthographic ? vec2(camera.orthographicHalfHeight) : vec2(camera.tanHalfFovY);
+    vec3 onView = vec3(ndc.x * extent.x * camera.aspect, -ndc.y * extent.y, 0.0f);
+    vec3 local = orthographic ? vec3(0.0f, 0.0f, -1.0f) : normalize(onView - vec3(0.0f, 0.0f, 1.0f));
+    vec3 localOrigin = orthographic ? onView : vec3(0.0f);
+    vec3 origin = vec3(dot(camera.cameraToWorld[0], vec4(localOrigin, 1.0f)),
+                       dot(camera.cameraToWorld[1], vec4(localOrigin, 1.0f)),
+                       dot(camera.cameraToWorld[2], vec4(localOrigin, 1.0f)));
     vec3 direction = normalize(vec3(dot(camera.cameraToWorld[0].xyz, local),
                                     dot(camera.cameraToWorld[1].xyz, local),
                                     dot(camera.cameraToWorld[2].xyz, local)));

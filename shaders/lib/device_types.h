@@ -282,7 +282,8 @@ struct GpuCamera {
     uint width;                // pixels
     uint height;
     uint medium;               // medium containing the camera, kNoMediumIndex: vacuum
-    uint pad0, pad1, pad2;
+    float orthographicHalfHeight;  // > 0: rays start across the camera's XY plane, parallel
+    uint pad1, pad2;
 };
 
 // Dispatch sizes written on the device so stages can be launched indirectly.

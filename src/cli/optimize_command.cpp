@@ -262,7 +262,7 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     applyOverrides(options, overrides, experiment);
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     LoadedScene loaded = loadScene(experiment.scene, options.scene.access);
-    requirePerspectiveCamera(loaded.scene, experiment.scene.string());
+    requireCamera(loaded.scene, experiment.scene.string());
     for (const std::string& warning : loaded.warnings) printWarning(warning);
     requireRunWritesNoInput(options.out, true, filesTheSceneReads(loaded));
     Scene checked = loaded.scene;

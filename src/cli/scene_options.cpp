@@ -21,7 +21,7 @@ void addSceneOptions(CLI::App& command, SceneOptions& options) {
 
 LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     LoadedScene loaded = loadScene(options.file, options.access);
-    requirePerspectiveCamera(loaded.scene, options.file);
+    requireCamera(loaded.scene, options.file);
     for (const std::string& warning : loaded.warnings) {
         printWarning(warning);
     }

@@ -4,7 +4,9 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "core/format_text.h"
 #include "scene/medium_at.h"
+#include "scene/orthographic_view.h"
 
 namespace vkdr {
 namespace {
@@ -14,7 +16,7 @@ constexpr int kDefaultWidth = 512;
 }  // namespace
 
 const Camera& findCamera(const Scene& scene, const std::string& name) {
-    requirePerspectiveCamera(scene, "");
+    requireCamera(scene, "");
     if (name.empty()) {
         return scene.cameras.front();
     }
@@ -28,17 +30,17 @@ const Camera& findCamera(const Scene& scene, const std::string& name) {
     throw Error("--camera " + name + ": no such camera; the scene has: " + names);
 }
 
-void requirePerspectiveCamera(const Scene& scene, const std::string& file) {
+void requireCamera(const Scene& scene, const std::string& file) {
     if (scene.cameras.empty()) {
         throw Error((file.empty() ? "" : file + ": ") +
-                    "the scene has no perspective camera; for a scene exported from Blender, tick Include > Cameras "
-                    "in the glTF exporter, or export it with the vkdiffrender Blender add-on");
+                    "the scene has no camera; for a scene exported from Blender, tick Include > Cameras in the glTF "
+                    "exporter, or export it with the vkdiffrender Blender add-on");
     }
 }
 
 gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
     const Camera& camera = findCamera(scene, settings.camera);
-    if (!(camera.yfov > 0.0f && camera.yfov < std::numbers::pi_v<float>)) {
+    if (!camera.orthographic() && !(camera.yfov > 0.0f && camera.yfov < std::numbers::pi_v<float>)) {
         throw Error("camera " + camera.name + ": yfov must be in (0, pi), got " + std::to_string(camera.yfov));
     }
     if (settings.width < 0 || settings.height < 0 || settings.width > kMaxImageSide ||
@@ -70,10 +72,25 @@ gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
         out.cameraToWorld[row] = glm::vec4(camera.cameraToWorld[0][row], camera.cameraToWorld[1][row],
                                            camera.cameraToWorld[2][row], camera.cameraToWorld[3][row]);
     }
-    out.tanHalfFovY = std::tan(0.5f * camera.yfov);
+    out.tanHalfFovY = camera.orthographic() ? 0.0f : std::tan(0.5f * camera.yfov);
+    out.orthographicHalfHeight = camera.orthographicHalfHeight;
     out.aspect = aspect;
     out.width = static_cast<uint32_t>(width);
     out.height = static_cast<uint32_t>(height);
+    if (camera.orthographic()) {
+        // The image's aspect ratio widens or narrows the view, as it does a perspective
+        // camera's field of view: the height stays.
+        const double halfHeight = camera.orthographicHalfHeight, halfWidth = halfHeight * double(aspect);
+        if (const std::optional<uint32_t> boundary = boundaryAcrossOrthographicView(scene, camera, halfWidth, halfHeight)) {
+            const Material& material = scene.materials[*boundary];
+            throw Error(formatText("orthographic camera '%s': the boundary of medium '%s' (material '%s') crosses its "
+                                   "view, %g x %g about the camera, where its rays start: they would start in "
+                                   "different media, and every ray starts in one; move the camera out of the "
+                                   "boundary's way",
+                                   camera.name.c_str(), scene.media[size_t(material.interiorMedium)].name.c_str(),
+                                   material.name.c_str(), 2.0 * halfWidth, 2.0 * halfHeight));
+        }
+    }
     int32_t medium = mediumAt(scene, glm::vec3(camera.cameraToWorld[3]));
     out.medium = medium < 0 ? gpu::kNoMediumIndex : static_cast<uint32_t>(medium);
     return out;

@@ -23,7 +23,7 @@ static_assert(offsetof(GpuPunctualLight, direction) == 16 && offsetof(GpuPunctua
               offsetof(GpuPunctualLight, light) == 48);
 static_assert(sizeof(GpuTriangleInfo) == 16);
 static_assert(sizeof(GpuCamera) == 80);
-static_assert(offsetof(GpuCamera, tanHalfFovY) == 48);
+static_assert(offsetof(GpuCamera, tanHalfFovY) == 48 && offsetof(GpuCamera, orthographicHalfHeight) == 68);
 static_assert(sizeof(DispatchArgs) == 16);
 static_assert(offsetof(QueueCountersData, dispatch) == 16);
 static_assert(sizeof(QueueCountersData) == 144);

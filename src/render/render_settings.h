@@ -11,7 +11,7 @@ inline constexpr int kMaxImageSide = 16384;
 inline constexpr uint32_t kMaxSamplesPerPixel = 1u << 20;
 
 struct RenderSettings {
-    std::string camera;      // empty: the scene's first perspective camera
+    std::string camera;      // empty: the scene's first camera
     int width = 0;           // 0: from the other side and the camera's aspect ratio
     int height = 0;          //    (512 wide when neither is given)
     uint32_t spp = 16;       // samples per pixel

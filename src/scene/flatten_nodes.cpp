@@ -320,23 +320,30 @@ private:
         }
         const tinygltf::Camera& source = model_.cameras[size_t(node.camera)];
         std::string cameraField = indexed("cameras", size_t(node.camera));
-        if (source.type != "perspective") {
-            diagnostics_.warn(cameraField, "only perspective cameras are supported; skipped");
+        Camera camera;
+        if (source.type == "perspective") {
+            // Held to the float the renderer takes: a double just under pi rounds to float's pi.
+            if (!(source.perspective.yfov > 0.0 && float(source.perspective.yfov) < std::numbers::pi_v<float>)) {
+                diagnostics_.fail(cameraField + ".perspective.yfov",
+                                  "must be in (0, pi), got " + formatNumber(source.perspective.yfov));
+            }
+            // Absent is 0 (the image's aspect ratio decides).
+            requireUsableAspect(source.perspective.aspectRatio, cameraField + ".perspective.aspectRatio", "");
+            camera.yfov = float(source.perspective.yfov);
+            camera.aspectRatio = float(source.perspective.aspectRatio);
+        } else if (source.type == "orthographic") {
+            const std::string field = cameraField + ".orthographic";
+            requireOrthographicMagnification(source.orthographic.xmag, field + ".xmag");
+            requireOrthographicMagnification(source.orthographic.ymag, field + ".ymag");
+            const double aspect = source.orthographic.xmag / source.orthographic.ymag;
+            requireUsableAspect(aspect, field, "xmag / ymag ");
+            camera.orthographicHalfHeight = float(source.orthographic.ymag);
+            camera.aspectRatio = float(aspect);
+        } else {
+            diagnostics_.warn(cameraField, "camera type '" + source.type +
+                                               "' is neither perspective nor orthographic; skipped");
             return;
         }
-        // Held to the float the renderer takes: a double just under pi rounds to float's pi.
-        if (!(source.perspective.yfov > 0.0 && float(source.perspective.yfov) < std::numbers::pi_v<float>)) {
-            diagnostics_.fail(cameraField + ".perspective.yfov",
-                              "must be in (0, pi), got " + formatNumber(source.perspective.yfov));
-        }
-        // Absent is 0 (the image's aspect ratio decides); a wider camera than 1e4 : 1
-        // makes no image of at most 16384 pixels a side.
-        double aspect = source.perspective.aspectRatio;
-        if (aspect != 0.0 && !(aspect >= 1e-4 && aspect <= 1e4)) {
-            diagnostics_.fail(cameraField + ".perspective.aspectRatio",
-                              "must be in [1e-4, 1e4], got " + formatNumber(aspect));
-        }
-        Camera camera;
         camera.name = !node.name.empty() ? node.name : !source.name.empty() ? source.name : cameraField;
         // --camera and experiments pick cameras by name: a repeat gets a name of its own.
         const std::string given = camera.name;
@@ -359,9 +366,23 @@ private:
                 diagnostics_.fail(nodeField, "the camera's transform is degenerate (a zero scale) or not finite");
             }
         }
-        camera.yfov = float(source.perspective.yfov);
-        camera.aspectRatio = float(source.perspective.aspectRatio);
         scene_.cameras.push_back(std::move(camera));
+    }
+
+    // A wider camera than 1e4 : 1 makes no image of at most 16384 pixels a side.
+    void requireUsableAspect(double aspect, const std::string& field, const std::string& what) {
+        if (aspect != 0.0 && !(aspect >= 1e-4 && aspect <= 1e4)) {
+            diagnostics_.fail(field, what + "must be in [1e-4, 1e4], got " + formatNumber(aspect));
+        }
+    }
+
+    // glTF's xmag and ymag: half the view's width and height in world units. Held to the
+    // floats the renderer takes, and to a view whose pixels float coordinates can tell
+    // apart; glTF allows negative ones (a mirrored view), which no exporter writes.
+    void requireOrthographicMagnification(double magnification, const std::string& field) {
+        if (!(magnification > 0.0 && float(magnification) > 0.0 && std::isfinite(float(magnification)))) {
+            diagnostics_.fail(field, "must be > 0 and within float's range, got " + formatNumber(magnification));
+        }
     }
 
     const tinygltf::Model& model_;

@@ -224,15 +224,28 @@ void checkNode(const json& node, const std::string& field, const GltfDiagnostics
 }
 
 void checkCamera(const json& camera, const std::string& field, const GltfDiagnostics& diagnostics) {
-    if (!camera.contains("perspective") || !camera["perspective"].is_object()) return;
-    const json& perspective = camera["perspective"];
-    const std::string perspectiveField = member(field, "perspective");
-    requireAbove(perspective, perspectiveField, "aspectRatio", 0.0, "0", diagnostics);
-    requireAbove(perspective, perspectiveField, "yfov", 0.0, "0", diagnostics);
-    requireAbove(perspective, perspectiveField, "znear", 0.0, "0", diagnostics);
-    if (perspective.contains("znear")) {
-        const double znear = perspective["znear"].get<double>();
-        requireAbove(perspective, perspectiveField, "zfar", znear, "znear (" + formatNumber(znear) + ")", diagnostics);
+    if (camera.contains("perspective") && camera["perspective"].is_object()) {
+        const json& perspective = camera["perspective"];
+        const std::string perspectiveField = member(field, "perspective");
+        requireAbove(perspective, perspectiveField, "aspectRatio", 0.0, "0", diagnostics);
+        requireAbove(perspective, perspectiveField, "yfov", 0.0, "0", diagnostics);
+        requireAbove(perspective, perspectiveField, "znear", 0.0, "0", diagnostics);
+        if (perspective.contains("znear")) {
+            const double znear = perspective["znear"].get<double>();
+            requireAbove(perspective, perspectiveField, "zfar", znear, "znear (" + formatNumber(znear) + ")",
+                         diagnostics);
+        }
+    }
+    // An orthographic camera's znear may be 0; tinygltf requires all four members.
+    if (camera.contains("orthographic") && camera["orthographic"].is_object()) {
+        const json& orthographic = camera["orthographic"];
+        const std::string orthographicField = member(field, "orthographic");
+        if (orthographic.contains("znear") && orthographic["znear"].is_number()) {
+            const double znear = orthographic["znear"].get<double>();
+            if (!(znear >= 0.0)) diagnostics.fail(member(orthographicField, "znear"), "must be >= 0, got " + formatNumber(znear));
+            requireAbove(orthographic, orthographicField, "zfar", znear, "znear (" + formatNumber(znear) + ")",
+                         diagnostics);
+        }
     }
 }
 

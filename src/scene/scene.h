@@ -18,8 +18,12 @@ inline constexpr int32_t kNoMedium = -1;
 struct Camera {
     std::string name;
     glm::mat4 cameraToWorld{1.0f};  // glTF convention: looks down -Z, +Y up
-    float yfov = 0.8f;              // radians, vertical field of view
+    float yfov = 0.8f;              // radians, vertical field of view (perspective)
     float aspectRatio = 0.0f;       // width / height; 0 when the file does not say
+    // > 0: an orthographic camera, whose rays start on its XY plane and run parallel down
+    // -Z through a view of this half height (glTF's ymag, in world units); yfov unused.
+    float orthographicHalfHeight = 0.0f;
+    bool orthographic() const { return orthographicHalfHeight > 0.0f; }
 };
 
 // Linear RGBA texels (sRGB-encoded images are decoded on load), row 0 = the image's

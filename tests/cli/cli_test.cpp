@@ -119,7 +119,7 @@ TEST_F(CliTest, ASceneWithoutACameraSaysHowToGetOne) {
     for (nlohmann::json& node : gltf["nodes"]) node.erase("camera");
     fs::path noCamera = dir_ / "no_camera.gltf";
     std::ofstream(noCamera) << gltf.dump();
-    expectCleanFailure("render " + noCamera.string(), noCamera.string() + ": the scene has no perspective camera");
+    expectCleanFailure("render " + noCamera.string(), noCamera.string() + ": the scene has no camera");
     expectCleanFailure("render " + noCamera.string(), "tick Include > Cameras in the glTF exporter");
     expectCleanFailure("render " + noCamera.string(), "vkdiffrender Blender add-on");
 }

@@ -167,8 +167,14 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
     gltf["accessors"] = accessors;
     gltf["bufferViews"] = views;
     gltf["buffers"] = {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}};
-    gltf["cameras"] = {{{"type", "perspective"},
-                        {"perspective", {{"yfov", yfov}, {"aspectRatio", aspectRatio}, {"znear", 0.01}}}}};
+    if (orthographicHalfHeight > 0.0f) {
+        gltf["cameras"] = {{{"type", "orthographic"},
+                            {"orthographic", {{"xmag", orthographicHalfHeight * aspectRatio},
+                                              {"ymag", orthographicHalfHeight}, {"znear", 0.0}, {"zfar", 100.0}}}}};
+    } else {
+        gltf["cameras"] = {{{"type", "perspective"},
+                            {"perspective", {{"yfov", yfov}, {"aspectRatio", aspectRatio}, {"znear", 0.01}}}}};
+    }
     gltf["scenes"] = {{{"nodes", sceneNodes}}};
     nlohmann::json used = nlohmann::json::array();
     for (const nlohmann::json& m : materials) {

@@ -52,6 +52,7 @@ struct TestGltf {
     bool cameraLooksAlongPlusZ = true;  // else along -Z
     float yfov = 0.5f;
     float aspectRatio = 1.0f;
+    float orthographicHalfHeight = 0.0f;  // > 0: the cameras are orthographic, of this ymag
 
     // Writes `<dir>/<name>.gltf` and its buffer; returns the .gltf path.
     std::filesystem::path write(const std::filesystem::path& dir, const std::string& name) const;

@@ -491,6 +491,29 @@ TEST(LoadSceneErrors, CamerasOutsideTheGltfSchema) {
     EXPECT_LT(loadScene(withCamera({{"yfov", 3.1415}})).scene.cameras.at(0).yfov, std::numbers::pi_v<float>);
 }
 
+// glTF requires xmag and ymag other than 0 and a zfar beyond znear >= 0; negative
+// magnifications (a mirrored view) are refused too.
+TEST(LoadSceneErrors, OrthographicCamerasWithoutAView) {
+    TemporaryDirectory directory;
+    auto withCamera = [&](json orthographic) {
+        GltfBuilder builder = boxWithMaterial({{"name", "white"}});
+        json base = {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.0}, {"zfar", 10.0}};
+        base.update(orthographic);
+        builder.addNode({{"camera", builder.addCamera({{"type", "orthographic"}, {"orthographic", base}})}});
+        return builder.writeGltf(directory / "camera.gltf");
+    };
+    const std::string field = "cameras[0].orthographic";
+    expectLoadError(withCamera({{"xmag", 0.0}}), {field + ".xmag", "must be > 0"});
+    expectLoadError(withCamera({{"ymag", -2.0}}), {field + ".ymag", "got -2"});
+    expectLoadError(withCamera({{"ymag", 1e39}}), {field + ".ymag", "within float's range"});
+    expectLoadError(withCamera({{"xmag", 1e5}}), {field, "xmag / ymag must be in [1e-4, 1e4], got 1e+05"});
+    expectLoadError(withCamera({{"znear", -1.0}}), {field + ".znear", "must be >= 0"});
+    expectLoadError(withCamera({{"znear", 2.0}, {"zfar", 1.0}}), {field + ".zfar", "must be a number > znear (2)"});
+    const Camera camera = loadScene(withCamera({{"xmag", 3.0}, {"ymag", 1.5}})).scene.cameras.at(0);
+    EXPECT_EQ(camera.orthographicHalfHeight, 1.5f);
+    EXPECT_EQ(camera.aspectRatio, 2.0f);
+}
+
 // A member of vkdiffrender's own extensions that the loader does not know (a misspelling,
 // say) is ignored with a warning naming it and the members it knows.
 TEST(LoadSceneErrors, UnknownMediumMembersAreNamedInAWarning) {

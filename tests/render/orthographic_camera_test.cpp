@@ -1,0 +1,85 @@
+// An orthographic camera: rays start across the camera's plane and run parallel. The
+// camera sits in an absorbing fog, before an emitter that fills the view, with a box of
+// a denser medium covering one side of the view: each pixel expects Le exp(-integral of
+// sigma_a) along its straight ray, which depends only on where on the plane the ray
+// starts. The box's edge falls on a pixel boundary that says where the view is: a
+// perspective camera, or a view of another size, place, aspect or handedness, fails it.
+#include <cmath>
+
+#include "core/error.h"
+#include "render_test_support.h"
+#include "test_gltf.h"
+
+namespace vkdr::test {
+namespace {
+
+const glm::vec3 kLe(1.0f, 2.0f, 3.0f);
+const glm::dvec3 kFogSigmaA(0.02, 0.05, 0.1);
+constexpr float kHalfHeight = 2.0f;
+constexpr float kAspect = 1.5f;
+constexpr int kWidth = 24, kHeight = 16;  // pixels a quarter unit square
+constexpr uint32_t kSpp = 256;
+const glm::vec3 kCamera(0.5f, 0.25f, -5.0f);
+constexpr float kEmitterZ = 5.0f;
+constexpr float kBoxNear = -1.0f, kBoxFar = 1.5f;  // the box's extent along the view
+constexpr float kBoxEdgeX = 1.0f;                   // the box covers world x > 1
+
+TestGltf orthographicScene(glm::vec3 camera) {
+    TestGltf g;
+    // The box holds twice the fog's sigma_a.
+    const glm::vec3 boxSigmaA = glm::vec3(2.0 * kFogSigmaA);
+    g.materials = {emissiveMaterial("light", kLe, false), vkdrMediumMaterial("dense", boxSigmaA, glm::vec3(0.0f), 0.0f)};
+    g.meshes = {quadZ(0.0f, 0.0f, 20.0f, kEmitterZ, false, 0),
+                box(glm::vec3(kBoxEdgeX, -10.0f, kBoxNear), glm::vec3(12.0f, 10.0f, kBoxFar), 1)};
+    g.extensions["VKDR_participating_media"] = {
+        {"name", "fog"}, {"sigma_a", {kFogSigmaA.x, kFogSigmaA.y, kFogSigmaA.z}}, {"sigma_s", {0.0, 0.0, 0.0}}};
+    g.cameraPosition = camera;
+    g.orthographicHalfHeight = kHalfHeight;
+    g.aspectRatio = kAspect;
+    return g;
+}
+
+class OrthographicCameraTest : public RenderTest {};
+
+TEST_F(OrthographicCameraTest, ParallelRaysFromAcrossTheView) {
+    const auto file = orthographicScene(kCamera).write(tempDir(), "ortho");
+    // The width follows the camera's aspect ratio.
+    const Image image = renderFile(file, {.height = kHeight, .spp = kSpp, .maxDepth = 4});
+    ASSERT_EQ(image.width, kWidth);
+    const double path = kEmitterZ - kCamera.z;
+    expectPixelsMatch(image, kSpp, (kSpp - 1) * 0x1p-24 + 1e-5, [&](int x, int) {
+        // The camera looks along +Z (a half turn about Y): its x is world -x. Columns
+        // wholly on one side of the box's edge: the rays' x is the pixel's alone.
+        const double worldX = kCamera.x - ((x + 0.5) / kWidth * 2.0 - 1.0) * kHalfHeight * kAspect;
+        const double inBox = worldX > kBoxEdgeX ? kBoxFar - kBoxNear : 0.0;
+        // In the box the fog gives way to twice its sigma_a: the fog's over path + inBox.
+        return absorbedEmitter(glm::dvec3(kLe), kFogSigmaA, {path + inBox});
+    });
+    // Columns 0 to 9 lie beyond the edge (world x from 3.5 down to 1.0), 10 on are not.
+    EXPECT_LT(image.pixel(9, 8)[2], image.pixel(10, 8)[2]);
+}
+
+// Rays from either side of a boundary across the view would start in different media;
+// the render is refused, naming the camera and the medium.
+TEST_F(OrthographicCameraTest, ABoundaryAcrossTheViewIsRefused) {
+    // The camera's plane at z = 0 cuts the box (z from -1 to 1.5), which covers x > 1 of
+    // a view from x = -2.5 to 3.5.
+    const auto across = orthographicScene(glm::vec3(kCamera.x, kCamera.y, 0.0f)).write(tempDir(), "across");
+    try {
+        renderFile(across, {.height = kHeight, .spp = 1, .maxDepth = 4});
+        ADD_FAILURE() << "rendered";
+    } catch (const Error& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("orthographic camera"), std::string::npos) << message;
+        EXPECT_NE(message.find("medium 'dense'"), std::string::npos) << message;
+    }
+    // Moved sideways until the view ends before the box (x < 1), it renders, all in the fog.
+    const auto beside = orthographicScene(glm::vec3(-2.5f, kCamera.y, 0.0f)).write(tempDir(), "beside");
+    const Image image = renderFile(beside, {.height = kHeight, .spp = 16, .maxDepth = 4});
+    expectPixelsMatch(image, 16, 15 * 0x1p-24 + 1e-5, [&](int, int) {
+        return absorbedEmitter(glm::dvec3(kLe), kFogSigmaA, {double(kEmitterZ)});
+    });
+}
+
+}  // namespace
+}  // namespace vkdr::test
