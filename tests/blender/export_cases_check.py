@@ -308,7 +308,15 @@ def textured_materials(scene):
 
 
 def orthographic_camera(scene):
+    """An orthographic camera whose Orthographic Scale spans the height of a wide image
+    (Sensor Fit Vertical), which Blender's glTF exporter would span over the width."""
     scene.camera.data.type = "ORTHO"
+    scene.camera.data.ortho_scale, scene.camera.data.sensor_fit = 3.0, "VERTICAL"
+    scene.render.resolution_x, scene.render.resolution_y = 200, 100
+
+
+def panoramic_camera(scene):
+    scene.camera.data.type = "PANO"
 
 
 def volume_material(name, density):
@@ -431,6 +439,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
          "light_nodes": light_nodes, "hidden_collections": hidden_collections, "animated": animated,
          "world_named_like_a_material": world_named_like_a_material, "orthographic_camera": orthographic_camera,
+         "panoramic_camera": panoramic_camera,
          "textured_materials": textured_materials, "nan_density": nan_density, "open_volume": open_volume, "missing_image": missing_image,
          "muted_volume": muted_volume, "rerouted_volumes": rerouted_volumes, "blinding_light": blinding_light,
          "nan_light_power": nan_light_power,

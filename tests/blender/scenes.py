@@ -34,8 +34,8 @@ FIRE = {"Color": (0.8, 0.7, 0.6, 1.0), "Color Attribute": "density", "Density": 
 FLAME_VDB = PLUME_VDB.parent / "cornell_fire_flame.vdb"
 FOG = {"Color": (0.9, 0.9, 0.9, 1.0), "Density": 0.12, "Absorption Color": (0.0, 0.0, 0.0, 1.0),
        "Anisotropy": 0.2}
-SCENES = ("box_area", "principled_cube", "glowing_cube", "absorption_cube", "world_fog", "point_light",
-          "smooth_sphere", "principled_walls", "principled_walls_specular", "vdb_plume", "vdb_fire")
+SCENES = ("box_area", "principled_cube", "glowing_cube", "absorption_cube", "world_fog", "orthographic_fog",
+          "point_light", "smooth_sphere", "principled_walls", "principled_walls_specular", "vdb_plume", "vdb_fire")
 
 
 def reset():
@@ -214,12 +214,15 @@ def build(name):
         add_vdb_volume("plume", fire_vdb(), burning_material("fire"), (0.0, 0.1, -0.35), 1.2)
     elif name == "absorption_cube":
         add_cube("ink", volume_material("ink", "ShaderNodeVolumeAbsorption", ABSORPTION))
-    elif name == "world_fog":
+    elif name in ("world_fog", "orthographic_fog"):
         nodes = scene.world.node_tree.nodes
         fog = nodes.new("ShaderNodeVolumePrincipled")
         for key, value in FOG.items():
             fog.inputs[key].default_value = value
         scene.world.node_tree.links.new(fog.outputs[0], nodes["World Output"].inputs["Volume"])
+        if name == "orthographic_fog":
+            # Parallel rays from across a view 1.6 m square, inside the box's open side.
+            scene.camera.data.type, scene.camera.data.ortho_scale = "ORTHO", 1.6
     elif name == "point_light":
         light = bpy.data.lights.new("bulb", "POINT")
         light.energy = 40.0

@@ -287,8 +287,16 @@ def test_an_export_that_fails_leaves_the_previous_one(exported):
     assert sorted(p.name for p in failing.iterdir()) == ["scene.bin", "scene.gltf"], "no staging folder left"
 
 
+def test_an_orthographic_camera_is_exported_with_the_view_cycles_renders(exported, cli):
+    camera = document(exported, "orthographic_camera")["cameras"][0]
+    assert camera["type"] == "orthographic"
+    # Orthographic Scale 3 over the height (Sensor Fit Vertical) of a 2:1 image.
+    assert (camera["orthographic"]["xmag"], camera["orthographic"]["ymag"]) == pytest.approx((3.0, 1.5))
+    assert np.isfinite(render_mean(cli, exported, "orthographic_camera"))
+
+
 @pytest.mark.parametrize("case, message", [
-    ("orthographic_camera", "camera 'camera': ortho cameras are not supported"),
+    ("panoramic_camera", "camera 'camera': pano cameras are not supported"),
     ("symbolic_link", "link.gltf: is a symbolic link"),
     ("missing_directory", "no such directory: the directory does not exist"),
     ("nan_density", "material 'NanFog': input 'Density' of node 'Principled Volume' is not a finite number"),

@@ -159,3 +159,10 @@ def test_spot_size_and_blend_invert_the_cone_angles():
         back_size, back_blend = mappings.spot_size_and_blend(*mappings.spot_cone_angles(size, blend))
         assert back_size == pytest.approx(size, rel=1e-12)
         assert back_blend == pytest.approx(blend, abs=1e-5)  # a Blend of 0 keeps the inner cone a millionth in
+
+
+@pytest.mark.parametrize("fit, width, height, expected", [
+    ("AUTO", 200, 100, (2.0, 1.0)), ("AUTO", 100, 200, (1.0, 2.0)), ("AUTO", 100, 100, (2.0, 2.0)),
+    ("HORIZONTAL", 100, 200, (2.0, 4.0)), ("VERTICAL", 200, 100, (4.0, 2.0)), ("VERTICAL", 100, 200, (1.0, 2.0))])
+def test_orthographic_scale_spans_the_side_sensor_fit_names(fit, width, height, expected):
+    assert mappings.orthographic_half_extents(4.0, fit, width, height) == pytest.approx(expected)

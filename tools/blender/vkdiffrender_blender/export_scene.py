@@ -41,6 +41,8 @@ def run_gltf_exporter(filepath):
                               use_selection=False, use_visible=False, use_renderable=True)
 
 
+# The camera types vkdiffrender renders through (not panoramic ones).
+RENDERED_CAMERAS = ("PERSP", "ORTHO")
 # Modifier settings whose viewport value the glTF exporter's depsgraph evaluates, with the
 # setting the render evaluates instead.
 RENDER_LEVELS = {"SUBSURF": ("levels", "render_levels"), "MULTIRES": ("levels", "render_levels")}
@@ -425,16 +427,17 @@ def checked_output_path(filepath):
 
 
 def check_cameras(scene, view_layer, warnings):
-    """vkdiffrender renders perspective cameras, without depth of field or lens shift, and
-    the first camera of the file unless told another (`--camera`)."""
+    """vkdiffrender renders perspective and orthographic cameras, without depth of field or
+    lens shift, and the first camera of the file unless told another (`--camera`)."""
     cameras = [r.object for r in rendered_objects(view_layer) if r.object.type == "CAMERA"]
     if scene.camera is None or scene.camera.type != "CAMERA":
-        raise ExportError("the scene has no camera; vkdiffrender renders through a perspective camera")
-    if scene.camera.data.type != "PERSP":
+        raise ExportError("the scene has no camera; vkdiffrender renders through a perspective or orthographic "
+                          "camera")
+    if scene.camera.data.type not in RENDERED_CAMERAS:
         raise ExportError(f"camera '{scene.camera.name}': {scene.camera.data.type.lower()} cameras are not "
-                          f"supported; vkdiffrender renders through a perspective camera")
+                          f"supported; vkdiffrender renders through a perspective or orthographic camera")
     for camera in cameras:
-        if camera.data.type != "PERSP":
+        if camera.data.type not in RENDERED_CAMERAS:
             warnings.append(f"camera '{camera.name}': {camera.data.type.lower()} cameras are not supported; "
                             f"vkdiffrender refuses to render through it")
         if camera.data.dof.use_dof:
@@ -444,6 +447,20 @@ def check_cameras(scene, view_layer, warnings):
     if len(cameras) > 1:
         warnings.append(f"the scene has {len(cameras)} cameras; vkdiffrender renders the first in the file unless "
                         f"given `--camera NAME` (the scene camera is '{scene.camera.name}')")
+
+
+def set_orthographic_views(doc, scene):
+    """Blender's glTF exporter spans an orthographic camera's Orthographic Scale over the
+    image's longer side, as Sensor Fit Auto does; Cycles spans it over the side Sensor Fit
+    names. xmag and ymag are half the view's width and height."""
+    render = scene.render
+    width, height = render.resolution_x * render.pixel_aspect_x, render.resolution_y * render.pixel_aspect_y
+    for entry in doc.get("cameras", []):
+        camera = bpy.data.cameras.get(entry.get("name", ""))
+        if entry.get("type") != "orthographic" or camera is None:
+            continue
+        entry["orthographic"]["xmag"], entry["orthographic"]["ymag"] = mappings.orthographic_half_extents(
+            camera.ortho_scale, camera.sensor_fit, width, height)
 
 
 def check_values(scene, view_layer, warnings):
@@ -492,6 +509,7 @@ def export_scene(context, filepath):
             with open(staged, encoding="utf-8") as f:
                 doc = json.load(f)
             set_surfaces(doc, warnings)
+            set_orthographic_views(doc, scene)
             texture_lookups.warn_texture_lookups(doc, warnings)
             add_material_media(doc, view_layer, warnings)
             add_world(doc, scene, warnings)

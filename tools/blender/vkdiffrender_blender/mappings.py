@@ -224,3 +224,16 @@ def spot_size_and_blend(outer, inner):
     cos_outer = math.cos(float(outer))
     blend = (math.cos(float(inner)) - cos_outer) / (1.0 - cos_outer) if cos_outer < 1.0 else 0.0
     return 2.0 * float(outer), min(max(blend, 0.0), 1.0)
+
+
+def orthographic_half_extents(ortho_scale, sensor_fit, width, height):
+    """glTF's xmag and ymag (half the view's width and height) for a Blender orthographic
+    camera rendering an image WIDTH x HEIGHT (pixels times their aspect): Cycles spans
+    Orthographic Scale over the width for Sensor Fit Horizontal, the height for Vertical,
+    and the longer side for Auto (Blender's BKE_camera_params_compute_viewplane)."""
+    if sensor_fit == "AUTO":
+        sensor_fit = "HORIZONTAL" if width >= height else "VERTICAL"
+    half = 0.5 * float(ortho_scale)
+    if sensor_fit == "HORIZONTAL":
+        return half, half * height / width
+    return half * width / height, half
