@@ -130,10 +130,12 @@ void shadeSurface(uint slot, PathInfo info, vec3 beta, vec3 direction, vec4 hit,
     // The Lambertian lobe follows the shading normal; directions below the geometric
     // surface get nothing, so no light leaks through it.
     vec3 ns = shadingNormal(triangle, hit.y, hit.z, n);
-    vec3 texture = baseColorTexture(material, sp.uv);
+    // The albedo's factors but the base colour factor, a parameter: its texture and the
+    // vertex colour.
+    vec3 texture = baseColorTexture(material, sp.uv) * vertexColor(triangle, hit.y, hit.z);
     vec3 albedo = material.baseColor.rgb * texture;
     if (kAdjoint) {
-        P.vertexUv.v[slot] = vec4(sp.uv, 0.0f, 0.0f);
+        P.surfaceHit.v[slot] = hit;
     }
     if (P.lightCount > 0u) {
         // Measured from the surface itself; only the shadow ray starts off it.

@@ -28,7 +28,7 @@ void backpropagateNextEvent(uint slot, vec3 contribution, vec3 tr) {
     vec4 scatterGradient = P.shadowScatterGradient.v[slot];
     vec4 emissionGradient = P.shadowEmissionGradient.v[slot];
     if (vertex.x == kVertexSurface) {
-        addAlbedoGradient(vertex.y, P.vertexUv.v[slot].xy, delta * scatterGradient.rgb * tr * normal);
+        addAlbedoGradient(vertex.y, P.surfaceHit.v[slot], delta * scatterGradient.rgb * tr * normal);
     } else {
         addPhaseGGradient(vertex.y, (weight.x + weight.y + weight.z) * scatterGradient.w);
     }

@@ -19,7 +19,7 @@
 // Factors whose gradient waits for the next segment (derivative-mode targets are in
 // device_types.h).
 const uint kPendingNone = 0u;
-const uint kPendingBaseColor = 1u;        // Lambertian continuation weight (albedo at vertexUv)
+const uint kPendingBaseColor = 1u;        // Lambertian continuation weight (albedo at surfaceHit)
 const uint kPendingPhaseG = 2u;           // phase-function continuation weight (pdf held fixed)
 
 struct AdjointState {
@@ -255,13 +255,17 @@ void addTexelGradients(TextureMap map, vec2 uv, vec3 g) {
     }
 }
 
-// g = dLoss/d albedo at a surface point. albedo = base colour factor * texture(uv), so
-// the factor gets g * texture(uv) and the base colour texture's texels g * factor.
-void addAlbedoGradient(uint material, vec2 uv, vec3 g) {
+// g = dLoss/d albedo at the surface point `hit` (t, b1, b2, triangle bits). albedo = base
+// colour factor * texture(uv) * vertex colour, so the factor gets g * texture(uv) *
+// colour and the base colour texture's texels g * factor * colour.
+void addAlbedoGradient(uint material, vec4 hit, vec3 g) {
+    uint triangle = floatBitsToUint(hit.w);
+    vec2 uv = surfaceUv(triangle, hit.y, hit.z);
+    vec3 colored = g * vertexColor(triangle, hit.y, hit.z);
     GpuMaterial m = P.materials.v[material];
-    addBaseColorGradient(material, g * baseColorTexture(m, uv));
+    addBaseColorGradient(material, colored * baseColorTexture(m, uv));
     if (gradientWanted(kGradientKindBaseColorTexture) && m.baseColorTexture >= 0) {
-        addTexelGradients(baseColorMap(m), uv, g * m.baseColor.rgb);
+        addTexelGradients(baseColorMap(m), uv, colored * m.baseColor.rgb);
     }
 }
 
@@ -355,7 +359,7 @@ void applyPendingFactor(uint slot) {
     uint index = adjoint.pending >> 8u;
     vec3 g = factorGradient(slot, P.pendingFactor.v[slot].rgb);
     if (kind == kPendingBaseColor) {
-        addAlbedoGradient(index, P.vertexUv.v[slot].xy, g);
+        addAlbedoGradient(index, P.surfaceHit.v[slot], g);
     } else {
         addPhaseGGradient(index, g.x + g.y + g.z);
     }

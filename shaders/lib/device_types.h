@@ -141,7 +141,7 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
 #define VKDR_ADJOINT_PATH_ARRAYS(X) \
     X(pendingFactor, Vec4Buffer)          /* rgb d log f / d theta of the last scattering factor */ \
     X(adjointState, UVec4Buffer)          /* see AdjointState in adjoint.glsl */ \
-    X(vertexUv, Vec4Buffer)               /* xy: texture coordinates of the last surface vertex */ \
+    X(surfaceHit, Vec4Buffer)             /* the last surface vertex's hit: (-, b1, b2, triangle bits) */ \
     X(shadowScatterGradient, Vec4Buffer)  /* rgb dC/dalbedo (surface); w: d log phase / dg (medium) */ \
     X(shadowEmissionGradient, Vec4Buffer) /* rgb dC/demission; w: the emitter (uint bits, see kPunctualEmitter) */ \
     X(shadowVertex, UVec4Buffer)          /* x: vertex kind, y: material or medium index, z: derivative channels */
@@ -272,7 +272,7 @@ struct GpuTriangleInfo {
     uint material;             // index into materials
     uint outsideMedium;        // boundaries: medium on the front side; kNoMediumIndex: vacuum
     float lightPmf;            // probability of choosing this triangle for next-event estimation
-    uint pad;
+    uint vertexColors;         // 1: triangleColors holds its vertices' colours; 0: white
 };
 
 struct GpuCamera {
@@ -328,6 +328,8 @@ struct RenderParams {
     VKDR_BUFFER(Vec4Buffer) triangleVertices;       // 3 per triangle (BVH order), xyz
     VKDR_BUFFER(Vec4Buffer) triangleUvs;            // 2 per triangle: (uv0, uv1), (uv2, -)
     VKDR_BUFFER(Vec4Buffer) triangleNormals;        // 3 per triangle, xyz: unit shading normals, or 0: flat
+    VKDR_BUFFER(Vec4Buffer) triangleColors;         // 3 per triangle, rgb: vertex colours (one entry where
+                                                    // the scene has none)
     VKDR_BUFFER(TriangleInfoBuffer) triangleInfo;
     VKDR_BUFFER(Vec4Buffer) bvhNodes;               // 2 per node, see src/bvh/bvh.h
     VKDR_BUFFER(MaterialBuffer) materials;

@@ -12,12 +12,26 @@ struct SurfacePoint {
     uint outsideMedium;
 };
 
+// The texture coordinates at (b1, b2) of the triangle.
+vec2 surfaceUv(uint triangle, float b1, float b2) {
+    vec4 uv01 = P.triangleUvs.v[2u * triangle];
+    vec2 uv2 = P.triangleUvs.v[2u * triangle + 1u].xy;
+    return (1.0f - b1 - b2) * uv01.xy + b1 * uv01.zw + b2 * uv2;
+}
+
+// The vertex colour (COLOR_0) at (b1, b2) of the triangle, which multiplies its albedo.
+vec3 vertexColor(uint triangle, float b1, float b2) {
+    if (P.triangleInfo.v[triangle].vertexColors == 0u) {
+        return vec3(1.0f);
+    }
+    return (1.0f - b1 - b2) * P.triangleColors.v[3u * triangle].rgb + b1 * P.triangleColors.v[3u * triangle + 1u].rgb +
+           b2 * P.triangleColors.v[3u * triangle + 2u].rgb;
+}
+
 SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
     vec3 v0 = P.triangleVertices.v[3u * triangle].xyz;
     vec3 v1 = P.triangleVertices.v[3u * triangle + 1u].xyz;
     vec3 v2 = P.triangleVertices.v[3u * triangle + 2u].xyz;
-    vec4 uv01 = P.triangleUvs.v[2u * triangle];
-    vec2 uv2 = P.triangleUvs.v[2u * triangle + 1u].xy;
     vec3 n = cross(v1 - v0, v2 - v0);
     // Scaled by its largest component first: the squares of a triangle's cross product
     // leave float range once its edges pass about 4e9.
@@ -29,7 +43,7 @@ SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
     SurfacePoint sp;
     sp.position = v0 + b1 * (v1 - v0) + b2 * (v2 - v0);
     sp.normal = scaled / scaledLength;
-    sp.uv = (1.0f - b1 - b2) * uv01.xy + b1 * uv01.zw + b2 * uv2;
+    sp.uv = surfaceUv(triangle, b1, b2);
     sp.area = 0.5f * doubleArea;
     sp.material = info.material;
     sp.outsideMedium = info.outsideMedium;

@@ -31,7 +31,7 @@ static_assert(offsetof(RenderParams, background) == 80);
 static_assert(offsetof(RenderParams, triangleVertices) == 96);
 // Device addresses, 8 bytes each, then the scalars: no padding between them on either side.
 #define VKDR_COUNT(...) +1
-constexpr size_t kAddresses = 15 + 3 + 5 + 0 VKDR_PATH_ARRAYS(VKDR_COUNT) VKDR_ADJOINT_PATH_ARRAYS(VKDR_COUNT)
+constexpr size_t kAddresses = 16 + 3 + 5 + 0 VKDR_PATH_ARRAYS(VKDR_COUNT) VKDR_ADJOINT_PATH_ARRAYS(VKDR_COUNT)
     VKDR_GRADIENT_ACCUMULATORS(VKDR_COUNT);
 static_assert(offsetof(RenderParams, pathCapacity) == offsetof(RenderParams, triangleVertices) + kAddresses * 8);
 static_assert(sizeof(PassConstants) == 32);

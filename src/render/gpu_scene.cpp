@@ -94,12 +94,18 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     std::vector<glm::vec4> uvs(2 * count, glm::vec4(0.0f));
     std::vector<glm::vec4> normals(3 * count, glm::vec4(0.0f));
     const bool hasNormals = scene.normals.size() == scene.positions.size();
+    // Without vertex colours no triangle reads them (GpuTriangleInfo::vertexColors).
+    const bool hasColors = !scene.colors.empty();
+    std::vector<glm::vec4> colors(hasColors ? 3 * count : 1, glm::vec4(1.0f));
     for (size_t i = 0; i < count; ++i) {
         const glm::uvec3& tri = scene.triangles[bvh.triangleOrder[i]];
         for (int k = 0; k < 3; ++k) {
             vertices[3 * i + k] = glm::vec4(scene.positions[tri[k]], 0.0f);
             if (hasNormals) {
                 normals[3 * i + k] = glm::vec4(scene.normals[tri[k]], 0.0f);
+            }
+            if (hasColors) {
+                colors[3 * i + k] = glm::vec4(scene.colors[tri[k]], 1.0f);
             }
         }
         if (!scene.uvs.empty()) {
@@ -118,6 +124,7 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     gpu.triangleVertices = uploadVector<glm::vec4>(context, vertices, "triangle vertices");
     gpu.triangleUvs = uploadVector<glm::vec4>(context, uvs, "triangle uvs");
     gpu.triangleNormals = uploadVector<glm::vec4>(context, normals, "triangle normals");
+    gpu.triangleColors = uploadVector<glm::vec4>(context, colors, "triangle colours");
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
     gpu.extent = sceneExtent(scene);
@@ -146,7 +153,8 @@ void uploadSceneParameters(const VulkanContext& context, const Scene& scene, std
     for (size_t i = 0; i < triangleOrder.size(); ++i) {
         uint32_t t = triangleOrder[i];
         bvhPosition[t] = static_cast<uint32_t>(i);
-        info[i] = {scene.triangleMaterial[t], mediumIndex(scene.triangleOutsideMedium[t]), lights.trianglePmf[t], 0u};
+        info[i] = {scene.triangleMaterial[t], mediumIndex(scene.triangleOutsideMedium[t]), lights.trianglePmf[t],
+                   scene.colors.empty() ? 0u : 1u};
     }
     std::vector<uint32_t> sources;
     for (uint32_t source : lights.sources) {

@@ -20,6 +20,7 @@ struct GpuScene {
     Buffer triangleVertices;
     Buffer triangleUvs;
     Buffer triangleNormals;
+    Buffer triangleColors;
     Buffer triangleInfo;
     Buffer bvhNodes;
     Buffer materials;

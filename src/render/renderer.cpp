@@ -183,6 +183,7 @@ void Renderer::uploadParams() {
     p.textures = scene_.textures.address();
     p.texels = scene_.texels.address();
     p.triangleNormals = scene_.triangleNormals.address();
+    p.triangleColors = scene_.triangleColors.address();
     p.lightSources = scene_.lightSources.address();
     p.lightCdf = scene_.lightCdf.address();
     p.punctualLights = scene_.punctualLights.address();

@@ -56,6 +56,7 @@ struct DecodedPrimitive {
     std::string field;                  // its JSON path, for messages
     std::vector<glm::vec3> positions;   // in mesh space
     std::vector<glm::vec2> uvs;         // one per position
+    std::vector<glm::vec3> colors;      // COLOR_0's RGB, one per position, or none
     std::vector<glm::vec3> normals;     // one per position, or none (flat shading)
     std::vector<glm::uvec3> triangles;  // counter-clockwise, indexing positions
     uint32_t material = 0;
@@ -171,10 +172,6 @@ private:
         if (!primitive.targets.empty()) {
             diagnostics_.warn(field + ".targets", "morph targets are ignored");
         }
-        if (primitive.attributes.count("COLOR_0")) {
-            diagnostics_.warn(field + ".attributes.COLOR_0",
-                              "vertex colours are ignored: the base colour is the material's alone");
-        }
         DecodedPrimitive decoded;
         decoded.field = field;
         decoded.positions = readVec3s(model_, position->second, diagnostics_, field + ".attributes.POSITION");
@@ -186,6 +183,14 @@ private:
                 diagnostics_.fail(field + ".attributes.TEXCOORD_0",
                                   std::to_string(decoded.uvs.size()) + " elements, POSITION has " +
                                       std::to_string(decoded.positions.size()));
+            }
+        }
+        if (auto color = primitive.attributes.find("COLOR_0"); color != primitive.attributes.end()) {
+            decoded.colors = readColors(model_, color->second, diagnostics_, field + ".attributes.COLOR_0");
+            if (decoded.colors.size() != decoded.positions.size()) {
+                diagnostics_.fail(field + ".attributes.COLOR_0", std::to_string(decoded.colors.size()) +
+                                                                     " elements, POSITION has " +
+                                                                     std::to_string(decoded.positions.size()));
             }
         }
         if (auto normal = primitive.attributes.find("NORMAL"); normal != primitive.attributes.end()) {
@@ -234,6 +239,15 @@ private:
             scene_.positions.push_back(world);
         }
         scene_.uvs.insert(scene_.uvs.end(), primitive.uvs.begin(), primitive.uvs.end());
+        // Vertex colours for every vertex once any primitive has them: white where none.
+        if (!primitive.colors.empty() || !scene_.colors.empty()) {
+            scene_.colors.resize(base, glm::vec3(1.0f));
+            if (primitive.colors.empty()) {
+                scene_.colors.resize(scene_.positions.size(), glm::vec3(1.0f));
+            } else {
+                scene_.colors.insert(scene_.colors.end(), primitive.colors.begin(), primitive.colors.end());
+            }
+        }
         // Normals transform by the inverse transpose, which keeps them perpendicular to
         // the surface under non-uniform scales and turns them with a mirroring transform.
         glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(meshToWorld)));

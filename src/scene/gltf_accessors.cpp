@@ -145,6 +145,29 @@ std::vector<glm::vec2> readTexcoords(const tinygltf::Model& model, int accessor,
     return uvs;
 }
 
+std::vector<glm::vec3> readColors(const tinygltf::Model& model, int accessor, const GltfDiagnostics& diagnostics,
+                                  std::string_view field) {
+    const bool rgba = accessor >= 0 && size_t(accessor) < model.accessors.size() &&
+                      model.accessors[size_t(accessor)].type == TINYGLTF_TYPE_VEC4;
+    ElementRange range = checkedElements(
+        model, accessor, rgba ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+        diagnostics, field);
+    size_t componentSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(range.componentType)));
+    std::vector<glm::vec3> colors(range.count);
+    for (size_t i = 0; i < range.count; ++i) {
+        const unsigned char* element = range.first + i * range.stride;
+        for (int c = 0; c < 3; ++c) {
+            colors[i][c] = normalizedComponent(element + size_t(c) * componentSize, range.componentType);
+            if (!(colors[i][c] >= 0.0f && colors[i][c] <= 1.0f)) {
+                diagnostics.fail(field, "colour " + std::to_string(i) + " has " + "RGB"[c] + " = " +
+                                            formatNumber(colors[i][c]) + "; must be in [0, 1]");
+            }
+        }
+    }
+    return colors;
+}
+
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor,
                                   const GltfDiagnostics& diagnostics, std::string_view field) {
     ElementRange range = checkedElements(

@@ -122,6 +122,9 @@ struct LightPlacement {
 struct Scene {
     std::vector<glm::vec3> positions;           // world space, per vertex
     std::vector<glm::vec2> uvs;                 // TEXCOORD_0 per vertex (0,0 when absent)
+    // COLOR_0's RGB per vertex, multiplying the base colour (white where a primitive has
+    // none); empty when no primitive has one.
+    std::vector<glm::vec3> colors;
     // Shading normals per vertex, unit, in world space: the NORMAL attribute where a mesh
     // has one, else (0, 0, 0), which means the triangle's own normal.
     std::vector<glm::vec3> normals;

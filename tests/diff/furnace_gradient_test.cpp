@@ -51,5 +51,27 @@ TEST_F(FurnaceGradientTest, ScatteringAndAnisotropyDoNotChangeTheImage) {
     }
 }
 
+// Walls of base colour factor f and vertex colour c reflect f c, so every pixel is
+// I = Le / (1 - f c) and dI/df = Le c / (1 - f c)^2. The L2 loss against black, a mean
+// of I^2 over pixels and channels, has the gradient (2 / 3) I dI/df in each channel
+// (its two factors from independent halves of the samples: docs/gradients.md).
+TEST_F(FurnaceGradientTest, BaseColourGradientCarriesTheVertexColour) {
+    const float f = 0.5f;
+    const glm::dvec3 c(0.25, 0.5, 1.0);
+    TestGltf g = furnace(glm::vec3(f));
+    g.meshes[0].colors.assign(g.meshes[0].positions.size(), glm::vec4(glm::vec3(c), 1.0f));
+    Scene scene = loadScene(g.write(tempDir(), "coloured")).scene;
+    Image black{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.0f)};
+    RenderedLossGradient lg(testContext(), scene, {{"", black}}, {"materials/walls/base_color"},
+                            {.spp = 8, .maxDepth = 400}, LossKind::L2);
+    const std::vector<MeanAndError> gradient = gradientOverSeeds(lg, scene, 32)[0];
+    for (int channel = 0; channel < 3; ++channel) {
+        const double le = kFurnaceLe[channel], fc = f * c[channel];
+        const double expected = 2.0 / 3.0 * (le / (1.0 - fc)) * (le * c[channel] / ((1.0 - fc) * (1.0 - fc)));
+        EXPECT_NEAR(gradient[size_t(channel)].mean, expected, 5.0 * gradient[size_t(channel)].error)
+            << "channel " << channel << ": standard error " << gradient[size_t(channel)].error;
+    }
+}
+
 }  // namespace
 }  // namespace vkdr::test

@@ -23,6 +23,16 @@ TEST_F(FurnaceTest, DiffuseWallsConverge) {
     expectUniformRadiance(image, glm::dvec3(kLe) / (1.0 - glm::dvec3(rho)));
 }
 
+// glTF's COLOR_0 multiplies the base colour factor (its alpha is not used): walls of
+// factor 0.8 whose every vertex has colour c reflect 0.8 c.
+TEST_F(FurnaceTest, VertexColoursMultiplyTheBaseColour) {
+    TestGltf g = furnace(glm::vec3(0.8f));
+    const glm::vec4 colour(0.5f, 0.75f, 1.0f, 0.2f);
+    g.meshes[0].colors.assign(g.meshes[0].positions.size(), colour);
+    Image image = renderFile(g.write(tempDir(), "coloured"), {.width = kSide, .height = kSide, .spp = 64, .maxDepth = 400});
+    expectUniformRadiance(image, glm::dvec3(kLe) / (1.0 - 0.8 * glm::dvec3(glm::vec3(colour))));
+}
+
 TEST_F(FurnaceTest, MaxDepthCountsScatteringVertices) {
     const glm::vec3 rho(0.5f, 0.3f, 0.7f);
     auto file = furnace(rho).write(tempDir(), "furnace");

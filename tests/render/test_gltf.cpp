@@ -118,6 +118,8 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
         append(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
         size_t normalsOffset = bin.size();
         append(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
+        size_t colorsOffset = bin.size();
+        append(m.colors.data(), m.colors.size() * sizeof(glm::vec4));
         size_t indicesOffset = bin.size();
         append(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
         size_t view = views.size();
@@ -130,10 +132,16 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
                              {"count", 3 * m.triangles.size()}, {"type", "SCALAR"}});
         nlohmann::json attributes = {{"POSITION", accessor}};
         if (!m.normals.empty()) {
-            views.push_back({{"buffer", 0}, {"byteOffset", normalsOffset}, {"byteLength", indicesOffset - normalsOffset}});
+            views.push_back({{"buffer", 0}, {"byteOffset", normalsOffset}, {"byteLength", colorsOffset - normalsOffset}});
             accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5126},
                                  {"count", m.normals.size()}, {"type", "VEC3"}});
             attributes["NORMAL"] = accessors.size() - 1;
+        }
+        if (!m.colors.empty()) {
+            views.push_back({{"buffer", 0}, {"byteOffset", colorsOffset}, {"byteLength", indicesOffset - colorsOffset}});
+            accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5126},
+                                 {"count", m.colors.size()}, {"type", "VEC4"}});
+            attributes["COLOR_0"] = accessors.size() - 1;
         }
         nodes.push_back({{"mesh", meshJson.size()}});
         meshJson.push_back({{"primitives", {{{"attributes", attributes},

@@ -15,6 +15,7 @@ struct TestMesh {
     std::vector<glm::uvec3> triangles;  // counter-clockwise seen from the front
     int material = 0;
     std::vector<glm::vec3> normals;     // the NORMAL attribute, one per position, or none
+    std::vector<glm::vec4> colors;      // the COLOR_0 attribute (RGBA floats), one per position, or none
 };
 
 // A node placing KHR_lights_punctual light `light`, shining along `direction`.

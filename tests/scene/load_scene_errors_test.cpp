@@ -528,18 +528,16 @@ TEST(LoadSceneErrors, UnknownMediumMembersAreNamedInAWarning) {
     EXPECT_EQ(loaded.scene.media.at(0).sigma_s, glm::vec3(1.0f));
 }
 
-// glTF multiplies the base colour by COLOR_0; the renderer does not, and says so.
-TEST(LoadSceneErrors, VertexColoursAreIgnoredWithAWarning) {
+// COLOR_0 multiplies the base colour, which must stay in [0, 1]: a colour outside it
+// (here the box's positions, -1 to 1) is refused, naming the vertex and channel.
+TEST(LoadSceneErrors, VertexColoursOutsideZeroToOne) {
     TemporaryDirectory directory;
     GltfBuilder gltf;
     gltf.addNode({{"mesh", gltf.addMesh("box", box(glm::vec3(-1.0f), glm::vec3(1.0f)))}});
     json& attributes = gltf.document()["meshes"][0]["primitives"][0]["attributes"];
     attributes["COLOR_0"] = attributes["POSITION"];
-    LoadedScene loaded = loadScene(gltf.writeGltf(directory / "colours.gltf"));
-    ASSERT_EQ(loaded.warnings.size(), 1u);
-    EXPECT_NE(loaded.warnings[0].find("meshes[0].primitives[0].attributes.COLOR_0: vertex colours are ignored"),
-              std::string::npos)
-        << loaded.warnings[0];
+    expectLoadError(gltf.writeGltf(directory / "colours.gltf"),
+                    {"meshes[0].primitives[0].attributes.COLOR_0", "colour 0 has R = -1; must be in [0, 1]"});
 }
 
 // glTF gives a node one place; a node listed in several is rendered at each, and said.

@@ -357,6 +357,33 @@ TEST(LoadScene, ReadsPerspectiveAndOrthographicCamerasInNodeOrder) {
     EXPECT_TRUE(loaded.warnings.empty());
 }
 
+// COLOR_0 as RGBA normalized bytes (alpha dropped); a primitive without it is white.
+TEST(LoadScene, ReadsVertexColoursAndWhiteWhereAPrimitiveHasNone) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("plain", floorQuad(1.0f))}});
+    const int coloured = builder.addMesh("coloured", floorQuad(1.0f, 2.0f));
+    const MeshData quad = floorQuad(1.0f);
+    ASSERT_EQ(quad.positions.size(), 4u);
+    const int view = builder.addBufferView({255, 0, 0, 9, 0, 255, 0, 9, 0, 0, 255, 9, 51, 102, 153, 255});
+    builder.document()["accessors"].push_back(
+        {{"bufferView", view}, {"componentType", 5121}, {"normalized", true}, {"count", 4}, {"type", "VEC4"}});
+    builder.document()["meshes"][size_t(coloured)]["primitives"][0]["attributes"]["COLOR_0"] =
+        builder.document()["accessors"].size() - 1;
+    builder.addNode({{"mesh", coloured}});
+    const Scene scene = loadScene(builder.writeGltf(directory / "colours.gltf")).scene;
+    ASSERT_EQ(scene.colors.size(), 8u);
+    for (size_t v = 0; v < 4; ++v) EXPECT_EQ(scene.colors[v], glm::vec3(1.0f)) << v;
+    EXPECT_EQ(scene.colors[4], glm::vec3(1, 0, 0));
+    EXPECT_EQ(scene.colors[5], glm::vec3(0, 1, 0));
+    EXPECT_EQ(scene.colors[6], glm::vec3(0, 0, 1));
+    expectNear(scene.colors[7], {0.2f, 0.4f, 0.6f});
+    // Without any COLOR_0 the scene holds no colours.
+    GltfBuilder plain;
+    plain.addNode({{"mesh", plain.addMesh("plain", floorQuad(1.0f))}});
+    EXPECT_TRUE(loadScene(plain.writeGltf(directory / "plain.gltf")).scene.colors.empty());
+}
+
 TEST(LoadScene, VertexNormalsTransformByTheInverseTransposeAndAreUnit) {
     TemporaryDirectory directory;
     GltfBuilder builder;
