@@ -58,14 +58,15 @@ TargetFile parseTargetArgument(const std::string& argument, const Scene& scene) 
 namespace {
 
 // A view renders at its target's size, so a target of another shape than the camera's
-// aspectRatio widens or narrows the horizontal field of view.
+// aspect ratio widens or narrows the view: its height stays.
 void warnOfAnotherAspect(const std::string& argument, const Image& target, const Camera& camera) {
     const double aspect = double(target.width) / double(target.height);
     if (camera.aspectRatio > 0.0f && std::abs(aspect / camera.aspectRatio - 1.0) > 0.01) {
-        printWarning(formatText("--target %s is %dx%d (aspect %.4g), but camera '%s' has aspectRatio %.4g: the view "
-                                "renders at the target's aspect, with the camera's vertical field of view",
+        printWarning(formatText("--target %s is %dx%d (aspect %.4g), but camera '%s' has aspect ratio %.4g%s: the "
+                                "view renders at the target's aspect, with the camera's %s",
                                 argument.c_str(), target.width, target.height, aspect, camera.name.c_str(),
-                                double(camera.aspectRatio)));
+                                double(camera.aspectRatio), camera.orthographic() ? " (xmag / ymag)" : "",
+                                camera.orthographic() ? "height (ymag)" : "vertical field of view"));
     }
 }
 

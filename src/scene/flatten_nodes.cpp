@@ -390,9 +390,9 @@ private:
         }
     }
 
-    // glTF's xmag and ymag: half the view's width and height in world units. Held to the
-    // floats the renderer takes, and to a view whose pixels float coordinates can tell
-    // apart; glTF allows negative ones (a mirrored view), which no exporter writes.
+    // glTF's xmag and ymag: half the view's width and height in world units, held to the
+    // floats the renderer takes. glTF allows negative ones (a mirrored view), which no
+    // exporter writes.
     void requireOrthographicMagnification(double magnification, const std::string& field) {
         if (!(magnification > 0.0 && float(magnification) > 0.0 && std::isfinite(float(magnification)))) {
             diagnostics_.fail(field, "must be > 0 and within float's range, got " + formatNumber(magnification));

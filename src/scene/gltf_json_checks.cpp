@@ -240,9 +240,13 @@ void checkCamera(const json& camera, const std::string& field, const GltfDiagnos
     if (camera.contains("orthographic") && camera["orthographic"].is_object()) {
         const json& orthographic = camera["orthographic"];
         const std::string orthographicField = member(field, "orthographic");
+        requireAbove(orthographic, orthographicField, "xmag", 0.0, "0", diagnostics);
+        requireAbove(orthographic, orthographicField, "ymag", 0.0, "0", diagnostics);
         if (orthographic.contains("znear") && orthographic["znear"].is_number()) {
             const double znear = orthographic["znear"].get<double>();
-            if (!(znear >= 0.0)) diagnostics.fail(member(orthographicField, "znear"), "must be >= 0, got " + formatNumber(znear));
+            if (!(znear >= 0.0)) {
+                diagnostics.fail(member(orthographicField, "znear"), "must be >= 0, got " + formatNumber(znear));
+            }
             requireAbove(orthographic, orthographicField, "zfar", znear, "znear (" + formatNumber(znear) + ")",
                          diagnostics);
         }

@@ -37,12 +37,11 @@ struct ViewRectangle {
     }
 };
 
+// A triangle without area holds no point but those of its edges.
 bool insideTriangle(glm::dvec2 p, const std::array<glm::dvec2, 3>& v) {
-    auto side = [&](int i) {
-        const glm::dvec2 edge = v[(i + 1) % 3] - v[i], toPoint = p - v[i];
-        return edge.x * toPoint.y - edge.y * toPoint.x;
-    };
-    const double s0 = side(0), s1 = side(1), s2 = side(2);
+    auto cross = [](glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; };
+    if (cross(v[1] - v[0], v[2] - v[0]) == 0.0) return false;
+    const double s0 = cross(v[1] - v[0], p - v[0]), s1 = cross(v[2] - v[1], p - v[1]), s2 = cross(v[0] - v[2], p - v[2]);
     return (s0 >= 0.0 && s1 >= 0.0 && s2 >= 0.0) || (s0 <= 0.0 && s1 <= 0.0 && s2 <= 0.0);
 }
 
@@ -81,7 +80,8 @@ std::optional<uint32_t> boundaryAcrossOrthographicView(const Scene& scene, const
                                                        double halfHeight) {
     const glm::dmat4 cameraToWorld(camera.cameraToWorld);
     const glm::dvec3 origin(cameraToWorld[3]);
-    const glm::dmat3 worldToCamera = glm::transpose(glm::dmat3(cameraToWorld));  // a rotation
+    // The rays' own mapping (generate.comp) takes the camera's axes as they are.
+    const glm::dmat3 worldToCamera = glm::inverse(glm::dmat3(cameraToWorld));
     for (size_t t = 0; t < scene.triangles.size(); ++t) {
         const uint32_t material = scene.triangleMaterial[t];
         if (!scene.materials[material].isMediumBoundary()) continue;

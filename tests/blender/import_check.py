@@ -8,8 +8,9 @@
       on FILE and record whether it fails on numpy.bool; then, in another empty file,
       import FILE with the add-on's operator and write DIR/imported.json: the medium each
       material's and the World's nodes now give, each light's radiant intensity or
-      irradiance as the add-on's mappings read its Blender values, and whether numpy.bool
-      exists before and after."""
+      irradiance as the add-on's mappings read its Blender values, whether numpy.bool
+      exists before and after, and the camera a copy of FILE with an orthographic camera
+      imports as."""
 import argparse
 import json
 import pathlib
@@ -93,6 +94,15 @@ def import_and_read(gltf, out):
         except RuntimeError as error:
             result["unreadable"][name] = str(error)
     result["refused_import"]["after"] = counts()
+    # The same scene through an orthographic camera twice as wide as it is high.
+    doc = json.loads(gltf.read_text())
+    doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 2.0, "ymag": 0.75, "znear": 0.0, "zfar": 100.0}}]
+    (gltf.parent / "orthographic.gltf").write_text(json.dumps(doc))
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    bpy.ops.import_scene.vkdiffrender(filepath=str(gltf.parent / "orthographic.gltf"))
+    camera = bpy.context.scene.camera.data
+    result["orthographic_camera"] = {"type": camera.type, "sensor_fit": camera.sensor_fit,
+                                     "ortho_scale": camera.ortho_scale}
     bpy.ops.wm.read_factory_settings(use_empty=True)  # the add-on stays registered
     bpy.ops.import_scene.vkdiffrender(filepath=str(gltf))
     result["numpy_bool_after"] = hasattr(numpy, "bool")

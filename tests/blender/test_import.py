@@ -104,3 +104,8 @@ def test_a_file_that_is_not_gltf_is_missing_or_holds_a_medium_of_text_gives_one_
     for message in unreadable.values():
         assert "Traceback" not in message and len(message.splitlines()) == 1, message
 
+
+def test_an_orthographic_camera_keeps_the_height_vkdiffrender_keeps(imported):
+    camera = imported[2]["orthographic_camera"]
+    assert (camera["type"], camera["sensor_fit"]) == ("ORTHO", "VERTICAL")
+    assert camera["ortho_scale"] == pytest.approx(1.5)

@@ -503,7 +503,7 @@ TEST(LoadSceneErrors, OrthographicCamerasWithoutAView) {
         return builder.writeGltf(directory / "camera.gltf");
     };
     const std::string field = "cameras[0].orthographic";
-    expectLoadError(withCamera({{"xmag", 0.0}}), {field + ".xmag", "must be > 0"});
+    expectLoadError(withCamera({{"xmag", 0.0}}), {field + ".xmag", "must be a number > 0, got 0.0"});
     expectLoadError(withCamera({{"ymag", -2.0}}), {field + ".ymag", "got -2"});
     expectLoadError(withCamera({{"ymag", 1e39}}), {field + ".ymag", "within float's range"});
     expectLoadError(withCamera({{"xmag", 1e5}}), {field, "xmag / ymag must be in [1e-4, 1e4], got 1e+05"});

@@ -52,6 +52,15 @@ TEST(OrthographicView, BoundariesThatCrossTheViewAndThoseThatDoNot) {
     EXPECT_EQ(crossing({glm::vec3(-9, -9, 0), glm::vec3(9, -9, 0), glm::vec3(0, 9, 0)}), 1u);
     EXPECT_EQ(crossing({glm::vec3(1.5f, 0.5f, 0), glm::vec3(3, 0.5f, 0), glm::vec3(3, 3, 0)}), 1u);
     EXPECT_FALSE(crossing({glm::vec3(2.5f, 0, 0), glm::vec3(4, 0, 0), glm::vec3(4, 3, 0)}));
+    // In the plane without area: a point far off, a sliver on a line through the view
+    // beside it; a sliver across the view crosses it.
+    EXPECT_FALSE(crossing({glm::vec3(9, 9, 0), glm::vec3(9, 9, 0), glm::vec3(9, 9, 0)}));
+    EXPECT_FALSE(crossing({glm::vec3(5, 0, 0), glm::vec3(6, 0, 0), glm::vec3(7, 0, 0)}));
+    EXPECT_EQ(crossing({glm::vec3(-5, 0, 0), glm::vec3(0, 0, 0), glm::vec3(5, 0, 0)}), 1u);
+    // Within 1e-5 of the coordinates' magnitude (a few units here) of the view's side,
+    // and well beyond it.
+    EXPECT_EQ(crossing({glm::vec3(2.00001f, -5, -1), glm::vec3(2.00001f, 5, -1), glm::vec3(2.00001f, 0, 1)}), 1u);
+    EXPECT_FALSE(crossing({glm::vec3(2.001f, -5, -1), glm::vec3(2.001f, 5, -1), glm::vec3(2.001f, 0, 1)}));
 }
 
 }  // namespace

@@ -255,8 +255,9 @@ def add_world(doc, scene, warnings):
 def warn_camera_clipping(scene, medium, warnings):
     """Cycles starts camera rays at the camera's Clip Start and ends them at Clip End, so
     the World volume nearer than Clip Start is not there for it; vkdiffrender's camera rays
-    start at the camera. The warning gives the transmittance of the skipped stretch on the
-    view axis (longer, so darker, off axis)."""
+    start at the camera (an orthographic camera's at its plane). The warning gives the
+    transmittance of the skipped stretch on the view axis (a perspective camera's longer,
+    so darker, off axis)."""
     sigma_t = max(a + s for a, s in zip(medium.sigma_a, medium.sigma_s))
     for obj in scene.objects:
         if obj.type != "CAMERA" or obj.data.clip_start * sigma_t < 1e-3:
@@ -439,7 +440,7 @@ def check_cameras(scene, view_layer, warnings):
     for camera in cameras:
         if camera.data.type not in RENDERED_CAMERAS:
             warnings.append(f"camera '{camera.name}': {camera.data.type.lower()} cameras are not supported; "
-                            f"vkdiffrender refuses to render through it")
+                            f"Blender's glTF exporter leaves it out")
         if camera.data.dof.use_dof:
             warnings.append(f"camera '{camera.name}': depth of field is exported as a pinhole (all in focus)")
         if camera.data.shift_x != 0.0 or camera.data.shift_y != 0.0:

@@ -288,6 +288,25 @@ def restore_lights(lights, objects, renamed):
             obj.data.spot_size, obj.data.spot_blend = mappings.spot_size_and_blend(*cone)
 
 
+def restore_orthographic_views(doc, new_objects, renamed):
+    """Blender's glTF importer spans an orthographic camera's Orthographic Scale, 2
+    max(xmag, ymag), over the image's longer side (Sensor Fit Auto); vkdiffrender keeps the
+    view's height, 2 ymag, and lets its width follow the image's, as Sensor Fit Vertical
+    does. Cameras are found by their node's name."""
+    cameras = doc.get("cameras", [])
+    new_cameras = [obj for obj in new_objects if obj.type == "CAMERA"]
+    for node in doc.get("nodes", []):
+        index = node.get("camera")
+        if not isinstance(index, int) or not 0 <= index < len(cameras) or not isinstance(node.get("name"), str):
+            continue
+        obj = match(new_cameras, node["name"], renamed)
+        if obj is None:
+            continue
+        if cameras[index].get("type") == "orthographic" and obj.data.type == "ORTHO":
+            obj.data.sensor_fit = "VERTICAL"
+            obj.data.ortho_scale = 2.0 * float(cameras[index]["orthographic"]["ymag"])
+
+
 def import_scene(context, filepath):
     """Imports FILEPATH into the current scene; returns the warnings."""
     doc = read_gltf_json(filepath)
@@ -304,6 +323,7 @@ def import_scene(context, filepath):
     restore_world(world, context.scene, warnings)
     new_objects = new_ids(bpy.data.objects, objects_before)
     restore_lights(lights, new_objects, renamed)
+    restore_orthographic_views(doc, new_objects, renamed)
     warn_renamed(renamed, warnings)
     if context.scene.camera is None:  # Cycles renders through the scene camera
         context.scene.camera = next((o for o in new_objects if o.type == "CAMERA"), None)
