@@ -28,8 +28,8 @@ void main() {
     // Perspective: from the camera through the point at depth 1. Orthographic: from the
     // point on the camera's plane, straight ahead.
     bool orthographic = camera.orthographicHalfHeight > 0.0f;
-    vec2 extent = orthographic ? vec2(camera.orthographicHalfHeight) : vec2(camera.tanHalfFovY);
-    vec3 onView = vec3(ndc.x * extent.x * camera.aspect, -ndc.y * extent.y, 0.0f);
+    float halfHeight = orthographic ? camera.orthographicHalfHeight : camera.tanHalfFovY;
+    vec3 onView = vec3(ndc.x * halfHeight * camera.aspect, -ndc.y * halfHeight, 0.0f);
     vec3 local = orthographic ? vec3(0.0f, 0.0f, -1.0f) : normalize(onView - vec3(0.0f, 0.0f, 1.0f));
     vec3 localOrigin = orthographic ? onView : vec3(0.0f);
     vec3 origin = vec3(dot(camera.cameraToWorld[0], vec4(localOrigin, 1.0f)),

@@ -62,10 +62,10 @@ namespace {
 void warnOfAnotherAspect(const std::string& argument, const Image& target, const Camera& camera) {
     const double aspect = double(target.width) / double(target.height);
     if (camera.aspectRatio > 0.0f && std::abs(aspect / camera.aspectRatio - 1.0) > 0.01) {
-        printWarning(formatText("--target %s is %dx%d (aspect %.4g), but camera '%s' has aspect ratio %.4g%s: the "
-                                "view renders at the target's aspect, with the camera's %s",
+        printWarning(formatText("--target %s is %dx%d (aspect %.4g), but camera '%s' has %s %.4g: the view renders "
+                                "at the target's aspect, with the camera's %s",
                                 argument.c_str(), target.width, target.height, aspect, camera.name.c_str(),
-                                double(camera.aspectRatio), camera.orthographic() ? " (xmag / ymag)" : "",
+                                camera.orthographic() ? "xmag / ymag" : "aspectRatio", double(camera.aspectRatio),
                                 camera.orthographic() ? "height (ymag)" : "vertical field of view"));
     }
 }

@@ -42,10 +42,10 @@ public:
 
     Json parse() const {
         try {
-            const JsonWithRepeatedKey parsed = parseJsonNotingRepeatedKeys(readRegularFile(file_));
+            JsonWithRepeatedKey parsed = parseJsonNotingRepeatedKeys(readRegularFile(file_));
             if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, "given twice in one object; give each key once");
             if (!parsed.document.is_object()) fail("", "expected a JSON object");
-            return parsed.document;
+            return std::move(parsed.document);
         } catch (const Json::exception& e) {
             fail("", std::string("not valid JSON: ") + e.what());
         }

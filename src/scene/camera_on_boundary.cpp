@@ -5,19 +5,13 @@
 #include <glm/glm.hpp>
 
 #include "core/format_text.h"
+#include "scene/surface_reach.h"
 
 namespace vkdr {
 namespace {
 
-// Within this fraction of the coordinates' magnitude a point is on a surface as far as
-// the renderer's rays can tell (its offsets off surfaces are of this size).
-constexpr double kOnSurfaceRelative = 1e-5;
 // Barycentric slack, so that a camera on an edge belongs to the triangles on both sides.
 constexpr double kBarycentricSlack = 1e-6;
-
-double magnitude(const glm::dvec3& p) {
-    return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-}
 
 // How far `p` is from the triangle's plane, where its projection onto that plane falls
 // inside the triangle; a negative value where it falls outside (or the triangle has no area).
@@ -47,7 +41,8 @@ std::vector<std::string> camerasOnMediumBoundaries(const Scene& scene) {
             const glm::dvec3 v2(scene.positions[scene.triangles[t].z]);
             const double distance = distanceAbove(position, v0, v1, v2);
             const double reach =
-                kOnSurfaceRelative * std::max({magnitude(position), magnitude(v0), magnitude(v1), magnitude(v2)});
+                kOnSurfaceRelative * std::max({coordinateMagnitude(position), coordinateMagnitude(v0),
+                                                coordinateMagnitude(v1), coordinateMagnitude(v2)});
             if (distance < 0.0 || distance > reach) continue;
             warnings.push_back(formatText(
                 "camera '%s' lies on the boundary of medium '%s' (material '%s'), %g from its surface: rays from "

@@ -5,12 +5,10 @@
 #include <cmath>
 #include <vector>
 
+#include "scene/surface_reach.h"
+
 namespace vkdr {
 namespace {
-
-// Within this fraction of the coordinates' magnitude a point is on the camera's plane, as
-// for a camera on a boundary (camera_on_boundary.cpp).
-constexpr double kOnPlaneRelative = 1e-5;
 
 struct ViewRectangle {
     double halfWidth, halfHeight;
@@ -72,8 +70,6 @@ bool meetsView(const std::array<glm::dvec3, 3>& v, const ViewRectangle& view, do
     return false;
 }
 
-double magnitude(const glm::dvec3& p) { return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}); }
-
 }  // namespace
 
 std::optional<uint32_t> boundaryAcrossOrthographicView(const Scene& scene, const Camera& camera, double halfWidth,
@@ -88,9 +84,10 @@ std::optional<uint32_t> boundaryAcrossOrthographicView(const Scene& scene, const
         const std::array<glm::dvec3, 3> world = {glm::dvec3(scene.positions[scene.triangles[t].x]),
                                                  glm::dvec3(scene.positions[scene.triangles[t].y]),
                                                  glm::dvec3(scene.positions[scene.triangles[t].z])};
-        const double reach = kOnPlaneRelative * std::max({magnitude(origin), magnitude(world[0]),
-                                                          magnitude(world[1]), magnitude(world[2]), halfWidth,
-                                                          halfHeight});
+        const double reach =
+            kOnSurfaceRelative * std::max({coordinateMagnitude(origin), coordinateMagnitude(world[0]),
+                                           coordinateMagnitude(world[1]), coordinateMagnitude(world[2]), halfWidth,
+                                           halfHeight});
         std::array<glm::dvec3, 3> local;
         for (int i = 0; i < 3; ++i) local[i] = worldToCamera * (world[i] - origin);
         if (meetsView(local, ViewRectangle{halfWidth + reach, halfHeight + reach}, reach)) return material;
