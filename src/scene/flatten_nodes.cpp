@@ -158,6 +158,14 @@ private:
         return decodedMeshes_.emplace(meshIndex, std::move(primitives)).first->second;
     }
 
+    // A vertex attribute of `count` elements: one per position.
+    void requireOnePerPosition(size_t count, const DecodedPrimitive& decoded, const std::string& field) {
+        if (count != decoded.positions.size()) {
+            diagnostics_.fail(field, std::to_string(count) + " elements, POSITION has " +
+                                         std::to_string(decoded.positions.size()));
+        }
+    }
+
     DecodedPrimitive decodePrimitive(const tinygltf::Primitive& primitive, const std::string& field) {
         int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
@@ -179,27 +187,15 @@ private:
         if (auto texcoord = primitive.attributes.find("TEXCOORD_0");
             texcoord != primitive.attributes.end()) {
             decoded.uvs = readTexcoords(model_, texcoord->second, diagnostics_, field + ".attributes.TEXCOORD_0");
-            if (decoded.uvs.size() != decoded.positions.size()) {
-                diagnostics_.fail(field + ".attributes.TEXCOORD_0",
-                                  std::to_string(decoded.uvs.size()) + " elements, POSITION has " +
-                                      std::to_string(decoded.positions.size()));
-            }
+            requireOnePerPosition(decoded.uvs.size(), decoded, field + ".attributes.TEXCOORD_0");
         }
         if (auto color = primitive.attributes.find("COLOR_0"); color != primitive.attributes.end()) {
             decoded.colors = readColors(model_, color->second, diagnostics_, field + ".attributes.COLOR_0");
-            if (decoded.colors.size() != decoded.positions.size()) {
-                diagnostics_.fail(field + ".attributes.COLOR_0", std::to_string(decoded.colors.size()) +
-                                                                     " elements, POSITION has " +
-                                                                     std::to_string(decoded.positions.size()));
-            }
+            requireOnePerPosition(decoded.colors.size(), decoded, field + ".attributes.COLOR_0");
         }
         if (auto normal = primitive.attributes.find("NORMAL"); normal != primitive.attributes.end()) {
             decoded.normals = readVec3s(model_, normal->second, diagnostics_, field + ".attributes.NORMAL");
-            if (decoded.normals.size() != decoded.positions.size()) {
-                diagnostics_.fail(field + ".attributes.NORMAL", std::to_string(decoded.normals.size()) +
-                                                                    " elements, POSITION has " +
-                                                                    std::to_string(decoded.positions.size()));
-            }
+            requireOnePerPosition(decoded.normals.size(), decoded, field + ".attributes.NORMAL");
         }
         std::vector<uint32_t> indices;
         if (primitive.indices >= 0) {

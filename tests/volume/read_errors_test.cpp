@@ -23,6 +23,16 @@ void expectReadError(const std::filesystem::path& file, const std::string& gridN
     expectErrorMentioning([&] { readDensityGrid(file, gridName); }, parts);
 }
 
+// A .vdb file of two patterned grids of `size` voxels, named `first` and `second`.
+void writeTwoGrids(const std::filesystem::path& file, const std::string& first, const std::string& second,
+                   glm::ivec3 size) {
+    DensityGrid grid = patternedGrid({0, 0, 0}, size, glm::dmat4(1.0));
+    grid.name = first;
+    openvdb::FloatGrid::Ptr firstGrid = openVdbGrid(grid);
+    grid.name = second;
+    openvdb::io::File(file.string()).write(openvdb::GridPtrVec{firstGrid, openVdbGrid(grid)});
+}
+
 openvdb::FloatGrid::Ptr gridWithVoxel(openvdb::Coord voxel, float value) {
     openvdb::FloatGrid::Ptr vdb = openVdbGrid(DensityGrid{});
     vdb->setName("density");
@@ -68,12 +78,7 @@ TEST(DensityGridErrors, NotAGridFile) {
 // count too.
 TEST(DensityGridErrors, VdbFileCutAnywhere) {
     ScratchDirectory directory;
-    DensityGrid smoke = patternedGrid({0, 0, 0}, {3, 2, 2}, glm::dmat4(1.0));
-    smoke.name = "smoke";
-    DensityGrid density = smoke;
-    density.name = "density";
-    openvdb::io::File((directory / "whole.vdb").string())
-        .write(openvdb::GridPtrVec{openVdbGrid(smoke), openVdbGrid(density)});
+    writeTwoGrids(directory / "whole.vdb", "smoke", "density", {3, 2, 2});
     const std::string whole = fileBytes(directory / "whole.vdb");
     ASSERT_EQ(readDensityGrid(directory / "whole.vdb", "density").size, glm::ivec3(3, 2, 2));
     std::vector<size_t> lengths;
@@ -88,12 +93,10 @@ TEST(DensityGridErrors, VdbFileCutAnywhere) {
 
 TEST(DensityGridErrors, NoGridOfThatNameListsTheNames) {
     ScratchDirectory directory;
+    writeTwoGrids(directory / "two.vdb", "smoke", "fire", {2, 2, 2});
+    expectReadError(directory / "two.vdb", "density", {"no grid named 'density'", "'smoke'", "'fire'"});
     DensityGrid smoke = patternedGrid({0, 0, 0}, {2, 2, 2}, glm::dmat4(1.0));
     smoke.name = "smoke";
-    DensityGrid fire = smoke;
-    fire.name = "fire";
-    openvdb::io::File((directory / "two.vdb").string()).write(openvdb::GridPtrVec{openVdbGrid(smoke), openVdbGrid(fire)});
-    expectReadError(directory / "two.vdb", "density", {"no grid named 'density'", "'smoke'", "'fire'"});
     writeDensityGridNanoVdb(directory / "smoke.nvdb", smoke);
     expectReadError(directory / "smoke.nvdb", "density", {"no grid named 'density'", "'smoke'"});
     // OpenVDB numbers names only where grids share one: a lone 'density[1]' is its own name.
