@@ -81,7 +81,8 @@ gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
         // The image's aspect ratio widens or narrows the view, as it does a perspective
         // camera's field of view: the height stays.
         const double halfHeight = camera.orthographicHalfHeight, halfWidth = halfHeight * double(aspect);
-        if (const std::optional<uint32_t> boundary = boundaryAcrossOrthographicView(scene, camera, halfWidth, halfHeight)) {
+        const std::optional<uint32_t> boundary = boundaryAcrossOrthographicView(scene, camera, halfWidth, halfHeight);
+        if (boundary) {
             const Material& material = scene.materials[*boundary];
             throw Error(formatText("orthographic camera '%s': the boundary of medium '%s' (material '%s') crosses its "
                                    "view, %g x %g about the camera, where its rays start: they would start in "

@@ -39,13 +39,15 @@ struct ViewRectangle {
 bool insideTriangle(glm::dvec2 p, const std::array<glm::dvec2, 3>& v) {
     auto cross = [](glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; };
     if (cross(v[1] - v[0], v[2] - v[0]) == 0.0) return false;
-    const double s0 = cross(v[1] - v[0], p - v[0]), s1 = cross(v[2] - v[1], p - v[1]), s2 = cross(v[0] - v[2], p - v[2]);
+    const double s0 = cross(v[1] - v[0], p - v[0]), s1 = cross(v[2] - v[1], p - v[1]),
+                 s2 = cross(v[0] - v[2], p - v[2]);
     return (s0 >= 0.0 && s1 >= 0.0 && s2 >= 0.0) || (s0 <= 0.0 && s1 <= 0.0 && s2 <= 0.0);
 }
 
 // Whether a triangle, in camera coordinates, meets the view's rectangle on the plane z = 0.
 bool meetsView(const std::array<glm::dvec3, 3>& v, const ViewRectangle& view, double onPlane) {
-    const bool coplanar = std::all_of(v.begin(), v.end(), [&](const glm::dvec3& p) { return std::abs(p.z) <= onPlane; });
+    const bool coplanar =
+        std::all_of(v.begin(), v.end(), [&](const glm::dvec3& p) { return std::abs(p.z) <= onPlane; });
     if (coplanar) {
         const std::array<glm::dvec2, 3> flat = {glm::dvec2(v[0]), glm::dvec2(v[1]), glm::dvec2(v[2])};
         for (int i = 0; i < 3; ++i) {

@@ -127,7 +127,9 @@ TEST(Png, BitDepthsPngDoesNotAllowAreRefused) {
             readImage(dir / file);
             ADD_FAILURE() << file << " was read";
         } catch (const Error& e) {
-            for (const std::string& part : parts) EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+            for (const std::string& part : parts) {
+                EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+            }
             EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
         }
     }

@@ -29,7 +29,8 @@ TEST_F(FurnaceTest, VertexColoursMultiplyTheBaseColour) {
     TestGltf g = furnace(glm::vec3(0.8f));
     const glm::vec4 colour(0.5f, 0.75f, 1.0f, 0.2f);
     g.meshes[0].colors.assign(g.meshes[0].positions.size(), colour);
-    Image image = renderFile(g.write(tempDir(), "coloured"), {.width = kSide, .height = kSide, .spp = 64, .maxDepth = 400});
+    Image image =
+        renderFile(g.write(tempDir(), "coloured"), {.width = kSide, .height = kSide, .spp = 64, .maxDepth = 400});
     expectUniformRadiance(image, glm::dvec3(kLe) / (1.0 - 0.8 * glm::dvec3(glm::vec3(colour))));
 }
 

@@ -29,7 +29,8 @@ TestGltf orthographicScene(glm::vec3 camera) {
     TestGltf g;
     // The box holds twice the fog's sigma_a.
     const glm::vec3 boxSigmaA = glm::vec3(2.0 * kFogSigmaA);
-    g.materials = {emissiveMaterial("light", kLe, false), vkdrMediumMaterial("dense", boxSigmaA, glm::vec3(0.0f), 0.0f)};
+    g.materials = {emissiveMaterial("light", kLe, false),
+                   vkdrMediumMaterial("dense", boxSigmaA, glm::vec3(0.0f), 0.0f)};
     g.meshes = {quadZ(0.0f, 0.0f, 20.0f, kEmitterZ, false, 0),
                 box(glm::vec3(kBoxEdgeX, kBoxEdgeY, kBoxNear), glm::vec3(12.0f, 10.0f, kBoxFar), 1)};
     g.extensions["VKDR_participating_media"] = {

@@ -132,13 +132,15 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
                              {"count", 3 * m.triangles.size()}, {"type", "SCALAR"}});
         nlohmann::json attributes = {{"POSITION", accessor}};
         if (!m.normals.empty()) {
-            views.push_back({{"buffer", 0}, {"byteOffset", normalsOffset}, {"byteLength", colorsOffset - normalsOffset}});
+            views.push_back(
+                {{"buffer", 0}, {"byteOffset", normalsOffset}, {"byteLength", colorsOffset - normalsOffset}});
             accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5126},
                                  {"count", m.normals.size()}, {"type", "VEC3"}});
             attributes["NORMAL"] = accessors.size() - 1;
         }
         if (!m.colors.empty()) {
-            views.push_back({{"buffer", 0}, {"byteOffset", colorsOffset}, {"byteLength", indicesOffset - colorsOffset}});
+            views.push_back(
+                {{"buffer", 0}, {"byteOffset", colorsOffset}, {"byteLength", indicesOffset - colorsOffset}});
             accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5126},
                                  {"count", m.colors.size()}, {"type", "VEC4"}});
             attributes["COLOR_0"] = accessors.size() - 1;

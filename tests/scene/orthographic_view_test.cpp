@@ -28,7 +28,9 @@ std::optional<uint32_t> crossing(const std::array<glm::vec3, 3>& local) {
     Scene scene;
     scene.materials.resize(2);
     scene.materials[1].interiorMedium = 0;
-    for (const glm::vec3& corner : local) scene.positions.push_back(glm::vec3(camera.cameraToWorld * glm::vec4(corner, 1)));
+    for (const glm::vec3& corner : local) {
+        scene.positions.push_back(glm::vec3(camera.cameraToWorld * glm::vec4(corner, 1)));
+    }
     for (const glm::vec3& corner : {glm::vec3(-9, -9, 0), glm::vec3(9, -9, 0), glm::vec3(0, 9, 0)}) {
         scene.positions.push_back(glm::vec3(camera.cameraToWorld * glm::vec4(corner, 1)));
     }
