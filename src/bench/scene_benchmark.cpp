@@ -1,6 +1,8 @@
 #include "bench/scene_benchmark.h"
 
 #include <algorithm>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "bench/efficiency.h"
@@ -98,6 +100,22 @@ double medianMillisecondsOf(uint32_t iterations, Progress& steps, Run&& run) {
     return median(ms);
 }
 
+// The median wall-clock times of `iterations` runs each of `first(i)` and `second()`,
+// taken in turn, so that a machine that slows down or speeds up during the measurement
+// changes both alike and their ratio holds; a progress step after each run.
+template <typename First, typename Second>
+std::pair<double, double> medianMillisecondsInTurn(uint32_t iterations, Progress& steps, First&& first,
+                                                   Second&& second) {
+    std::vector<double> firstMs, secondMs;
+    for (uint32_t i = 0; i < iterations; ++i) {
+        firstMs.push_back(millisecondsOf([&] { first(i); }));
+        steps.step();
+        secondMs.push_back(millisecondsOf([&] { second(); }));
+        steps.step();
+    }
+    return {median(firstMs), median(secondMs)};
+}
+
 bool hasDensityGridMedium(const Scene& scene) {
     return std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) { return m.isHeterogeneous(); });
 }
@@ -130,16 +148,23 @@ Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bv
     sampleDriverMemory();
     steps.step();
 
-    Image images[2];
-    result.forwardMs = medianMillisecondsOf(iterations, steps, [&](uint32_t i) {
+    auto forwardPass = [&](uint32_t i) {
         renderer.setSeed(i % 2 == 0 ? kImageSeed : kSecondImageSeed);
-        images[i % 2] = renderer.render();
-    });
-    renderer.setSeed(kImageSeed);
+        return renderer.render();
+    };
+    Image images[2];
+    auto forwardPassCounted = [&](uint32_t i) {
+        images[i % 2] = forwardPass(i);
+        result.paths = renderer.stats().paths;
+        result.rays = renderer.stats().rays;
+    };
+    auto gradientIterationAtImageSeed = [&] {
+        renderer.setSeed(kImageSeed);
+        gradientIteration();
+    };
+    std::tie(result.forwardMs, result.gradientMs) =
+        medianMillisecondsInTurn(iterations, steps, forwardPassCounted, gradientIterationAtImageSeed);
     result.relativeNoise = relativeNoise(images[0], images[1]);
-    result.paths = renderer.stats().paths;
-    result.rays = renderer.stats().rays;
-    result.gradientMs = medianMillisecondsOf(iterations, steps, [&](uint32_t) { gradientIteration(); });
 
     // The driver's memory figure is sampled in these iterations, outside the wall-clock
     // medians above.
@@ -166,7 +191,10 @@ Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bv
     if (hasDensityGridMedium(scene)) {
         renderer.enableGradients(target, LossKind::L2, DerivativeTargets::of({ParameterKind::Density}));
         gradientIteration();  // warm-up: compiles the density-only adjoint pipelines
-        result.densityGradientMs = medianMillisecondsOf(iterations, steps, [&](uint32_t) { gradientIteration(); });
+        DensityGradientTimes density;
+        std::tie(density.forwardMs, density.gradientMs) =
+            medianMillisecondsInTurn(iterations, steps, forwardPass, gradientIterationAtImageSeed);
+        result.densityGradient = density;
     }
     return target;
 }
@@ -181,7 +209,7 @@ SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& n
                               const BenchSettings& settings, const std::function<void(double)>& progress) {
     const uint32_t iterations = std::max(1u, settings.iterations);
     const uint32_t gradientSeeds = benchGradientParameter(scene) ? settings.gradientSeeds : 0;
-    const uint32_t densitySteps = hasDensityGridMedium(scene) ? iterations : 0;
+    const uint32_t densitySteps = hasDensityGridMedium(scene) ? 2 * iterations : 0;
     Progress steps(progress, 4 * iterations + 3 + densitySteps + gradientSeeds);
     SceneBenchmark result;
     result.name = name;

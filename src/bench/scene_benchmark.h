@@ -22,6 +22,13 @@ struct BenchSettings {
     uint32_t gradientSeeds = 8;
 };
 
+// Wall-clock medians of gradient iterations of the density alone and of the forward
+// passes timed in turn with them.
+struct DensityGradientTimes {
+    double forwardMs = 0.0;
+    double gradientMs = 0.0;
+};
+
 // What one scene costs: medians over the timed iterations.
 struct SceneBenchmark {
     std::string name;
@@ -32,9 +39,10 @@ struct SceneBenchmark {
     std::optional<DensityGridFigures> densityGrids;  // nullopt for a scene without grids
     double forwardMs = 0.0;   // Renderer::render(), wall clock
     double gradientMs = 0.0;  // Renderer::renderWithGradients(), wall clock
-    // The same with the adjoint set up for the density grids' voxels alone, as a grid fit
-    // runs it (the other kinds' additions compiled out); nullopt without a density grid.
-    std::optional<double> densityGradientMs;
+    // Gradient iterations with the adjoint set up for the density grids' voxels alone, as
+    // a grid fit runs it (the other kinds' additions compiled out), and the forward
+    // passes timed in turn with them; nullopt without a density grid.
+    std::optional<DensityGradientTimes> densityGradient;
     uint64_t paths = 0;       // of one forward pass
     uint64_t rays = 0;        // closest-hit and shadow rays of one forward pass
     // The forward passes' per-pixel relative noise (bench/image_noise.h), from the last
@@ -58,7 +66,9 @@ struct SceneBenchmark {
     double raysPerSecond() const { return forwardMs > 0.0 ? double(rays) / (forwardMs * 1e-3) : 0.0; }
     double gradientToForward() const { return forwardMs > 0.0 ? gradientMs / forwardMs : 0.0; }
     std::optional<double> densityGradientToForward() const {
-        return densityGradientMs && forwardMs > 0.0 ? std::optional(*densityGradientMs / forwardMs) : std::nullopt;
+        return densityGradient && densityGradient->forwardMs > 0.0
+                   ? std::optional(densityGradient->gradientMs / densityGradient->forwardMs)
+                   : std::nullopt;
     }
     // 1 / (noise^2 x forward seconds); 0 without a noise figure.
     double efficiency() const;
@@ -67,12 +77,13 @@ struct SceneBenchmark {
 // Times the BVH build, counts the density grids' voxels and times their majorant grids'
 // build, then renders: a warm-up render that becomes the target image, one warm-up
 // gradient iteration, and then `iterations` (at least 2) each of forward passes
-// (alternating between two seeds, for the noise figure),
-// gradient iterations (as RenderedLossGradient runs them), and gradient iterations
-// with a DispatchTimer attached for the stage times, so that the timestamps do not
-// slow the wall-clock figures. The memory figures end there; a scene with a density
-// grid then times `iterations` gradient iterations of the density alone. With that
-// renderer gone, benchmarkGradient measures the gradient noise against the same target.
+// (alternating between two seeds, for the noise figure) in turn with gradient iterations
+// (as RenderedLossGradient runs them), and gradient iterations with a DispatchTimer
+// attached for the stage times, so that the timestamps do not slow the wall-clock
+// figures. The memory figures end there; a scene with a density grid then times
+// `iterations` gradient iterations of the density alone in turn with forward passes.
+// With that renderer gone, benchmarkGradient measures the gradient noise against the
+// same target.
 // `progress` gets the fraction done.
 SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,
                               const BenchSettings& settings, const std::function<void(double)>& progress);
