@@ -88,6 +88,51 @@ def vertex_colours(scene):
     bpy.context.object.data.color_attributes.new("Col", "FLOAT_COLOR", "POINT")
 
 
+def colour_reading_material(name, attribute):
+    """A Principled BSDF whose Base Color a Color Attribute node of ATTRIBUTE feeds ("":
+    the render colour attribute)."""
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    tree = material.node_tree
+    node = tree.nodes.new("ShaderNodeVertexColor")
+    node.layer_name = attribute
+    tree.links.new(node.outputs["Color"], tree.nodes["Principled BSDF"].inputs["Base Color"])
+    return material
+
+
+def painted_cube(name, x, material, attributes):
+    """A cube at X with MATERIAL and colour attributes of these names, each all of one grey
+    (0.1 the first, 0.2 the second, ...); the first is the render colour attribute."""
+    bpy.ops.mesh.primitive_cube_add(size=0.4, location=(x, 0.0, 0.5))
+    cube = bpy.context.object
+    cube.name = name
+    cube.data.name = name
+    for k, attribute in enumerate(attributes):
+        values = cube.data.color_attributes.new(attribute, "FLOAT_COLOR", "POINT")
+        for value in values.data:
+            value.color = (0.1 * (k + 1),) * 3 + (1.0,)
+    if attributes:
+        cube.data.color_attributes.render_color_index = 0
+    if material is not None:
+        cube.data.materials.append(material)
+    return cube
+
+
+def read_colour_attributes(scene):
+    """Cubes whose materials read a colour attribute: the render one (Rendered), another
+    one (Named, whose render attribute must be set back after the export), one the mesh
+    lacks (Missing), and two at once (TwoRead, one material on each half of its faces);
+    and a cube with an attribute no material reads (Unread)."""
+    painted_cube("Rendered", -2.0, colour_reading_material("ReadsRender", ""), ["Col", "Other"])
+    painted_cube("Named", -1.0, colour_reading_material("ReadsPaint", "Paint"), ["Col", "Paint"])
+    painted_cube("Missing", 0.0, colour_reading_material("ReadsAbsent", "Absent"), ["Col"])
+    painted_cube("Unread", 1.0, None, ["Col"])
+    two = painted_cube("TwoRead", 2.0, colour_reading_material("ReadsA", "A"), ["A", "B"])
+    two.data.materials.append(colour_reading_material("ReadsB", "B"))
+    for polygon in two.data.polygons[:3]:
+        polygon.material_index = 1
+
+
 def volume_cube(name, location):
     bpy.ops.mesh.primitive_cube_add(size=1.0, location=location)
     cube = bpy.context.object
@@ -434,6 +479,7 @@ def packed_texture(scene, colour=None):
 
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
+         "read_colour_attributes": read_colour_attributes,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
@@ -468,6 +514,9 @@ def export_case(out, case, build, target=None):
         result["error"] = str(error)
     result["modifiers_after"] = {obj.name: [[m.name, m.show_viewport, m.show_render, getattr(m, "levels", None)]
                                             for m in obj.modifiers] for obj in bpy.data.objects if obj.modifiers}
+    result["render_colour_attributes_after"] = {
+        obj.name: obj.data.color_attributes.render_color_index for obj in bpy.data.objects
+        if obj.type == "MESH" and len(obj.data.color_attributes) > 0}
     umask = os.umask(0)
     os.umask(umask)
     result["new_file_mode"] = 0o666 & ~umask

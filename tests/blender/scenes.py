@@ -35,7 +35,8 @@ FLAME_VDB = PLUME_VDB.parent / "cornell_fire_flame.vdb"
 FOG = {"Color": (0.9, 0.9, 0.9, 1.0), "Density": 0.12, "Absorption Color": (0.0, 0.0, 0.0, 1.0),
        "Anisotropy": 0.2}
 SCENES = ("box_area", "principled_cube", "glowing_cube", "absorption_cube", "world_fog", "orthographic_fog",
-          "point_light", "smooth_sphere", "principled_walls", "principled_walls_specular", "vdb_plume", "vdb_fire")
+          "point_light", "smooth_sphere", "principled_walls", "principled_walls_specular", "vdb_plume", "vdb_fire",
+          "painted_cube")
 
 
 def reset():
@@ -159,6 +160,25 @@ def add_cube(name, material, location=(0, 0.1, -0.35), size=0.9):
     return obj
 
 
+def painted_cube():
+    """A cube whose Diffuse BSDF Color is its colour attribute 'Paint' (read by an Attribute
+    node), 0.5 + the local position in each channel: linear, so that every triangulation
+    interpolates it alike. The render colour attribute is another one, 'Unread'."""
+    material = diffuse_material("painted", (0.3, 0.3, 0.3))
+    attribute = material.node_tree.nodes.new("ShaderNodeAttribute")
+    attribute.attribute_name = "Paint"
+    bsdf = material.node_tree.nodes["Diffuse BSDF"]
+    material.node_tree.links.new(attribute.outputs["Color"], bsdf.inputs["Color"])
+    cube = add_cube("painted", material)
+    unread = cube.data.color_attributes.new("Unread", "FLOAT_COLOR", "POINT")
+    for value in unread.data:
+        value.color = (0.0, 0.0, 0.0, 1.0)
+    paint = cube.data.color_attributes.new("Paint", "BYTE_COLOR", "POINT")
+    for vertex, value in zip(cube.data.vertices, paint.data):
+        value.color = (*(0.5 + c for c in vertex.co), 1.0)
+    cube.data.color_attributes.render_color_index = cube.data.color_attributes.find("Unread")
+
+
 def add_vdb_volume(name, path, material, location, scale):
     """A Volume object reading an OpenVDB file, turned so that the file's +y is up (+z)."""
     volume = bpy.data.volumes.new(name)
@@ -240,6 +260,8 @@ def build(name):
         # against terminator artefacts); vkdiffrender does not.
         sphere.cycles.shadow_terminator_geometry_offset = 0.0
         sphere.data.materials.append(diffuse_material("sphere", (0.8, 0.8, 0.8)))
+    elif name == "painted_cube":
+        painted_cube()
     elif name in ("principled_walls", "principled_walls_specular"):
         principled_walls(0.5 if name == "principled_walls_specular" else 0.0)
     elif name != "box_area":

@@ -23,7 +23,7 @@ import image_stats
 K = 5.0
 SEEDS = (1, 2)
 SCENES = ("box_area", "principled_cube", "glowing_cube", "absorption_cube", "world_fog", "orthographic_fog",
-          "point_light", "smooth_sphere")
+          "point_light", "smooth_sphere", "painted_cube")
 RUNS = {"depth4": {"scenes": SCENES, "max_depth": 4, "area_lights": "meshes"},
         "area_light": {"scenes": ("box_area",), "max_depth": 2, "area_lights": "lights"}}
 

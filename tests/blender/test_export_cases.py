@@ -105,6 +105,45 @@ def test_colour_attributes_are_not_exported_as_vertex_colours(exported):
     assert not any("COLOR_0" in p["attributes"] for m in doc["meshes"] for p in m["primitives"])
 
 
+def vertex_colour_of(exported, case, doc, mesh_name):
+    """The one colour (RGB, linear) of every vertex of the mesh's COLOR_0 (None without it)
+    in the case's scene.bin; the cubes of read_colour_attributes are of one colour each."""
+    primitives = next(m for m in doc["meshes"] if m["name"] == mesh_name)["primitives"]
+    index = primitives[0]["attributes"].get("COLOR_0")
+    if index is None:
+        return None
+    accessor = doc["accessors"][index]
+    view = doc["bufferViews"][accessor["bufferView"]]
+    data = (exported / case / doc["buffers"][view["buffer"]]["uri"]).read_bytes()
+    dtype = {5126: "<f4", 5123: "<u2", 5121: "u1"}[accessor["componentType"]]
+    channels = 4 if accessor["type"] == "VEC4" else 3
+    start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+    values = np.frombuffer(data, dtype=dtype, count=accessor["count"] * channels, offset=start)
+    values = values.reshape(-1, channels)[:, :3].astype(float)
+    if accessor["componentType"] != 5126:
+        values /= np.iinfo(dtype).max
+    assert np.ptp(values, axis=0).max() < 1e-3, values
+    return values[0]
+
+
+def test_colour_attributes_that_materials_read_are_exported_where_they_are_read(exported, cli):
+    case = "read_colour_attributes"
+    doc = document(exported, case)
+    assert vertex_colour_of(exported, case, doc, "Rendered") == pytest.approx([0.1] * 3, abs=1e-3)
+    # The attribute the node names, not the render one; the render one is set back after.
+    assert vertex_colour_of(exported, case, doc, "Named") == pytest.approx([0.2] * 3, abs=1e-3)
+    assert result(exported, case)["render_colour_attributes_after"]["Named"] == 0
+    assert vertex_colour_of(exported, case, doc, "Unread") is None
+    assert vertex_colour_of(exported, case, doc, "Missing") is None
+    two = next(m for m in doc["meshes"] if m["name"] == "TwoRead")["primitives"]
+    assert len(two) == 2 and all("COLOR_0" in p["attributes"] for p in two)
+    warnings = own_warnings(exported, case)
+    assert any("'Missing'" in w and "'Absent', which the mesh does not have" in w for w in warnings), warnings
+    assert any("'TwoRead'" in w and "all read 'A'" in w for w in warnings), warnings
+    assert len(warnings) == 2 + sum("Principled BSDF is exported as a Lambertian" in w for w in warnings), warnings
+    assert np.isfinite(render_mean(cli, exported, case))
+
+
 def test_volumes_that_cycles_adds_up_are_reported(exported):
     warnings = own_warnings(exported, "added_volumes")
     world = [w for w in warnings if w.startswith("world 'Fog'")]

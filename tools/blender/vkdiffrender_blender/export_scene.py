@@ -19,7 +19,8 @@ import mathutils
 from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper
 
-from . import export_checks, gltf_json, grid_media, mappings, node_graph, scene_checks, texture_lookups
+from . import (export_checks, gltf_json, grid_media, mappings, node_graph, scene_checks, texture_lookups,
+               vertex_colours)
 from .axes import blender_to_gltf
 from .gltf_json import EXTENSION, TRANSMISSION_EXTENSIONS, medium_json
 from .rendered_objects import rendered_objects
@@ -29,14 +30,14 @@ class ExportError(Exception):
     """A scene or path the export cannot write a loadable scene for; nothing is written."""
 
 
-def run_gltf_exporter(filepath):
+def run_gltf_exporter(filepath, colours):
     """The scene at the current frame, objects as the render shows them (renders_as_cycles,
-    modifiers_as_rendered). Without vertex colours, which glTF multiplies into the base
-    colour and Cycles does not unless the material reads them."""
+    modifiers_as_rendered). With every mesh's render colour attribute as COLOR_0 where
+    COLOURS (vertex_colours)."""
     bpy.ops.export_scene.gltf(filepath=filepath, export_format="GLTF_SEPARATE", export_cameras=True,
                               export_lights=True, export_apply=True, export_yup=True,
                               export_normals=True, export_materials="EXPORT", export_extras=False,
-                              export_colors=False,
+                              export_colors=colours,
                               export_animations=False, export_current_frame=True,
                               use_selection=False, use_visible=False, use_renderable=True)
 
@@ -190,11 +191,13 @@ def set_surfaces(doc, warnings):
             continue
         what = f"material '{blender_material.name}'"
         pbr = material.setdefault("pbrMetallicRoughness", {})
-        # A Color the exporter wrote as a texture is that texture times a factor of 1.
+        # A Color the exporter wrote as a texture, or as vertex colours, is that times a
+        # factor of 1.
         textured = {"Color": (1.0, 1.0, 1.0, 1.0)}
         if node.bl_idname == "ShaderNodeBsdfDiffuse":
+            carried = "baseColorTexture" in pbr or vertex_colours.attribute_read(blender_material) is not None
             albedo = mappings.base_color_to_albedo(node_graph.constant(
-                node, "Color", warnings, what, textured if "baseColorTexture" in pbr else None))
+                node, "Color", warnings, what, textured if carried else None))
             pbr["baseColorFactor"] = [*albedo, 1.0]
             if node.inputs["Roughness"].default_value > 0.0 or node_graph.is_fed(node.inputs["Roughness"]):
                 warnings.append(f"{what}: Diffuse BSDF roughness (Oren-Nayar) is exported as Lambertian")
@@ -505,10 +508,13 @@ def export_scene(context, filepath):
     try:
         staged = os.path.join(staging, os.path.basename(filepath))
         with modifiers_as_rendered():
-            with renders_as_cycles(scene, view_layer):
-                run_gltf_exporter(staged)
+            colours = vertex_colours.colour_exports([r.object for r in rendered_objects(view_layer)],
+                                                    vertex_colours.reading_materials(), warnings)
+            with renders_as_cycles(scene, view_layer), vertex_colours.attributes_read_as_render(colours, warnings):
+                run_gltf_exporter(staged, colours=bool(colours))
             with open(staged, encoding="utf-8") as f:
                 doc = json.load(f)
+            vertex_colours.keep_only_where_read(doc, colours)
             set_surfaces(doc, warnings)
             set_orthographic_views(doc, scene)
             texture_lookups.warn_texture_lookups(doc, warnings)

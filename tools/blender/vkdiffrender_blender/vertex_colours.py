@@ -1,0 +1,105 @@
+"""Colour attributes that a material reads as its surface colour, exported as glTF's
+COLOR_0, which multiplies the base colour factor. Blender's glTF exporter writes the
+render colour attribute of every mesh as COLOR_0 when asked to, whether its material reads
+it or not, where Cycles uses an attribute only where a node reads it: the export asks for
+them only when some material reads one, and takes COLOR_0 off the other materials'
+primitives."""
+import contextlib
+
+import bpy
+
+from . import node_graph
+
+# The input of each exported surface shader that COLOR_0 multiplies.
+COLOUR_INPUTS = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffuse": "Color"}
+
+
+def attribute_read(material):
+    """The name of the colour attribute whose Color output feeds MATERIAL's surface colour
+    directly (through reroutes), "" for a Color Attribute node left on the render colour
+    attribute; None where none does."""
+    node = node_graph.surface_node(material)
+    if node is None or node.bl_idname not in COLOUR_INPUTS:
+        return None
+    link = node_graph.source_link(node.inputs[COLOUR_INPUTS[node.bl_idname]])
+    if link is None or link.from_socket.name != "Color":
+        return None
+    source = link.from_node
+    if source.bl_idname == "ShaderNodeVertexColor":
+        return source.layer_name
+    if source.bl_idname == "ShaderNodeAttribute" and source.attribute_type == "GEOMETRY":
+        return source.attribute_name
+    return None
+
+
+def reading_materials():
+    """Names of the materials whose surface colour a colour attribute feeds."""
+    return {m.name for m in bpy.data.materials if m.users and attribute_read(m) is not None}
+
+
+def colour_exports(objects, readers, warnings):
+    """{mesh: (the colour attribute to export as its COLOR_0, the materials that read it)}
+    for the mesh objects of OBJECTS whose materials among READERS read one, with a warning
+    where that differs from Cycles: a material reading an attribute the mesh lacks (Cycles
+    reads black; it is exported without vertex colours), or a mesh whose materials read
+    different ones (the exporter writes one a mesh)."""
+    exports = {}
+    for obj in sorted({o for o in objects if o.type == "MESH"}, key=lambda o: o.name):
+        attributes = obj.data.color_attributes
+        render = attributes[attributes.render_color_index].name if attributes.render_color_index >= 0 else None
+        read = {}
+        for slot in obj.material_slots:
+            if slot.material is None or slot.material.name not in readers:
+                continue
+            name = attribute_read(slot.material) or render
+            if name is None or attributes.find(name) < 0:
+                warnings.append(f"object '{obj.name}': material '{slot.material.name}' reads colour attribute "
+                                f"'{name or ''}', which the mesh does not have: Cycles renders the colour black, "
+                                f"vkdiffrender (without vertex colours) white times the factor")
+                continue
+            read[slot.material.name] = name
+        names = sorted(set(read.values()))
+        if len(names) > 1:
+            warnings.append(f"object '{obj.name}': its materials read colour attributes {names}, but a mesh is "
+                            f"exported with one; all read '{names[0]}'")
+        if names:
+            exports[obj.data] = (names[0], set(read))
+    return exports
+
+
+@contextlib.contextmanager
+def attributes_read_as_render(exports, warnings):
+    """The glTF exporter writes a mesh's render colour attribute: for the export it is the
+    one EXPORTS (colour_exports) gives, and is set back after."""
+    changed = []
+    for mesh, (name, _) in exports.items():
+        attributes = mesh.color_attributes
+        index = attributes.find(name)
+        if index == attributes.render_color_index:
+            continue
+        if mesh.library is not None:
+            warnings.append(f"mesh '{mesh.name}': from a linked library, so its render colour attribute cannot be "
+                            f"set to '{name}', which its materials read, for the export")
+            continue
+        changed.append((mesh, attributes.render_color_index))
+        attributes.render_color_index = index
+        mesh.update()
+    try:
+        yield
+    finally:
+        for mesh, index in reversed(changed):
+            mesh.color_attributes.render_color_index = index
+            mesh.update()
+
+
+def keep_only_where_read(doc, exports):
+    """Takes COLOR_0 off every primitive but those of a mesh and material of EXPORTS
+    (colour_exports; the accessors stay, unused)."""
+    kept = {(mesh.name, material) for mesh, (_, materials) in exports.items() for material in materials}
+    materials = doc.get("materials", [])
+    for mesh in doc.get("meshes", []):
+        for primitive in mesh.get("primitives", []):
+            index = primitive.get("material")
+            name = materials[index].get("name") if index is not None and index < len(materials) else None
+            if (mesh.get("name"), name) not in kept:
+                primitive.get("attributes", {}).pop("COLOR_0", None)
