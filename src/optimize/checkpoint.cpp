@@ -90,7 +90,7 @@ public:
                          (idEnd == std::string::npos ? message : message.substr(idEnd + 2)));
         }
         // A checkpoint is written once per key; a repeated one was edited by hand.
-        if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, "given twice in one object; give each key once");
+        if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, kRepeatedKeyProblem);
         Json& document = parsed.document;
         if (!document.is_object()) fail("", std::string("expected a JSON object, got ") + document.type_name());
         if (!document.contains("format") ||

@@ -43,7 +43,7 @@ public:
     Json parse() const {
         try {
             JsonWithRepeatedKey parsed = parseJsonNotingRepeatedKeys(readRegularFile(file_));
-            if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, "given twice in one object; give each key once");
+            if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, kRepeatedKeyProblem);
             if (!parsed.document.is_object()) fail("", "expected a JSON object");
             return std::move(parsed.document);
         } catch (const Json::exception& e) {

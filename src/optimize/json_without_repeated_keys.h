@@ -15,6 +15,9 @@ struct JsonWithRepeatedKey {
     std::string repeatedKey;
 };
 
+// What a reader says of JsonWithRepeatedKey::repeatedKey.
+inline constexpr const char* kRepeatedKeyProblem = "given twice in one object; give each key once";
+
 // Throws nlohmann::json::parse_error where `text` is not JSON.
 JsonWithRepeatedKey parseJsonNotingRepeatedKeys(std::string_view text);
 

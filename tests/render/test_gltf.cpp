@@ -116,14 +116,10 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
         }
         size_t positionsOffset = bin.size();
         append(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
-        size_t normalsOffset = bin.size();
-        append(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
-        size_t colorsOffset = bin.size();
-        append(m.colors.data(), m.colors.size() * sizeof(glm::vec4));
         size_t indicesOffset = bin.size();
         append(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
         size_t view = views.size();
-        views.push_back({{"buffer", 0}, {"byteOffset", positionsOffset}, {"byteLength", normalsOffset - positionsOffset}});
+        views.push_back({{"buffer", 0}, {"byteOffset", positionsOffset}, {"byteLength", indicesOffset - positionsOffset}});
         views.push_back({{"buffer", 0}, {"byteOffset", indicesOffset}, {"byteLength", bin.size() - indicesOffset}});
         size_t accessor = accessors.size();
         accessors.push_back({{"bufferView", view}, {"componentType", 5126}, {"count", m.positions.size()},
@@ -131,20 +127,21 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
         accessors.push_back({{"bufferView", view + 1}, {"componentType", 5125},
                              {"count", 3 * m.triangles.size()}, {"type", "SCALAR"}});
         nlohmann::json attributes = {{"POSITION", accessor}};
-        if (!m.normals.empty()) {
-            views.push_back(
-                {{"buffer", 0}, {"byteOffset", normalsOffset}, {"byteLength", colorsOffset - normalsOffset}});
-            accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5126},
-                                 {"count", m.normals.size()}, {"type", "VEC3"}});
-            attributes["NORMAL"] = accessors.size() - 1;
-        }
-        if (!m.colors.empty()) {
-            views.push_back(
-                {{"buffer", 0}, {"byteOffset", colorsOffset}, {"byteLength", indicesOffset - colorsOffset}});
-            accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5126},
-                                 {"count", m.colors.size()}, {"type", "VEC4"}});
-            attributes["COLOR_0"] = accessors.size() - 1;
-        }
+        // A float vertex attribute of `count` elements of `type`, where the mesh has one.
+        auto addAttribute = [&](const char* name, const void* data, size_t count, size_t elementBytes,
+                                const char* type) {
+            if (count == 0) {
+                return;
+            }
+            size_t offset = bin.size();
+            append(data, count * elementBytes);
+            views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", count * elementBytes}});
+            accessors.push_back(
+                {{"bufferView", views.size() - 1}, {"componentType", 5126}, {"count", count}, {"type", type}});
+            attributes[name] = accessors.size() - 1;
+        };
+        addAttribute("NORMAL", m.normals.data(), m.normals.size(), sizeof(glm::vec3), "VEC3");
+        addAttribute("COLOR_0", m.colors.data(), m.colors.size(), sizeof(glm::vec4), "VEC4");
         nodes.push_back({{"mesh", meshJson.size()}});
         meshJson.push_back({{"primitives", {{{"attributes", attributes},
                                            {"indices", accessor + 1},
