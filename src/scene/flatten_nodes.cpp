@@ -12,6 +12,7 @@
 
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_lights.h"
+#include "scene/texture_coordinate_set.h"
 #include "scene/unique_name.h"
 
 namespace vkdr {
@@ -184,10 +185,14 @@ private:
         decoded.field = field;
         decoded.positions = readVec3s(model_, position->second, diagnostics_, field + ".attributes.POSITION");
         decoded.uvs.assign(decoded.positions.size(), glm::vec2(0.0f));
-        if (auto texcoord = primitive.attributes.find("TEXCOORD_0");
-            texcoord != primitive.attributes.end()) {
-            decoded.uvs = readTexcoords(model_, texcoord->second, diagnostics_, field + ".attributes.TEXCOORD_0");
-            requireOnePerPosition(decoded.uvs.size(), decoded, field + ".attributes.TEXCOORD_0");
+        const std::string texcoordName = "TEXCOORD_" + std::to_string(textureCoordinateSetOf(primitive.material));
+        if (auto texcoord = primitive.attributes.find(texcoordName); texcoord != primitive.attributes.end()) {
+            decoded.uvs = readTexcoords(model_, texcoord->second, diagnostics_, field + ".attributes." + texcoordName);
+            requireOnePerPosition(decoded.uvs.size(), decoded, field + ".attributes." + texcoordName);
+        } else if (texcoordName != "TEXCOORD_0") {
+            diagnostics_.warn(field + ".attributes", "no " + texcoordName + ", which the textures of material " +
+                                                         std::to_string(primitive.material) +
+                                                         " look up: its texture coordinates are (0, 0)");
         }
         if (auto color = primitive.attributes.find("COLOR_0"); color != primitive.attributes.end()) {
             decoded.colors = readColors(model_, color->second, diagnostics_, field + ".attributes.COLOR_0");
@@ -298,6 +303,20 @@ private:
         return triangles;
     }
 
+    // The TEXCOORD set whose uvs a primitive of glTF material `material` (-1: the default
+    // material) keeps, once per material.
+    int textureCoordinateSetOf(int material) {
+        if (material < 0 || size_t(material) >= model_.materials.size()) {
+            return 0;  // the default material, or one materialIndex refuses
+        }
+        auto [found, added] = textureCoordinateSets_.try_emplace(material, 0);
+        if (added) {
+            found->second = materialTextureCoordinateSet(model_.materials[size_t(material)],
+                                                         indexed("materials", size_t(material)), diagnostics_);
+        }
+        return found->second;
+    }
+
     uint32_t materialIndex(int material, const std::string& field) {
         if (material >= 0) {
             if (size_t(material) >= model_.materials.size()) {
@@ -403,6 +422,7 @@ private:
     size_t visits_ = 0;           // nodes visited, counting each instance
     std::map<size_t, std::vector<DecodedPrimitive>> decodedMeshes_;  // by mesh index
     std::optional<uint32_t> defaultMaterial_;
+    std::map<int, int> textureCoordinateSets_;  // glTF material -> its TEXCOORD set
     std::vector<MeshInstance> instances_;
 };
 

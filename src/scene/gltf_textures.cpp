@@ -48,19 +48,10 @@ SrgbTextureCache::MappedTexture SrgbTextureCache::textureFor(const tinygltf::Tex
                                           " out of range (" +
                                           std::to_string(model_.textures.size()) + " textures)");
     }
-    // The transform's texCoord, where it has one, replaces the texture's.
-    std::string texCoordField = std::string(field) + ".texCoord";
-    double texCoord = info.texCoord;
+    // Which TEXCOORD set the texture looks up decides its primitives' uvs
+    // (materialTextureCoordinateSet).
     if (auto transform = info.extensions.find(kTextureTransformExtension); transform != info.extensions.end()) {
-        const std::string transformField = std::string(field) + ".extensions." + kTextureTransformExtension;
-        mapped.mapping = transformOf(transform->second, transformField);
-        if (transform->second.Has("texCoord")) {
-            texCoordField = member(transformField, "texCoord");
-            texCoord = readNumber(diagnostics_, transform->second, transformField, "texCoord", 0.0);
-        }
-    }
-    if (texCoord != 0.0) {
-        diagnostics_.warn(texCoordField, "only TEXCOORD_0 is read; the texture is looked up with it");
+        mapped.mapping = transformOf(transform->second, std::string(field) + ".extensions." + kTextureTransformExtension);
     }
     const tinygltf::Texture& texture = model_.textures[size_t(info.index)];
     std::string textureField = indexed("textures", size_t(info.index));

@@ -107,6 +107,11 @@ int GltfBuilder::addMesh(const std::string& name, const MeshData& mesh, int mate
     return int(document_["meshes"].size() - 1);
 }
 
+void GltfBuilder::addVec2Attribute(int mesh, const std::string& name, const std::vector<glm::vec2>& values) {
+    document_["meshes"][size_t(mesh)]["primitives"][0]["attributes"][name] =
+        addAccessor(values.data(), values.size() * sizeof(glm::vec2), values.size(), kFloat, "VEC2", false);
+}
+
 int GltfBuilder::addMaterial(json material) {
     document_["materials"].push_back(std::move(material));
     return int(document_["materials"].size() - 1);

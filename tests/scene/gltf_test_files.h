@@ -35,6 +35,8 @@ public:
     // Adds a node and lists it in the scene when `root`; returns its index.
     int addNode(json node, bool root = true);
     int addCamera(json camera);
+    // A float VEC2 attribute `name` (e.g. "TEXCOORD_1") of mesh `mesh`'s primitive.
+    void addVec2Attribute(int mesh, const std::string& name, const std::vector<glm::vec2>& values);
     // Raw bytes appended to the buffer, with a buffer view; returns the view index.
     int addBufferView(const std::vector<unsigned char>& bytes);
 

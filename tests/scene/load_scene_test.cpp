@@ -181,6 +181,77 @@ TEST(LoadScene, ReadsSamplerWrapModesAndTextureTransforms) {
     EXPECT_NEAR(glm::dot(m.emissionMapping.vRow, other), 0.25f, 1e-6f);
 }
 
+// floorQuad's uvs mirrored, (1 - u, v).
+std::vector<glm::vec2> mirroredQuadUvs() {
+    std::vector<glm::vec2> mirrored;
+    for (const glm::vec2& uv : floorQuad(1.0f).uvs) {
+        mirrored.emplace_back(1.0f - uv.x, uv.y);
+    }
+    return mirrored;
+}
+
+// A textured quad whose material's base colour texture reference is `baseColor` and
+// emission texture reference `emission` (null: none); its primitive has TEXCOORD_0 (the
+// quad's uvs) and TEXCOORD_1 (them mirrored, 1 - u).
+GltfBuilder quadWithTwoUvSets(json baseColor, json emission = nullptr) {
+    GltfBuilder builder;
+    builder.document()["images"] = {
+        {{"uri", "data:image/bmp;base64," + base64(bmpImage(1, 1, {{255, 255, 255}}))}}};
+    builder.document()["textures"] = {{{"source", 0}}};
+    json material = {{"pbrMetallicRoughness", {{"baseColorTexture", std::move(baseColor)}}}};
+    if (!emission.is_null()) {
+        material["emissiveFactor"] = {1, 1, 1};
+        material["emissiveTexture"] = std::move(emission);
+    }
+    int mesh = builder.addMesh("quad", floorQuad(1.0f), builder.addMaterial(std::move(material)));
+    builder.addVec2Attribute(mesh, "TEXCOORD_1", mirroredQuadUvs());
+    builder.addNode({{"mesh", mesh}});
+    return builder;
+}
+
+// A texture's texCoord (or its KHR_texture_transform's, which replaces it) picks the
+// TEXCOORD set its primitives' uvs come from.
+TEST(LoadScene, ReadsTheTextureCoordinateSetTheTexturesName) {
+    TemporaryDirectory directory;
+    LoadedScene second = loadScene(quadWithTwoUvSets({{"index", 0}, {"texCoord", 1}}).writeGltf(directory / "1.gltf"));
+    EXPECT_EQ(second.scene.uvs, mirroredQuadUvs());
+    EXPECT_TRUE(second.warnings.empty());
+
+    GltfBuilder transformed = quadWithTwoUvSets(
+        {{"index", 0}, {"texCoord", 1}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 0}}}}}});
+    transformed.document()["extensionsUsed"] = {"KHR_texture_transform"};
+    LoadedScene first = loadScene(transformed.writeGltf(directory / "0.gltf"));
+    EXPECT_EQ(first.scene.uvs, floorQuad(1.0f).uvs);
+    EXPECT_TRUE(first.warnings.empty());
+
+    // Emission alone decides where the base colour has no texture.
+    GltfBuilder emissive = quadWithTwoUvSets(nullptr, {{"index", 0}, {"texCoord", 1}});
+    emissive.document()["materials"][0]["pbrMetallicRoughness"].erase("baseColorTexture");
+    EXPECT_EQ(loadScene(emissive.writeGltf(directory / "e.gltf")).scene.uvs, mirroredQuadUvs());
+}
+
+TEST(LoadScene, WarnsOfTextureCoordinateSetsItCannotFollow) {
+    TemporaryDirectory directory;
+    // One set of uvs a primitive: the base colour texture's wins.
+    LoadedScene two = loadScene(quadWithTwoUvSets({{"index", 0}, {"texCoord", 1}}, {{"index", 0}, {"texCoord", 0}})
+                                    .writeGltf(directory / "two.gltf"));
+    EXPECT_EQ(two.scene.uvs, mirroredQuadUvs());
+    ASSERT_EQ(two.warnings.size(), 1u);
+    EXPECT_NE(two.warnings[0].find("materials[0].emissiveTexture: looks up TEXCOORD_0 and the base colour texture "
+                                   "TEXCOORD_1; a material's textures share one set: both use TEXCOORD_1"),
+              std::string::npos)
+        << two.warnings[0];
+    // A set the primitive does not have.
+    LoadedScene missing =
+        loadScene(quadWithTwoUvSets({{"index", 0}, {"texCoord", 2}}).writeGltf(directory / "missing.gltf"));
+    EXPECT_EQ(missing.scene.uvs, std::vector<glm::vec2>(4, glm::vec2(0.0f)));
+    ASSERT_EQ(missing.warnings.size(), 1u);
+    EXPECT_NE(missing.warnings[0].find("meshes[0].primitives[0].attributes: no TEXCOORD_2, which the textures of "
+                                       "material 0 look up: its texture coordinates are (0, 0)"),
+              std::string::npos)
+        << missing.warnings[0];
+}
+
 TEST(LoadScene, MultipliesEmissionByEmissiveStrength) {
     TemporaryDirectory directory;
     GltfBuilder builder;
