@@ -29,7 +29,8 @@ const std::set<std::string> kKeys = {"scene", "views", "cameras", "width", "heig
                                      "max_depth", "seed", "iterations", "optimizer", "learning_rate",
                                      "learning_rates", "learning_rate_decay", "learning_rate_decay_start", "log_parameters", "adam_epsilon", "loss", "true", "start",
                                      "parameters", "smoothness", "sparsity", "total_variation", "grid_levels", "held_out_views"};
-const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees"};
+const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", "yfov_degrees",
+                                           "orthographic_half_height"};
 
 // Reads one experiment file, prefixing every error with the file and the key at fault.
 class ExperimentReader {
@@ -159,6 +160,17 @@ public:
             if (yfov >= 180.0) fail(where + ".yfov_degrees", "must be < 180");
             camera.yfovDegrees = float(yfov);
         }
+        if (value.contains("orthographic_half_height")) {
+            if (value.contains("yfov_degrees")) {
+                fail(where, "give yfov_degrees (a perspective camera) or orthographic_half_height (an orthographic "
+                            "one), not both");
+            }
+            double halfHeight = positive(value["orthographic_half_height"], where + ".orthographic_half_height");
+            if (!(halfHeight <= double(std::numeric_limits<float>::max()))) {
+                fail(where + ".orthographic_half_height", "beyond float range");
+            }
+            camera.orthographicHalfHeight = float(halfHeight);
+        }
         glm::vec3 forward = camera.lookAt - camera.position;
         if (glm::length(forward) == 0.0f || glm::length(glm::cross(forward, camera.up)) == 0.0f) {
             fail(where, "look_at must differ from position, and up must not be parallel to the view direction");
@@ -267,6 +279,7 @@ Camera sceneCamera(const ExperimentCamera& camera) {
     result.name = camera.name;
     result.cameraToWorld = glm::inverse(glm::lookAt(camera.position, camera.lookAt, camera.up));
     result.yfov = glm::radians(camera.yfovDegrees);
+    result.orthographicHalfHeight = camera.orthographicHalfHeight;
     return result;
 }
 

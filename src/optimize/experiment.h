@@ -19,6 +19,8 @@ struct ExperimentCamera {
     glm::vec3 lookAt{0.0f, 0.0f, -1.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float yfovDegrees = 40.0f;
+    // > 0: an orthographic camera, viewing this half height (Camera::orthographicHalfHeight).
+    float orthographicHalfHeight = 0.0f;
 };
 
 struct ParameterValue {

@@ -271,6 +271,24 @@ TEST(Experiment, AddsItsCamerasToTheScene) {
     EXPECT_NEAR(forward.z, 1.0f, 1e-6f);
     EXPECT_NEAR(side.yfov, glm::radians(30.0f), 1e-6f);
 
+    // An orthographic one: parallel rays through a view of that half height.
+    experiment["cameras"][0].erase("yfov_degrees");
+    experiment["cameras"][0]["orthographic_half_height"] = 1.5;
+    read = readExperiment(writeExperiment(scratch, experiment));
+    scene = loadScene(read.scene).scene;
+    prepareExperimentScene(read, scene);
+    EXPECT_TRUE(scene.cameras[1].orthographic());
+    EXPECT_EQ(scene.cameras[1].orthographicHalfHeight, 1.5f);
+    EXPECT_FALSE(scene.cameras[0].orthographic());
+    experiment["cameras"][0]["orthographic_half_height"] = 0.0;
+    expectReadError(scratch, experiment, {"cameras[0].orthographic_half_height", "finite number > 0"});
+    experiment["cameras"][0]["orthographic_half_height"] = 1e39;
+    expectReadError(scratch, experiment, {"cameras[0].orthographic_half_height", "beyond float range"});
+    experiment["cameras"][0]["orthographic_half_height"] = 1.5;
+    experiment["cameras"][0]["yfov_degrees"] = 30;
+    expectReadError(scratch, experiment, {"cameras[0]", "not both"});
+    experiment["cameras"][0].erase("yfov_degrees");
+
     experiment["cameras"][0]["look_at"] = {0, 2, -4};
     expectReadError(scratch, experiment, {"cameras[0]", "look_at must differ"});
     experiment["cameras"][0]["name"] = "";
