@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "image/regular_file.h"
 #include "optimize/loss_kind_text.h"
+#include "scene/parameters.h"
 
 namespace vkdr {
 namespace {
@@ -40,7 +41,11 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
         std::vector<std::string> targets;
         for (const TargetFile& target : inputs.targets) targets.push_back(targetIdentity(target));
         identity["targets"] = joined(targets, "; ");
-        identity["set"] = joined(inputs.assignments, " ");
+        std::vector<std::string> assignments;
+        for (const std::string& assignment : inputs.assignments) {
+            assignments.push_back(canonicalAssignment(assignment));
+        }
+        identity["set"] = joined(assignments, " ");
     } else {
         identity["experiment"] = fileIdentity(inputs.experiment);
     }

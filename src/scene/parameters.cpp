@@ -187,7 +187,14 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
     }
 }
 
-void applyAssignment(Scene& scene, std::string_view assignment) {
+namespace {
+
+struct ParsedAssignment {
+    std::string_view name;
+    std::vector<float> values;
+};
+
+ParsedAssignment parseAssignment(std::string_view assignment) {
     auto fail = [&](const std::string& problem) -> void {
         throw Error("assignment '" + std::string(assignment) + "': " + problem);
     };
@@ -196,9 +203,8 @@ void applyAssignment(Scene& scene, std::string_view assignment) {
     if (equals == std::string_view::npos || equals == 0) {
         fail("expected NAME=VALUE or NAME=VALUE,VALUE,VALUE");
     }
-    std::string_view name = assignment.substr(0, equals);
+    ParsedAssignment parsed{assignment.substr(0, equals), {}};
     std::string_view list = assignment.substr(equals + 1);
-    std::vector<float> values;
     while (true) {
         size_t comma = list.find(',');
         std::string_view text = list.substr(0, comma);
@@ -211,13 +217,31 @@ void applyAssignment(Scene& scene, std::string_view assignment) {
         if (ec == std::errc::result_out_of_range) {
             fail("'" + std::string(text) + "' is out of float range (magnitudes from 1.4e-45 to 3.4e+38, or 0)");
         }
-        values.push_back(value);
+        parsed.values.push_back(value);
         if (comma == std::string_view::npos) {
             break;
         }
         list.remove_prefix(comma + 1);
     }
-    setParameter(scene, name, values);
+    return parsed;
+}
+
+}  // namespace
+
+void applyAssignment(Scene& scene, std::string_view assignment) {
+    ParsedAssignment parsed = parseAssignment(assignment);
+    setParameter(scene, parsed.name, parsed.values);
+}
+
+std::string canonicalAssignment(std::string_view assignment) {
+    ParsedAssignment parsed = parseAssignment(assignment);
+    std::string text = std::string(parsed.name) + "=";
+    for (size_t i = 0; i < parsed.values.size(); ++i) {
+        char number[32];
+        auto [end, ec] = std::to_chars(number, number + sizeof(number), parsed.values[i]);
+        text += (i == 0 ? "" : ",") + std::string(number, end);
+    }
+    return text;
 }
 
 int32_t mediumGridOf(const Medium& medium, ParameterKind kind) {

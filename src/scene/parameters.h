@@ -36,6 +36,12 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
 // Applies "NAME=v" or "NAME=v,v,v" (the CLI's --set syntax).
 void applyAssignment(Scene& scene, std::string_view assignment);
 
+// The assignment with each value written as the shortest text that reads back as the
+// same float ("x=0.10" and "x=1e-1" both give "x=0.1"): two assignments that set the same
+// values give the same text. Throws vkdr::Error as applyAssignment does for a malformed
+// one (the parameter's name is not checked).
+std::string canonicalAssignment(std::string_view assignment);
+
 // The index in Scene::densityGrids of a medium's grid of a grid kind (isGridKind): its
 // density or its emission grid; -1 where it has none, or for another kind.
 int32_t mediumGridOf(const Medium& medium, ParameterKind kind);

@@ -186,6 +186,11 @@ TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
                                       {{}, {{"side", target}, {"", target}}, {"media/fog/g=0.2", "media/fog/sigma_s=1"}, 4, 6});
     EXPECT_EQ(command.at("targets"), "side=" + fileDigest(target) + "; " + fileDigest(target));
     EXPECT_EQ(command.at("set"), "media/fog/g=0.2 media/fog/sigma_s=1");
+    // The values set, not how they were typed.
+    EXPECT_EQ(runIdentity(job.sceneFile, job.options, job.loss,
+                          {{}, {{"side", target}}, {"media/fog/g=0.20", "media/fog/sigma_s=1e0,.5,1.000"}, 4, 6})
+                  .at("set"),
+              "media/fog/g=0.2 media/fog/sigma_s=1,0.5,1");
     EXPECT_EQ(command.at("spp"), "4");
     EXPECT_EQ(command.at("max_depth"), "6");
     EXPECT_EQ(command.at("scene"), "cornell_fog.gltf, " + fileDigest(kFogScene));
