@@ -51,7 +51,8 @@ SrgbTextureCache::MappedTexture SrgbTextureCache::textureFor(const tinygltf::Tex
     // Which TEXCOORD set the texture looks up decides its primitives' uvs
     // (materialTextureCoordinateSet).
     if (auto transform = info.extensions.find(kTextureTransformExtension); transform != info.extensions.end()) {
-        mapped.mapping = transformOf(transform->second, std::string(field) + ".extensions." + kTextureTransformExtension);
+        mapped.mapping =
+            transformOf(transform->second, std::string(field) + ".extensions." + kTextureTransformExtension);
     }
     const tinygltf::Texture& texture = model_.textures[size_t(info.index)];
     std::string textureField = indexed("textures", size_t(info.index));

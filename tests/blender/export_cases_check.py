@@ -133,6 +133,14 @@ def read_colour_attributes(scene):
         polygon.material_index = 1
 
 
+def bright_colour_attribute(scene):
+    """A cube whose material reads its colour attribute, one channel of which is beyond 1
+    (a float attribute may hold any value)."""
+    cube = painted_cube("Bright", 0.0, colour_reading_material("ReadsBright", ""), ["Col"])
+    for value in cube.data.color_attributes["Col"].data:
+        value.color = (0.5, 1.5, 0.5, 1.0)
+
+
 def volume_cube(name, location):
     bpy.ops.mesh.primitive_cube_add(size=1.0, location=location)
     cube = bpy.context.object
@@ -479,7 +487,7 @@ def packed_texture(scene, colour=None):
 
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
-         "read_colour_attributes": read_colour_attributes,
+         "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,

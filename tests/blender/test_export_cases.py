@@ -346,6 +346,8 @@ def test_an_orthographic_camera_is_exported_with_the_view_cycles_renders(exporte
     ("glb_path", "scene.glb: the export writes a .gltf with a .bin beside it; give a path ending in .gltf"),
     ("area_light_of_no_size", "light 'Panel': an area light of no area"),
     ("area_emitter_named_like_a_material", "light 'Lamp': its emitter's material would be named 'Lamp.area'"),
+    ("bright_colour_attribute", "mesh 'Bright': colour attribute 'Col' holds (0.5, 1.5, 0.5) at element 0; vertex "
+                                "colours must be within [0, 1]"),
 ])
 def test_what_cannot_be_exported_is_refused_before_anything_is_written(exported, case, message):
     assert message in result(exported, case)["error"]

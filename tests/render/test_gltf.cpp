@@ -119,7 +119,8 @@ std::filesystem::path TestGltf::write(const std::filesystem::path& dir, const st
         size_t indicesOffset = bin.size();
         append(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
         size_t view = views.size();
-        views.push_back({{"buffer", 0}, {"byteOffset", positionsOffset}, {"byteLength", indicesOffset - positionsOffset}});
+        views.push_back(
+            {{"buffer", 0}, {"byteOffset", positionsOffset}, {"byteLength", indicesOffset - positionsOffset}});
         views.push_back({{"buffer", 0}, {"byteOffset", indicesOffset}, {"byteLength", bin.size() - indicesOffset}});
         size_t accessor = accessors.size();
         accessors.push_back({{"bufferView", view}, {"componentType", 5126}, {"count", m.positions.size()},

@@ -510,6 +510,9 @@ def export_scene(context, filepath):
         with modifiers_as_rendered():
             colours = vertex_colours.colour_exports([r.object for r in rendered_objects(view_layer)],
                                                     vertex_colours.reading_materials(), warnings)
+            beyond = vertex_colours.first_value_outside_unit_range(colours)
+            if beyond is not None:
+                raise ExportError(beyond)
             with renders_as_cycles(scene, view_layer), vertex_colours.attributes_read_as_render(colours, warnings):
                 run_gltf_exporter(staged, colours=bool(colours))
             with open(staged, encoding="utf-8") as f:

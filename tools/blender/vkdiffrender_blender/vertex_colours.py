@@ -7,6 +7,7 @@ primitives."""
 import contextlib
 
 import bpy
+import numpy as np
 
 from . import node_graph
 
@@ -65,6 +66,22 @@ def colour_exports(objects, readers, warnings):
         if names:
             exports[obj.data] = (names[0], set(read))
     return exports
+
+
+def first_value_outside_unit_range(exports):
+    """A message naming the first mesh of EXPORTS whose exported attribute holds a colour
+    channel outside [0, 1] (or not a number), which glTF's COLOR_0 cannot hold and
+    vkdiffrender refuses; None where every one is within."""
+    for mesh, (name, _) in exports.items():
+        attribute = mesh.color_attributes[name]
+        values = np.empty(len(attribute.data) * 4, dtype=np.float32)
+        attribute.data.foreach_get("color", values)
+        rgb = values.reshape(-1, 4)[:, :3]
+        outside = np.flatnonzero(~((rgb >= 0.0) & (rgb <= 1.0)).all(axis=1))
+        if outside.size:
+            return (f"mesh '{mesh.name}': colour attribute '{name}' holds {tuple(rgb[outside[0]].tolist())} at "
+                    f"element {outside[0]}; vertex colours must be within [0, 1] in every channel")
+    return None
 
 
 @contextlib.contextmanager
