@@ -100,7 +100,7 @@ def colour_reading_material(name, attribute):
     return material
 
 
-def painted_cube(name, x, material, attributes):
+def cube_with_colour_attributes(name, x, material, attributes):
     """A cube at X with MATERIAL and colour attributes of these names, each all of one grey
     (0.1 the first, 0.2 the second, ...); the first is the render colour attribute."""
     bpy.ops.mesh.primitive_cube_add(size=0.4, location=(x, 0.0, 0.5))
@@ -121,22 +121,35 @@ def painted_cube(name, x, material, attributes):
 def read_colour_attributes(scene):
     """Cubes whose materials read a colour attribute: the render one (Rendered), another
     one (Named, whose render attribute must be set back after the export), one the mesh
-    lacks (Missing), and two at once (TwoRead, one material on each half of its faces);
-    and a cube with an attribute no material reads (Unread)."""
-    painted_cube("Rendered", -2.0, colour_reading_material("ReadsRender", ""), ["Col", "Other"])
-    painted_cube("Named", -1.0, colour_reading_material("ReadsPaint", "Paint"), ["Col", "Paint"])
-    painted_cube("Missing", 0.0, colour_reading_material("ReadsAbsent", "Absent"), ["Col"])
-    painted_cube("Unread", 1.0, None, ["Col"])
-    two = painted_cube("TwoRead", 2.0, colour_reading_material("ReadsA", "A"), ["A", "B"])
+    lacks (Missing), two at once (TwoRead, one material on each half of its faces), and
+    each its own on two objects of one mesh (SharedA, SharedB); and a cube with an
+    attribute no material reads (Unread)."""
+    cube_with_colour_attributes("Rendered", -2.0, colour_reading_material("ReadsRender", ""), ["Col", "Other"])
+    cube_with_colour_attributes("Named", -1.0, colour_reading_material("ReadsPaint", "Paint"), ["Col", "Paint"])
+    cube_with_colour_attributes("Missing", 0.0, colour_reading_material("ReadsAbsent", "Absent"), ["Col"])
+    cube_with_colour_attributes("Unread", 1.0, None, ["Col"])
+    two = cube_with_colour_attributes("TwoRead", 2.0, colour_reading_material("ReadsA", "A"), ["A", "B"])
     two.data.materials.append(colour_reading_material("ReadsB", "B"))
     for polygon in two.data.polygons[:3]:
         polygon.material_index = 1
+    # One mesh, two objects, each with a material of its own (linked to the object) that
+    # reads the render colour attribute.
+    shared = cube_with_colour_attributes("SharedA", 3.0, None, ["Col"])
+    shared.data.name = "Shared"
+    twin = shared.copy()
+    twin.name = "SharedB"
+    twin.location.x = 4.0
+    bpy.context.scene.collection.objects.link(twin)
+    for obj in (shared, twin):
+        obj.data.materials.append(None)
+        obj.material_slots[0].link = "OBJECT"
+        obj.material_slots[0].material = colour_reading_material("Reads" + obj.name, "")
 
 
 def bright_colour_attribute(scene):
     """A cube whose material reads its colour attribute, one channel of which is beyond 1
     (a float attribute may hold any value)."""
-    cube = painted_cube("Bright", 0.0, colour_reading_material("ReadsBright", ""), ["Col"])
+    cube = cube_with_colour_attributes("Bright", 0.0, colour_reading_material("ReadsBright", ""), ["Col"])
     for value in cube.data.color_attributes["Col"].data:
         value.color = (0.5, 1.5, 0.5, 1.0)
 

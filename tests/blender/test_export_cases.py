@@ -105,11 +105,11 @@ def test_colour_attributes_are_not_exported_as_vertex_colours(exported):
     assert not any("COLOR_0" in p["attributes"] for m in doc["meshes"] for p in m["primitives"])
 
 
-def vertex_colour_of(exported, case, doc, mesh_name):
-    """The one colour (RGB, linear) of every vertex of the mesh's COLOR_0 (None without it)
-    in the case's scene.bin; the cubes of read_colour_attributes are of one colour each."""
+def vertex_colour_of(exported, case, doc, mesh_name, primitive=0):
+    """The one colour (RGB, linear) of every vertex of the primitive's COLOR_0 (None without
+    it) in the case's scene.bin; the cubes of read_colour_attributes are of one colour each."""
     primitives = next(m for m in doc["meshes"] if m["name"] == mesh_name)["primitives"]
-    index = primitives[0]["attributes"].get("COLOR_0")
+    index = primitives[primitive]["attributes"].get("COLOR_0")
     if index is None:
         return None
     accessor = doc["accessors"][index]
@@ -135,10 +135,16 @@ def test_colour_attributes_that_materials_read_are_exported_where_they_are_read(
     assert result(exported, case)["render_colour_attributes_after"]["Named"] == 0
     assert vertex_colour_of(exported, case, doc, "Unread") is None
     assert vertex_colour_of(exported, case, doc, "Missing") is None
-    two = next(m for m in doc["meshes"] if m["name"] == "TwoRead")["primitives"]
-    assert len(two) == 2 and all("COLOR_0" in p["attributes"] for p in two)
+    # Its materials read A and B: both primitives get A (0.1), with a warning.
+    assert len(next(m for m in doc["meshes"] if m["name"] == "TwoRead")["primitives"]) == 2
+    for primitive in (0, 1):
+        assert vertex_colour_of(exported, case, doc, "TwoRead", primitive) == pytest.approx([0.1] * 3, abs=1e-3)
+    # Two objects of one mesh, each with a material of its own: both read their colours.
+    shared = [p for m in doc["meshes"] if m["name"].startswith("Shared") for p in m["primitives"]]
+    assert len(shared) == 2 and all("COLOR_0" in p["attributes"] for p in shared), doc["meshes"]
     warnings = own_warnings(exported, case)
-    assert any("'Missing'" in w and "'Absent', which the mesh does not have" in w for w in warnings), warnings
+    assert any("'Missing'" in w and "'Absent', which is not among the mesh's colour attributes" in w
+               for w in warnings), warnings
     assert any("'TwoRead'" in w and "all read 'A'" in w for w in warnings), warnings
     assert len(warnings) == 2 + sum("Principled BSDF is exported as a Lambertian" in w for w in warnings), warnings
     assert np.isfinite(render_mean(cli, exported, case))

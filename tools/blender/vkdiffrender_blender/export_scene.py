@@ -513,7 +513,7 @@ def export_scene(context, filepath):
             beyond = vertex_colours.first_value_outside_unit_range(colours)
             if beyond is not None:
                 raise ExportError(beyond)
-            with renders_as_cycles(scene, view_layer), vertex_colours.attributes_read_as_render(colours, warnings):
+            with renders_as_cycles(scene, view_layer), vertex_colours.attributes_read_as_render(colours):
                 run_gltf_exporter(staged, colours=bool(colours))
             with open(staged, encoding="utf-8") as f:
                 doc = json.load(f)

@@ -18,18 +18,19 @@ COLOUR_INPUTS = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffus
 def attribute_read(material):
     """The name of the colour attribute whose Color output feeds MATERIAL's surface colour
     directly (through reroutes), "" for a Color Attribute node left on the render colour
-    attribute; None where none does."""
+    attribute; None where none does (a muted node passes nothing, and an Attribute node
+    without a name reads nothing)."""
     node = node_graph.surface_node(material)
     if node is None or node.bl_idname not in COLOUR_INPUTS:
         return None
     link = node_graph.source_link(node.inputs[COLOUR_INPUTS[node.bl_idname]])
-    if link is None or link.from_socket.name != "Color":
+    if link is None or link.from_socket.name != "Color" or link.from_node.mute:
         return None
     source = link.from_node
     if source.bl_idname == "ShaderNodeVertexColor":
         return source.layer_name
     if source.bl_idname == "ShaderNodeAttribute" and source.attribute_type == "GEOMETRY":
-        return source.attribute_name
+        return source.attribute_name or None
     return None
 
 
@@ -38,33 +39,51 @@ def reading_materials():
     return {m.name for m in bpy.data.materials if m.users and attribute_read(m) is not None}
 
 
+def render_attribute(mesh):
+    """The name of MESH's render colour attribute, None without one."""
+    attributes = mesh.color_attributes
+    return attributes[attributes.render_color_index].name if attributes.render_color_index >= 0 else None
+
+
 def colour_exports(objects, readers, warnings):
     """{mesh: (the colour attribute to export as its COLOR_0, the materials that read it)}
-    for the mesh objects of OBJECTS whose materials among READERS read one, with a warning
-    where that differs from Cycles: a material reading an attribute the mesh lacks (Cycles
-    reads black; it is exported without vertex colours), or a mesh whose materials read
-    different ones (the exporter writes one a mesh)."""
-    exports = {}
+    for the meshes of OBJECTS whose materials among READERS read one (a mesh shared by
+    several objects once, with the materials of all), with a warning where that differs
+    from Cycles: a material reading an attribute the mesh lacks (Cycles reads black; it is
+    exported without vertex colours), a mesh whose materials read different ones (the
+    exporter writes one a mesh), and a mesh from a linked library whose materials read
+    another than its render one (which the export cannot change; exported without)."""
+    read_by_mesh, first_object = {}, {}
     for obj in sorted({o for o in objects if o.type == "MESH"}, key=lambda o: o.name):
-        attributes = obj.data.color_attributes
-        render = attributes[attributes.render_color_index].name if attributes.render_color_index >= 0 else None
-        read = {}
+        first_object.setdefault(obj.data, obj)
+        read = read_by_mesh.setdefault(obj.data, {})
         for slot in obj.material_slots:
-            if slot.material is None or slot.material.name not in readers:
+            if slot.material is not None and slot.material.name in readers:
+                read[slot.material.name] = attribute_read(slot.material) or render_attribute(obj.data)
+    exports = {}
+    for mesh, read in read_by_mesh.items():
+        what = f"object '{first_object[mesh].name}'"
+        present = {}
+        for material, name in sorted(read.items()):
+            if name is not None and mesh.color_attributes.find(name) >= 0:
+                present[material] = name
                 continue
-            name = attribute_read(slot.material) or render
-            if name is None or attributes.find(name) < 0:
-                warnings.append(f"object '{obj.name}': material '{slot.material.name}' reads colour attribute "
-                                f"'{name or ''}', which the mesh does not have: Cycles renders the colour black, "
-                                f"vkdiffrender (without vertex colours) white times the factor")
-                continue
-            read[slot.material.name] = name
-        names = sorted(set(read.values()))
+            attribute = "the render colour attribute" if name is None else f"colour attribute '{name}'"
+            warnings.append(f"{what}: material '{material}' reads {attribute}, which is not among the mesh's colour "
+                            f"attributes: Cycles reads black (or, for an attribute of another kind, its values); "
+                            f"exported without vertex colours, so white times the factor")
+        names = sorted(set(present.values()))
         if len(names) > 1:
-            warnings.append(f"object '{obj.name}': its materials read colour attributes {names}, but a mesh is "
-                            f"exported with one; all read '{names[0]}'")
-        if names:
-            exports[obj.data] = (names[0], set(read))
+            warnings.append(f"{what}: its materials read colour attributes {names}, but a mesh is exported with "
+                            f"one; all read '{names[0]}'")
+        if not names:
+            continue
+        if mesh.library is not None and names[0] != render_attribute(mesh):
+            warnings.append(f"{what}: mesh '{mesh.name}' comes from a linked library, so the export cannot make "
+                            f"'{names[0]}', which its materials read, its render colour attribute; exported without "
+                            f"vertex colours")
+            continue
+        exports[mesh] = (names[0], set(present))
     return exports
 
 
@@ -85,22 +104,17 @@ def first_value_outside_unit_range(exports):
 
 
 @contextlib.contextmanager
-def attributes_read_as_render(exports, warnings):
+def attributes_read_as_render(exports):
     """The glTF exporter writes a mesh's render colour attribute: for the export it is the
     one EXPORTS (colour_exports) gives, and is set back after."""
     changed = []
     for mesh, (name, _) in exports.items():
         attributes = mesh.color_attributes
         index = attributes.find(name)
-        if index == attributes.render_color_index:
-            continue
-        if mesh.library is not None:
-            warnings.append(f"mesh '{mesh.name}': from a linked library, so its render colour attribute cannot be "
-                            f"set to '{name}', which its materials read, for the export")
-            continue
-        changed.append((mesh, attributes.render_color_index))
-        attributes.render_color_index = index
-        mesh.update()
+        if index != attributes.render_color_index:
+            changed.append((mesh, attributes.render_color_index))
+            attributes.render_color_index = index
+            mesh.update()
     try:
         yield
     finally:
