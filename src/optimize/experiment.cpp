@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "image/regular_file.h"
 #include "optimize/coarse_grid_gradient.h"
+#include "scene/orthographic_view.h"
 #include "optimize/density_grid_options.h"
 #include "optimize/grid_priors.h"
 #include "optimize/json_without_repeated_keys.h"
@@ -166,8 +167,8 @@ public:
                             "one), not both");
             }
             double halfHeight = positive(value["orthographic_half_height"], where + ".orthographic_half_height");
-            if (!(halfHeight <= double(std::numeric_limits<float>::max()))) {
-                fail(where + ".orthographic_half_height", "beyond float range");
+            if (!usableOrthographicHalfExtent(halfHeight)) {
+                fail(where + ".orthographic_half_height", "beyond float range, or so small that it rounds to 0");
             }
             camera.orthographicHalfHeight = float(halfHeight);
         }

@@ -32,6 +32,29 @@ std::string targetIdentity(const TargetFile& target) {
     return (target.camera.empty() ? "" : target.camera + "=") + fileDigest(target.file);
 }
 
+// A checkpoint's "set" entry, its assignments joined by spaces, with each written as
+// canonicalAssignment writes it: checkpoints written before the entry was canonical hold
+// the values as typed. A name may hold spaces, so words are joined until they make an
+// assignment; text that makes none is left as it is.
+std::string canonicalAssignments(const std::string& joinedAssignments) {
+    std::vector<std::string> assignments;
+    std::string pending;
+    size_t start = 0;
+    while (start <= joinedAssignments.size()) {
+        size_t space = joinedAssignments.find(' ', start);
+        if (space == std::string::npos) space = joinedAssignments.size();
+        pending += (pending.empty() ? "" : " ") + joinedAssignments.substr(start, space - start);
+        try {
+            assignments.push_back(canonicalAssignment(pending));
+            pending.clear();
+        } catch (const Error&) {
+            // Not an assignment yet: the next word may go on with the name.
+        }
+        start = space + 1;
+    }
+    return pending.empty() ? joined(assignments, " ") : joinedAssignments;
+}
+
 }  // namespace
 
 RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOptions& options, LossKind loss,
@@ -92,11 +115,14 @@ std::string fileDigest(const std::filesystem::path& file) {
     return text;
 }
 
-void requireSameRun(const std::filesystem::path& checkpoint, const RunIdentity& written, const RunIdentity& current) {
+void requireSameRun(const std::filesystem::path& checkpoint, const RunIdentity& writtenAsStored,
+                    const RunIdentity& current) {
     auto valueIn = [](const RunIdentity& identity, const std::string& name) {
         auto found = identity.find(name);
         return found == identity.end() ? std::string("(none)") : "'" + found->second + "'";
     };
+    RunIdentity written = writtenAsStored;
+    if (auto set = written.find("set"); set != written.end()) set->second = canonicalAssignments(set->second);
     RunIdentity names = written;
     names.insert(current.begin(), current.end());
     for (const auto& [name, ignored] : names) {

@@ -41,7 +41,8 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
 std::string fileDigest(const std::filesystem::path& file);
 
 // Throws vkdr::Error naming `checkpoint` and the first entry in which `current` differs
-// from `written`, with both values.
+// from `written`, with both values. `written`'s --set values are compared as the floats
+// they set, also where an older checkpoint holds them as typed.
 void requireSameRun(const std::filesystem::path& checkpoint, const RunIdentity& written, const RunIdentity& current);
 
 }  // namespace vkdr

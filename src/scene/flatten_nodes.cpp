@@ -12,6 +12,7 @@
 
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_lights.h"
+#include "scene/orthographic_view.h"
 #include "scene/texture_coordinate_set.h"
 #include "scene/unique_name.h"
 
@@ -306,8 +307,9 @@ private:
     // The TEXCOORD set whose uvs a primitive of glTF material `material` (-1: the default
     // material) keeps, once per material.
     int textureCoordinateSetOf(int material) {
-        if (material < 0 || size_t(material) >= model_.materials.size()) {
-            return 0;  // the default material, or one materialIndex refuses
+        if (material < 0 || size_t(material) >= model_.materials.size() ||
+            scene_.materials[size_t(material)].interiorMedium >= 0) {
+            return 0;  // the default material, one materialIndex refuses, or a medium's boundary (no textures)
         }
         auto [found, added] = textureCoordinateSets_.try_emplace(material, 0);
         if (added) {
@@ -409,7 +411,7 @@ private:
     // floats the renderer takes. glTF allows negative ones (a mirrored view), which no
     // exporter writes.
     void requireOrthographicMagnification(double magnification, const std::string& field) {
-        if (!(magnification > 0.0 && float(magnification) > 0.0 && std::isfinite(float(magnification)))) {
+        if (!usableOrthographicHalfExtent(magnification)) {
             diagnostics_.fail(field, "must be > 0 and within float's range, got " + formatNumber(magnification));
         }
     }

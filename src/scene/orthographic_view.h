@@ -1,9 +1,17 @@
 #pragma once
+#include <cmath>
 #include <optional>
 
 #include "scene/scene.h"
 
 namespace vkdr {
+
+// Whether `halfExtent` (a half width or height of an orthographic view: glTF's xmag or
+// ymag) is one the renderer takes: > 0 and finite as the float it is held in, so that a
+// value that rounds to 0 does not leave a camera that is not orthographic.
+inline bool usableOrthographicHalfExtent(double halfExtent) {
+    return halfExtent > 0.0 && float(halfExtent) > 0.0f && std::isfinite(float(halfExtent));
+}
 
 // An orthographic camera's rays start across a rectangle of its XY plane: `halfWidth` by
 // `halfHeight` about its position. They all start in one medium, the medium at the

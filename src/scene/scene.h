@@ -121,7 +121,8 @@ struct LightPlacement {
 // A flattened scene: every mesh instance baked into world space.
 struct Scene {
     std::vector<glm::vec3> positions;           // world space, per vertex
-    std::vector<glm::vec2> uvs;                 // TEXCOORD_0 per vertex (0,0 when absent)
+    // Per vertex, from the TEXCOORD set its material's textures name ((0, 0) when absent).
+    std::vector<glm::vec2> uvs;
     // COLOR_0's RGB per vertex, multiplying the base colour (white where a primitive has
     // none); empty when no primitive has one.
     std::vector<glm::vec3> colors;

@@ -218,6 +218,17 @@ TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
               "off");
 }
 
+// A checkpoint written before --set values were recorded as floats holds them as typed:
+// it resumes with the same values typed any way, and not with others.
+TEST(RunIdentity, ComparesAnOlderCheckpointsSetValuesAsFloats) {
+    const RunIdentity current = {{"set", canonicalAssignment("materials/My Mat/base_color=0.5,1,1") + " " +
+                                             canonicalAssignment("media/fog/g=0.2")}};
+    EXPECT_EQ(current.at("set"), "materials/My Mat/base_color=0.5,1,1 media/fog/g=0.2");
+    requireSameRun("checkpoint.json", {{"set", "materials/My Mat/base_color=.50,1.0,1e0 media/fog/g=0.20"}}, current);
+    expectErrorMentioning([&] { requireSameRun("checkpoint.json", {{"set", "media/fog/g=0.3"}}, current); },
+                          {"checkpoint.json", "set 'media/fog/g=0.3'"});
+}
+
 TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {
     ScratchDirectory scratch;
     OptimizationJob job = fogJob(scratch.path(), 40);
