@@ -11,7 +11,6 @@
 #include "core/error.h"
 #include "image/regular_file.h"
 #include "optimize/coarse_grid_gradient.h"
-#include "scene/orthographic_view.h"
 #include "optimize/density_grid_options.h"
 #include "optimize/grid_priors.h"
 #include "optimize/json_without_repeated_keys.h"
@@ -19,6 +18,7 @@
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
 #include "scene/gltf_diagnostics.h"
+#include "scene/orthographic_view.h"
 #include "scene/parameters.h"
 
 namespace vkdr {
