@@ -146,6 +146,28 @@ def read_colour_attributes(scene):
         obj.material_slots[0].material = colour_reading_material("Reads" + obj.name, "")
 
 
+def painted_faces_colour(normal):
+    """The colour corner_colour_attribute paints the face of this outward normal (Blender's
+    axes), different for each face of a cube."""
+    return tuple(0.5 + 0.4 * c for c in normal)
+
+
+def corner_colour_attribute(scene):
+    """A cube painted face by face as Vertex Paint stores it (a Face Corner, Byte Color
+    attribute: a vertex's corners differ), read by its material; and a material slot no face
+    uses, whose material reads another attribute (Unused)."""
+    bpy.ops.mesh.primitive_cube_add(size=0.4, location=(0.0, 0.0, 0.5))
+    cube = bpy.context.object
+    cube.name = cube.data.name = "Painted"
+    painted = cube.data.color_attributes.new("Paint", "BYTE_COLOR", "CORNER")
+    cube.data.color_attributes.render_color_index = 0
+    for polygon in cube.data.polygons:
+        for corner in polygon.loop_indices:
+            painted.data[corner].color = painted_faces_colour(polygon.normal) + (1.0,)
+    cube.data.materials.append(colour_reading_material("ReadsPaint", "Paint"))
+    cube.data.materials.append(colour_reading_material("Unused", "Absent"))
+
+
 def bright_colour_attribute(scene):
     """A cube whose material reads its colour attribute, one channel of which is beyond 1
     (a float attribute may hold any value)."""
@@ -501,6 +523,7 @@ def packed_texture(scene, colour=None):
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
+         "corner_colour_attribute": corner_colour_attribute,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,

@@ -150,6 +150,42 @@ def test_colour_attributes_that_materials_read_are_exported_where_they_are_read(
     assert np.isfinite(render_mean(cli, exported, case))
 
 
+def accessor_values(exported, case, doc, index):
+    """Accessor INDEX of the case's scene.bin as floats, one row an element (normalized
+    integers read as fractions)."""
+    accessor = doc["accessors"][index]
+    view = doc["bufferViews"][accessor["bufferView"]]
+    data = (exported / case / doc["buffers"][view["buffer"]]["uri"]).read_bytes()
+    dtype = {5126: "<f4", 5123: "<u2", 5121: "u1"}[accessor["componentType"]]
+    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[accessor["type"]]
+    start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+    stride = view.get("byteStride", width * np.dtype(dtype).itemsize) // np.dtype(dtype).itemsize
+    values = np.frombuffer(data, dtype=dtype, offset=start, count=(accessor["count"] - 1) * stride + width)
+    values = np.lib.stride_tricks.as_strided(values, (accessor["count"], width),
+                                             (stride * values.itemsize, values.itemsize)).astype(float)
+    if dtype != "<f4" and accessor.get("normalized"):
+        values /= np.iinfo(dtype).max
+    return values
+
+
+def test_a_colour_attribute_painted_face_by_face_is_exported_at_each_corner(exported):
+    """Blender 3.4's glTF exporter reads a face-corner attribute at the wrong corners; each
+    exported vertex must carry the colour of its own face (known from its flat normal)."""
+    case = "corner_colour_attribute"
+    doc = document(exported, case)
+    (primitive,) = next(m for m in doc["meshes"] if m["name"] == "Painted")["primitives"]
+    normals = accessor_values(exported, case, doc, primitive["attributes"]["NORMAL"])
+    colours = accessor_values(exported, case, doc, primitive["attributes"]["COLOR_0"])[:, :3]
+    blender_normals = np.stack([normals[:, 0], -normals[:, 2], normals[:, 1]], axis=1)  # glTF is y-up
+    expected = 0.5 + 0.4 * blender_normals
+    # Byte colours hold 8-bit sRGB values: half a step is at most 0.0042 in linear (at 0.9,
+    # where the curve is steepest of these colours).
+    assert np.abs(colours - expected).max() < 0.005, np.abs(colours - expected).max()
+    assert len(np.unique(np.round(colours, 2), axis=0)) == 6
+    # The slot no face uses reads an attribute the mesh lacks, but Cycles never shades it.
+    assert [w for w in own_warnings(exported, case) if "Principled BSDF is exported as a Lambertian" not in w] == []
+
+
 def test_volumes_that_cycles_adds_up_are_reported(exported):
     warnings = own_warnings(exported, "added_volumes")
     world = [w for w in warnings if w.startswith("world 'Fog'")]

@@ -19,8 +19,8 @@ import mathutils
 from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper
 
-from . import (export_checks, gltf_json, grid_media, mappings, node_graph, scene_checks, texture_lookups,
-               vertex_colours)
+from . import (corner_colours, export_checks, gltf_json, grid_media, mappings, node_graph, scene_checks,
+               texture_lookups, vertex_colours)
 from .axes import blender_to_gltf
 from .gltf_json import EXTENSION, TRANSMISSION_EXTENSIONS, medium_json
 from .rendered_objects import rendered_objects
@@ -513,7 +513,8 @@ def export_scene(context, filepath):
             beyond = vertex_colours.first_value_outside_unit_range(colours)
             if beyond is not None:
                 raise ExportError(beyond)
-            with renders_as_cycles(scene, view_layer), vertex_colours.attributes_read_as_render(colours):
+            with renders_as_cycles(scene, view_layer), vertex_colours.attributes_read_as_render(colours), \
+                    corner_colours.read_at_each_corner():
                 run_gltf_exporter(staged, colours=bool(colours))
             with open(staged, encoding="utf-8") as f:
                 doc = json.load(f)

@@ -35,8 +35,9 @@ def attribute_read(material):
 
 
 def reading_materials():
-    """Names of the materials whose surface colour a colour attribute feeds."""
-    return {m.name for m in bpy.data.materials if m.users and attribute_read(m) is not None}
+    """The materials whose surface colour a colour attribute feeds (the materials
+    themselves: a linked library's material may share a local one's name)."""
+    return {m for m in bpy.data.materials if m.users and attribute_read(m) is not None}
 
 
 def render_attribute(mesh):
@@ -57,8 +58,11 @@ def colour_exports(objects, readers, warnings):
     for obj in sorted({o for o in objects if o.type == "MESH"}, key=lambda o: o.name):
         first_object.setdefault(obj.data, obj)
         read = read_by_mesh.setdefault(obj.data, {})
-        for slot in obj.material_slots:
-            if slot.material is not None and slot.material.name in readers:
+        # The exporter writes primitives for the slots that faces use, and Cycles shades
+        # only those: a slot no face uses reads nothing.
+        used = {polygon.material_index for polygon in obj.data.polygons}
+        for index, slot in enumerate(obj.material_slots):
+            if index in used and slot.material in readers:
                 read[slot.material.name] = attribute_read(slot.material) or render_attribute(obj.data)
     exports = {}
     for mesh, read in read_by_mesh.items():
@@ -108,14 +112,14 @@ def attributes_read_as_render(exports):
     """The glTF exporter writes a mesh's render colour attribute: for the export it is the
     one EXPORTS (colour_exports) gives, and is set back after."""
     changed = []
-    for mesh, (name, _) in exports.items():
-        attributes = mesh.color_attributes
-        index = attributes.find(name)
-        if index != attributes.render_color_index:
-            changed.append((mesh, attributes.render_color_index))
-            attributes.render_color_index = index
-            mesh.update()
     try:
+        for mesh, (name, _) in exports.items():
+            attributes = mesh.color_attributes
+            index = attributes.find(name)
+            if index != attributes.render_color_index:
+                changed.append((mesh, attributes.render_color_index))
+                attributes.render_color_index = index
+                mesh.update()
         yield
     finally:
         for mesh, index in reversed(changed):
