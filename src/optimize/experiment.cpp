@@ -168,7 +168,7 @@ public:
             }
             double halfHeight = positive(value["orthographic_half_height"], where + ".orthographic_half_height");
             if (!usableOrthographicHalfExtent(halfHeight)) {
-                fail(where + ".orthographic_half_height", "beyond float range, or so small that it rounds to 0");
+                fail(where + ".orthographic_half_height", "must be a normal float (1.2e-38 to 3.4e+38)");
             }
             camera.orthographicHalfHeight = float(halfHeight);
         }

@@ -64,11 +64,9 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
         std::vector<std::string> targets;
         for (const TargetFile& target : inputs.targets) targets.push_back(targetIdentity(target));
         identity["targets"] = joined(targets, "; ");
-        std::vector<std::string> assignments;
-        for (const std::string& assignment : inputs.assignments) {
-            assignments.push_back(canonicalAssignment(assignment));
-        }
-        identity["set"] = joined(assignments, " ");
+        // Split as an older checkpoint's entry is (canonicalAssignments), so that a name
+        // holding a space and "=" compares alike on both sides.
+        identity["set"] = canonicalAssignments(joined(inputs.assignments, " "));
     } else {
         identity["experiment"] = fileIdentity(inputs.experiment);
     }

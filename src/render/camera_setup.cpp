@@ -81,6 +81,14 @@ gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
         // The image's aspect ratio widens or narrows the view, as it does a perspective
         // camera's field of view: the height stays.
         const double halfHeight = camera.orthographicHalfHeight, halfWidth = halfHeight * double(aspect);
+        // Rays start at the camera's position plus a point of the view, in floats.
+        const double farthestStart = glm::length(glm::dvec3(camera.cameraToWorld[3])) + std::hypot(halfWidth, halfHeight);
+        if (!std::isfinite(float(farthestStart))) {
+            throw Error(formatText("orthographic camera '%s': its view, %g x %g about the camera (the image's aspect "
+                                   "ratio widens it), puts ray origins beyond float range; give it a smaller "
+                                   "height, or the image a smaller aspect ratio",
+                                   camera.name.c_str(), 2.0 * halfWidth, 2.0 * halfHeight));
+        }
         const std::optional<uint32_t> boundary = boundaryAcrossOrthographicView(scene, camera, halfWidth, halfHeight);
         if (boundary) {
             const Material& material = scene.materials[*boundary];

@@ -412,7 +412,8 @@ private:
     // exporter writes.
     void requireOrthographicMagnification(double magnification, const std::string& field) {
         if (!usableOrthographicHalfExtent(magnification)) {
-            diagnostics_.fail(field, "must be > 0 and within float's range, got " + formatNumber(magnification));
+            diagnostics_.fail(field, "must be > 0 and a normal float (1.2e-38 to 3.4e+38), got " +
+                                        formatNumber(magnification));
         }
     }
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "scene/scene.h"
@@ -7,10 +8,10 @@
 namespace vkdr {
 
 // Whether `halfExtent` (a half width or height of an orthographic view: glTF's xmag or
-// ymag) is one the renderer takes: > 0 and finite as the float it is held in, so that a
-// value that rounds to 0 does not leave a camera that is not orthographic.
+// ymag) is one the renderer takes: a normal float, finite, not 0 and not subnormal (a
+// device may flush a subnormal to 0, which would leave a camera that is not orthographic).
 inline bool usableOrthographicHalfExtent(double halfExtent) {
-    return halfExtent > 0.0 && float(halfExtent) > 0.0f && std::isfinite(float(halfExtent));
+    return float(halfExtent) >= std::numeric_limits<float>::min() && std::isfinite(float(halfExtent));
 }
 
 // An orthographic camera's rays start across a rectangle of its XY plane: `halfWidth` by

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <type_traits>
 
@@ -235,12 +236,19 @@ void applyAssignment(Scene& scene, std::string_view assignment) {
 
 std::string canonicalAssignment(std::string_view assignment) {
     ParsedAssignment parsed = parseAssignment(assignment);
-    std::string text = std::string(parsed.name) + "=";
-    for (size_t i = 0; i < parsed.values.size(); ++i) {
+    std::vector<std::string> numbers;
+    for (float value : parsed.values) {
         char number[32];
-        auto [end, ec] = std::to_chars(number, number + sizeof(number), parsed.values[i]);
-        text += (i == 0 ? "" : ",") + std::string(number, end);
+        auto [end, ec] = std::to_chars(number, number + sizeof(number), value);
+        numbers.emplace_back(number, end);
     }
+    // One value sets every element of a parameter, so a list of one value repeated sets
+    // what that value alone does (the same bits: "-0" and "0" differ).
+    if (std::adjacent_find(numbers.begin(), numbers.end(), std::not_equal_to<>()) == numbers.end()) {
+        numbers.resize(1);
+    }
+    std::string text = std::string(parsed.name) + "=";
+    for (size_t i = 0; i < numbers.size(); ++i) text += (i == 0 ? "" : ",") + numbers[i];
     return text;
 }
 

@@ -37,8 +37,9 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
 void applyAssignment(Scene& scene, std::string_view assignment);
 
 // The assignment with each value written as the shortest text that reads back as the
-// same float ("x=0.10" and "x=1e-1" both give "x=0.1"): two assignments that set the same
-// values give the same text. Throws vkdr::Error as applyAssignment does for a malformed
+// same float ("x=0.10" and "x=1e-1" both give "x=0.1"), and a list of one value repeated
+// as that value ("x=0.5,0.5,0.5" gives "x=0.5"): two assignments that set the same values
+// give the same text. Throws vkdr::Error as applyAssignment does for a malformed
 // one (the parameter's name is not checked).
 std::string canonicalAssignment(std::string_view assignment);
 

@@ -191,6 +191,11 @@ TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
                           {{}, {{"side", target}}, {"media/fog/g=0.20", "media/fog/sigma_s=1e0,.5,1.000"}, 4, 6})
                   .at("set"),
               "media/fog/g=0.2 media/fog/sigma_s=1,0.5,1");
+    // One value repeated sets what the value alone does; -0 and 0 are other bits.
+    EXPECT_EQ(runIdentity(job.sceneFile, job.options, job.loss,
+                          {{}, {{"side", target}}, {"media/fog/sigma_s=0.5,.5,5e-1", "media/fog/sigma_a=-0,0,0"}, 4, 6})
+                  .at("set"),
+              "media/fog/sigma_s=0.5 media/fog/sigma_a=-0,0,0");
     EXPECT_EQ(command.at("spp"), "4");
     EXPECT_EQ(command.at("max_depth"), "6");
     EXPECT_EQ(command.at("scene"), "cornell_fog.gltf, " + fileDigest(kFogScene));
@@ -227,6 +232,17 @@ TEST(RunIdentity, ComparesAnOlderCheckpointsSetValuesAsFloats) {
     requireSameRun("checkpoint.json", {{"set", "materials/My Mat/base_color=.50,1.0,1e0 media/fog/g=0.20"}}, current);
     expectErrorMentioning([&] { requireSameRun("checkpoint.json", {{"set", "media/fog/g=0.3"}}, current); },
                           {"checkpoint.json", "set 'media/fog/g=0.3'"});
+    // A name may hold "=" and a space; an older entry splits at the words where an
+    // assignment ends, and the current run's is split alike.
+    ScratchDirectory scratch;
+    const std::filesystem::path target = scratch.path() / "target.exr";
+    std::ofstream(target) << "pixels";
+    OptimizationJob job = fogJob(scratch.path(), 40);
+    const RunIdentity named = runIdentity(job.sceneFile, job.options, job.loss,
+                                          {{}, {{"", target}}, {"materials/k=1.0 glass/base_color=0.50"}, 4, 6});
+    RunIdentity older = named;
+    older["set"] = "materials/k=1.0 glass/base_color=0.50";
+    requireSameRun("checkpoint.json", older, named);
 }
 
 TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {

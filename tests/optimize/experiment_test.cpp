@@ -283,9 +283,11 @@ TEST(Experiment, AddsItsCamerasToTheScene) {
     experiment["cameras"][0]["orthographic_half_height"] = 0.0;
     expectReadError(scratch, experiment, {"cameras[0].orthographic_half_height", "finite number > 0"});
     experiment["cameras"][0]["orthographic_half_height"] = 1e39;
-    expectReadError(scratch, experiment, {"cameras[0].orthographic_half_height", "beyond float range"});
+    expectReadError(scratch, experiment, {"cameras[0].orthographic_half_height", "a normal float"});
     experiment["cameras"][0]["orthographic_half_height"] = 1e-50;  // 0 as a float: no orthographic camera
-    expectReadError(scratch, experiment, {"cameras[0].orthographic_half_height", "rounds to 0"});
+    expectReadError(scratch, experiment, {"cameras[0].orthographic_half_height", "a normal float"});
+    experiment["cameras"][0]["orthographic_half_height"] = 1e-39;  // subnormal: a device may flush it to 0
+    expectReadError(scratch, experiment, {"cameras[0].orthographic_half_height", "a normal float"});
     experiment["cameras"][0]["orthographic_half_height"] = 1.5;
     experiment["cameras"][0]["yfov_degrees"] = 30;
     expectReadError(scratch, experiment, {"cameras[0]", "not both"});

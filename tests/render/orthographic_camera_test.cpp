@@ -86,5 +86,21 @@ TEST_F(OrthographicCameraTest, ABoundaryAcrossTheViewIsRefused) {
     });
 }
 
+TEST_F(OrthographicCameraTest, AViewBeyondFloatRangeIsRefused) {
+    // Each half extent is a float (ymag 2e38, xmag 3e38), but the view's corners lie
+    // 3.6e38 from its centre, beyond float range, where rays would start at infinity.
+    TestGltf scene = orthographicScene(kCamera);
+    scene.orthographicHalfHeight = 2e38f;
+    const auto huge = scene.write(tempDir(), "huge");
+    try {
+        renderFile(huge, {.height = kHeight, .spp = 1, .maxDepth = 4});
+        ADD_FAILURE() << "rendered";
+    } catch (const Error& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("orthographic camera"), std::string::npos) << message;
+        EXPECT_NE(message.find("beyond float range"), std::string::npos) << message;
+    }
+}
+
 }  // namespace
 }  // namespace vkdr::test

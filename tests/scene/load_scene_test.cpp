@@ -241,6 +241,12 @@ TEST(LoadScene, WarnsOfTextureCoordinateSetsItCannotFollow) {
                                    "TEXCOORD_1; a material's textures share one set: both use TEXCOORD_1"),
               std::string::npos)
         << two.warnings[0];
+    // An emission texture times an emissiveFactor of 0 shows nothing: its set is not warned of.
+    GltfBuilder dark = quadWithTwoUvSets({{"index", 0}, {"texCoord", 1}}, {{"index", 0}, {"texCoord", 0}});
+    dark.document()["materials"][0]["emissiveFactor"] = {0, 0, 0};
+    LoadedScene unlit = loadScene(dark.writeGltf(directory / "dark.gltf"));
+    EXPECT_EQ(unlit.scene.uvs, mirroredQuadUvs());
+    EXPECT_TRUE(unlit.warnings.empty()) << unlit.warnings[0];
     // A set the primitive does not have.
     LoadedScene missing =
         loadScene(quadWithTwoUvSets({{"index", 0}, {"texCoord", 2}}).writeGltf(directory / "missing.gltf"));
