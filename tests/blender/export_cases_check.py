@@ -16,7 +16,7 @@ import bpy
 HERE = pathlib.Path(__file__).resolve().parent
 SCENES = HERE.parents[1] / "scenes"
 sys.path[:0] = [str(HERE.parents[1] / "tools" / "blender")]
-from vkdiffrender_blender import export_scene  # noqa: E402
+from vkdiffrender_blender import export_scene, write_back  # noqa: E402
 
 
 def empty_scene():
@@ -41,10 +41,14 @@ def add_light(kind, name, location, energy, collection):
 
 def instanced_lights(scene):
     """A point and an area lamp in a collection the scene does not hold, instanced 1 m
-    along x, as a linked lamp asset arrives."""
+    along x, as a linked lamp asset arrives; the area lamp is in a child collection of it
+    too, and an instance holds each object once."""
     asset = bpy.data.collections.new("LampAsset")
     add_light("POINT", "Bulb", (0.0, 0.0, 3.0), 200.0, asset)
-    add_light("AREA", "Panel", (0.0, 0.0, 2.5), 100.0, asset)
+    panel = add_light("AREA", "Panel", (0.0, 0.0, 2.5), 100.0, asset)
+    inner = bpy.data.collections.new("LampAssetInner")
+    asset.children.link(inner)
+    inner.objects.link(panel)
     instance = bpy.data.objects.new("Lamps", None)
     instance.instance_type, instance.instance_collection = "COLLECTION", asset
     instance.location = (1.0, 0.0, 0.0)
@@ -166,6 +170,24 @@ def corner_colour_attribute(scene):
             painted.data[corner].color = painted_faces_colour(polygon.normal) + (1.0,)
     cube.data.materials.append(colour_reading_material("ReadsPaint", "Paint"))
     cube.data.materials.append(colour_reading_material("Unused", "Absent"))
+
+
+def fit_parameters(scene):
+    """What the Fit panel offers: a grey and a pure red Diffuse (no log of red's 0 green), a
+    material with a surface and a volume (a medium's boundary, no colour), and area lamps
+    of 100 W and of 0 W."""
+    for name, colour, x in (("Grey", (0.5, 0.5, 0.5, 1.0), -1.0), ("Red", (1.0, 0.0, 0.0, 1.0), 0.0),
+                            ("Foggy", (0.5, 0.5, 0.5, 1.0), 1.0)):
+        bpy.ops.mesh.primitive_cube_add(size=0.4, location=(x, 0.0, 0.5))
+        material = bpy.data.materials.new(name)
+        material.use_nodes = True
+        material.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = colour
+        bpy.context.object.data.materials.append(material)
+    foggy = bpy.data.materials["Foggy"].node_tree
+    volume = foggy.nodes.new("ShaderNodeVolumePrincipled")
+    foggy.links.new(volume.outputs["Volume"], foggy.nodes["Material Output"].inputs["Volume"])
+    add_light("AREA", "Lit", (0.0, 0.0, 2.5), 100.0, scene.collection)
+    add_light("AREA", "Dark", (1.0, 0.0, 2.5), 0.0, scene.collection)
 
 
 def bright_colour_attribute(scene):
@@ -523,7 +545,7 @@ def packed_texture(scene, colour=None):
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
-         "corner_colour_attribute": corner_colour_attribute,
+         "corner_colour_attribute": corner_colour_attribute, "fit_parameters": fit_parameters,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
@@ -556,6 +578,8 @@ def export_case(out, case, build, target=None):
         result["warnings"] = export_scene.export_scene(bpy.context, str(target or directory / "scene.gltf"))
     except (export_scene.ExportError, OSError) as error:
         result["error"] = str(error)
+    if case == "fit_parameters":
+        result["fittable"] = write_back.fittable_parameters(bpy.context.scene, bpy.context.view_layer)
     result["modifiers_after"] = {obj.name: [[m.name, m.show_viewport, m.show_render, getattr(m, "levels", None)]
                                             for m in obj.modifiers] for obj in bpy.data.objects if obj.modifiers}
     result["render_colour_attributes_after"] = {

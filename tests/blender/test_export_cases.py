@@ -67,6 +67,7 @@ def test_lamps_instanced_from_a_collection_are_exported_at_the_instance(exported
     doc = document(exported, "instanced_lights")
     bulb = doc["extensions"]["KHR_lights_punctual"]["lights"][0]
     assert bulb["intensity"] == pytest.approx(200.0 / (4.0 * math.pi))  # Cycles' watts, not the exporter's candela
+    assert sum(m["name"] == "Lamps.Panel.area" for m in doc["meshes"]) == 1  # in two collections of the asset
     centre, normal = area_emitter(doc, "Lamps.Panel.area")
     assert centre == pytest.approx([1.0, 2.5, 0.0], abs=1e-6)  # Blender (1, 0, 2.5): the instance's offset
     assert normal == pytest.approx([0.0, -1.0, 0.0], abs=1e-6)  # emitting down, its local -Z
@@ -184,6 +185,15 @@ def test_a_colour_attribute_painted_face_by_face_is_exported_at_each_corner(expo
     assert len(np.unique(np.round(colours, 2), axis=0)) == 6
     # The slot no face uses reads an attribute the mesh lacks, but Cycles never shades it.
     assert [w for w in own_warnings(exported, case) if "Principled BSDF is exported as a Lambertian" not in w] == []
+
+
+def test_the_fit_offers_only_what_optimize_can_step_in_log_units(exported):
+    fittable = result(exported, "fit_parameters")["fittable"]
+    assert "materials/Grey/base_color" in fittable and "lights/Lit.area/emission" in fittable, fittable
+    assert "materials/Red/base_color" not in fittable  # a channel of 0 has no logarithm
+    assert "materials/Foggy/base_color" not in fittable  # a medium's boundary has no colour
+    assert "media/Foggy/sigma_s" in fittable
+    assert "lights/Dark.area/emission" not in fittable  # 0 W
 
 
 def test_volumes_that_cycles_adds_up_are_reported(exported):

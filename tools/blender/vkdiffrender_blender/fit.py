@@ -111,6 +111,9 @@ class VKDR_OT_fit(bpy.types.Operator):
         except OSError as error:
             self.report({"ERROR"}, f"cannot run {request.cli}: {error} (set the binary in the add-on's preferences)")
             return {"CANCELLED"}
+        # The fitted values go to the scene and view layer exported, whichever the user
+        # turns to while the run goes on.
+        self.scene_name, self.view_layer_name = context.scene.name, context.view_layer.name
         self.timer = context.window_manager.event_timer_add(0.5, window=context.window)
         context.window_manager.modal_handler_add(self)
         context.window_manager.progress_begin(0, request.iterations)
@@ -123,12 +126,18 @@ class VKDR_OT_fit(bpy.types.Operator):
 
     def modal(self, context, event):
         if event.type == "ESC":
-            self.run.cancel()
+            # optimize ends once its current pass has (poll() says when), checkpointed.
+            self.run.request_cancel()
+            context.workspace.status_text_set("vkdiffrender fit: cancelling after the current pass")
+            return {"RUNNING_MODAL"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        if self.run.cancelled:
+            if self.run.poll() is None:
+                return {"RUNNING_MODAL"}
             self.finish(context)
             self.report({"WARNING"}, f"fit cancelled; {self.run.resume_hint()}")
             return {"CANCELLED"}
-        if event.type != "TIMER":
-            return {"PASS_THROUGH"}
         done, loss = self.run.progress()
         context.window_manager.progress_update(done)
         context.workspace.status_text_set(fit_run.status_text(done, self.run.request.iterations, loss))
@@ -138,7 +147,13 @@ class VKDR_OT_fit(bpy.types.Operator):
         if not self.run.succeeded:
             self.report({"ERROR"}, self.run.failure_message())
             return {"CANCELLED"}
-        for warning in self.run.write_back(lambda params: write_back.apply_fitted_values(context.scene, context.view_layer, params)):
+        scene = bpy.data.scenes.get(self.scene_name)
+        view_layer = scene.view_layers.get(self.view_layer_name) if scene is not None else None
+        if view_layer is None:
+            self.report({"ERROR"}, f"scene '{self.scene_name}' or its view layer '{self.view_layer_name}', which the "
+                                   f"fit exported, is gone: the fitted values are in {self.run.params_path}")
+            return {"CANCELLED"}
+        for warning in self.run.write_back(lambda params: write_back.apply_fitted_values(scene, view_layer, params)):
             self.report({"WARNING"}, warning)
         self.report({"INFO"}, f"fitted values written back (loss {loss:.4g})" if loss is not None else "fitted")
         return {"FINISHED"}

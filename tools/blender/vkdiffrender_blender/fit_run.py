@@ -91,11 +91,17 @@ class FitRun:
         """None while running, else the exit code."""
         return self.process.poll()
 
-    def cancel(self):
+    def request_cancel(self):
         """Stop the run as Ctrl-C would: optimize finishes its current iteration's pass,
-        writes checkpoint.json and exits 130. Waits for it; returns the exit code."""
-        self.cancelled = True
-        self.process.send_signal(signal.SIGINT)
+        writes checkpoint.json and exits 130, which poll() then returns. Returns at once: a
+        pass may take minutes on a CPU, and Blender's window must stay responsive."""
+        if not self.cancelled:
+            self.cancelled = True
+            self.process.send_signal(signal.SIGINT)
+
+    def cancel(self):
+        """request_cancel, then waits for the run to end; returns the exit code."""
+        self.request_cancel()
         return self.process.wait()
 
     @property

@@ -67,7 +67,8 @@ def expand(obj, parent_matrix, prefix, depth, instances):
     collection = obj.instance_collection if obj.instance_type == "COLLECTION" else None
     if collection is not None:
         placed = matrix @ mathutils.Matrix.Translation(-collection.instance_offset)
-        for child in collection_objects(collection):
+        # An object in several of the collection's children is instanced once, as Cycles does.
+        for child in dict.fromkeys(collection_objects(collection)):
             if not shown_only_as_instances(child):
                 yield from expand(child, placed, name + ".", depth + 1, instances)
     elif obj.is_instancer and depth == 0:
@@ -87,10 +88,10 @@ def layer_objects(layer_collection):
 def rendered_objects(view_layer):
     """Every object VIEW_LAYER renders, once per place it is rendered at."""
     instances = Instances(view_layer)
-    seen = set()
+    seen = set()  # the objects themselves: a linked library's object may share a local one's name
     for obj in layer_objects(view_layer.layer_collection):
-        if obj.name in seen:
+        if obj in seen:
             continue  # linked into several collections
-        seen.add(obj.name)
+        seen.add(obj)
         if not shown_only_as_instances(obj):
             yield from expand(obj, mathutils.Matrix.Identity(4), "", 0, instances)

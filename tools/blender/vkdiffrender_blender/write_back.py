@@ -39,10 +39,15 @@ def fittable_parameters(scene, view_layer):
         medium = node_graph.volume_medium(node, [], name)
         names += [f"media/{name}/{kind}" for kind in kinds if kind == "g" or min(getattr(medium, kind)) > 0.0]
     for material in bpy.data.materials:
+        # A material with a volume exports as a medium's boundary, which has no colour.
         surface = node_graph.surface_node(material) if material.users else None
-        if surface is not None and surface.bl_idname in SURFACE_COLOR_INPUTS:
+        if surface is None or surface.bl_idname not in SURFACE_COLOR_INPUTS or \
+                node_graph.material_volume_node(material) is not None:
+            continue
+        if min(surface.inputs[SURFACE_COLOR_INPUTS[surface.bl_idname]].default_value[:3]) > 0.0:
             names.append(f"materials/{material.name}/base_color")
-    names += [f"lights/{name}/emission" for name in rendered_area_lights(view_layer)]
+    names += [f"lights/{name}/emission" for name, (obj, _) in rendered_area_lights(view_layer).items()
+              if obj.data.energy > 0.0 and min(obj.data.color) > 0.0]
     return names
 
 
