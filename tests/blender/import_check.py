@@ -23,7 +23,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parents[1] / "tools" / "blender")]
 import scenes  # noqa: E402
 import vkdiffrender_blender  # noqa: E402
-from vkdiffrender_blender import export_scene, mappings, node_graph  # noqa: E402
+from vkdiffrender_blender import export_scene, import_scene, mappings, node_graph  # noqa: E402
 
 
 def build_and_export(out):
@@ -116,6 +116,16 @@ def import_and_read(gltf, out):
             value = (mappings.sun_irradiance(light.color, light.energy) if light.type == "SUN"
                      else mappings.point_light_intensity(light.color, light.energy))
             result["lights"][obj.name] = list(value)
+    # KHR_materials_volume counts behind a surface that transmits all light only, as
+    # vkdiffrender reads it; an unnamed material is matched by the name Blender's importer
+    # gives it.
+    volume = {"attenuationDistance": 2.0, "attenuationColor": [0.5, 0.5, 0.5]}
+    volumes = {"materials": [
+        {"name": "Clear", "extensions": {"KHR_materials_volume": volume,
+                                         "KHR_materials_transmission": {"transmissionFactor": 1.0}}},
+        {"name": "Opaque", "extensions": {"KHR_materials_volume": volume}},
+        {"extensions": {"VKDR_participating_media": {"sigma_a": 1.0}}}]}  # unnamed: Blender's importer's name
+    result["media_of_volume_materials"] = [name for name, _, _ in import_scene.material_media(volumes)]
     (out / "imported.json").write_text(json.dumps(result, indent=1))
 
 

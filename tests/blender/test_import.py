@@ -59,6 +59,10 @@ def test_import_restores_the_fitted_media_and_light(imported):
     assert result["lights"]["bulb"] == pytest.approx(fitted["lights/bulb/intensity"], rel=FLOAT32)
 
 
+def test_a_volume_behind_an_opaque_surface_is_not_imported_as_a_medium(imported):
+    assert imported[2]["media_of_volume_materials"] == ["Clear", "Material_2"]
+
+
 def test_the_fit_moved_every_value(imported):
     """Two iterations change each value by far more than float precision, so the check
     above reads the fitted file, not the exported one."""

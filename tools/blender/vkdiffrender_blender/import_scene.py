@@ -181,9 +181,16 @@ def material_media(doc):
         extensions = member(material, "extensions", f"materials[{index}]")
         key = EXTENSION if EXTENSION in extensions else "KHR_materials_volume"
         entry = extensions.get(key)
+        # vkdiffrender reads KHR_materials_volume only behind a surface that transmits all
+        # light (transmissionFactor 1); elsewhere the surface is opaque and hides it.
+        if key == "KHR_materials_volume" and entry is not None:
+            transmission = member(extensions, "KHR_materials_transmission", f"materials[{index}].extensions")
+            if number(transmission, "transmissionFactor", 0.0,
+                      f"materials[{index}].extensions.KHR_materials_transmission") != 1.0:
+                entry = None
         if entry is not None:
             medium = medium_from_json(entry, f"materials[{index}].extensions.{key}")
-            name = material.get("name", str(index))
+            name = material.get("name", f"Material_{index}")  # as Blender's importer names an unnamed one
             if not isinstance(name, str):
                 raise ValueError(f"materials[{index}].name: expected text, got {shown(name)}")
             media.append((name, entry, medium))
