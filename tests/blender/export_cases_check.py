@@ -190,6 +190,14 @@ def fit_parameters(scene):
     add_light("AREA", "Dark", (1.0, 0.0, 2.5), 0.0, scene.collection)
 
 
+def light_write_back(scene):
+    """Two point lamps whose names cross: object Key holds light data Light, and object
+    Light holds data Light.001. The export names glTF lights after their data, so a fitted
+    lights/Light/intensity belongs to Key."""
+    add_light("POINT", "Key", (0.0, 0.0, 3.0), 100.0, scene.collection).data.name = "Light"
+    add_light("POINT", "Light", (1.0, 0.0, 3.0), 100.0, scene.collection).data.name = "Light.001"
+
+
 def bright_colour_attribute(scene):
     """A cube whose material reads its colour attribute, one channel of which is beyond 1
     (a float attribute may hold any value)."""
@@ -546,6 +554,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
          "corner_colour_attribute": corner_colour_attribute, "fit_parameters": fit_parameters,
+         "light_write_back": light_write_back,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
@@ -580,6 +589,12 @@ def export_case(out, case, build, target=None):
         result["error"] = str(error)
     if case == "fit_parameters":
         result["fittable"] = write_back.fittable_parameters(bpy.context.scene, bpy.context.view_layer)
+    if case == "light_write_back":
+        lights = json.loads((directory / "scene.gltf").read_text())["extensions"]["KHR_lights_punctual"]["lights"]
+        result["exported_lights"] = sorted(light["name"] for light in lights)
+        write_back.apply_fitted_values(bpy.context.scene, bpy.context.view_layer,
+                                       {"lights/Light/intensity": [1.0, 1.0, 1.0]})
+        result["light_watts"] = {name: bpy.data.objects[name].data.energy for name in ("Key", "Light")}
     result["modifiers_after"] = {obj.name: [[m.name, m.show_viewport, m.show_render, getattr(m, "levels", None)]
                                             for m in obj.modifiers] for obj in bpy.data.objects if obj.modifiers}
     result["render_colour_attributes_after"] = {

@@ -196,6 +196,13 @@ def test_the_fit_offers_only_what_optimize_can_step_in_log_units(exported):
     assert "lights/Dark.area/emission" not in fittable  # 0 W
 
 
+def test_a_fitted_punctual_light_goes_to_the_lamp_whose_data_the_export_named_it_after(exported):
+    assert result(exported, "light_write_back")["exported_lights"] == ["Light", "Light.001"]
+    watts = result(exported, "light_write_back")["light_watts"]
+    assert watts["Key"] == pytest.approx(4.0 * math.pi)  # 1 W/sr in every direction
+    assert watts["Light"] == 100.0
+
+
 def test_volumes_that_cycles_adds_up_are_reported(exported):
     warnings = own_warnings(exported, "added_volumes")
     world = [w for w in warnings if w.startswith("world 'Fog'")]

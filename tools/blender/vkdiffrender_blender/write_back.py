@@ -119,10 +119,12 @@ def apply_fitted_values(scene, view_layer, params):
                                 f"takes the value too")
             warnings += linked_library_warnings(name, obj.data)
         elif kind == "lights" and value_name == "intensity":
-            # The glTF light is named after the object or after its light data.
-            obj = scene.objects.get(owner)
-            if obj is None or obj.type != "LIGHT":
-                obj = next((o for o in scene.objects if o.type == "LIGHT" and o.data.name == owner), None)
+            # Blender's exporter names a glTF light after its light data, which vkdiffrender's
+            # parameter names follow; a file from elsewhere may name it after the object.
+            obj = next((o for o in scene.objects if o.type == "LIGHT" and o.data.name == owner), None)
+            if obj is None:
+                obj = scene.objects.get(owner)
+                obj = obj if obj is not None and obj.type == "LIGHT" else None
             if obj is None:
                 warnings.append(f"{name}: no light '{owner}'")
                 continue
