@@ -62,7 +62,10 @@ def test_principled_volume_emits_emission_color_times_strength_whatever_the_dens
     assert_close(medium.emission, (2.0, 1.0, 0.5))
     total, _ = mappings.add_media([medium, medium])
     assert_close(total.emission, (4.0, 2.0, 1.0))
-    assert_close(mappings.scale_medium(medium, 0.25).emission, (0.5, 0.25, 0.125))
+    # A Mix Shader does not scale it: Cycles 3.4 emits it whole unless the factor is 0.
+    assert_close(mappings.scale_medium(medium, 0.25).emission, (2.0, 1.0, 0.5))
+    assert_close(mappings.scale_medium(medium, 0.25).sigma_s, tuple(0.25 * c for c in medium.sigma_s))
+    assert_close(mappings.scale_medium(medium, 0.0).emission, (0.0, 0.0, 0.0))
 
 
 @pytest.mark.parametrize("seed", range(3))

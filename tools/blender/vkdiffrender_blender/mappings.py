@@ -64,9 +64,12 @@ def volume_scatter_to_medium(color, density, anisotropy):
 
 
 def scale_medium(medium, weight):
-    """A Mix Shader's factor scales every closure of its input."""
+    """A Mix Shader's factor scales its input's scattering and absorption. A Principled
+    Volume's emission, the only emission of the volume nodes the export reads, Cycles 3.4
+    adds at full strength wherever the factor is not 0 (svm_node_principled_volume skips
+    only a weight of 0)."""
     return Medium(tuple(weight * c for c in medium.sigma_a), tuple(weight * c for c in medium.sigma_s), medium.g,
-                  tuple(weight * c for c in medium.emission))
+                  medium.emission if weight > 0.0 else (0.0, 0.0, 0.0))
 
 
 def add_media(media):
