@@ -477,6 +477,21 @@ def muted_volume(scene):
     bpy.context.object.data.materials.append(material)
 
 
+def cycles_output(scene):
+    """A volume cube whose material has two Material Outputs: the active one for all
+    renderers (density 3) and another for Cycles alone (density 1), which Cycles uses."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
+    material = volume_material("TwoOutputs", 3.0)
+    tree = material.node_tree
+    cycles = tree.nodes.new("ShaderNodeOutputMaterial")
+    cycles.target = "CYCLES"
+    volume = tree.nodes.new("ShaderNodeVolumePrincipled")
+    volume.inputs["Density"].default_value = 1.0
+    tree.links.new(volume.outputs[0], cycles.inputs["Volume"])
+    tree.nodes["Material Output"].is_active_output = True
+    bpy.context.object.data.materials.append(material)
+
+
 def rerouted_volumes(scene):
     """Three volume cubes of one Principled Volume: linked to the output directly, through
     two Reroute nodes, and by a muted link, which Cycles renders empty."""
@@ -553,7 +568,7 @@ def packed_texture(scene, colour=None):
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
-         "corner_colour_attribute": corner_colour_attribute, "fit_parameters": fit_parameters,
+         "corner_colour_attribute": corner_colour_attribute, "fit_parameters": fit_parameters, "cycles_output": cycles_output,
          "light_write_back": light_write_back,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,

@@ -369,6 +369,13 @@ def test_a_muted_volume_node_is_exported_as_cycles_renders_it_no_medium(exported
     assert "VKDR_participating_media" not in muted.get("extensions", {})
 
 
+def test_an_output_for_cycles_alone_wins_over_the_active_one_for_all_renderers(exported):
+    materials = {m["name"]: m for m in document(exported, "cycles_output")["materials"]}
+    medium = materials["TwoOutputs"]["extensions"]["VKDR_participating_media"]
+    # Principled Volume's defaults (Color 0.5, Absorption Color black): sigma_s = 0.5 x density.
+    assert medium["sigma_s"] == pytest.approx([0.5] * 3)
+
+
 def test_a_volume_through_reroutes_is_exported_and_one_through_a_muted_link_is_not(exported):
     materials = {m["name"]: m.get("extensions", {}) for m in document(exported, "rerouted_volumes")["materials"]}
     direct, rerouted = (materials[name]["VKDR_participating_media"] for name in ("Direct", "Rerouted"))

@@ -11,10 +11,12 @@ VOLUME_NODES = {"ShaderNodeVolumePrincipled", "ShaderNodeVolumeAbsorption", "Sha
 
 
 def output_node(tree, kind):
-    """The active Material Output (kind 'OUTPUT_MATERIAL') or World Output that Cycles uses."""
+    """The Material Output (kind 'OUTPUT_MATERIAL') or World Output that Cycles uses, chosen
+    as Blender's ntreeShaderOutputNode chooses for Cycles: an output for Cycles alone before
+    one for all renderers, and within either the active one before the first."""
     candidates = [n for n in tree.nodes if n.type == kind and n.target in {"ALL", "CYCLES"}]
-    active = [n for n in candidates if n.is_active_output]
-    return (active or candidates or [None])[0]
+    ranked = sorted(candidates, key=lambda n: (n.target != "CYCLES", not n.is_active_output))
+    return ranked[0] if ranked else None
 
 
 def owner_output(owner):
