@@ -198,6 +198,18 @@ def light_write_back(scene):
     add_light("POINT", "Light", (1.0, 0.0, 3.0), 100.0, scene.collection).data.name = "Light.001"
 
 
+def medium_write_back(scene):
+    """A volume cube whose Principled Volume reads its Density from an attribute: a fit of
+    g alone writes the Anisotropy and leaves the other inputs as they are."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
+    material = volume_material("Smoke", 3.0)
+    tree = material.node_tree
+    attribute = tree.nodes.new("ShaderNodeAttribute")
+    attribute.attribute_name = "density"
+    tree.links.new(attribute.outputs["Fac"], tree.nodes["Principled Volume"].inputs["Density"])
+    bpy.context.object.data.materials.append(material)
+
+
 def bright_colour_attribute(scene):
     """A cube whose material reads its colour attribute, one channel of which is beyond 1
     (a float attribute may hold any value)."""
@@ -569,6 +581,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
          "corner_colour_attribute": corner_colour_attribute, "fit_parameters": fit_parameters, "cycles_output": cycles_output,
+         "medium_write_back": medium_write_back,
          "light_write_back": light_write_back,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
@@ -604,6 +617,16 @@ def export_case(out, case, build, target=None):
         result["error"] = str(error)
     if case == "fit_parameters":
         result["fittable"] = write_back.fittable_parameters(bpy.context.scene, bpy.context.view_layer)
+    if case == "medium_write_back":
+        volume = bpy.data.materials["Smoke"].node_tree.nodes["Principled Volume"]
+        before = {name: list(volume.inputs[name].default_value) for name in ("Color", "Absorption Color")}
+        result["write_back_warnings"] = write_back.apply_fitted_values(
+            bpy.context.scene, bpy.context.view_layer,
+            {"media/Smoke/g": [0.5], "media/Smoke/density": {"count": 8, "mean": 0.1}})
+        result["volume_after"] = {"anisotropy": volume.inputs["Anisotropy"].default_value,
+                                  "density": volume.inputs["Density"].default_value,
+                                  "unchanged": all(list(volume.inputs[name].default_value) == value
+                                                   for name, value in before.items())}
     if case == "light_write_back":
         lights = json.loads((directory / "scene.gltf").read_text())["extensions"]["KHR_lights_punctual"]["lights"]
         result["exported_lights"] = sorted(light["name"] for light in lights)

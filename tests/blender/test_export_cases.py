@@ -203,6 +203,13 @@ def test_a_fitted_punctual_light_goes_to_the_lamp_whose_data_the_export_named_it
     assert watts["Light"] == 100.0
 
 
+def test_a_fit_of_g_alone_writes_the_anisotropy_and_leaves_the_linked_density(exported):
+    after = result(exported, "medium_write_back")["volume_after"]
+    assert after == {"anisotropy": pytest.approx(0.5), "density": 3.0, "unchanged": True}
+    warnings = result(exported, "medium_write_back")["write_back_warnings"]
+    assert len(warnings) == 1 and warnings[0].startswith("media/Smoke/density: a grid's fitted voxels"), warnings
+
+
 def test_volumes_that_cycles_adds_up_are_reported(exported):
     warnings = own_warnings(exported, "added_volumes")
     world = [w for w in warnings if w.startswith("world 'Fog'")]

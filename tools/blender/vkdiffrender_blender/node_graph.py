@@ -182,11 +182,14 @@ def surface_node(material):
     return linked_node(out.inputs["Surface"]) if out else None
 
 
-def write_medium(node, medium, write_emission=True):
+def write_medium(node, medium, kinds=("sigma_a", "sigma_s", "g", "emission")):
     """Write a fitted medium into the node it came from, with the inverse mapping of that
-    node's type (a Principled Volume's emission inputs only with WRITE_EMISSION). Returns
-    warnings: where the node cannot hold the medium exactly, and inputs written that are
-    linked (a texture or attribute drives them, so Cycles does not use the value)."""
+    node's type, into the inputs that hold the fitted KINDS: the coefficients' inputs
+    (Density, Color, Absorption Color) only where sigma_a or sigma_s was fitted, the
+    Anisotropy where g was or they were, a Principled Volume's emission inputs only where
+    emission was; the others, which may be linked, stay as they were. Returns warnings:
+    where the node cannot hold the medium exactly, and inputs written that are linked (a
+    texture or attribute drives them, so Cycles does not use the value)."""
     warnings = []
 
     def write(name, value):
@@ -196,13 +199,22 @@ def write_medium(node, medium, write_emission=True):
                             f"goes to its unlinked default, which Cycles does not use")
         socket.default_value = value
 
+    if not {"sigma_a", "sigma_s"} & set(kinds):
+        if "g" in kinds and "Anisotropy" in node.inputs:
+            write("Anisotropy", medium.g)
+        if "emission" in kinds and node.bl_idname == "ShaderNodeVolumePrincipled":
+            values = mappings.medium_to_principled_volume(medium)
+            write("Emission Color", (*values["emission_color"], 1.0))
+            write("Emission Strength", values["emission_strength"])
+        return warnings
+
     if node.bl_idname == "ShaderNodeVolumePrincipled":
         values = mappings.medium_to_principled_volume(medium)
         write("Density", values["density"])
         write("Color", (*values["color"], 1.0))
         write("Absorption Color", (*values["absorption_color"], 1.0))
         write("Anisotropy", values["anisotropy"])
-        if write_emission:
+        if "emission" in kinds:
             write("Emission Color", (*values["emission_color"], 1.0))
             write("Emission Strength", values["emission_strength"])
         return warnings

@@ -10,6 +10,9 @@ from . import axes, export_scene, mappings, node_graph
 from .rendered_objects import rendered_objects
 
 SURFACE_COLOR_INPUTS = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffuse": "Color"}
+# A medium's values that its volume node holds, and those of its grids, which it does not.
+MEDIUM_VALUES = ("sigma_a", "sigma_s", "g", "emission")
+GRID_VALUES = ("density", "albedo_grid", "emission_grid")
 
 
 def volume_owners(scene):
@@ -62,7 +65,7 @@ def write_medium_values(owner_node, fitted, name):
                              float(fitted.get("g", [current.g])[0]),
                              tuple(fitted.get("emission", current.emission)))
     return [f"{name}: {warning}" for warning in
-            node_graph.write_medium(owner_node, medium, write_emission="emission" in fitted)]
+            node_graph.write_medium(owner_node, medium, kinds=tuple(fitted))]
 
 
 def parameter_parts(name):
@@ -91,8 +94,11 @@ def apply_fitted_values(scene, view_layer, params):
     area_lights = rendered_area_lights(view_layer)
     for name, value in params.items():
         kind, owner, value_name = parameter_parts(name)
-        if kind == "media" and owner:
+        if kind == "media" and owner and value_name in MEDIUM_VALUES:
             media.setdefault(owner, {})[value_name] = value
+        elif kind == "media" and value_name in GRID_VALUES:
+            warnings.append(f"{name}: a grid's fitted voxels are in the .vdb files beside the run's scene.gltf; "
+                            f"not written back")
         elif kind == "materials" and value_name == "base_color":
             material = bpy.data.materials.get(owner)
             surface = node_graph.surface_node(material)
