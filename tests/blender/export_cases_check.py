@@ -300,6 +300,12 @@ def same_file_names(scene):
                 "density" if obj.name == "Дым" else "flame"
 
 
+def shared_grid_file(scene):
+    """Two Volume objects of one file (two clouds of one asset)."""
+    volume_object(scene, "CloudA", SCENES / "cornell_plume.vdb").location.x = -1.0
+    volume_object(scene, "CloudB", SCENES / "cornell_plume.vdb").location.x = 1.0
+
+
 def smoke_domain(scene):
     """A smoke domain whose cache is in Mantaflow's own format, which the export cannot read."""
     bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
@@ -581,7 +587,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
          "corner_colour_attribute": corner_colour_attribute, "fit_parameters": fit_parameters, "cycles_output": cycles_output,
-         "medium_write_back": medium_write_back,
+         "medium_write_back": medium_write_back, "shared_grid_file": shared_grid_file,
          "light_write_back": light_write_back,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,

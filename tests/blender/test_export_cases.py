@@ -250,6 +250,15 @@ def test_volume_objects_whose_names_clash_as_file_names_get_files_of_their_own(e
         assert copied.read_bytes() == (HERE.parents[1] / "scenes" / source).read_bytes()
 
 
+def test_volume_objects_of_one_file_share_one_copy_of_it(exported, cli):
+    doc = document(exported, "shared_grid_file")
+    uris = {m["extensions"]["VKDR_participating_media"]["density"]["uri"] for m in doc["materials"]
+            if "VKDR_participating_media" in m.get("extensions", {})}
+    assert len(uris) == 1 and sorted(p.name for p in (exported / "shared_grid_file").glob("*.vdb")) == sorted(uris)
+    assert sum(m["name"].startswith("Cloud") for m in doc["materials"]) == 2
+    assert np.isfinite(render_mean(cli, exported, "shared_grid_file"))  # it loads
+
+
 def test_a_smoke_domain_whose_cache_cannot_be_read_is_exported_empty_with_a_warning(exported, cli):
     doc = document(exported, "smoke_domain")
     domain = next(m for m in doc["materials"] if m["name"] == "Smoke Domain Material")

@@ -83,17 +83,22 @@ def volume_file_name(stem, object_name, taken):
 
 
 class GridCopies:
-    """Where the grid files go: beside the scene file, under names of their own."""
+    """Where the grid files go: beside the scene file, under names of their own, one copy
+    of each file however many objects (instances of one cloud, say) read it."""
 
     def __init__(self, filepath):
         self.directory = os.path.dirname(os.path.abspath(filepath))
         self.stem = os.path.splitext(os.path.basename(filepath))[0]
         self.taken = set()
+        self.copied = {}  # the source's real path: its copy's name
 
     def copy(self, source, object_name):
-        name = volume_file_name(self.stem, object_name, self.taken)
-        shutil.copyfile(source, os.path.join(self.directory, name))
-        return name
+        key = os.path.realpath(source)
+        if key not in self.copied:
+            name = volume_file_name(self.stem, object_name, self.taken)
+            shutil.copyfile(source, os.path.join(self.directory, name))
+            self.copied[key] = name
+        return self.copied[key]
 
 
 def grid_medium(doc, material, volume, placement, name, copies, what, warnings):
