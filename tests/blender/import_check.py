@@ -126,6 +126,10 @@ def import_and_read(gltf, out):
         {"name": "Opaque", "extensions": {"KHR_materials_volume": volume}},
         {"extensions": {"VKDR_participating_media": {"sigma_a": 1.0}}}]}  # unnamed: Blender's importer's name
     result["media_of_volume_materials"] = [name for name, _, _ in import_scene.material_media(volumes)]
+    lights = {"extensions": {"KHR_lights_punctual": {"lights": [{"type": "point"}, {"type": "spot", "name": "Lamp"}]}},
+              "nodes": [{"extensions": {"KHR_lights_punctual": {"light": i}}} for i in (0, 1)] +
+                       [{"name": "Named", "extensions": {"KHR_lights_punctual": {"light": 0}}}]}
+    result["light_objects"] = [name for name, _, _ in import_scene.light_values(lights)]
     (out / "imported.json").write_text(json.dumps(result, indent=1))
 
 

@@ -63,6 +63,11 @@ def test_a_volume_behind_an_opaque_surface_is_not_imported_as_a_medium(imported)
     assert imported[2]["media_of_volume_materials"] == ["Clear", "Material_2"]
 
 
+def test_lights_are_matched_by_the_names_blenders_importer_gives_their_objects(imported):
+    # The node's name, else the light's, else its type's ("Point").
+    assert imported[2]["light_objects"] == ["Point", "Lamp", "Named"]
+
+
 def test_the_fit_moved_every_value(imported):
     """Two iterations change each value by far more than float precision, so the check
     above reads the fitted file, not the exported one."""

@@ -255,9 +255,15 @@ def restore_world(world_values, scene, warnings):
     node.inputs["Strength"].default_value = emission["strength"]
 
 
+# The names Blender's importer gives a light without one, by its type.
+UNNAMED_LIGHTS = {"directional": "Sun", "point": "Point", "spot": "Spot"}
+
+
 def light_values(doc):
-    """(node name, colour x intensity, (outer, inner) cone angles) of every node of DOC
-    that holds a KHR_lights_punctual light."""
+    """(the name of the object Blender's importer makes of it, colour x intensity, (outer,
+    inner) cone angles) of every node of DOC that holds a KHR_lights_punctual light. The
+    importer names the object after the node, else after the light, else after the light's
+    type."""
     punctual = member(member(doc, "extensions", ""), "KHR_lights_punctual", "extensions")
     lights = json_list(punctual.get("lights", []), "extensions.KHR_lights_punctual.lights")
     values = []
@@ -277,7 +283,8 @@ def light_values(doc):
         spot = member(entry, "spot", where)
         cone = (number(spot, "outerConeAngle", math.pi / 4.0, where + ".spot"),
                 number(spot, "innerConeAngle", 0.0, where + ".spot"))
-        values.append((str(node.get("name", "")), value, cone))
+        name = node.get("name") or entry.get("name") or UNNAMED_LIGHTS.get(entry.get("type"), "")
+        values.append((str(name), value, cone))
     return values
 
 
