@@ -128,14 +128,17 @@ void readMaterials(const tinygltf::Model& model, GltfDiagnostics& diagnostics, S
         }
         // A factor times a strength of 0 still marks an emitter, as a fitted scene whose
         // emission reached 0 is written, so that its parameter stays.
-        material.emitter = material.isEmissive() ||
-                           std::any_of(source.emissiveFactor.begin(), source.emissiveFactor.end(),
-                                       [](double factor) { return factor > 0.0; });
+        material.emitter = material.isEmissive() || hasEmissiveFactor(source);
         const auto emissionMap = textures.textureFor(source.emissiveTexture, field + ".emissiveTexture");
         material.emissionTexture = emissionMap.texture;
         material.emissionMapping = emissionMap.mapping;
         scene.materials.push_back(std::move(material));
     }
+}
+
+bool hasEmissiveFactor(const tinygltf::Material& material) {
+    return std::any_of(material.emissiveFactor.begin(), material.emissiveFactor.end(),
+                       [](double factor) { return factor > 0.0; });
 }
 
 }  // namespace vkdr

@@ -12,4 +12,9 @@ namespace vkdr {
 // index too (with a warning), so every parameter name is unique.
 void readMaterials(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene);
 
+// Whether a glTF material's emissiveFactor is above 0 in some channel: it emits, or may
+// once its emission is fitted (a strength of 0 still counts), and only then does its
+// emission texture show.
+bool hasEmissiveFactor(const tinygltf::Material& material);
+
 }  // namespace vkdr

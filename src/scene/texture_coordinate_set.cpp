@@ -1,7 +1,6 @@
 #include "scene/texture_coordinate_set.h"
 
-#include <algorithm>
-
+#include "scene/gltf_materials.h"
 #include "scene/gltf_textures.h"
 #include "scene/gltf_values.h"
 
@@ -27,10 +26,9 @@ int materialTextureCoordinateSet(const tinygltf::Material& material, const std::
     const int baseColorSet = baseColor.index >= 0 ? textureCoordinateSet(baseColor, baseColorField, diagnostics) : -1;
     // An emission texture multiplies emissiveFactor: with a factor of 0 it does nothing,
     // and its set matters nowhere.
-    const bool emits = std::any_of(material.emissiveFactor.begin(), material.emissiveFactor.end(),
-                                   [](double channel) { return channel != 0.0; });
-    const int emissionSet =
-        emission.index >= 0 && emits ? textureCoordinateSet(emission, emissionField, diagnostics) : -1;
+    const int emissionSet = emission.index >= 0 && hasEmissiveFactor(material)
+                                ? textureCoordinateSet(emission, emissionField, diagnostics)
+                                : -1;
     if (baseColorSet >= 0 && emissionSet >= 0 && baseColorSet != emissionSet) {
         diagnostics.warn(emissionField, "looks up TEXCOORD_" + std::to_string(emissionSet) +
                                             " and the base colour texture TEXCOORD_" + std::to_string(baseColorSet) +
