@@ -586,9 +586,9 @@ def packed_texture(scene, colour=None):
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
-         "corner_colour_attribute": corner_colour_attribute, "fit_parameters": fit_parameters, "cycles_output": cycles_output,
-         "medium_write_back": medium_write_back, "shared_grid_file": shared_grid_file,
-         "light_write_back": light_write_back,
+         "corner_colour_attribute": corner_colour_attribute, "fit_parameters": fit_parameters,
+         "cycles_output": cycles_output, "medium_write_back": medium_write_back,
+         "shared_grid_file": shared_grid_file, "light_write_back": light_write_back,
          "added_volumes": added_volumes, "hidden_lights": hidden_lights,
          "world_without_nodes": world_without_nodes, "world_mix_shader": world_mix_shader,
          "same_file_names": same_file_names, "smoke_domain": smoke_domain, "glass": glass,
@@ -611,6 +611,35 @@ def failing_export(scene, directory):
     bpy.ops.mesh.primitive_cube_add(size=0.5)
 
 
+def offered_for_fit(directory):
+    return {"fittable": write_back.fittable_parameters(bpy.context.scene, bpy.context.view_layer)}
+
+
+def g_written_back(directory):
+    volume = bpy.data.materials["Smoke"].node_tree.nodes["Principled Volume"]
+    before = {name: list(volume.inputs[name].default_value) for name in ("Color", "Absorption Color")}
+    fitted = {"media/Smoke/g": [0.5], "media/Smoke/density": {"count": 8, "mean": 0.1}}
+    warnings = write_back.apply_fitted_values(bpy.context.scene, bpy.context.view_layer, fitted)
+    return {"write_back_warnings": warnings,
+            "volume_after": {"anisotropy": volume.inputs["Anisotropy"].default_value,
+                             "density": volume.inputs["Density"].default_value,
+                             "unchanged": all(list(volume.inputs[name].default_value) == value
+                                              for name, value in before.items())}}
+
+
+def light_written_back(directory):
+    lights = json.loads((directory / "scene.gltf").read_text())["extensions"]["KHR_lights_punctual"]["lights"]
+    write_back.apply_fitted_values(bpy.context.scene, bpy.context.view_layer,
+                                   {"lights/Light/intensity": [1.0, 1.0, 1.0]})
+    return {"exported_lights": sorted(light["name"] for light in lights),
+            "light_watts": {name: bpy.data.objects[name].data.energy for name in ("Key", "Light")}}
+
+
+# What some cases read or do once they are exported: the Fit's view of the scene.
+AFTER_EXPORT = {"fit_parameters": offered_for_fit, "medium_write_back": g_written_back,
+                "light_write_back": light_written_back}
+
+
 def export_case(out, case, build, target=None):
     scene = empty_scene()
     directory = out / case
@@ -621,24 +650,8 @@ def export_case(out, case, build, target=None):
         result["warnings"] = export_scene.export_scene(bpy.context, str(target or directory / "scene.gltf"))
     except (export_scene.ExportError, OSError) as error:
         result["error"] = str(error)
-    if case == "fit_parameters":
-        result["fittable"] = write_back.fittable_parameters(bpy.context.scene, bpy.context.view_layer)
-    if case == "medium_write_back":
-        volume = bpy.data.materials["Smoke"].node_tree.nodes["Principled Volume"]
-        before = {name: list(volume.inputs[name].default_value) for name in ("Color", "Absorption Color")}
-        result["write_back_warnings"] = write_back.apply_fitted_values(
-            bpy.context.scene, bpy.context.view_layer,
-            {"media/Smoke/g": [0.5], "media/Smoke/density": {"count": 8, "mean": 0.1}})
-        result["volume_after"] = {"anisotropy": volume.inputs["Anisotropy"].default_value,
-                                  "density": volume.inputs["Density"].default_value,
-                                  "unchanged": all(list(volume.inputs[name].default_value) == value
-                                                   for name, value in before.items())}
-    if case == "light_write_back":
-        lights = json.loads((directory / "scene.gltf").read_text())["extensions"]["KHR_lights_punctual"]["lights"]
-        result["exported_lights"] = sorted(light["name"] for light in lights)
-        write_back.apply_fitted_values(bpy.context.scene, bpy.context.view_layer,
-                                       {"lights/Light/intensity": [1.0, 1.0, 1.0]})
-        result["light_watts"] = {name: bpy.data.objects[name].data.energy for name in ("Key", "Light")}
+    if case in AFTER_EXPORT:
+        result.update(AFTER_EXPORT[case](directory))
     result["modifiers_after"] = {obj.name: [[m.name, m.show_viewport, m.show_render, getattr(m, "levels", None)]
                                             for m in obj.modifiers] for obj in bpy.data.objects if obj.modifiers}
     result["render_colour_attributes_after"] = {

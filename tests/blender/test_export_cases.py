@@ -106,6 +106,24 @@ def test_colour_attributes_are_not_exported_as_vertex_colours(exported):
     assert not any("COLOR_0" in p["attributes"] for m in doc["meshes"] for p in m["primitives"])
 
 
+def accessor_values(exported, case, doc, index):
+    """Accessor INDEX of the case's scene.bin as floats, one row an element (normalized
+    integers read as fractions)."""
+    accessor = doc["accessors"][index]
+    view = doc["bufferViews"][accessor["bufferView"]]
+    data = (exported / case / doc["buffers"][view["buffer"]]["uri"]).read_bytes()
+    dtype = {5126: "<f4", 5123: "<u2", 5121: "u1"}[accessor["componentType"]]
+    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[accessor["type"]]
+    start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+    stride = view.get("byteStride", width * np.dtype(dtype).itemsize) // np.dtype(dtype).itemsize
+    values = np.frombuffer(data, dtype=dtype, offset=start, count=(accessor["count"] - 1) * stride + width)
+    values = np.lib.stride_tricks.as_strided(values, (accessor["count"], width),
+                                             (stride * values.itemsize, values.itemsize)).astype(float)
+    if dtype != "<f4" and accessor.get("normalized"):
+        values /= np.iinfo(dtype).max
+    return values
+
+
 def vertex_colour_of(exported, case, doc, mesh_name, primitive=0):
     """The one colour (RGB, linear) of every vertex of the primitive's COLOR_0 (None without
     it) in the case's scene.bin; the cubes of read_colour_attributes are of one colour each."""
@@ -113,16 +131,7 @@ def vertex_colour_of(exported, case, doc, mesh_name, primitive=0):
     index = primitives[primitive]["attributes"].get("COLOR_0")
     if index is None:
         return None
-    accessor = doc["accessors"][index]
-    view = doc["bufferViews"][accessor["bufferView"]]
-    data = (exported / case / doc["buffers"][view["buffer"]]["uri"]).read_bytes()
-    dtype = {5126: "<f4", 5123: "<u2", 5121: "u1"}[accessor["componentType"]]
-    channels = 4 if accessor["type"] == "VEC4" else 3
-    start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
-    values = np.frombuffer(data, dtype=dtype, count=accessor["count"] * channels, offset=start)
-    values = values.reshape(-1, channels)[:, :3].astype(float)
-    if accessor["componentType"] != 5126:
-        values /= np.iinfo(dtype).max
+    values = accessor_values(exported, case, doc, index)[:, :3]
     assert np.ptp(values, axis=0).max() < 1e-3, values
     return values[0]
 
@@ -149,24 +158,6 @@ def test_colour_attributes_that_materials_read_are_exported_where_they_are_read(
     assert any("'TwoRead'" in w and "all read 'A'" in w for w in warnings), warnings
     assert len(warnings) == 2 + sum("Principled BSDF is exported as a Lambertian" in w for w in warnings), warnings
     assert np.isfinite(render_mean(cli, exported, case))
-
-
-def accessor_values(exported, case, doc, index):
-    """Accessor INDEX of the case's scene.bin as floats, one row an element (normalized
-    integers read as fractions)."""
-    accessor = doc["accessors"][index]
-    view = doc["bufferViews"][accessor["bufferView"]]
-    data = (exported / case / doc["buffers"][view["buffer"]]["uri"]).read_bytes()
-    dtype = {5126: "<f4", 5123: "<u2", 5121: "u1"}[accessor["componentType"]]
-    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[accessor["type"]]
-    start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
-    stride = view.get("byteStride", width * np.dtype(dtype).itemsize) // np.dtype(dtype).itemsize
-    values = np.frombuffer(data, dtype=dtype, offset=start, count=(accessor["count"] - 1) * stride + width)
-    values = np.lib.stride_tricks.as_strided(values, (accessor["count"], width),
-                                             (stride * values.itemsize, values.itemsize)).astype(float)
-    if dtype != "<f4" and accessor.get("normalized"):
-        values /= np.iinfo(dtype).max
-    return values
 
 
 def test_a_colour_attribute_painted_face_by_face_is_exported_at_each_corner(exported):
