@@ -1,6 +1,7 @@
 #include "render/light_distribution.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "device_types.h"
 
@@ -36,6 +37,33 @@ double punctualPower(const PunctualLight& light, double radius) {
 // intensity is 0 is still sampled and gets a gradient to grow from.
 constexpr double kPunctualPowerFloor = 0.01;
 
+// The device chooses a light with a uniform number on the grid of multiples of
+// 1 / kChoiceSteps (rng.glsl's toUnitFloat: 24-bit floats). The CDF's ends lie on that grid, so
+// the probability of a choice is exactly its interval's length, which the estimators
+// divide by; a CDF of rounded floats would be chosen with a probability that differs
+// from its pmf by up to a grid step, a large share of a light among millions.
+constexpr uint32_t kChoiceSteps = 1u << 24;
+constexpr float kChoiceStep = 1.0f / float(kChoiceSteps);
+
+// The CDF of `power` (summing to `total`) in grid steps, from 0 to kChoiceSteps, with at
+// least one step for every light while the grid has room for all of them: a light
+// that next-event estimation never chose would go dark where only it reaches.
+std::vector<uint32_t> quantisedCumulativeShares(const std::vector<double>& power, double total) {
+    const size_t count = power.size();
+    const uint32_t leastStep = count <= kChoiceSteps ? 1u : 0u;
+    std::vector<uint32_t> steps(count + 1, 0u);
+    double running = 0.0;
+    for (size_t i = 0; i < count; ++i) {
+        running += power[i];
+        const double share = std::min(running / total, 1.0) * double(kChoiceSteps);
+        const uint64_t lowest = uint64_t(steps[i]) + leastStep;
+        const uint64_t highest = kChoiceSteps - uint64_t(count - 1 - i) * leastStep;
+        steps[i + 1] = uint32_t(std::clamp<uint64_t>(uint64_t(std::llround(share)), lowest, highest));
+    }
+    steps[count] = kChoiceSteps;
+    return steps;
+}
+
 }  // namespace
 
 std::vector<glm::vec3> meanEmittedRadiance(const Scene& scene) {
@@ -58,8 +86,7 @@ LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm
     LightDistribution lights;
     lights.trianglePmf.assign(scene.triangles.size(), 0.0f);
     lights.placementPmf.assign(scene.lightPlacements.size(), 0.0f);
-    // Punctual lights come first, where the CDF's floats are finest: a light whose share
-    // is tiny beside a million emissive triangles keeps an interval of its own.
+    // Punctual lights first, then the emissive triangles in the scene's order.
     std::vector<double> power;
     for (size_t i = 0; i < scene.lightPlacements.size(); ++i) {
         lights.sources.push_back(gpu::kPunctualEmitter | static_cast<uint32_t>(i));
@@ -89,12 +116,13 @@ LightDistribution buildLightDistribution(const Scene& scene, std::span<const glm
         total += std::max(power[i], floor) - power[i];
         power[i] = std::max(power[i], floor);
     }
+    const std::vector<uint32_t> steps = quantisedCumulativeShares(power, total);
     lights.cdf.push_back(0.0f);
-    double running = 0.0;
     for (size_t i = 0; i < power.size(); ++i) {
-        running += power[i];
-        lights.cdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(running / total));
-        const float pmf = static_cast<float>(power[i] / total);
+        lights.cdf.push_back(float(steps[i + 1]) * kChoiceStep);
+        // The probability the device's choice has: the uniform numbers on the grid of
+        // kChoiceSteps that fall in this light's interval.
+        const float pmf = float(steps[i + 1] - steps[i]) * kChoiceStep;
         if (i < punctualCount) {
             lights.placementPmf[i] = pmf;
         } else {
