@@ -83,6 +83,15 @@ void requireWithinFloatRange(const py::array& numbers, const std::string& what) 
     }
 }
 
+// Whether every element of an array of objects is a number (numbers.Number: not None).
+bool allNumbers(const py::array& objects) {
+    const py::object number = py::module_::import("numbers").attr("Number");
+    for (const py::handle item : objects.attr("flat")) {
+        if (!py::isinstance(item, number)) return false;
+    }
+    return true;
+}
+
 // Numbers as numpy makes float32 of them. Refused, with a TypeError naming `what`: None
 // (numpy would make it NaN), text (numpy would parse "0.1"), complex numbers (numpy
 // would drop their imaginary part), and what numpy cannot make an array of numbers of,
@@ -95,8 +104,15 @@ FloatArray floatArrayOf(const py::object& value, const std::string& what) {
         refuse("text");
     }
     py::array numbers;
+    const py::object numpy = py::module_::import("numpy");
     try {
-        numbers = py::module_::import("numpy").attr("asarray")(value);
+        numbers = numpy.attr("asarray")(value);
+        // Integers beyond 64 bits, Fractions and Decimals make arrays of objects, which
+        // are numbers all the same: as doubles, so that one beyond float's range is
+        // named as such below.
+        if (numbers.dtype().kind() == 'O' && allNumbers(numbers)) {
+            numbers = numpy.attr("asarray")(value, numpy.attr("float64"));
+        }
     } catch (py::error_already_set& error) {
         refuse(std::string(py::str(value.get_type().attr("__name__"))) + " (" +
                std::string(py::str(error.type().attr("__name__"))) + ": " + std::string(py::str(error.value())) +

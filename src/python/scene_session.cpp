@@ -23,6 +23,16 @@ bool sameView(const RenderSettings& a, const RenderSettings& b) {
            a.equiangularSampling == b.equiangularSampling;
 }
 
+// `file` made absolute, so that write() finds the original after the caller changes
+// directory; an empty name, which has no absolute path, is left for loadScene to refuse.
+std::filesystem::path absoluteSceneFile(const std::filesystem::path& file) {
+    if (file.empty()) return file;
+    std::error_code error;
+    std::filesystem::path absolute = std::filesystem::absolute(file, error);
+    if (error) throw Error(file.string() + ": " + error.message() + " (the working directory cannot be read)");
+    return absolute;
+}
+
 }  // namespace
 
 // How a renderer's adjoint state was last set up: for a caller's image adjoint (no loss)
@@ -40,9 +50,7 @@ struct SceneSession::CachedRenderer {
 };
 
 SceneSession::SceneSession(const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles)
-    // Absolute, so that write() finds the original after the caller changes directory
-    // (an empty name, which has no absolute path, loadScene refuses).
-    : file_(file.empty() ? file : std::filesystem::absolute(file)),
+    : file_(absoluteSceneFile(file)),
       loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})) {
     warnings_ = loaded_.warnings;
     for (std::string& warning : sceneWarnings(loaded_.scene)) {

@@ -46,11 +46,21 @@ glm::dmat4 nodeToWorld(const tinygltf::Model& model, int index, const std::strin
 }
 
 // The same rule as for the grid file's own transform, applied to where the node puts it;
-// and the renderer takes world to index coordinates in float, so the inverse must fit.
+// and the renderer takes index to world coordinates and back in float, so the
+// transform and its inverse must fit.
 void requireInvertible(const glm::dmat4& indexToWorld, const std::string& field, const GltfDiagnostics& diagnostics) {
     const std::string what = "the grid's placement (the node's transform times the grid's own): ";
     if (std::string problem = indexTransformProblem(indexToWorld); !problem.empty()) {
         diagnostics.fail(field, what + problem);
+    }
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 3; ++row) {
+            if (!std::isfinite(float(indexToWorld[column][row]))) {
+                diagnostics.fail(field, what + formatText("it has an entry of %g, beyond float's range: the voxels "
+                                                          "are too large, or too far away, for the renderer",
+                                                          indexToWorld[column][row]));
+            }
+        }
     }
     const glm::dmat4 worldToIndex = glm::inverse(indexToWorld);
     for (int column = 0; column < 4; ++column) {

@@ -17,6 +17,7 @@
 #include "image/regular_file.h"
 #include "scene/glb_layout.h"
 #include "scene/scene_file_access.h"
+#include "scene/scene_medium_emission.h"
 #include "volume/write_density_grid.h"
 
 namespace vkdr {
@@ -248,8 +249,10 @@ void requireNotASource(const std::vector<SourceFile>& sources, const std::filesy
 // The written scene must load by the same rule as any other (scene_file_access.h): files
 // the original refers to stay where they are when they lie in the output's directory
 // tree, and are copied beside the output, as <stem>.<array><i><extension>, when not.
+// Entries of `array` marked in `rewritten` are written anew by others and left alone.
 void referToExternalFiles(json& document, const char* array, const std::filesystem::path& original,
-                          const std::vector<SourceFile>& sources, const std::filesystem::path& out) {
+                          const std::vector<SourceFile>& sources, const std::filesystem::path& out,
+                          const std::vector<bool>& rewritten = {}) {
     if (!document.contains(array) || !document[array].is_array()) {
         return;
     }
@@ -260,7 +263,8 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
         std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
     for (size_t i = 0; i < document[array].size(); ++i) {
         json& entry = document[array][i];
-        if (!entry.contains("uri") || !entry["uri"].is_string() || isDataUri(entry["uri"].get<std::string>())) {
+        if ((i < rewritten.size() && rewritten[i]) || !entry.contains("uri") || !entry["uri"].is_string() ||
+            isDataUri(entry["uri"].get<std::string>())) {
             continue;
         }
         ResolvedFile resolved = from.resolveUri(entry["uri"].get<std::string>());
@@ -287,6 +291,8 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
 // .albedo_grid.vdb, and the medium's "density", "emissionGrid" and "albedoGrid" refer to
 // those files.
 void writeDensityGrids(json& document, const Scene& scene, const std::filesystem::path& out) {
+    std::vector<SourceFile> reads = scene.sourceFiles;
+    for (const SceneDensityGrid& grid : scene.densityGrids) reads.push_back({grid.file, 0});
     auto writeGrid = [&](json& owner, int32_t grid, const char* key, const char* defaultName,
                          const std::string& stem) {
         if (grid < 0 || !owner.contains("extensions") || !owner["extensions"].contains(kMediumExtension) ||
@@ -295,7 +301,7 @@ void writeDensityGrids(json& document, const Scene& scene, const std::filesystem
         }
         const DensityGrid& values = scene.densityGrids[size_t(grid)].grid;
         const std::string file = stem + ".vdb";
-        requireNotASource(scene.sourceFiles, out.parent_path() / file);
+        requireNotASource(reads, out.parent_path() / file);
         writeDensityGridVdb(out.parent_path() / file, values);
         json& reference = owner["extensions"][kMediumExtension][key];
         reference["uri"] = encodeUriPath(file);
@@ -346,25 +352,45 @@ Image textureImage(const Texture& texture) {
     return image;
 }
 
-// The texels of base colour textures are parameters too. Each such image is written
-// beside `out` as <stem>.image<i>.png (8-bit sRGB, as glTF base colour textures are;
-// alpha is not kept) and the glTF image refers to it instead of its old source.
-void writeBaseColorTextures(json& document, const Scene& scene, const std::filesystem::path& out) {
-    std::vector<bool> written(document.contains("images") ? document["images"].size() : 0, false);
-    size_t fileMaterials = document.contains("materials") ? document["materials"].size() : 0;
-    for (size_t i = 0; i < fileMaterials && i < scene.materials.size(); ++i) {
+// The glTF image of each material's base colour texture (-1 where it has none): the
+// images whose texels are parameters.
+std::vector<int64_t> baseColorImageOfMaterials(const json& document, const Scene& scene) {
+    const size_t fileMaterials = document.contains("materials") ? document["materials"].size() : 0;
+    std::vector<int64_t> images(std::min(fileMaterials, scene.materials.size()), -1);
+    for (size_t i = 0; i < images.size(); ++i) {
         const Material& material = scene.materials[i];
         if (material.isMediumBoundary() || material.baseColorTexture < 0) {
             continue;
         }
         size_t texture = document["materials"][i]["pbrMetallicRoughness"]["baseColorTexture"]["index"].get<size_t>();
-        size_t image = document["textures"][texture]["source"].get<size_t>();
-        if (written[image]) {
+        images[i] = document["textures"][texture]["source"].get<int64_t>();
+    }
+    return images;
+}
+
+// Which of the document's images writeBaseColorTextures writes anew.
+std::vector<bool> baseColorImages(const json& document, const Scene& scene) {
+    std::vector<bool> images(document.contains("images") ? document["images"].size() : 0, false);
+    for (int64_t image : baseColorImageOfMaterials(document, scene)) {
+        if (image >= 0) images[size_t(image)] = true;
+    }
+    return images;
+}
+
+// The texels of base colour textures are parameters too. Each such image is written
+// beside `out` as <stem>.image<i>.png (8-bit sRGB, as glTF base colour textures are;
+// alpha is not kept) and the glTF image refers to it instead of its old source.
+void writeBaseColorTextures(json& document, const Scene& scene, const std::filesystem::path& out) {
+    std::vector<bool> written(document.contains("images") ? document["images"].size() : 0, false);
+    const std::vector<int64_t> images = baseColorImageOfMaterials(document, scene);
+    for (size_t i = 0; i < images.size(); ++i) {
+        if (images[i] < 0 || written[size_t(images[i])]) {
             continue;
         }
+        const size_t image = size_t(images[i]);
         std::string file = out.stem().string() + ".image" + std::to_string(image) + ".png";
         requireNotASource(scene.sourceFiles, out.parent_path() / file);
-        writePng(out.parent_path() / file, textureImage(scene.textures[size_t(material.baseColorTexture)]));
+        writePng(out.parent_path() / file, textureImage(scene.textures[size_t(scene.materials[i].baseColorTexture)]));
         json& entry = document["images"][image];
         entry.erase("bufferView");
         entry.erase("mimeType");
@@ -377,6 +403,10 @@ void writeBaseColorTextures(json& document, const Scene& scene, const std::files
 
 void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
                               const std::filesystem::path& out) {
+    // Parameters set one at a time can make a scene the loader refuses as a whole.
+    if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(scene)) {
+        throw Error(out.string() + ": the scene would not load again: " + unbounded->problem);
+    }
     GltfSource source = readGltfSource(original, scene.sourceFiles);
     json& document = source.document;
     writeMaterials(document, scene, original);
@@ -384,7 +414,7 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     writePunctualLights(document, scene, original);
 
     referToExternalFiles(document, "buffers", original, scene.sourceFiles, out);
-    referToExternalFiles(document, "images", original, scene.sourceFiles, out);
+    referToExternalFiles(document, "images", original, scene.sourceFiles, out, baseColorImages(document, scene));
     writeDensityGrids(document, scene, out);
     writeBinaryChunkBeside(document, source, original, scene.sourceFiles, out);
     writeBaseColorTextures(document, scene, out);

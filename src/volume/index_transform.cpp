@@ -1,10 +1,23 @@
 #include "volume/index_transform.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/format_text.h"
 
 namespace vkdr {
+namespace {
+
+// `axis` scaled to length 1 without squaring its entries (which could overflow or
+// underflow); (0, 0, 0) for the zero axis.
+glm::dvec3 unitAxis(const glm::dvec3& axis) {
+    const double largest = std::max({std::abs(axis.x), std::abs(axis.y), std::abs(axis.z)});
+    if (largest == 0.0) return glm::dvec3(0.0);
+    const glm::dvec3 scaled = axis / largest;
+    return scaled / glm::length(scaled);
+}
+
+}  // namespace
 
 std::string indexTransformProblem(const glm::dmat4& indexToLocal) {
     for (int column = 0; column < 4; ++column) {
@@ -18,9 +31,10 @@ std::string indexTransformProblem(const glm::dmat4& indexToLocal) {
                           lastRow.y, lastRow.z, lastRow.w);
     }
     const glm::dmat3 axes(indexToLocal);
-    const double edges = glm::length(axes[0]) * glm::length(axes[1]) * glm::length(axes[2]);
-    const double volume = std::abs(glm::determinant(axes));
-    if (!(volume >= 1e-6 * edges) || volume == 0.0) {
+    // The volume of the unit voxel axes: how far from flat the voxels are, whatever
+    // their size (a product of the lengths themselves can overflow or underflow).
+    const double volume = std::abs(glm::determinant(glm::dmat3(unitAxis(axes[0]), unitAxis(axes[1]), unitAxis(axes[2]))));
+    if (!(volume >= 1e-6)) {
         return formatText("the transform is singular (its voxel axes (%g %g %g), (%g %g %g), (%g %g %g) are "
                           "linearly dependent or nearly so)",
                           axes[0].x, axes[0].y, axes[0].z, axes[1].x, axes[1].y, axes[1].z, axes[2].x, axes[2].y,

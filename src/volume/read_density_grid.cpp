@@ -118,7 +118,16 @@ DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dm
     }
     dense.firstVoxel = glm::ivec3(box.min().x(), box.min().y(), box.min().z());
     dense.size = glm::ivec3(extent);
-    dense.values.assign(count * size_t(Values::channels), 0.0f);
+    try {
+        dense.values.assign(count * size_t(Values::channels), 0.0f);
+    } catch (const std::bad_alloc&) {
+        // A valid sparse grid whose few voxels lie far apart: not a damaged file.
+        throw Error(formatText("its active voxels span a box of %lld x %lld x %lld = %llu voxels, %.1f GiB held "
+                               "densely, more memory than this process could get",
+                               (long long)extent.x, (long long)extent.y, (long long)extent.z,
+                               (unsigned long long)count,
+                               double(count) * Values::channels * sizeof(float) / double(1ull << 30)));
+    }
     const openvdb::Coord first = box.min();
     const size_t sizeX = size_t(dense.size.x), sizeY = size_t(dense.size.y);
     for (auto value = grid.cbeginValueOn(); value; ++value) {
@@ -167,9 +176,11 @@ DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridNa
     for (auto name = vdb.beginName(); name != vdb.endName(); ++name) names.push_back(*name);
     const std::vector<std::string> named = vdbGridsNamed(gridName, names);
     // OpenVDB numbers names only where several grids share one: a lone 'density[1]' is
-    // that grid's own name, not a copy of 'density'.
-    if (named.empty() || (named.size() == 1 && named[0] != gridName)) throw Error(noGridNamed(gridName, names));
-    if (named.size() > 1) {
+    // that grid's own name, not a copy of 'density', and a name listed as it is, without
+    // a number, belongs to one grid alone.
+    const bool listedAsItIs = std::find(names.begin(), names.end(), gridName) != names.end();
+    if (named.empty() || (named.size() == 1 && !listedAsItIs)) throw Error(noGridNamed(gridName, names));
+    if (named.size() > 1 && !listedAsItIs) {
         throw Error(severalGridsNamed(gridName, named.size(),
                                       "name one as OpenVDB does: '" + named[0] + "', '" + named[1] + "'..."));
     }
@@ -214,13 +225,16 @@ glm::dmat4 indexToLocalOf(const nanovdb::Map& map) {
 }
 
 template <typename Values, typename ValueT>
-DensityGrid denseBoxOfNanoGrid(const nanovdb::NanoGrid<ValueT>* grid, const std::string& gridName) {
+DensityGrid denseBoxOfNanoGrid(nanovdb::NanoGrid<ValueT>* grid, const std::string& gridName) {
     if (grid == nullptr) throw Error("the grid's header and its contents disagree on its value type");
     requireNodesWithinGrid(*grid);
     const std::string damage = nanovdb::GridValidator<ValueT>::check(*grid, true);
     if (!damage.empty()) throw Error("the grid is damaged (" + damage + ")");
     const glm::dmat4 indexToLocal = indexToLocalOf(grid->map());
     requireUsableTransform(indexToLocal);
+    // The conversion makes an OpenVDB transform of the map, which refuses voxels smaller
+    // than about 1.4e-5 that the rule above accepts; only the voxels are used from it.
+    grid->data()->mMap.set(1.0, nanovdb::Vec3d(0.0), 1.0);
     return denseBoxOf<Values>(*nanovdb::nanoToOpenVDB(*grid), gridName, indexToLocal);
 }
 
@@ -245,7 +259,7 @@ DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gr
     if (type != nanovdb::GridType::Float && type != nanovdb::GridType::Double && !isVector) {
         throw Error(std::string("the grid holds ") + nanovdb::toStr(type) + " values, not " + Values::expected);
     }
-    const nanovdb::GridHandle<nanovdb::HostBuffer> handle = nanovdb::io::readGrid(file.string(), gridName);
+    nanovdb::GridHandle<nanovdb::HostBuffer> handle = nanovdb::io::readGrid(file.string(), gridName);
     requireGridWithinBuffer(handle.data(), handle.size());
     if (type == nanovdb::GridType::Float) return denseBoxOfNanoGrid<Values>(handle.grid<float>(), gridName);
     if constexpr (Values::channels == 3) {

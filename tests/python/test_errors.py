@@ -8,6 +8,8 @@ import subprocess
 import sys
 import threading
 import time
+from decimal import Decimal
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -97,6 +99,29 @@ def test_values_that_are_not_numbers_are_type_errors_naming_the_parameter(scene,
     assert np.array_equal(scene["media/fog/sigma_a"], before)
     with pytest.raises(TypeError, match="^the image adjoint: expected numbers, "):
         scene.backpropagate(value, ["media/fog/sigma_a"], width=WIDTH)
+
+
+@pytest.mark.parametrize("value,expected", [
+    (2**64, np.float32(2.0**64)),
+    (Fraction(1, 20), np.float32(0.05)),
+    (Decimal("0.05"), np.float32(0.05)),
+    ([Fraction(1, 4), 2**70, 1], np.array([0.25, 2.0**70, 1.0], np.float32)),
+])
+def test_numbers_numpy_holds_as_objects_are_numbers(scene, value, expected):
+    """Integers beyond 64 bits, Fractions and Decimals: numpy makes arrays of objects of them."""
+    before = scene["media/fog/sigma_a"].copy()
+    try:
+        scene["media/fog/sigma_a"] = value
+        assert np.array_equal(scene["media/fog/sigma_a"], np.broadcast_to(expected, (3,)))
+    finally:
+        scene["media/fog/sigma_a"] = before
+
+
+def test_objects_that_are_not_all_numbers_stay_refused(scene):
+    with pytest.raises(TypeError, match="^media/fog/sigma_a: expected numbers, got an array of dtype object$"):
+        scene["media/fog/sigma_a"] = [None, 0.1, Fraction(1, 5)]
+    with pytest.raises(vkdiffrender.Error, match="beyond float range"):
+        scene["media/fog/sigma_a"] = 10**40
 
 
 def test_what_numpy_cannot_convert_is_refused_with_its_reason(scene):
@@ -284,6 +309,30 @@ def test_write_gives_a_scene_that_loads_with_the_values(scene, tmp_path):
     scene.write(tmp_path / "fitted.gltf")
     assert np.array_equal(vkdiffrender.Scene(tmp_path / "fitted.gltf")["media/fog/sigma_a"],
                           np.array([0.02, 0.03, 0.04], np.float32))
+
+
+def test_write_refuses_a_scene_that_would_not_load(fog_scene_file, tmp_path):
+    """Each value in range, together a scene-wide medium that emits without attenuating."""
+    fog = vkdiffrender.Scene(fog_scene_file)
+    fog["media/fog/sigma_a"] = 0
+    fog["media/fog/sigma_s"] = 0
+    fog["media/fog/emission"] = 1
+    with pytest.raises(vkdiffrender.Error, match="unbounded.gltf: the scene would not load again: "):
+        fog.write(tmp_path / "unbounded.gltf")
+    assert not (tmp_path / "unbounded.gltf").exists()
+
+
+def test_a_scene_named_from_a_removed_working_directory_is_an_error(tmp_path):
+    here = os.getcwd()
+    gone = tmp_path / "gone"
+    gone.mkdir()
+    os.chdir(gone)
+    try:
+        gone.rmdir()
+        with pytest.raises(vkdiffrender.Error, match="scene.gltf: .*the working directory cannot be read"):
+            vkdiffrender.Scene("scene.gltf")
+    finally:
+        os.chdir(here)
 
 
 def test_the_device_works_without_pythons_lock(scene):

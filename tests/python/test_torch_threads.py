@@ -49,3 +49,5 @@ def test_a_list_of_tensors_that_require_grad_is_refused(fog_scene_file):
     channels = [torch.tensor(0.05, requires_grad=True) for _ in range(3)]
     with pytest.raises(TypeError, match="media/fog/sigma_a: a list of tensors that require grad"):
         vt.render(scene, {"media/fog/sigma_a": channels}, **SETTINGS)
+    with pytest.raises(TypeError, match="media/fog/sigma_a: a list of tensors that require grad"):
+        vt.render(scene, {"media/fog/sigma_a": [[channel] for channel in channels]}, **SETTINGS)

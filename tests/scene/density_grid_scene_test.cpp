@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 
 #include "core/error.h"
 #include "expect_error.h"
@@ -106,6 +108,29 @@ TEST(DensityGridScene, WrittenSceneHasTheGridsCurrentVoxels) {
     EXPECT_EQ(again.scene.densityGrids[0].indexToWorld, loaded.scene.densityGrids[0].indexToWorld);
 }
 
+// A grid the written scene would put where the scene reads one is refused before
+// anything is written: the loaded scene would read the fitted voxels from then on.
+std::string bytesOf(const std::filesystem::path& file) {
+    std::ifstream stream(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(stream), {});
+}
+
+TEST(DensityGridScene, WritingOverAGridTheSceneReadsIsRefused) {
+    TemporaryDirectory directory;
+    writeDensityGridVdb(directory / "scene.materials0.density.vdb", smallGrid());
+    std::filesystem::path original = boxScene(gridMedium({{"uri", "scene.materials0.density.vdb"}, {"node", 1}}))
+                                         .writeGltf(directory / "original.gltf");
+    LoadedScene loaded = loadScene(original);
+    const std::string before = bytesOf(directory / "scene.materials0.density.vdb");
+    std::vector<float> fitted = smallGrid().values;
+    fitted[3] = 7.5f;
+    setParameter(loaded.scene, "media/smoke/density", fitted);
+    expectErrorMentioning([&] { writeSceneWithParameters(original, loaded.scene, directory / "scene.gltf"); },
+                          {"scene.materials0.density.vdb", "which the scene reads"});
+    EXPECT_EQ(bytesOf(directory / "scene.materials0.density.vdb"), before);
+    EXPECT_FALSE(std::filesystem::exists(directory / "scene.gltf"));
+}
+
 TEST(DensityGridScene, BadReferencesNameTheField) {
     TemporaryDirectory directory;
     writeDensityGridVdb(directory / "smoke.vdb", smallGrid());
@@ -130,6 +155,12 @@ TEST(DensityGridScene, BadReferencesNameTheField) {
     expectLoadError(write({{"uri", "file:///smoke.vdb"}}), {field + ".uri", "(file:) are not read", "relative"});
     // Voxels so small that world-to-index coordinates leave float's range.
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 1}}, 1e-40), {field, "placement", "beyond float's range"});
+    // Voxels of 1e20 placed at a scale of 1e20: index-to-world entries beyond float's range.
+    DensityGrid vast = smallGrid();
+    vast.indexToLocal = glm::dmat4(1e20);
+    vast.indexToLocal[3][3] = 1.0;
+    writeDensityGridVdb(directory / "smoke.vdb", vast);
+    expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 1}}, 1e20), {field, "placement", "1e+40", "too large"});
 }
 
 // An emission grid: its own entry among the grids, white emission unless given, its own

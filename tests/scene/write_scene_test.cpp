@@ -1,5 +1,6 @@
 // Writing fitted parameters back into glTF: every parameter survives a load-change-
 // write-load round trip, in both medium spellings, with external and GLB buffers.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -273,6 +274,32 @@ TEST(WriteScene, WritesFittedTexelsAsAnSrgbPng) {
         // Half an 8-bit sRGB step, in linear terms, is at most 0.0045 (at 1).
         EXPECT_NEAR(got[i], want[i], 0.0045f) << i;
     }
+}
+
+// A texture whose texels are written anew is not also copied beside a scene written
+// outside the original's directory: the written scene refers to the new image alone.
+TEST(WriteScene, FittedTextureFileIsNotCopiedToo) {
+    TemporaryDirectory directory;
+    std::filesystem::create_directories(directory / "in");
+    std::filesystem::create_directories(directory / "out");
+    const std::vector<unsigned char> bmp = bmpImage(2, 1, {{255, 0, 0}, {0, 0, 255}});
+    writeText(directory / "in" / "checker.bmp", std::string(bmp.begin(), bmp.end()));
+    GltfBuilder builder;
+    builder.document()["images"] = {{{"uri", "checker.bmp"}}};
+    builder.document()["textures"] = {{{"source", 0}}};
+    int material = builder.addMaterial(
+        {{"name", "painted"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
+    std::filesystem::path original = builder.writeGltf(directory / "in" / "painted.gltf");
+    Scene scene = loadScene(original).scene;
+
+    writeAndReload(original, scene, directory / "out" / "fitted.gltf");
+    std::vector<std::string> written;
+    for (const auto& entry : std::filesystem::directory_iterator(directory / "out")) {
+        written.push_back(entry.path().filename().string());
+    }
+    std::sort(written.begin(), written.end());
+    EXPECT_EQ(written, (std::vector<std::string>{"fitted.gltf", "fitted.image0.png"}));
 }
 
 TEST(WriteScene, NamesAnUnreadableOriginal) {

@@ -1,5 +1,10 @@
 // Each way a density grid file can be unusable gives one vkdr::Error naming the file
 // and saying what is wrong.
+#include <sys/resource.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -11,6 +16,7 @@
 #include "../image/scratch_directory.h"
 #include "expect_error.h"
 #include "grid_files.h"
+#include "volume/index_transform.h"
 #include "volume/read_density_grid.h"
 #include "volume/write_density_grid.h"
 
@@ -104,6 +110,13 @@ TEST(DensityGridErrors, NoGridOfThatNameListsTheNames) {
     openvdb::io::File((directory / "bracket.vdb").string()).write(openvdb::GridPtrVec{openVdbGrid(smoke)});
     expectReadError(directory / "bracket.vdb", "density", {"no grid named 'density'", "'density[1]'"});
     EXPECT_EQ(readDensityGrid(directory / "bracket.vdb", "density[1]").size, glm::ivec3(2));
+    // Beside a grid of the plain name, each reads by its own.
+    DensityGrid plain = patternedGrid({0, 0, 0}, {3, 3, 3}, glm::dmat4(1.0));
+    plain.name = "density";
+    openvdb::io::File((directory / "both.vdb").string())
+        .write(openvdb::GridPtrVec{openVdbGrid(smoke), openVdbGrid(plain)});
+    EXPECT_EQ(readDensityGrid(directory / "both.vdb", "density").size, glm::ivec3(3));
+    EXPECT_EQ(readDensityGrid(directory / "both.vdb", "density[1]").size, glm::ivec3(2));
 }
 
 // Which of several grids of one name is meant is not known: refused, naming them as
@@ -292,6 +305,65 @@ TEST(DensityGridErrors, BoxTooLargeToHoldDensely) {
     openvdb::FloatGrid::Ptr vdb = gridWithVoxel({2000, 2000, 2000}, 1.0f);
     writeOpenVdbGrid(directory / "far.vdb", vdb);
     expectReadError(directory / "far.vdb", "density", {"2001 x 2001 x 2001 = 8012006001 voxels", "2^31 - 1"});
+}
+
+// The process's address space, from /proc/self/status (VmSize), in bytes.
+[[maybe_unused]] uint64_t addressSpaceBytes() {
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    uint64_t kilobytes = 0;
+    while (status >> key) {
+        if (key == "VmSize:" && status >> kilobytes) return kilobytes * 1024;
+    }
+    return 0;
+}
+
+// Flatness is a matter of the voxel axes' directions, not their lengths: it is judged
+// alike for voxels of 1e-200 and of 1e110, whose products of lengths leave double's range.
+TEST(DensityGridErrors, FlatnessDoesNotDependOnTheVoxelSize) {
+    for (double size : {1e-200, 1e-5, 1.0, 1e110, 1e300}) {
+        SCOPED_TRACE(size);
+        glm::dmat4 upright(size);
+        upright[3] = glm::dvec4(1.0, 2.0, 3.0, 1.0);
+        EXPECT_EQ(indexTransformProblem(upright), "");
+        glm::dmat4 flat = upright;
+        flat[1] = glm::dvec4(size, size * 1e-9, 0.0, 0.0);  // the y axis within 1e-9 of x
+        EXPECT_NE(indexTransformProblem(flat).find("singular"), std::string::npos);
+    }
+}
+
+// Two voxels far apart in a valid file: a box of 7e8 voxels (2.6 GiB of floats) where the
+// process may have 1 GiB more than it holds. The reader's refusal names the box, not
+// damage to the file.
+TEST(DensityGridErrors, BoxTooLargeForTheProcessMemory) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit allows";
+#else
+    ScratchDirectory directory;
+    writeOpenVdbGrid(directory / "sparse.vdb", gridWithVoxel({999, 999, 699}, 1.0f));
+    // The child process runs the test from its start, in a scratch directory of its own,
+    // which it removes as it leaves.
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const auto leave = [&](int code) {
+        std::error_code ignored;
+        std::filesystem::remove_all(directory.path(), ignored);
+        std::exit(code);
+    };
+    const auto readWithLimitedMemory = [&] {
+        const uint64_t held = addressSpaceBytes();
+        const rlimit limit{held + (uint64_t(1) << 30), held + (uint64_t(1) << 30)};
+        if (held == 0 || setrlimit(RLIMIT_AS, &limit) != 0) leave(3);
+        try {
+            readDensityGrid(directory / "sparse.vdb", "density");
+        } catch (const Error& error) {
+            std::cerr << error.what() << "\n";
+            leave(2);
+        }
+        leave(0);
+    };
+    EXPECT_EXIT(readWithLimitedMemory(), testing::ExitedWithCode(2),
+                "1000 x 1000 x 700 = 700000000 voxels, 2.6 GiB held densely");
+#endif
 }
 
 }  // namespace

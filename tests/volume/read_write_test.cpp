@@ -8,6 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <nanovdb/util/GridChecksum.h>
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/OpenToNanoVDB.h>
 
@@ -53,6 +54,21 @@ TEST(DensityGridFiles, ReadsCompressedNanoVdb) {
         nanovdb::io::writeGrid(file.string(), handle, codec);
         expectSameGrid(readDensityGrid(file, "density"), grid);
     }
+}
+
+// Voxels of 1e-5 (a micro-CT scan in metres) are not flat, whatever OpenVDB's transforms
+// make of their small determinant: a NanoVDB file of them reads with its map.
+TEST(DensityGridFiles, NanoVdbOfSmallVoxelsReads) {
+    ScratchDirectory directory;
+    DensityGrid grid = patternedGrid({1, 2, 3}, {4, 5, 6}, glm::dmat4(1.0));
+    nanovdb::GridHandle<> handle = nanovdb::openToNanoVDB(*openVdbGrid(grid));
+    nanovdb::NanoGrid<float>* nano = handle.grid<float>();
+    nano->data()->mMap.set(1e-5, nanovdb::Vec3d(0.5, -2.0, 3.0), 1.0);
+    nanovdb::updateChecksum(*nano, nanovdb::ChecksumMode::Full);
+    nanovdb::io::writeGrid((directory / "small.nvdb").string(), handle);
+    grid.indexToLocal = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, -2.0, 3.0)) *
+                        glm::scale(glm::dmat4(1.0), glm::dvec3(1e-5));
+    expectSameGrid(readDensityGrid(directory / "small.nvdb", "density"), grid);
 }
 
 // writeDensityGrid picks the format by extension, in any case.

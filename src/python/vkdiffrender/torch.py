@@ -62,9 +62,9 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
 
 def _tensor_of(name, value):
     """`value` as a tensor of real numbers with values, or a TypeError naming the parameter."""
-    # torch.as_tensor copies a list's values and drops the graph of tensors in it.
-    if isinstance(value, (list, tuple)) and any(isinstance(item, torch.Tensor) and item.requires_grad
-                                                for item in value):
+    # torch.as_tensor copies a list's values and drops the graph of tensors in it, at any
+    # depth of nesting.
+    if isinstance(value, (list, tuple)) and _holds_tensor_requiring_grad(value):
         raise TypeError(f"{name}: a list of tensors that require grad loses their gradients; "
                         "pass torch.stack(...) of them instead")
     try:
@@ -77,6 +77,11 @@ def _tensor_of(name, value):
     if tensor.device.type == "meta":
         raise TypeError(f"{name}: a tensor on the meta device holds no values")
     return tensor
+
+
+def _holds_tensor_requiring_grad(items):
+    return any(_holds_tensor_requiring_grad(item) if isinstance(item, (list, tuple))
+               else isinstance(item, torch.Tensor) and item.requires_grad for item in items)
 
 
 class _Render(torch.autograd.Function):
