@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/format_text.h"
 #include "device_types.h"
+#include "image/regular_file.h"
 #include "procedural/room_scene.h"
 #include "scene/load_scene.h"
 #include "volume/index_transform.h"
@@ -101,8 +102,8 @@ std::vector<std::string> defaultBenchScenes() {
 
 BenchSceneSource resolveBenchScene(const std::string& name, const std::filesystem::path& scenesDirectory) {
     if (looksLikeFile(name)) {
-        if (!std::filesystem::is_regular_file(name)) {
-            throw Error("scene " + name + ": no such file");
+        if (const std::string reason = notRegularFileReason(name); !reason.empty()) {
+            throw Error("scene " + name + ": " + reason);
         }
         return {name, name};
     }
@@ -120,13 +121,13 @@ BenchSceneSource resolveBenchScene(const std::string& name, const std::filesyste
                         "plume_64");
         }
         std::filesystem::path shipped = scenesDirectory / (std::string(kPlumeScene) + ".gltf");
-        if (!std::filesystem::is_regular_file(shipped)) {
-            throw Error("scene " + name + ": the plume goes into " + shipped.string() + ", which is not there");
+        if (const std::string reason = notRegularFileReason(shipped); !reason.empty()) {
+            throw Error("scene " + name + ": the plume goes into " + shipped.string() + ": " + reason);
         }
         return {name, shipped, 0, *resolution};
     }
     std::filesystem::path shipped = scenesDirectory / (name + ".gltf");
-    if (!std::filesystem::is_regular_file(shipped)) {
+    if (!notRegularFileReason(shipped).empty()) {
         throw Error("unknown scene '" + name + "': not " + shipped.string() +
                     ", nor room_<N> (e.g. room_100k), nor plume_<N> (e.g. plume_64), nor a .gltf or .glb file");
     }

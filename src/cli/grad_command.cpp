@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/install_layout.h"
 #include "cli/number_options.h"
+#include "cli/progress_bar.h"
 #include "cli/sampling_options.h"
 #include "cli/scene_options.h"
 #include "cli/target_views.h"
@@ -167,11 +168,17 @@ int runGrad(const GradOptions& options) {
     VulkanContext context(ContextOptions{options.device});
     RenderedLossGradient lossGradient(context, scene, views, options.parameters, options.settings,
                                       parseLossKind(options.loss));
+    ProgressBar bar("grad");
+    bar.update(0.0, "gradient");
     GradientResult result = lossGradient.evaluate(scene, options.settings.seed);
+    if (!options.check) bar.update(1.0, "gradient");
     std::vector<GradientCheckRow> check;
     if (options.check) {
-        check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds, options.settings.seed);
+        // The evaluation above is a small part of what --check renders.
+        check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds, options.settings.seed,
+                               [&](double fraction) { bar.update(fraction, "--check"); });
     }
+    bar.finish();
     requireNoValidationMessages(context);
     requireFiniteResult(result, check);
     throwIfInterrupted();  // a signal after the last pass: no result printed

@@ -2,17 +2,29 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace vkdr {
 namespace {
 
+// `text` whole as a decimal number (an optional sign, digits, a point, an exponent):
+// not hexadecimal ("0x10", which CLI11 would read as 16), nor with spaces around it, as
+// the integer options and --set read numbers.
+std::optional<double> decimalNumber(const std::string& text) {
+    const char* begin = text.data() + (text.starts_with('+') && !text.starts_with("+-") ? 1 : 0);
+    const char* end = text.data() + text.size();
+    double value = 0.0;
+    auto [stop, ec] = std::from_chars(begin, end, value, std::chars_format::general);
+    if (ec != std::errc() || stop != end) return std::nullopt;
+    return value;
+}
+
 CLI::Validator finiteNumberWhere(std::function<bool(double)> accepts, const std::string& wanted) {
     return CLI::Validator(
         [accepts, wanted](std::string& text) -> std::string {
-            double value = 0.0;
-            bool read = CLI::detail::lexical_cast(text, value);
-            if (read && std::isfinite(value) && accepts(value)) return "";
+            const std::optional<double> value = decimalNumber(text);
+            if (value && std::isfinite(*value) && accepts(*value)) return "";
             return "expected " + wanted + ", got " + text;
         },
         wanted);

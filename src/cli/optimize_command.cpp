@@ -247,7 +247,29 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.spp->count()) experiment.render.spp = options.settings.spp;
     if (given.maxDepth->count()) experiment.render.maxDepth = options.settings.maxDepth;
     experiment.render.equiangularSampling = options.settings.equiangularSampling;
+    // How paths are split into passes changes no result, so the file does not say it.
+    experiment.render.pathsPerPass = options.settings.pathsPerPass;
     if (given.loss->count()) experiment.loss = parseLossKind(options.loss);
+}
+
+// `backend` showing a bar while the renders that precede the first iteration run: each
+// view's target, and each held-out view's target and true render.
+ExperimentBackend withTargetProgress(ExperimentBackend backend, const Experiment& experiment) {
+    const size_t total = experiment.views.size() + 2 * experiment.heldOutViews.size();
+    auto bar = std::make_shared<ProgressBar>("targets");
+    auto done = std::make_shared<size_t>(0);
+    backend.render = [render = std::move(backend.render), bar, done, total](const Scene& scene,
+                                                                            const RenderSettings& settings) {
+        if (*done == 0) bar->update(0.0, "0/" + std::to_string(total) + " renders");
+        Image image = render(scene, settings);
+        if (*done < total) {
+            ++*done;
+            bar->update(double(*done) / double(total), std::to_string(*done) + "/" + std::to_string(total) + " renders");
+            if (*done == total) bar->finish();
+        }
+        return image;
+    };
+    return backend;
 }
 
 int runOptimizeExperiment(const OptimizeCommandOptions& options, const ExperimentOverrides& overrides) {
@@ -275,7 +297,7 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     VulkanContext context(ContextOptions{options.device});
     // Only parameter values change during an experiment, never the geometry.
     Bvh bvh = buildBvh(loaded.scene.positions, loaded.scene.triangles);
-    ExperimentBackend backend = renderingBackend(context, bvh);
+    ExperimentBackend backend = withTargetProgress(renderingBackend(context, bvh), experiment);
     std::fprintf(stderr, "%s: %s, %zu triangles, %zu views, %u spp (targets %u), %u iterations of %s on %s\n",
                  options.experiment.c_str(), experiment.scene.string().c_str(), loaded.scene.triangles.size(),
                  experiment.views.size(), experiment.render.spp, experiment.targetSpp,
@@ -376,7 +398,8 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
                       "or is stopped before then leaves the old one whole; other files are left");
     command
         ->add_option("--checkpoint-every", options->optimize.checkpointEvery,
-                     "Write DIR/checkpoint.json every K iterations (0: never); a stopped run loses at most K")
+                     "Write DIR/checkpoint.json every K iterations (0: only when SIGINT or SIGTERM stops the run); "
+                     "a run that fails otherwise loses at most K")
         ->default_val(options->optimize.checkpointEvery)
         ->transform(integerIn(0, 1000000));
     command->add_option("--resume", options->resume,

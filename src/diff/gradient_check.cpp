@@ -93,10 +93,18 @@ std::vector<std::vector<FiniteDifferenceStep>> finiteDifferenceSteps(const Scene
 
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds,
-                                             uint32_t firstSeed) {
+                                             uint32_t firstSeed, const std::function<void(double)>& progress) {
     const std::vector<std::vector<FiniteDifferenceStep>> steps = finiteDifferenceSteps(scene, parameters);
+    size_t components = 0;
+    for (const std::vector<FiniteDifferenceStep>& parameter : steps) components += parameter.size();
+    const double total = double(seeds) * double(1 + components);
+    double done = 0.0;
+    auto stepDone = [&] {
+        done += 1.0;
+        if (progress) progress(done / total);
+    };
     const std::vector<std::vector<MeanAndError>> adjoint =
-        gradientOverSeeds(lg, scene, uint32_t(seeds), firstSeed);
+        gradientOverSeeds(lg, scene, uint32_t(seeds), firstSeed, stepDone);
     std::vector<GradientCheckRow> rows;
     for (size_t p = 0; p < parameters.size(); ++p) {
         const std::vector<float> value = getParameter(scene, parameters[p]);
@@ -116,6 +124,7 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
                     return l;
                 };
                 differences.push_back(finiteDifference(loss, x, h, range));
+                stepDone();
             }
             const MeanAndError& a = adjoint[p][c];
             const MeanAndError f = meanAndError(differences);

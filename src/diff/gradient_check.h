@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,9 +46,11 @@ struct GradientCheckRow {
 // Where neither fits, the step shrinks to fit (finiteDifferenceSteps). The adjoint is
 // taken at seeds firstSeed, firstSeed + 1, ..., the finite differences at seeds 2^20
 // further on (modulo 2^32), so that the two share no samples. Parameter names must be
-// valid for the scene.
+// valid for the scene. `progress` is told the fraction done after each evaluation of the
+// adjoint and each seed's finite difference.
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lossGradient, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds,
-                                             uint32_t firstSeed = 0);
+                                             uint32_t firstSeed = 0,
+                                             const std::function<void(double)>& progress = {});
 
 }  // namespace vkdr

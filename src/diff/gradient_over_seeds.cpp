@@ -4,7 +4,8 @@ namespace vkdr {
 
 std::vector<std::vector<std::vector<double>>> gradientSamplesOverSeeds(LossGradient& lossGradient,
                                                                        const Scene& scene, uint32_t seeds,
-                                                                       uint32_t firstSeed) {
+                                                                       uint32_t firstSeed,
+                                                                       const std::function<void()>& evaluated) {
     std::vector<std::vector<std::vector<double>>> samples;
     for (uint32_t seed = firstSeed; seed < firstSeed + seeds; ++seed) {
         GradientResult result = lossGradient.evaluate(scene, seed);
@@ -15,14 +16,16 @@ std::vector<std::vector<std::vector<double>>> gradientSamplesOverSeeds(LossGradi
                 samples[p][c].push_back(result.parameters[p].gradient[c]);
             }
         }
+        if (evaluated) evaluated();
     }
     return samples;
 }
 
 std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradient, const Scene& scene,
-                                                         uint32_t seeds, uint32_t firstSeed) {
+                                                         uint32_t seeds, uint32_t firstSeed,
+                                                         const std::function<void()>& evaluated) {
     const std::vector<std::vector<std::vector<double>>> samples =
-        gradientSamplesOverSeeds(lossGradient, scene, seeds, firstSeed);
+        gradientSamplesOverSeeds(lossGradient, scene, seeds, firstSeed, evaluated);
     std::vector<std::vector<MeanAndError>> gradients(samples.size());
     for (size_t p = 0; p < samples.size(); ++p) {
         for (const std::vector<double>& component : samples[p]) {

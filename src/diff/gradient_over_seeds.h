@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/sample_statistics.h"
@@ -8,14 +9,16 @@
 namespace vkdr {
 
 // Every parameter component's gradient from evaluations with seeds firstSeed ..
-// firstSeed + seeds - 1: [parameter][component][seed].
+// firstSeed + seeds - 1: [parameter][component][seed]. `evaluated` is called after each.
 std::vector<std::vector<std::vector<double>>> gradientSamplesOverSeeds(LossGradient& lossGradient,
                                                                        const Scene& scene, uint32_t seeds,
-                                                                       uint32_t firstSeed = 0);
+                                                                       uint32_t firstSeed = 0,
+                                                                       const std::function<void()>& evaluated = {});
 
 // The gradient of every parameter component as a mean and standard error over
 // evaluations with seeds firstSeed .. firstSeed + seeds - 1: [parameter][component].
 std::vector<std::vector<MeanAndError>> gradientOverSeeds(LossGradient& lossGradient, const Scene& scene,
-                                                         uint32_t seeds, uint32_t firstSeed = 0);
+                                                         uint32_t seeds, uint32_t firstSeed = 0,
+                                                         const std::function<void()>& evaluated = {});
 
 }  // namespace vkdr

@@ -119,6 +119,9 @@ void requireOutputDirectory(const std::string& option, const fs::path& directory
         requireWritableDirectory(option, directory, directory, DirectoryUse::HoldsOutputs);
         return;
     }
+    if (fs::is_symlink(statusOf(option, directory, false))) {
+        fail(option, directory, "is a symbolic link to nothing; create the directory it points to, or give another");
+    }
     // Created with its missing parents: the nearest ancestor that exists must take them.
     fs::path ancestor = resolved(directory).parent_path();
     while (!fs::exists(statusOf(option, ancestor, true)) && ancestor.has_relative_path()) {

@@ -305,7 +305,9 @@ Experiment readExperiment(const std::filesystem::path& file) {
     Experiment experiment;
     experiment.file = file;
     if (!document.contains("scene")) reader.fail("", "missing \"scene\" (a glTF path relative to this file)");
-    experiment.scene = (file.parent_path() / reader.string(document["scene"], "scene")).lexically_normal();
+    const std::string scene = reader.string(document["scene"], "scene");
+    if (scene.empty()) reader.fail("scene", "empty: give a glTF path relative to this file");
+    experiment.scene = (file.parent_path() / scene).lexically_normal();
     std::string reason = notRegularFileReason(experiment.scene);
     if (!reason.empty()) reader.fail("scene", experiment.scene.string() + ": " + reason);
     if (document.contains("views")) {

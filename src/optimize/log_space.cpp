@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <tbb/parallel_for.h>
 
@@ -42,10 +43,13 @@ void LogSpace::enter(std::span<double> values, std::span<double> gradient) const
     });
 }
 
+// A step far enough down makes exp() 0, from whose log no step returns, and which log
+// space must not start from again (a checkpoint's values): values stay at or above
+// the smallest normal float, which the scene holds and a device does not flush to 0.
 void LogSpace::leave(std::span<double> values) const {
     tbb::parallel_for(size_t(0), values.size(), [&](size_t i) {
         if (logValue_[i]) {
-            values[i] = std::exp(values[i]);
+            values[i] = std::max(std::exp(values[i]), double(std::numeric_limits<float>::min()));
         }
     });
 }

@@ -1,6 +1,7 @@
 // Scene names on the bench command line, and which scenes are too large to try.
 #include <gtest/gtest.h>
 
+#include "../image/scratch_directory.h"
 #include "bench/bench_scene.h"
 #include "expect_error.h"
 #include "scene/load_scene.h"
@@ -36,6 +37,20 @@ TEST(BenchScene, UnknownNamesAreErrorsNamingThem) {
     expectErrorMentioning([] { resolveBenchScene("room_10x", kScenes); }, {"room_10x"});
     expectErrorMentioning([] { resolveBenchScene("room_5000000m", kScenes); }, {"room_5000000m"});
     expectErrorMentioning([] { resolveBenchScene("room_99999999999999999999999", kScenes); }, {"room_9999"});
+}
+
+// What the file system cannot resolve (a loop of links, a name too long) is a scene
+// that is not there, named as such: not an exception of the file system's own.
+TEST(BenchScene, UnresolvablePathsAreErrorsNamingThem) {
+    ScratchDirectory directory;
+    std::filesystem::create_symlink(directory / "b", directory / "a");
+    std::filesystem::create_symlink(directory / "a", directory / "b");
+    const std::string loop = (directory / "a" / "scene.gltf").string();
+    expectErrorMentioning([&] { resolveBenchScene(loop, kScenes); }, {loop, "symbolic links"});
+    expectErrorMentioning([&] { resolveBenchScene("cornell_fog", directory / "a"); }, {"cornell_fog"});
+    expectErrorMentioning([&] { resolveBenchScene("plume_64", directory / "a"); }, {"plume_64", "symbolic links"});
+    const std::string longName(300, 'x');
+    expectErrorMentioning([&] { resolveBenchScene(longName, kScenes); }, {longName});
 }
 
 TEST(BenchScene, PlumesTakeTheirResolutionFromTheName) {

@@ -84,6 +84,10 @@ TEST_F(OutputSafety, RefusesToReplaceAnythingButARegularFileBeforeAnyWork) {
     std::ofstream(file) << "not a directory";
     expectRefused(optimizeCommand(file) + " --out " + file.string(), "--out " + file.string());
     expectRefused(optimizeCommand(file) + " --out " + (file / "below").string(), "--out " + (file / "below").string());
+    // A link to nothing: making the directory would fail only after the work.
+    fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
+    expectRefused(optimizeCommand(file) + " --out " + (dir_ / "dangling").string(),
+                  "--out " + (dir_ / "dangling").string() + ": is a symbolic link to nothing");
     expectRefused("render " + noScene() + " -o " + (dir_ / "missing" / "x.exr").string(), "-o ");
     expectRefused("render " + noScene() + " -o " + (dir_ / "x.exr").string() + " --png " +
                       (dir_ / "missing" / "x.png").string(),
@@ -310,7 +314,8 @@ TEST_F(OutputSafety, NumericOptionsMustBeFiniteAndInRange) {
     fs::path out = dir_ / "out";
     const std::string command = "optimize " + noScene() + " --target t.exr --param media/fog/sigma_a --out " + out.string();
     for (const char* option : {"--lr", "--adam-epsilon", "--lr-decay"}) {
-        for (const char* value : {"nan", "inf", "-inf", "0", "-1", "1e999"}) {
+        // Hexadecimal and spaced numbers too, which the integer options and --set refuse.
+        for (const char* value : {"nan", "inf", "-inf", "0", "-1", "1e999", "0x10", "0x1p-3", "' 0.5'", "'0.5 '"}) {
             expectRefused(command + " " + option + " " + value, option);
         }
     }

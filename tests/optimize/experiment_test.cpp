@@ -97,6 +97,8 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
     experiment["scene"] = "nowhere.gltf";
     expectReadError(scratch, experiment, {"scene", "nowhere.gltf", "no such file"});
 
+    experiment["scene"] = "";
+    expectReadError(scratch, experiment, {"scene", "empty: give a glTF path"});
     experiment.erase("scene");
     expectReadError(scratch, experiment, {"missing \"scene\""});
 

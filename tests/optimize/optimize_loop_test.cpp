@@ -2,6 +2,7 @@
 // stopping on a non-finite gradient.
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -277,6 +278,20 @@ TEST(OptimizeLoop, StepsLogParametersByFactors) {
     options.learningRateDecay = 0.01;
     optimize(loss, scene, options);
     expectValues(scene, "media/fog/sigma_s", {0.05f, 0.05f, 0.05f}, 1e-4f);
+}
+
+// A step that takes a value in log space below what a double holds leaves it at the
+// smallest normal float, from which later steps (and a resumed run) go on.
+TEST(OptimizeLoop, LogSpaceValuesStayPositive) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {0.0, 0.0, 0.0}}});
+    OptimizeOptions options = optionsFor({"media/fog/sigma_a"}, OptimizerKind::Sgd, 1e6, 1);
+    options.logParameters = {"media/fog/sigma_a"};
+    optimize(loss, scene, options);
+    const float smallest = std::numeric_limits<float>::min();
+    expectValues(scene, "media/fog/sigma_a", {smallest, smallest, smallest}, 0.0f);
+    optimize(loss, scene, options);  // starts from there, as a resumed run would
+    expectValues(scene, "media/fog/sigma_a", {smallest, smallest, smallest}, 0.0f);
 }
 
 TEST(OptimizeLoop, RejectsLogSpaceForNegativeZeroOrMissingParameters) {
