@@ -130,7 +130,7 @@ std::string metricsText(const std::vector<Metric>& metrics) {
     return text;
 }
 
-void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report) {
+void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report, bool experiment) {
     const OptimizeResult& result = report.result;
     warnOfCutPaths(result.truncatedPaths, "the renders of the iterations run");
     std::printf("%s", parameterTable(report.parameters).c_str());
@@ -140,9 +140,11 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
                 result.adjointMs / iterations, result.iterationMs / std::max(1u, result.iterationsRun));
     if (!result.lastMetrics.empty()) std::printf("last iteration%s\n", metricsText(result.lastMetrics).c_str());
     std::printf("diff.png: white is an absolute difference of %.4g\n", double(report.largestDifference));
-    std::printf("wrote log.jsonl, params.json, scene.gltf, final.exr, final.png, diff.png, loss.svg, report.html "
-                "to %s\n",
-                directory.string().c_str());
+    // The directory holds this run's files alone (a new run's held none; --overwrite
+    // removed the old run's; --resume continues the run it holds).
+    std::string written;
+    for (const std::string& name : presentRunFiles(directory, experiment)) written += (written.empty() ? "" : ", ") + name;
+    std::printf("wrote %s to %s\n", written.c_str(), directory.string().c_str());
 }
 
 // What the run directory holds to resume from, for the message that ends a stopped run.
@@ -223,7 +225,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
     bar.finish();
     requireNoValidationMessages(context);
-    printOutputs(options.out, report);
+    printOutputs(options.out, report, false);
     return 0;
 }
 
@@ -311,7 +313,7 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
                                               oldRunRemover(options, true));
     bar.finish();
     requireNoValidationMessages(context);
-    printOutputs(options.out, report);
+    printOutputs(options.out, report, true);
     return 0;
 }
 

@@ -7,7 +7,8 @@
 
 namespace vkdr {
 
-// A JSON document and the first key its text gives twice in one object (empty if none).
+// A JSON document and the first key its text gives twice in one object (empty if none),
+// after the keys of the objects it lies in: "start.media/fog/sigma_a".
 // nlohmann's parser keeps the last of two equal keys without a word: in a file a person
 // edits, the value edited in one place and not the other would silently win or lose.
 struct JsonWithRepeatedKey {

@@ -28,7 +28,14 @@ bool present(const fs::path& file) {
     return fs::exists(fs::symlink_status(file, error));
 }
 
-// The run files in `directory`, sorted; none when it does not exist.
+std::string listed(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+}
+
+}  // namespace
+
 std::vector<std::string> presentRunFiles(const fs::path& directory, bool experiment) {
     std::vector<std::string> found;
     std::error_code error;
@@ -39,14 +46,6 @@ std::vector<std::string> presentRunFiles(const fs::path& directory, bool experim
     std::sort(found.begin(), found.end());
     return found;
 }
-
-std::string listed(const std::vector<std::string>& names) {
-    std::string text;
-    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-    return text;
-}
-
-}  // namespace
 
 bool isRunFileName(const std::string& name, bool experiment) {
     auto named = [&](const auto& names) { return std::find(names.begin(), names.end(), name) != names.end(); };

@@ -1,6 +1,7 @@
 #pragma once
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace vkdr {
 
@@ -14,6 +15,9 @@ namespace vkdr {
 // (optimize/experiment_run.h: target.exr, target.png). A directory holding any of them
 // holds a run.
 bool isRunFileName(const std::string& name, bool experiment);
+
+// The run files (isRunFileName) in `directory`, sorted; none when it does not exist.
+std::vector<std::string> presentRunFiles(const std::filesystem::path& directory, bool experiment);
 
 enum class RunStart {
     New,        // into a directory that holds no run (or does not exist yet)

@@ -135,7 +135,7 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
                           {"twice.json", "width: given twice in one object"});
     const size_t start = text.find("\"start\":{") + std::string("\"start\":{").size();
     writeBytes(scratch / "twice.json", text.substr(0, start) + "\"media/fog/g\":0.1," + text.substr(start));
-    expectErrorMentioning([&] { readExperiment(scratch / "twice.json"); }, {"media/fog/g: given twice"});
+    expectErrorMentioning([&] { readExperiment(scratch / "twice.json"); }, {"start.media/fog/g: given twice"});
 }
 
 // Every integer is checked against its range as the number it is (beyond 32 bits, beyond
