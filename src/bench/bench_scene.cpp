@@ -127,6 +127,9 @@ BenchSceneSource resolveBenchScene(const std::string& name, const std::filesyste
         return {name, shipped, 0, *resolution};
     }
     std::filesystem::path shipped = scenesDirectory / (name + ".gltf");
+    if (const std::string reason = notRegularFileReason(shipped); reason != "no such file" && !reason.empty()) {
+        throw Error("scene " + name + ": " + shipped.string() + ": " + reason);
+    }
     if (!notRegularFileReason(shipped).empty()) {
         throw Error("unknown scene '" + name + "': not " + shipped.string() +
                     ", nor room_<N> (e.g. room_100k), nor plume_<N> (e.g. plume_64), nor a .gltf or .glb file");

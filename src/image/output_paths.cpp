@@ -119,8 +119,18 @@ void requireOutputDirectory(const std::string& option, const fs::path& directory
         requireWritableDirectory(option, directory, directory, DirectoryUse::HoldsOutputs);
         return;
     }
-    if (fs::is_symlink(statusOf(option, directory, false))) {
-        fail(option, directory, "is a symbolic link to nothing; create the directory it points to, or give another");
+    // The missing parts of the path are made as directories: none may be a link to
+    // nothing, which making them would fail on only after the work.
+    std::error_code error;
+    fs::path part = fs::absolute(directory, error).lexically_normal();
+    if (error) part = directory.lexically_normal();
+    for (; part.has_relative_path(); part = part.parent_path()) {
+        if (part.filename().empty()) continue;  // a trailing separator: the same directory
+        if (fs::exists(statusOf(option, part, true))) break;
+        if (fs::is_symlink(statusOf(option, part, false))) {
+            fail(option, directory, part.string() + " is a symbolic link to nothing; create the directory it "
+                                    "points to, or give another");
+        }
     }
     // Created with its missing parents: the nearest ancestor that exists must take them.
     fs::path ancestor = resolved(directory).parent_path();

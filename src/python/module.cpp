@@ -83,13 +83,47 @@ void requireWithinFloatRange(const py::array& numbers, const std::string& what) 
     }
 }
 
-// Whether every element of an array of objects is a number (numbers.Number: not None).
-bool allNumbers(const py::array& objects) {
-    const py::object number = py::module_::import("numbers").attr("Number");
+// Whether every element of an array of objects is a real number: numbers.Real (an
+// integer beyond 64 bits, a Fraction), a number that is not complex (a Decimal), or
+// numpy's bool; not None, a complex number, or one of numpy's times.
+bool allRealNumbers(const py::array& objects) {
+    const py::module_ numbers = py::module_::import("numbers");
+    const py::module_ numpy = py::module_::import("numpy");
     for (const py::handle item : objects.attr("flat")) {
-        if (!py::isinstance(item, number)) return false;
+        if (py::isinstance(item, numpy.attr("datetime64")) || py::isinstance(item, numpy.attr("timedelta64"))) {
+            return false;
+        }
+        const bool real = py::isinstance(item, numbers.attr("Real")) || py::isinstance(item, numpy.attr("bool_")) ||
+                          (py::isinstance(item, numbers.attr("Number")) &&
+                           !py::isinstance(item, numbers.attr("Complex")));
+        if (!real) return false;
     }
     return true;
+}
+
+// Refuses, naming `what`, a finite element of an array of real-number objects whose
+// magnitude a float cannot hold (an integer, Fraction or Decimal may lie beyond a
+// double's range too, where numpy's conversion would fail or give infinity).
+void requireObjectsWithinFloatRange(const py::array& objects, const std::string& what) {
+    const py::module_ numbers = py::module_::import("numbers");
+    const py::module_ math = py::module_::import("math");
+    const py::float_ overflow(std::ldexp(1.0, 128) - std::ldexp(1.0, 103));
+    const py::object abs = py::module_::import("builtins").attr("abs");
+    for (const py::handle item : objects.attr("flat")) {
+        const bool finite = py::isinstance(item, numbers.attr("Rational"))
+                                ? true
+                                : py::hasattr(item, "is_finite") ? py::cast<bool>(item.attr("is_finite")())
+                                                                 : py::cast<bool>(math.attr("isfinite")(item));
+        // Python compares integers, Fractions and Decimals with a float exactly.
+        const py::object magnitude = abs(item);
+        const int beyond = PyObject_RichCompareBool(magnitude.ptr(), overflow.ptr(), Py_GE);
+        if (beyond < 0) throw py::error_already_set();
+        if (finite && beyond == 1) {
+            std::string text = py::str(item);
+            if (text.size() > 40) text = text.substr(0, 20) + "... (" + std::to_string(text.size()) + " digits)";
+            throw Error(what + ": must be finite, got " + text + ": beyond float range (magnitude at most 3.4e+38)");
+        }
+    }
 }
 
 // Numbers as numpy makes float32 of them. Refused, with a TypeError naming `what`: None
@@ -108,10 +142,10 @@ FloatArray floatArrayOf(const py::object& value, const std::string& what) {
     try {
         numbers = numpy.attr("asarray")(value);
         // Integers beyond 64 bits, Fractions and Decimals make arrays of objects, which
-        // are numbers all the same: as doubles, so that one beyond float's range is
-        // named as such below.
-        if (numbers.dtype().kind() == 'O' && allNumbers(numbers)) {
-            numbers = numpy.attr("asarray")(value, numpy.attr("float64"));
+        // are numbers all the same.
+        if (numbers.dtype().kind() == 'O' && allRealNumbers(numbers)) {
+            requireObjectsWithinFloatRange(numbers, what);
+            numbers = numpy.attr("asarray")(numbers, numpy.attr("float64"));
         }
     } catch (py::error_already_set& error) {
         refuse(std::string(py::str(value.get_type().attr("__name__"))) + " (" +

@@ -67,7 +67,8 @@ void requireInvertible(const glm::dmat4& indexToWorld, const std::string& field,
         for (int row = 0; row < 3; ++row) {
             if (!std::isfinite(float(worldToIndex[column][row]))) {
                 diagnostics.fail(field, what + formatText("its inverse has an entry of %g, beyond float's range: "
-                                                          "the voxels are too small for the renderer",
+                                                          "the voxels are too small, or too far from the origin for "
+                                                          "their size, for the renderer",
                                                           worldToIndex[column][row]));
             }
         }

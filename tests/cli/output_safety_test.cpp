@@ -86,8 +86,11 @@ TEST_F(OutputSafety, RefusesToReplaceAnythingButARegularFileBeforeAnyWork) {
     expectRefused(optimizeCommand(file) + " --out " + (file / "below").string(), "--out " + (file / "below").string());
     // A link to nothing: making the directory would fail only after the work.
     fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
-    expectRefused(optimizeCommand(file) + " --out " + (dir_ / "dangling").string(),
-                  "--out " + (dir_ / "dangling").string() + ": is a symbolic link to nothing");
+    for (const std::string& below : {"", "/", "/.", "/sub"}) {
+        const std::string out = (dir_ / "dangling").string() + below;
+        expectRefused(optimizeCommand(file) + " --out " + out,
+                      "--out " + out + ": " + (dir_ / "dangling").string() + " is a symbolic link to nothing");
+    }
     expectRefused("render " + noScene() + " -o " + (dir_ / "missing" / "x.exr").string(), "-o ");
     expectRefused("render " + noScene() + " -o " + (dir_ / "x.exr").string() + " --png " +
                       (dir_ / "missing" / "x.png").string(),

@@ -106,6 +106,7 @@ def test_values_that_are_not_numbers_are_type_errors_naming_the_parameter(scene,
     (Fraction(1, 20), np.float32(0.05)),
     (Decimal("0.05"), np.float32(0.05)),
     ([Fraction(1, 4), 2**70, 1], np.array([0.25, 2.0**70, 1.0], np.float32)),
+    ([np.True_, Fraction(1, 2), 2**64], np.array([1.0, 0.5, 2.0**64], np.float32)),
 ])
 def test_numbers_numpy_holds_as_objects_are_numbers(scene, value, expected):
     """Integers beyond 64 bits, Fractions and Decimals: numpy makes arrays of objects of them."""
@@ -117,11 +118,20 @@ def test_numbers_numpy_holds_as_objects_are_numbers(scene, value, expected):
         scene["media/fog/sigma_a"] = before
 
 
-def test_objects_that_are_not_all_numbers_stay_refused(scene):
+@pytest.mark.parametrize("value", [
+    [None, 0.1, Fraction(1, 5)],
+    [np.complex128(0.5 + 2j), Fraction(1, 2), 0.1],
+    [np.timedelta64(3, "D"), Fraction(1, 2), 0.1],
+])
+def test_objects_that_are_not_all_real_numbers_stay_refused(scene, value):
     with pytest.raises(TypeError, match="^media/fog/sigma_a: expected numbers, got an array of dtype object$"):
-        scene["media/fog/sigma_a"] = [None, 0.1, Fraction(1, 5)]
-    with pytest.raises(vkdiffrender.Error, match="beyond float range"):
-        scene["media/fog/sigma_a"] = 10**40
+        scene["media/fog/sigma_a"] = value
+
+
+@pytest.mark.parametrize("value", [10**40, 10**400, Fraction(10**400, 3), Decimal("1e400"), [Fraction(1, 2), -10**39]])
+def test_numbers_beyond_float_range_are_named_whatever_holds_them(scene, value):
+    with pytest.raises(vkdiffrender.Error, match="media/fog/sigma_a: must be finite, got .*: beyond float range"):
+        scene["media/fog/sigma_a"] = value
 
 
 def test_what_numpy_cannot_convert_is_refused_with_its_reason(scene):
