@@ -143,7 +143,9 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
     // The directory holds this run's files alone (a new run's held none; --overwrite
     // removed the old run's; --resume continues the run it holds).
     std::string written;
-    for (const std::string& name : presentRunFiles(directory, experiment)) written += (written.empty() ? "" : ", ") + name;
+    for (const std::string& name : presentRunFiles(directory, experiment)) {
+        written += (written.empty() ? "" : ", ") + name;
+    }
     std::printf("wrote %s to %s\n", written.c_str(), directory.string().c_str());
 }
 
@@ -262,11 +264,12 @@ ExperimentBackend withTargetProgress(ExperimentBackend backend, const Experiment
     auto done = std::make_shared<size_t>(0);
     backend.render = [render = std::move(backend.render), bar, done, total](const Scene& scene,
                                                                             const RenderSettings& settings) {
-        if (*done == 0) bar->update(0.0, "0/" + std::to_string(total) + " renders");
+        auto status = [&] { return std::to_string(*done) + "/" + std::to_string(total) + " renders"; };
+        if (*done == 0) bar->update(0.0, status());
         Image image = render(scene, settings);
         if (*done < total) {
             ++*done;
-            bar->update(double(*done) / double(total), std::to_string(*done) + "/" + std::to_string(total) + " renders");
+            bar->update(double(*done) / double(total), status());
             if (*done == total) bar->finish();
         }
         return image;

@@ -38,10 +38,10 @@ double punctualPower(const PunctualLight& light, double radius) {
 constexpr double kPunctualPowerFloor = 0.01;
 
 // The device chooses a light with a uniform number on the grid of multiples of
-// 1 / kChoiceSteps (rng.glsl's toUnitFloat: 24-bit floats). The CDF's ends lie on that grid, so
-// the probability of a choice is exactly its interval's length, which the estimators
-// divide by; a CDF of rounded floats would be chosen with a probability that differs
-// from its pmf by up to a grid step, a large share of a light among millions.
+// 1 / kChoiceSteps (rng.glsl's toUnitFloat: 24-bit floats). The CDF's ends lie on that
+// grid, so the probability of a choice is exactly its interval's length, which the
+// estimators divide by; a CDF of rounded floats would be chosen with a probability that
+// differs from its pmf by up to a grid step, a large share of a light among millions.
 constexpr uint32_t kChoiceSteps = 1u << 24;
 constexpr float kChoiceStep = 1.0f / float(kChoiceSteps);
 

@@ -33,7 +33,8 @@ std::string indexTransformProblem(const glm::dmat4& indexToLocal) {
     const glm::dmat3 axes(indexToLocal);
     // The volume of the unit voxel axes: how far from flat the voxels are, whatever
     // their size (a product of the lengths themselves can overflow or underflow).
-    const double volume = std::abs(glm::determinant(glm::dmat3(unitAxis(axes[0]), unitAxis(axes[1]), unitAxis(axes[2]))));
+    const glm::dmat3 unitAxes(unitAxis(axes[0]), unitAxis(axes[1]), unitAxis(axes[2]));
+    const double volume = std::abs(glm::determinant(unitAxes));
     if (!(volume >= 1e-6)) {
         return formatText("the transform is singular (its voxel axes (%g %g %g), (%g %g %g), (%g %g %g) are "
                           "linearly dependent or nearly so)",
