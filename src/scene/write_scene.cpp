@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -236,7 +237,7 @@ void writePunctualLights(json& document, const Scene& scene, const std::filesyst
 
 // A file the written scene consists of may not be one the scene was loaded from (the
 // original, a buffer, an image, a grid): that file would change under the scene that
-// reads it. Checked before each file is written.
+// reads it.
 void requireNotASource(const std::vector<SourceFile>& sources, const std::filesystem::path& file) {
     for (const SourceFile& source : sources) {
         if (sameFile(file, source.file)) {
@@ -246,13 +247,36 @@ void requireNotASource(const std::vector<SourceFile>& sources, const std::filesy
     }
 }
 
+// The files beside the .gltf that the written scene consists of, each with what writes
+// it. They are written only once every one has been checked: a refusal leaves a scene
+// written before under the same name whole, not half replaced.
+class FilesBeside {
+public:
+    void add(std::filesystem::path file, std::function<void()> write) {
+        files_.push_back({std::move(file), std::move(write)});
+    }
+    void requireNoneIsASource(const std::vector<SourceFile>& sources) const {
+        for (const File& file : files_) requireNotASource(sources, file.path);
+    }
+    void write() const {
+        for (const File& file : files_) file.write();
+    }
+
+private:
+    struct File {
+        std::filesystem::path path;
+        std::function<void()> write;
+    };
+    std::vector<File> files_;
+};
+
 // The written scene must load by the same rule as any other (scene_file_access.h): files
 // the original refers to stay where they are when they lie in the output's directory
 // tree, and are copied beside the output, as <stem>.<array><i><extension>, when not.
 // Entries of `array` marked in `rewritten` are written anew by others and left alone.
 void referToExternalFiles(json& document, const char* array, const std::filesystem::path& original,
                           const std::vector<SourceFile>& sources, const std::filesystem::path& out,
-                          const std::vector<bool>& rewritten = {}) {
+                          FilesBeside& beside, const std::vector<bool>& rewritten = {}) {
     if (!document.contains(array) || !document[array].is_array()) {
         return;
     }
@@ -271,14 +295,16 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
         if (!resolved.problem.empty()) {
             failReading(original, std::string(array) + "[" + std::to_string(i) + "].uri: " + resolved.problem);
         }
-        const std::string bytes = readRegularFile(resolved.file);
+        std::string bytes = readRegularFile(resolved.file);
         requireUnchangedSource(sources, resolved.file, bytes);
         std::filesystem::path relative = resolved.file.lexically_relative(toDirectory);
         if (relative.empty() || *relative.begin() == "..") {
             relative = out.stem().string() + "." + array + std::to_string(i) + resolved.file.extension().string();
-            requireNotASource(sources, toDirectory / relative);
-            writeAtomically(toDirectory / relative, [&](std::ofstream& stream) {
-                stream.write(bytes.data(), std::streamsize(bytes.size()));
+            const std::filesystem::path copy = toDirectory / relative;
+            beside.add(copy, [copy, bytes = std::move(bytes)] {
+                writeAtomically(copy, [&](std::ofstream& stream) {
+                    stream.write(bytes.data(), std::streamsize(bytes.size()));
+                });
             });
         }
         entry["uri"] = encodeUriPath(relative.generic_string());
@@ -290,9 +316,7 @@ void referToExternalFiles(json& document, const char* array, const std::filesyst
 // material's medium) or <stem>.density.vdb (the scene medium), .emission_grid.vdb and
 // .albedo_grid.vdb, and the medium's "density", "emissionGrid" and "albedoGrid" refer to
 // those files.
-void writeDensityGrids(json& document, const Scene& scene, const std::filesystem::path& out) {
-    std::vector<SourceFile> reads = scene.sourceFiles;
-    for (const SceneDensityGrid& grid : scene.densityGrids) reads.push_back({grid.file, 0});
+void writeDensityGrids(json& document, const Scene& scene, const std::filesystem::path& out, FilesBeside& beside) {
     auto writeGrid = [&](json& owner, int32_t grid, const char* key, const char* defaultName,
                          const std::string& stem) {
         if (grid < 0 || !owner.contains("extensions") || !owner["extensions"].contains(kMediumExtension) ||
@@ -301,8 +325,8 @@ void writeDensityGrids(json& document, const Scene& scene, const std::filesystem
         }
         const DensityGrid& values = scene.densityGrids[size_t(grid)].grid;
         const std::string file = stem + ".vdb";
-        requireNotASource(reads, out.parent_path() / file);
-        writeDensityGridVdb(out.parent_path() / file, values);
+        const std::filesystem::path path = out.parent_path() / file;
+        beside.add(path, [path, &values] { writeDensityGridVdb(path, values); });
         json& reference = owner["extensions"][kMediumExtension][key];
         reference["uri"] = encodeUriPath(file);
         reference["grid"] = values.name.empty() ? defaultName : values.name;
@@ -325,7 +349,7 @@ void writeDensityGrids(json& document, const Scene& scene, const std::filesystem
 }
 
 void writeBinaryChunkBeside(json& document, const GltfSource& source, const std::filesystem::path& original,
-                            const std::vector<SourceFile>& sources, const std::filesystem::path& out) {
+                            const std::filesystem::path& out, FilesBeside& beside) {
     if (!document.contains("buffers") || document["buffers"].empty() || document["buffers"][0].contains("uri")) {
         return;
     }
@@ -335,10 +359,11 @@ void writeBinaryChunkBeside(json& document, const GltfSource& source, const std:
         failReading(original, "buffers[0] needs a binary chunk of " + std::to_string(byteLength) + " bytes");
     }
     std::filesystem::path binary = std::filesystem::path(out).replace_extension(".bin");
-    requireNotASource(sources, binary);
     // tinygltf requires an external buffer's file to be exactly byteLength long.
-    writeAtomically(binary, [&](std::ofstream& stream) {
-        stream.write(source.binaryChunk->data(), std::streamsize(byteLength));
+    beside.add(binary, [binary, &source, byteLength] {
+        writeAtomically(binary, [&](std::ofstream& stream) {
+            stream.write(source.binaryChunk->data(), std::streamsize(byteLength));
+        });
     });
     buffer["uri"] = encodeUriPath(binary.filename().string());
 }
@@ -380,7 +405,8 @@ std::vector<bool> baseColorImages(const json& document, const Scene& scene) {
 // The texels of base colour textures are parameters too. Each such image is written
 // beside `out` as <stem>.image<i>.png (8-bit sRGB, as glTF base colour textures are;
 // alpha is not kept) and the glTF image refers to it instead of its old source.
-void writeBaseColorTextures(json& document, const Scene& scene, const std::filesystem::path& out) {
+void writeBaseColorTextures(json& document, const Scene& scene, const std::filesystem::path& out,
+                            FilesBeside& beside) {
     std::vector<bool> written(document.contains("images") ? document["images"].size() : 0, false);
     const std::vector<int64_t> images = baseColorImageOfMaterials(document, scene);
     for (size_t i = 0; i < images.size(); ++i) {
@@ -389,8 +415,9 @@ void writeBaseColorTextures(json& document, const Scene& scene, const std::files
         }
         const size_t image = size_t(images[i]);
         std::string file = out.stem().string() + ".image" + std::to_string(image) + ".png";
-        requireNotASource(scene.sourceFiles, out.parent_path() / file);
-        writePng(out.parent_path() / file, textureImage(scene.textures[size_t(scene.materials[i].baseColorTexture)]));
+        const std::filesystem::path path = out.parent_path() / file;
+        const Texture& texture = scene.textures[size_t(scene.materials[i].baseColorTexture)];
+        beside.add(path, [path, &texture] { writePng(path, textureImage(texture)); });
         json& entry = document["images"][image];
         entry.erase("bufferView");
         entry.erase("mimeType");
@@ -413,14 +440,20 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     writeSceneMedium(document, scene);
     writePunctualLights(document, scene, original);
 
-    referToExternalFiles(document, "buffers", original, scene.sourceFiles, out);
-    referToExternalFiles(document, "images", original, scene.sourceFiles, out, baseColorImages(document, scene));
-    writeDensityGrids(document, scene, out);
-    writeBinaryChunkBeside(document, source, original, scene.sourceFiles, out);
-    writeBaseColorTextures(document, scene, out);
+    FilesBeside beside;
+    referToExternalFiles(document, "buffers", original, scene.sourceFiles, out, beside);
+    referToExternalFiles(document, "images", original, scene.sourceFiles, out, beside,
+                         baseColorImages(document, scene));
+    writeDensityGrids(document, scene, out, beside);
+    writeBinaryChunkBeside(document, source, original, out, beside);
+    writeBaseColorTextures(document, scene, out, beside);
 
+    std::vector<SourceFile> reads = scene.sourceFiles;
+    for (const SceneDensityGrid& grid : scene.densityGrids) reads.push_back({grid.file, 0});
+    beside.requireNoneIsASource(reads);
+    requireNotASource(reads, out);
     std::string text = document.dump(2);
-    requireNotASource(scene.sourceFiles, out);
+    beside.write();
     writeAtomically(out, [&](std::ofstream& stream) { stream << text << '\n'; });
 }
 

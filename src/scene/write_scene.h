@@ -22,7 +22,8 @@ namespace vkdr {
 // directory; a .glb's binary chunk is written beside `out` as <stem>.bin. Files are
 // written atomically. Throws vkdr::Error naming the file at fault, among them an
 // original, buffer or image that has changed since `scene` was loaded from it
-// (Scene::sourceFiles), and any file to be written that is one the scene reads.
+// (Scene::sourceFiles), any file to be written that is one the scene reads (a grid
+// included), and a scene its loader would refuse; all of that before any file is written.
 void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
                               const std::filesystem::path& out);
 

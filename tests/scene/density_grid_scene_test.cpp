@@ -108,8 +108,8 @@ TEST(DensityGridScene, WrittenSceneHasTheGridsCurrentVoxels) {
     EXPECT_EQ(again.scene.densityGrids[0].indexToWorld, loaded.scene.densityGrids[0].indexToWorld);
 }
 
-// A grid the written scene would put where the scene reads one is refused before it
-// is written: the loaded scene would read the fitted voxels from then on.
+// A grid the written scene would put where the scene reads one is refused before any
+// file is written: the loaded scene would read the fitted voxels from then on.
 std::string bytesOf(const std::filesystem::path& file) {
     std::ifstream stream(file, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(stream), {});

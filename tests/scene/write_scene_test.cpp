@@ -302,6 +302,29 @@ TEST(WriteScene, FittedTextureFileIsNotCopiedToo) {
     EXPECT_EQ(written, (std::vector<std::string>{"fitted.gltf", "fitted.image0.png"}));
 }
 
+// Every file is checked before any is written: a refusal found at the texture leaves
+// no binary chunk written beside the output (which could have replaced that of a scene
+// written there before).
+TEST(WriteScene, ARefusalWritesNothing) {
+    TemporaryDirectory directory;
+    // The texture's file is named as the written scene's texture would be.
+    const std::vector<unsigned char> bmp = bmpImage(2, 1, {{255, 0, 0}, {0, 0, 255}});
+    writeText(directory / "out.image0.png", std::string(bmp.begin(), bmp.end()));
+    GltfBuilder builder;
+    builder.document()["images"] = {{{"uri", "out.image0.png"}}};
+    builder.document()["textures"] = {{{"source", 0}}};
+    int material = builder.addMaterial(
+        {{"name", "painted"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
+    std::filesystem::path original = builder.writeGlb(directory / "painted.glb");
+    Scene scene = loadScene(original).scene;
+
+    expectErrorMentioning([&] { writeSceneWithParameters(original, scene, directory / "out.gltf"); },
+                          {"out.image0.png", "which the scene reads"});
+    EXPECT_FALSE(std::filesystem::exists(directory / "out.bin"));
+    EXPECT_FALSE(std::filesystem::exists(directory / "out.gltf"));
+}
+
 TEST(WriteScene, NamesAnUnreadableOriginal) {
     TemporaryDirectory directory;
     Scene scene;
