@@ -393,10 +393,11 @@ std::vector<int64_t> baseColorImageOfMaterials(const json& document, const Scene
     return images;
 }
 
-// Which of the document's images writeBaseColorTextures writes anew.
-std::vector<bool> baseColorImages(const json& document, const Scene& scene) {
+// Which of the document's images writeBaseColorTextures writes anew, from
+// baseColorImageOfMaterials.
+std::vector<bool> imagesWrittenAnew(const json& document, const std::vector<int64_t>& imageOfMaterials) {
     std::vector<bool> images(document.contains("images") ? document["images"].size() : 0, false);
-    for (int64_t image : baseColorImageOfMaterials(document, scene)) {
+    for (int64_t image : imageOfMaterials) {
         if (image >= 0) images[size_t(image)] = true;
     }
     return images;
@@ -405,10 +406,10 @@ std::vector<bool> baseColorImages(const json& document, const Scene& scene) {
 // The texels of base colour textures are parameters too. Each such image is written
 // beside `out` as <stem>.image<i>.png (8-bit sRGB, as glTF base colour textures are;
 // alpha is not kept) and the glTF image refers to it instead of its old source.
-void writeBaseColorTextures(json& document, const Scene& scene, const std::filesystem::path& out,
-                            FilesBeside& beside) {
+// `images`: baseColorImageOfMaterials.
+void writeBaseColorTextures(json& document, const Scene& scene, const std::vector<int64_t>& images,
+                            const std::filesystem::path& out, FilesBeside& beside) {
     std::vector<bool> written(document.contains("images") ? document["images"].size() : 0, false);
-    const std::vector<int64_t> images = baseColorImageOfMaterials(document, scene);
     for (size_t i = 0; i < images.size(); ++i) {
         if (images[i] < 0 || written[size_t(images[i])]) {
             continue;
@@ -441,12 +442,13 @@ void writeSceneWithParameters(const std::filesystem::path& original, const Scene
     writePunctualLights(document, scene, original);
 
     FilesBeside beside;
+    const std::vector<int64_t> baseColorImages = baseColorImageOfMaterials(document, scene);
     referToExternalFiles(document, "buffers", original, scene.sourceFiles, out, beside);
     referToExternalFiles(document, "images", original, scene.sourceFiles, out, beside,
-                         baseColorImages(document, scene));
+                         imagesWrittenAnew(document, baseColorImages));
     writeDensityGrids(document, scene, out, beside);
     writeBinaryChunkBeside(document, source, original, out, beside);
-    writeBaseColorTextures(document, scene, out, beside);
+    writeBaseColorTextures(document, scene, baseColorImages, out, beside);
 
     std::vector<SourceFile> reads = scene.sourceFiles;
     for (const SceneDensityGrid& grid : scene.densityGrids) reads.push_back({grid.file, 0});

@@ -5,9 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
+#include "../image/scratch_directory.h"
 #include "core/error.h"
 #include "expect_error.h"
 #include "gltf_test_files.h"
@@ -110,24 +109,19 @@ TEST(DensityGridScene, WrittenSceneHasTheGridsCurrentVoxels) {
 
 // A grid the written scene would put where the scene reads one is refused before any
 // file is written: the loaded scene would read the fitted voxels from then on.
-std::string bytesOf(const std::filesystem::path& file) {
-    std::ifstream stream(file, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(stream), {});
-}
-
 TEST(DensityGridScene, WritingOverAGridTheSceneReadsIsRefused) {
     TemporaryDirectory directory;
     writeDensityGridVdb(directory / "scene.materials0.density.vdb", smallGrid());
     std::filesystem::path original = boxScene(gridMedium({{"uri", "scene.materials0.density.vdb"}, {"node", 1}}))
                                          .writeGltf(directory / "original.gltf");
     LoadedScene loaded = loadScene(original);
-    const std::string before = bytesOf(directory / "scene.materials0.density.vdb");
+    const std::string before = readBytes(directory / "scene.materials0.density.vdb");
     std::vector<float> fitted = smallGrid().values;
     fitted[3] = 7.5f;
     setParameter(loaded.scene, "media/smoke/density", fitted);
     expectErrorMentioning([&] { writeSceneWithParameters(original, loaded.scene, directory / "scene.gltf"); },
                           {"scene.materials0.density.vdb", "which the scene reads"});
-    EXPECT_EQ(bytesOf(directory / "scene.materials0.density.vdb"), before);
+    EXPECT_EQ(readBytes(directory / "scene.materials0.density.vdb"), before);
     EXPECT_FALSE(std::filesystem::exists(directory / "scene.gltf"));
 }
 

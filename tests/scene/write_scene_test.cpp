@@ -252,16 +252,29 @@ TEST(WriteScene, RefusesAnOriginalThatChangedSinceTheLoad) {
     EXPECT_TRUE(std::filesystem::exists(directory / "out.gltf"));
 }
 
-TEST(WriteScene, WritesFittedTexelsAsAnSrgbPng) {
-    TemporaryDirectory directory;
+// A quad whose material "painted" has a base colour texture of `image` (a glTF image).
+GltfBuilder paintedQuad(json image) {
     GltfBuilder builder;
-    builder.document()["images"] = {
-        {{"name", "checker"}, {"uri", "data:image/bmp;base64," + base64(bmpImage(2, 1, {{255, 0, 0}, {0, 0, 255}}))}}};
+    builder.document()["images"] = {std::move(image)};
     builder.document()["textures"] = {{{"source", 0}}};
     int material = builder.addMaterial(
         {{"name", "painted"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
     builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
-    std::filesystem::path original = builder.writeGltf(directory / "painted.gltf");
+    return builder;
+}
+
+// A 2x1 BMP, red then blue, as the file `file`.
+void writeCheckerBmp(const std::filesystem::path& file) {
+    const std::vector<unsigned char> bmp = bmpImage(2, 1, {{255, 0, 0}, {0, 0, 255}});
+    writeText(file, std::string(bmp.begin(), bmp.end()));
+}
+
+TEST(WriteScene, WritesFittedTexelsAsAnSrgbPng) {
+    TemporaryDirectory directory;
+    std::filesystem::path original =
+        paintedQuad({{"name", "checker"},
+                     {"uri", "data:image/bmp;base64," + base64(bmpImage(2, 1, {{255, 0, 0}, {0, 0, 255}}))}})
+            .writeGltf(directory / "painted.gltf");
     Scene scene = loadScene(original).scene;
     set(scene, "materials/painted/base_color_texture", {0.25f, 0.5f, 0.75f, 0.05f, 0.9f, 0.0f});
 
@@ -282,15 +295,8 @@ TEST(WriteScene, FittedTextureFileIsNotCopiedToo) {
     TemporaryDirectory directory;
     std::filesystem::create_directories(directory / "in");
     std::filesystem::create_directories(directory / "out");
-    const std::vector<unsigned char> bmp = bmpImage(2, 1, {{255, 0, 0}, {0, 0, 255}});
-    writeText(directory / "in" / "checker.bmp", std::string(bmp.begin(), bmp.end()));
-    GltfBuilder builder;
-    builder.document()["images"] = {{{"uri", "checker.bmp"}}};
-    builder.document()["textures"] = {{{"source", 0}}};
-    int material = builder.addMaterial(
-        {{"name", "painted"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
-    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
-    std::filesystem::path original = builder.writeGltf(directory / "in" / "painted.gltf");
+    writeCheckerBmp(directory / "in" / "checker.bmp");
+    std::filesystem::path original = paintedQuad({{"uri", "checker.bmp"}}).writeGltf(directory / "in" / "painted.gltf");
     Scene scene = loadScene(original).scene;
 
     writeAndReload(original, scene, directory / "out" / "fitted.gltf");
@@ -308,15 +314,8 @@ TEST(WriteScene, FittedTextureFileIsNotCopiedToo) {
 TEST(WriteScene, ARefusalWritesNothing) {
     TemporaryDirectory directory;
     // The texture's file is named as the written scene's texture would be.
-    const std::vector<unsigned char> bmp = bmpImage(2, 1, {{255, 0, 0}, {0, 0, 255}});
-    writeText(directory / "out.image0.png", std::string(bmp.begin(), bmp.end()));
-    GltfBuilder builder;
-    builder.document()["images"] = {{{"uri", "out.image0.png"}}};
-    builder.document()["textures"] = {{{"source", 0}}};
-    int material = builder.addMaterial(
-        {{"name", "painted"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
-    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
-    std::filesystem::path original = builder.writeGlb(directory / "painted.glb");
+    writeCheckerBmp(directory / "out.image0.png");
+    std::filesystem::path original = paintedQuad({{"uri", "out.image0.png"}}).writeGlb(directory / "painted.glb");
     Scene scene = loadScene(original).scene;
 
     expectErrorMentioning([&] { writeSceneWithParameters(original, scene, directory / "out.gltf"); },
