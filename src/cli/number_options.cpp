@@ -1,5 +1,7 @@
 #include "cli/number_options.h"
 
+#include "core/signed_decimal.h"
+
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -12,10 +14,10 @@ namespace {
 // not hexadecimal ("0x10", which CLI11 would read as 16), nor with spaces around it, as
 // the integer options and --set read numbers.
 std::optional<double> decimalNumber(const std::string& text) {
-    const char* begin = text.data() + (text.starts_with('+') && !text.starts_with("+-") ? 1 : 0);
-    const char* end = text.data() + text.size();
+    const std::string_view number = withoutPlusSign(text);
+    const char* end = number.data() + number.size();
     double value = 0.0;
-    auto [stop, ec] = std::from_chars(begin, end, value, std::chars_format::general);
+    auto [stop, ec] = std::from_chars(number.data(), end, value, std::chars_format::general);
     if (ec != std::errc() || stop != end) return std::nullopt;
     return value;
 }

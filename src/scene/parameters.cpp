@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
+#include "core/signed_decimal.h"
 #include "scene/parameter_kinds.h"
 
 namespace vkdr {
@@ -209,9 +210,10 @@ ParsedAssignment parseAssignment(std::string_view assignment) {
     while (true) {
         size_t comma = list.find(',');
         std::string_view text = list.substr(0, comma);
+        const std::string_view number = withoutPlusSign(text);
         float value = 0.0f;
-        auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (text.empty() || end != text.data() + text.size() ||
+        auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
+        if (text.empty() || end != number.data() + number.size() ||
             (ec != std::errc() && ec != std::errc::result_out_of_range)) {
             fail("'" + std::string(text) + "' is not a number");
         }

@@ -267,6 +267,11 @@ TEST(Parameters, AppliesAssignments) {
     EXPECT_EQ(scene.media[0].sigma_s, glm::vec3(0.25f));
     applyAssignment(scene, "lights/light/emission=1,2,3e1");
     EXPECT_EQ(scene.materials[1].emission, glm::vec3(1.0f, 2.0f, 30.0f));
+    // A leading '+' as the decimal options read it; a second sign after it is no number.
+    applyAssignment(scene, "media/fog/sigma_a=+0.5,1,+2");
+    EXPECT_EQ(scene.media[0].sigma_a, glm::vec3(0.5f, 1.0f, 2.0f));
+    expectErrorMentioning([&] { applyAssignment(scene, "media/fog/g=+-0.1"); }, {"'+-0.1' is not a number"});
+    expectErrorMentioning([&] { applyAssignment(scene, "media/fog/g=+"); }, {"'+' is not a number"});
     expectErrorMentioning([&] { applyAssignment(scene, "media/fog/g"); },
                           {"assignment 'media/fog/g'", "expected NAME=VALUE"});
     expectErrorMentioning([&] { applyAssignment(scene, "media/fog/g=0.1x"); },
