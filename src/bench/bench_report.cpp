@@ -30,18 +30,13 @@ uint64_t peakDeviceBytes(const SceneBenchmark& s) {
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
-// The gradient's relative noise and efficiency, where there is a relative noise.
+// The gradient's relative noise, where there is one.
 std::optional<double> gradientRelativeNoise(const SceneBenchmark& s) {
     return s.gradient && s.gradient->noise ? s.gradient->noise->relativeNoise : std::nullopt;
 }
 
-// Efficiency is defined by the relative noise: none where that is none (a black image).
-std::optional<double> imageEfficiency(const SceneBenchmark& s) {
-    return s.relativeNoise ? std::optional(s.efficiency()) : std::nullopt;
-}
-
 std::optional<double> gradientEfficiency(const SceneBenchmark& s) {
-    return gradientRelativeNoise(s) ? std::optional(s.gradient->efficiency()) : std::nullopt;
+    return s.gradient ? s.gradient->efficiency() : std::nullopt;
 }
 
 // The number, or "-" for none.
@@ -139,7 +134,7 @@ std::string markdownTable(const BenchReport& report) {
                formatText("%.2f", s.gradientToForward()) + " | " + formatText("%.3f", s.pathsPerSecond() * 1e-6) + " | " +
                formatText("%.3f", s.raysPerSecond() * 1e-6) + " | " +
                cell("%.4f", s.relativeNoise) + " | " +
-               cell("%.3g", imageEfficiency(s)) + " | " +
+               cell("%.3g", s.efficiency()) + " | " +
                cell("%.4f", gradientRelativeNoise(s)) + " | " + cell("%.3g", gradientEfficiency(s)) +
                " | " + formatText("%.1f", double(peakDeviceBytes(s)) / kMiB) +
                " | " + formatText("%.1f", double(s.peakHostBytes) / kMiB) + " |\n";
@@ -199,7 +194,7 @@ nlohmann::ordered_json reportJson(const BenchReport& report) {
             {"paths_per_s", s.pathsPerSecond()},
             {"rays_per_s", s.raysPerSecond()},
             {"relative_noise", jsonValue(s.relativeNoise)},
-            {"efficiency", jsonValue(imageEfficiency(s))},
+            {"efficiency", jsonValue(s.efficiency())},
             {"gradient_parameter", s.gradient ? ordered_json(s.gradient->parameter) : ordered_json(nullptr)},
             {"gradient_seeds", s.gradient ? ordered_json(s.gradient->seeds) : ordered_json(nullptr)},
             {"gradient_mean", jsonValue(noise ? std::optional(noise->mean) : std::nullopt)},

@@ -8,6 +8,7 @@
 #include "bench/median.h"
 #include "core/milliseconds_of.h"
 #include "diff/gradient_over_seeds.h"
+#include "diff/gradient_slots.h"
 #include "diff/rendered_loss_gradient.h"
 #include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
@@ -45,7 +46,7 @@ std::optional<std::string> benchGradientParameter(const Scene& scene) {
         return std::nullopt;
     }
     const Medium& medium = scene.media.front();
-    if (glm::any(glm::greaterThan(medium.sigma_s, glm::vec3(0.0f)))) {
+    if (glm::any(glm::greaterThan(medium.sigma_s, glm::vec3(0.0f))) && hasSigmaSGradient(medium)) {
         return parameterName(ParameterKind::SigmaS, medium.name);
     }
     if (glm::any(glm::greaterThan(medium.sigma_a, glm::vec3(0.0f)))) {
@@ -54,8 +55,8 @@ std::optional<std::string> benchGradientParameter(const Scene& scene) {
     return std::nullopt;
 }
 
-double GradientBenchmark::efficiency() const {
-    return noise && noise->relativeNoise ? efficiencyOf(*noise->relativeNoise, evaluationMs * 1e-3) : 0.0;
+std::optional<double> GradientBenchmark::efficiency() const {
+    return noise && noise->relativeNoise ? efficiencyOf(*noise->relativeNoise, evaluationMs * 1e-3) : std::nullopt;
 }
 
 std::optional<GradientBenchmark> benchmarkGradient(const VulkanContext& context, const Scene& scene, const Bvh& bvh,

@@ -15,8 +15,9 @@ class VulkanContext;
 struct Bvh;
 
 // The parameter whose gradient bench measures: sigma_s of the scene's first medium, or
-// its sigma_a where sigma_s is 0 in every channel; nothing for a scene without media, or
-// whose first medium has neither.
+// its sigma_a where sigma_s is 0 in every channel or has no gradient (a density grid's
+// with a channel at 0); nothing for a scene without media, or whose first medium has
+// neither.
 std::optional<std::string> benchGradientParameter(const Scene& scene);
 
 // The gradient is taken with every channel of the parameter at this many times the
@@ -33,8 +34,9 @@ struct GradientBenchmark {
     uint32_t seeds = 0;
     double evaluationMs = 0.0;           // median wall clock of one evaluation
     std::optional<GradientNoise> noise;  // over the seeds (gradientNoise): nullopt with fewer than 2
-    // 1 / (relative noise^2 x evaluation seconds); 0 without a relative noise.
-    double efficiency() const;
+    // 1 / (relative noise^2 x evaluation seconds); none without a relative noise, or
+    // with one of 0.
+    std::optional<double> efficiency() const;
 };
 
 // Evaluates, with RenderedLossGradient as grad and optimize do, the L2 loss's gradient

@@ -201,8 +201,8 @@ Image measureRenderer(const VulkanContext& context, const Scene& scene, const Bv
 
 }  // namespace
 
-double SceneBenchmark::efficiency() const {
-    return relativeNoise ? efficiencyOf(*relativeNoise, forwardMs * 1e-3) : 0.0;
+std::optional<double> SceneBenchmark::efficiency() const {
+    return relativeNoise ? efficiencyOf(*relativeNoise, forwardMs * 1e-3) : std::nullopt;
 }
 
 SceneBenchmark benchmarkScene(const VulkanContext& context, const std::string& name, const Scene& scene,

@@ -70,8 +70,8 @@ struct SceneBenchmark {
                    ? std::optional(densityGradient->gradientMs / densityGradient->forwardMs)
                    : std::nullopt;
     }
-    // 1 / (noise^2 x forward seconds); 0 without a noise figure.
-    double efficiency() const;
+    // 1 / (noise^2 x forward seconds); none without a noise figure, or with a noise of 0.
+    std::optional<double> efficiency() const;
 };
 
 // Times the BVH build, counts the density grids' voxels and times their majorant grids'

@@ -52,6 +52,8 @@ struct OptimizeCommandOptions {
     std::string out = "optimize-out";
     std::string resume;  // a previous run's --out directory to continue in
     bool overwrite = false;  // replace the run that --out holds
+    // Set once --overwrite has removed the old run (just before this run's first write).
+    std::shared_ptr<bool> oldRunRemoved = std::make_shared<bool>(false);
     std::string device;
     std::string commandLine;  // as typed, for report.html
 };
@@ -121,7 +123,10 @@ std::vector<NamedOutput> filesTheSceneReads(const LoadedScene& loaded) {
 // leaves the old one whole.
 std::function<void()> oldRunRemover(const OptimizeCommandOptions& options, bool experiment) {
     if (!options.overwrite) return {};
-    return [out = options.out, experiment] { removeRunFiles(out, experiment); };
+    return [out = options.out, experiment, removed = options.oldRunRemoved] {
+        removeRunFiles(out, experiment);
+        *removed = true;
+    };
 }
 
 std::string metricsText(const std::vector<Metric>& metrics) {
@@ -150,7 +155,13 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
 }
 
 // What the run directory holds to resume from, for the message that ends a stopped run.
-std::string resumeHint(const std::filesystem::path& directory) {
+// With --overwrite, until this run wrote its first file the directory holds the old run
+// whole: its checkpoint is that run's, which this command would not resume.
+std::string resumeHint(const OptimizeCommandOptions& options) {
+    const std::filesystem::path directory = options.out;
+    if (options.overwrite && !*options.oldRunRemoved) {
+        return "this run had written nothing, and the run " + directory.string() + " held is left as it was";
+    }
     std::filesystem::path checkpoint = directory / kCheckpointFileName;
     std::error_code error;
     if (!std::filesystem::exists(checkpoint, error)) return "no checkpoint had been written yet";
@@ -159,13 +170,13 @@ std::string resumeHint(const std::filesystem::path& directory) {
 
 // A lost device or a signal stops the run like any error; what it leaves to resume from
 // is worth saying.
-int withResumeHint(const std::filesystem::path& directory, const std::function<int()>& run) {
+int withResumeHint(const OptimizeCommandOptions& options, const std::function<int()>& run) {
     try {
         return run();
     } catch (const DeviceLostError& error) {
-        throw Error(std::string(error.what()) + "; " + resumeHint(directory));
+        throw Error(std::string(error.what()) + "; " + resumeHint(options));
     } catch (const Interrupted& interrupted) {
-        throw Interrupted(interrupted.signal(), std::string(interrupted.what()) + "; " + resumeHint(directory));
+        throw Interrupted(interrupted.signal(), std::string(interrupted.what()) + "; " + resumeHint(options));
     }
 }
 
@@ -240,13 +251,28 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.learningRateDecayStart->count()) {
         experiment.optimize.learningRateDecayStart = options.optimize.learningRateDecayStart;
     }
-    if (given.logParameters->count()) experiment.optimize.logParameters = options.optimize.logParameters;
+    if (given.logParameters->count()) {
+        experiment.optimize.logParameters = options.optimize.logParameters;
+        experiment.givenOnCommandLine["log_parameters"] = "--log-param";
+    }
     if (given.adamEpsilon->count()) experiment.optimize.adamEpsilon = options.optimize.adamEpsilon;
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
-    if (given.smoothness->count()) experiment.optimize.smoothness = options.optimize.smoothness;
-    if (given.sparsity->count()) experiment.optimize.sparsity = options.optimize.sparsity;
-    if (given.totalVariation->count()) experiment.optimize.totalVariation = options.optimize.totalVariation;
-    if (given.gridLevels->count()) experiment.optimize.gridLevels = options.optimize.gridLevels;
+    if (given.smoothness->count()) {
+        experiment.optimize.smoothness = options.optimize.smoothness;
+        experiment.givenOnCommandLine["smoothness"] = "--smoothness";
+    }
+    if (given.sparsity->count()) {
+        experiment.optimize.sparsity = options.optimize.sparsity;
+        experiment.givenOnCommandLine["sparsity"] = "--sparsity";
+    }
+    if (given.totalVariation->count()) {
+        experiment.optimize.totalVariation = options.optimize.totalVariation;
+        experiment.givenOnCommandLine["total_variation"] = "--total-variation";
+    }
+    if (given.gridLevels->count()) {
+        experiment.optimize.gridLevels = options.optimize.gridLevels;
+        experiment.givenOnCommandLine["grid_levels"] = "--grid-levels";
+    }
     if (given.seed->count()) experiment.optimize.seed = options.settings.seed;
     if (given.spp->count()) experiment.render.spp = options.settings.spp;
     if (given.maxDepth->count()) experiment.render.maxDepth = options.settings.maxDepth;
@@ -419,7 +445,7 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
         options->optimize.seed = options->settings.seed;
         applyResume(*options, out);
         requireRunDirectory(*options);
-        return withResumeHint(options->out, [&] {
+        return withResumeHint(*options, [&] {
             return options->experiment.empty() ? runOptimizeScene(*options)
                                                : runOptimizeExperiment(*options, overrides);
         });

@@ -7,8 +7,9 @@ std::vector<std::vector<std::vector<double>>> gradientSamplesOverSeeds(LossGradi
                                                                        uint32_t firstSeed,
                                                                        const std::function<void()>& evaluated) {
     std::vector<std::vector<std::vector<double>>> samples;
-    for (uint32_t seed = firstSeed; seed < firstSeed + seeds; ++seed) {
-        GradientResult result = lossGradient.evaluate(scene, seed);
+    // Counted, not compared with firstSeed + seeds: seeds wrap modulo 2^32.
+    for (uint32_t i = 0; i < seeds; ++i) {
+        GradientResult result = lossGradient.evaluate(scene, firstSeed + i);
         samples.resize(result.parameters.size());
         for (size_t p = 0; p < result.parameters.size(); ++p) {
             samples[p].resize(result.parameters[p].gradient.size());

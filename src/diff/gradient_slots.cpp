@@ -10,6 +10,11 @@
 #include "scene/parameters.h"
 
 namespace vkdr {
+
+bool hasSigmaSGradient(const Medium& medium) {
+    return !medium.isHeterogeneous() || glm::all(glm::greaterThan(medium.sigma_s, glm::vec3(0.0f)));
+}
+
 namespace {
 
 template <typename T>
@@ -43,8 +48,7 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
     const size_t owner = description.owner == ParameterOwner::Medium     ? indexByName(scene.media, parsed.owner, name)
                          : description.owner == ParameterOwner::Material ? indexByName(scene.materials, parsed.owner, name)
                                                                          : indexByName(scene.punctualLights, parsed.owner, name);
-    if (description.kind == ParameterKind::SigmaS && scene.media[owner].isHeterogeneous() &&
-        glm::any(glm::equal(scene.media[owner].sigma_s, glm::vec3(0.0f)))) {
+    if (description.kind == ParameterKind::SigmaS && !hasSigmaSGradient(scene.media[owner])) {
         throw Error("parameter " + name + ": the gradient of a density grid medium's sigma_s is not available "
                     "where a channel of it is 0 (light it would scatter is not sampled); start it above 0");
     }

@@ -24,6 +24,10 @@ struct GradientSlot {
     size_t valueCount() const { return groups * describe(kind).channels; }
 };
 
+// Whether the adjoint has a gradient for the medium's sigma_s: not a density grid's with
+// a channel at 0, whose scattering no path samples.
+bool hasSigmaSGradient(const Medium& medium);
+
 // Resolves names like media/fog/sigma_a; an unknown name is a vkdr::Error listing the
 // valid ones (scene/parameters.h).
 std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::vector<std::string>& names);

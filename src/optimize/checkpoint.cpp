@@ -118,6 +118,13 @@ public:
         return value.get<double>();
     }
 
+    // Milliseconds spent: the report prints them and divides them by the iterations.
+    double duration(const Json& object, const std::string& key) const {
+        const double milliseconds = number(object, key);
+        if (milliseconds < 0.0) fail(key, "expected a finite number >= 0");
+        return milliseconds;
+    }
+
     // Numbers within [minimum, maximum]: parameter values become floats (the default
     // range), and Adam takes the square root of its second moments.
     std::vector<double> numbers(const Json& object, const std::string& key, double minimum = -kFloatMax,
@@ -195,8 +202,8 @@ Checkpoint readCheckpoint(const std::filesystem::path& file) {
     state.optimizer.mean = reader.numbers(optimizer, "mean", -kDoubleMax, kDoubleMax);
     state.optimizer.meanSquare = reader.numbers(optimizer, "mean_square", 0.0, kDoubleMax);
     state.losses = reader.numbers(document, "losses", 0.0, kDoubleMax);
-    state.forwardMs = reader.number(document, "forward_ms");
-    state.adjointMs = reader.number(document, "adjoint_ms");
+    state.forwardMs = reader.duration(document, "forward_ms");
+    state.adjointMs = reader.duration(document, "adjoint_ms");
     return checkpoint;
 }
 

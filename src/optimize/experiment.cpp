@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/format_text.h"
 #include "image/regular_file.h"
 #include "optimize/coarse_grid_gradient.h"
 #include "optimize/density_grid_options.h"
@@ -158,8 +160,13 @@ public:
         if (value.contains("up")) camera.up = vector3(value["up"], where + ".up");
         if (value.contains("yfov_degrees")) {
             double yfov = positive(value["yfov_degrees"], where + ".yfov_degrees");
-            if (yfov >= 180.0) fail(where + ".yfov_degrees", "must be < 180");
             camera.yfovDegrees = float(yfov);
+            // In the float radians the camera keeps: 1e-300 rounds to 0, 179.99999999 to 180.
+            const float radians = glm::radians(camera.yfovDegrees);
+            if (!(radians > 0.0f && radians < std::numbers::pi_v<float>)) {
+                fail(where + ".yfov_degrees", "must be above 0 and below 180 once rounded to a float, got " +
+                                                  formatText("%.17g", yfov));
+            }
         }
         if (value.contains("orthographic_half_height")) {
             if (value.contains("yfov_degrees")) {
@@ -175,6 +182,12 @@ public:
         glm::vec3 forward = camera.lookAt - camera.position;
         if (glm::length(forward) == 0.0f || glm::length(glm::cross(forward, camera.up)) == 0.0f) {
             fail(where, "look_at must differ from position, and up must not be parallel to the view direction");
+        }
+        const glm::mat4 view = glm::lookAt(camera.position, camera.lookAt, camera.up);
+        const float* entries = &view[0][0];
+        if (!std::all_of(entries, entries + 16, [](float entry) { return std::isfinite(entry); })) {
+            fail(where, "position, look_at and up are too large for a float's arithmetic: the view they give "
+                        "is not finite");
         }
         return camera;
     }
@@ -374,17 +387,23 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
     } catch (const Error& e) {
         reader.fail("parameters", e.what());
     }
+    // A value the command line gave is named by its option, not by the file's key.
+    auto failAt = [&](const std::string& key, const std::string& problem) {
+        auto given = experiment.givenOnCommandLine.find(key);
+        if (given != experiment.givenOnCommandLine.end()) throw Error(given->second + ": " + problem);
+        reader.fail(key, problem);
+    };
     try {
         if (experiment.optimize.gridLevels > 1) {
             requireADensityGridAmong(experiment.optimize.parameters, "grid levels are");
         }
     } catch (const Error& e) {
-        reader.fail("grid_levels", e.what());
+        failAt("grid_levels", e.what());
     }
     try {
         gridPriorWeights(experiment.optimize.parameters, gridPriorWeightsOf(experiment.optimize));
     } catch (const Error& e) {
-        reader.fail(firstWeightName(gridPriorWeightsOf(experiment.optimize)), e.what());
+        failAt(firstWeightName(gridPriorWeightsOf(experiment.optimize)), e.what());
     }
     for (const auto& [name, rate] : experiment.optimize.learningRates) {
         const std::vector<std::string>& names = experiment.optimize.parameters;
@@ -399,7 +418,7 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
     try {
         LogSpace(ParameterVector(started, experiment.optimize.parameters), experiment.optimize.logParameters);
     } catch (const Error& e) {
-        reader.fail("log_parameters", e.what());
+        failAt("log_parameters", e.what());
     }
 }
 

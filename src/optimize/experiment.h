@@ -1,5 +1,6 @@
 #pragma once
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,9 @@ struct Experiment {
     OptimizeOptions optimize;                // parameters, optimiser, learning rates, iterations, seed
     std::vector<ParameterValue> trueValues;  // set before the targets render (kept for the fit)
     std::vector<ParameterValue> startValues; // set before the fit starts
+    // The keys whose values a command line gave in place of the file's, with the option
+    // that gave each ("smoothness": "--smoothness"): a problem with one names the option.
+    std::map<std::string, std::string> givenOnCommandLine;
 };
 
 // Reads and checks an experiment file's structure: unknown keys, wrong types, a

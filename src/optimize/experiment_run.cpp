@@ -138,6 +138,7 @@ OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, con
     applyValues(scene, experiment.startValues);
 
     job.targets = targets;
+    job.writeTarget = true;
     job.trueValues = truth;
     job.settings = heldOutSettings(heldOut);
     job.measure = [&](const Scene& current, uint32_t) {
@@ -145,10 +146,7 @@ OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, con
     };
     std::unique_ptr<LossGradient> lossGradient =
         backend.makeLossGradient(scene, targets, names, experiment.render, experiment.loss);
-    OptimizationReport report = runOptimization(*lossGradient, scene, job, progress);
-    writeExr(outputDirectory / "target.exr", targets[0].target);
-    writePng(outputDirectory / "target.png", targets[0].target);
-    return report;
+    return runOptimization(*lossGradient, scene, job, progress);
 }
 
 }  // namespace vkdr

@@ -71,6 +71,10 @@ void requireFits(const std::filesystem::path& file, const LoopState& state, cons
              std::to_string(options.iterations) + " iterations");
     }
     if (state.losses.size() != state.iteration) fail("losses: expected one per iteration done");
+    // Either optimiser takes one step per iteration; Adam's bias correction counts them.
+    if (state.optimizer.steps != state.iteration) {
+        fail("optimizer.steps: expected " + std::to_string(state.iteration) + ", one per iteration done");
+    }
     if (state.values.size() != valueCount) fail("values: expected " + std::to_string(valueCount));
     size_t moments = options.optimizer == OptimizerKind::Adam ? valueCount : 0;
     if (state.optimizer.mean.size() != moments || state.optimizer.meanSquare.size() != moments) {
@@ -110,31 +114,17 @@ std::vector<std::vector<float>> currentValues(const Scene& scene, const std::vec
     return values;
 }
 
-void setValues(Scene& scene, const std::vector<std::string>& names, const std::vector<std::vector<float>>& values) {
-    for (size_t i = 0; i < names.size(); ++i) setParameter(scene, names[i], values[i]);
-}
-
-// The renders at the start values that iteration 0 made; a resumed run did not keep
-// them, and renders them again with iteration 0's seed, which gives the same images.
-std::vector<Image> startImages(LossGradient& lossGradient, Scene& scene, const OptimizationJob& job,
-                               const OptimizationReport& report) {
-    if (!report.result.firstImages.empty()) return report.result.firstImages;
-    std::vector<std::vector<float>> start, fitted;
-    for (const ParameterFit& fit : report.parameters) {
-        start.push_back(fit.start);
-        fitted.push_back(fit.fitted);
-    }
-    setValues(scene, job.options.parameters, start);
-    std::vector<Image> images = lossGradient.evaluate(scene, job.options.seed).images;
-    setValues(scene, job.options.parameters, fitted);
-    return images;
+// The run's identity, the files its scene reads besides the glTF included.
+RunIdentity identityOf(const OptimizationJob& job, const Scene& scene) {
+    RunIdentity identity = runIdentity(job.sceneFile, job.options, job.loss, job.inputs);
+    addSceneFiles(identity, scene);
+    return identity;
 }
 
 }  // namespace
 
 void requireRunCanStart(const OptimizationJob& job, const Scene& scene) {
-    std::optional<LoopState> resume =
-        resumeState(job, scene, runIdentity(job.sceneFile, job.options, job.loss, job.inputs));
+    std::optional<LoopState> resume = resumeState(job, scene, identityOf(job, scene));
     if (resume) resumedLogLines(job.outputDirectory / kLogFileName, resume->losses);
 }
 
@@ -147,7 +137,7 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     LossGradient& lossGradient = withPriors ? static_cast<LossGradient&>(*withPriors) : imageLossGradient;
     const std::filesystem::path& directory = job.outputDirectory;
     const std::vector<std::string>& names = job.options.parameters;
-    RunIdentity identity = runIdentity(job.sceneFile, job.options, job.loss, job.inputs);
+    RunIdentity identity = identityOf(job, scene);
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
     removeStaleTemporaries(directory);  // a killed run's partial writes
@@ -172,6 +162,12 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     OptimizationReport report;
     // The scene holds the start values until optimize() writes a resumed run's into it.
     std::vector<std::vector<float>> start = currentValues(scene, names);
+    // The renders at the start values that iteration 0 made, for the report: a resumed
+    // run did not keep them and renders them again with iteration 0's seed, which gives
+    // the same images. Before the loop, so that a signal after its last iteration still
+    // lets the outputs be written.
+    std::vector<Image> resumedStartRenders;
+    if (resume) resumedStartRenders = lossGradient.evaluate(scene, job.options.seed).images;
     report.result = optimize(lossGradient, scene, job.options, callbacks, resume ? &*resume : nullptr);
     std::vector<std::vector<float>> fitted = currentValues(scene, names);
     for (size_t i = 0; i < names.size(); ++i) {
@@ -181,7 +177,8 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     const Image& finalImage = report.result.lastImages.at(0);
     DifferenceImage difference = scaledDifference(finalImage, job.targets.at(0).target);
     report.largestDifference = difference.largestDifference;
-    std::vector<Image> startRenders = startImages(lossGradient, scene, job, report);
+    std::vector<Image> startRenders =
+        report.result.firstImages.empty() ? std::move(resumedStartRenders) : report.result.firstImages;
 
     writing();
     writeText(directory / "params.json", parametersJson(scene, job.options.parameters));
@@ -191,6 +188,10 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     writeText(directory / "loss.svg", lossChartSvg(report.result.losses, lossKindName(job.loss)));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - kProcessStart).count();
     writeText(directory / "report.html", reportHtml(runReportPage(job, report, std::move(startRenders), seconds)));
+    if (job.writeTarget) {
+        writeExr(directory / "target.exr", job.targets.at(0).target);
+        writePng(directory / "target.png", job.targets.at(0).target);
+    }
     // Last: it reads the scene file again, which may have changed during a long run
     // (scene/write_scene.h refuses that), and the other outputs stand without it.
     writeSceneWithParameters(job.sceneFile, scene, directory / "scene.gltf");

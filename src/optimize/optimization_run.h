@@ -38,6 +38,9 @@ struct OptimizationJob {
     // writes its first file (log.jsonl, after iteration 0), so that a run that fails or
     // is stopped before then leaves the old one whole.
     std::function<void()> replaceOldRun;
+    // Writes targets[0] as target.exr and target.png with the other outputs: an
+    // experiment's target, which the run rendered and no file holds.
+    bool writeTarget = false;
 };
 
 struct OptimizationReport {

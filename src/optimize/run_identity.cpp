@@ -1,5 +1,6 @@
 #include "optimize/run_identity.h"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 
@@ -97,6 +98,18 @@ RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOp
     return identity;
 }
 
+void addSceneFiles(RunIdentity& identity, const Scene& scene) {
+    std::vector<std::filesystem::path> files;
+    for (size_t i = 1; i < scene.sourceFiles.size(); ++i) files.push_back(scene.sourceFiles[i].file);
+    for (const SceneDensityGrid& grid : scene.densityGrids) files.push_back(grid.file);
+    std::vector<std::string> identities;
+    for (const std::filesystem::path& file : files) {
+        const std::string text = fileIdentity(file);
+        if (std::find(identities.begin(), identities.end(), text) == identities.end()) identities.push_back(text);
+    }
+    if (!identities.empty()) identity["scene_files"] = joined(identities, "; ");
+}
+
 std::string fileDigest(const std::filesystem::path& file) {
     RegularFile in(file);
     uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a offset basis and prime
@@ -124,6 +137,9 @@ void requireSameRun(const std::filesystem::path& checkpoint, const RunIdentity& 
     RunIdentity names = written;
     names.insert(current.begin(), current.end());
     for (const auto& [name, ignored] : names) {
+        // Checkpoints written before the scene's own files were recorded can only be
+        // taken at their word, as they were before.
+        if (name == "scene_files" && !written.contains(name)) continue;
         std::string before = valueIn(written, name), now = valueIn(current, name);
         if (before != now) {
             throw Error(checkpoint.string() + ": written by a run with " + name + " " + before + ", but this run has " +

@@ -35,6 +35,11 @@ struct RunInputs {
 RunIdentity runIdentity(const std::filesystem::path& sceneFile, const OptimizeOptions& options, LossKind loss,
                         const RunInputs& inputs);
 
+// Adds to `identity` the files the scene reads besides its glTF (buffers, images,
+// density grids) by name and digest, as "scene_files"; nothing for a scene that reads
+// none. Throws vkdr::Error naming a file it cannot read.
+void addSceneFiles(RunIdentity& identity, const Scene& scene);
+
 // The file's size and a 64-bit FNV-1a hash of its bytes, as text: equal files give
 // equal digests, and an edited file almost surely a different one. Throws vkdr::Error
 // naming the file when it cannot be read.

@@ -26,6 +26,12 @@ std::vector<std::pair<std::string, std::string>> settings(const OptimizationJob&
         {"learning rate", formatText("%g", options.learningRate)},
     };
     if (!job.inputs.experiment.empty()) rows.insert(rows.begin(), {"experiment", job.inputs.experiment.string()});
+    for (const auto& [name, rate] : options.learningRates) {
+        rows.push_back({"learning rate of " + name, formatText("%g", rate)});
+    }
+    if (options.optimizer == OptimizerKind::Adam && options.adamEpsilon != OptimizeOptions{}.adamEpsilon) {
+        rows.push_back({"Adam epsilon", formatText("%g", options.adamEpsilon)});
+    }
     if (options.learningRateDecay != 1.0) {
         rows.push_back({"learning rate decay", formatText("to %g of the rate, starting %g of the way through",
                                                          options.learningRateDecay, options.learningRateDecayStart)});

@@ -51,30 +51,6 @@ std::string versionText(uint32_t v) {
            std::to_string(VK_API_VERSION_PATCH(v));
 }
 
-DeviceDescription describe(VkPhysicalDevice device, uint32_t index) {
-    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-    properties.pNext = &driver;
-    vkGetPhysicalDeviceProperties2(device, &properties);
-    DeviceDescription d;
-    d.index = index;
-    d.name = properties.properties.deviceName;
-    d.driver = std::string(driver.driverName) + " " + driver.driverInfo;
-    d.type = deviceTypeName(properties.properties.deviceType);
-    d.apiVersion = versionText(properties.properties.apiVersion);
-    d.missingFeatures = missingFeatures(device);
-    return d;
-}
-
-bool supportsExtension(VkPhysicalDevice device, const char* name) {
-    uint32_t count = 0;
-    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
-    std::vector<VkExtensionProperties> extensions(count);
-    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
-    return std::any_of(extensions.begin(), extensions.end(),
-                       [name](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
-}
-
 bool hasComputeQueue(VkPhysicalDevice device, uint32_t* family) {
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
@@ -89,6 +65,33 @@ bool hasComputeQueue(VkPhysicalDevice device, uint32_t* family) {
     return false;
 }
 
+DeviceDescription describe(VkPhysicalDevice device, uint32_t index) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(device, &properties);
+    DeviceDescription d;
+    d.index = index;
+    d.name = properties.properties.deviceName;
+    d.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    d.type = deviceTypeName(properties.properties.deviceType);
+    d.apiVersion = versionText(properties.properties.apiVersion);
+    d.missingFeatures = missingFeatures(device);
+    uint32_t family;
+    if (!hasComputeQueue(device, &family)) {
+        d.missingFeatures.push_back("a compute queue with timestamps");
+    }
+    return d;
+}
+
+bool supportsExtension(VkPhysicalDevice device, const char* name) {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+    return std::any_of(extensions.begin(), extensions.end(),
+                       [name](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
 }  // namespace
 
 ValidationMode validationModeFromEnvironment() {
@@ -129,9 +132,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : validation_(valida
         for (uint32_t i = 0; i < count; ++i) {
             VkPhysicalDeviceProperties p;
             vkGetPhysicalDeviceProperties(devices[i], &p);
-            uint32_t family;
-            if (allDevices_[i].missingFeatures.empty() && hasComputeQueue(devices[i], &family) &&
-                typePreference(p.deviceType) < best) {
+            if (allDevices_[i].missingFeatures.empty() && typePreference(p.deviceType) < best) {
                 best = typePreference(p.deviceType);
                 chosen = static_cast<int>(i);
             }
@@ -159,9 +160,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : validation_(valida
     }
     physicalDevice_ = devices[chosen];
     description_ = allDevices_[chosen];
-    if (!hasComputeQueue(physicalDevice_, &queueFamily_)) {
-        throw Error(description_.name + " has no compute queue with timestamps");
-    }
+    hasComputeQueue(physicalDevice_, &queueFamily_);  // it has one: it lacks nothing
     vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
     createDevice();
@@ -214,7 +213,11 @@ void VulkanContext::createInstance() {
     info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
     VkInstance instance;
-    checkVk(vkCreateInstance(&info, nullptr, &instance), "vkCreateInstance");
+    const VkResult created = vkCreateInstance(&info, nullptr, &instance);
+    if (created == VK_ERROR_INCOMPATIBLE_DRIVER) {
+        throw Error("no Vulkan driver found (install mesa-vulkan-drivers for the CPU device lavapipe)");
+    }
+    checkVk(created, "vkCreateInstance");
     instance_ = InstanceHandle(instance);
     volkLoadInstanceOnly(instance);
     if (validation_ != ValidationMode::Off) {

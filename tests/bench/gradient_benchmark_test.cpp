@@ -1,6 +1,6 @@
 // Which parameter bench differentiates (sigma_s of the first medium, sigma_a where that
-// is 0, nothing without a medium that has either), and that its gradient, taken at half
-// the target's value, is clearly not 0.
+// is 0 or has no gradient, nothing without a medium that has either), and that its
+// gradient, taken at half the target's value, is clearly not 0.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -29,6 +29,15 @@ TEST(BenchGradientParameter, ScatteringOfTheFirstMedium) {
 TEST(BenchGradientParameter, AbsorptionWhereTheMediumDoesNotScatter) {
     Scene scene = sceneWithMedia({{"ink", glm::vec3(0.5f, 0.0f, 0.0f), glm::vec3(0.0f), 0.0f}});
     EXPECT_EQ(benchGradientParameter(scene), "media/ink/sigma_a");
+}
+
+// The adjoint has no gradient for a density grid's sigma_s with a channel at 0.
+TEST(BenchGradientParameter, AbsorptionOfAGridThatDoesNotScatterInAChannel) {
+    Medium plume{"plume", glm::vec3(0.5f), glm::vec3(1.0f, 1.0f, 0.0f), 0.0f};
+    plume.densityGrid = 0;
+    EXPECT_EQ(benchGradientParameter(sceneWithMedia({plume})), "media/plume/sigma_a");
+    plume.sigma_s = glm::vec3(1.0f, 1.0f, 0.5f);
+    EXPECT_EQ(benchGradientParameter(sceneWithMedia({plume})), "media/plume/sigma_s");
 }
 
 TEST(BenchGradientParameter, NoneWithoutAMediumThatScattersOrAbsorbs) {
@@ -73,7 +82,8 @@ TEST(BenchmarkGradient, PointsFromHalfTheValueBackToTheTargets) {
     ASSERT_TRUE(gradient->noise.has_value());
     EXPECT_LT(gradient->noise->mean, -2.0 * gradient->noise->standardError);
     ASSERT_TRUE(gradient->noise->relativeNoise.has_value());
-    EXPECT_TRUE(std::isfinite(gradient->efficiency()));
+    ASSERT_TRUE(gradient->efficiency().has_value());
+    EXPECT_TRUE(std::isfinite(*gradient->efficiency()));
     requireNoValidationMessages(context);
 }
 

@@ -226,6 +226,10 @@ TEST_F(CliTest, GradCheckPrintsAdjointAgainstFiniteDifferences) {
     EXPECT_EQ(nlohmann::json::parse(seed5Again.out)["check"][0], row5);
     EXPECT_NE(row5["adjoint"], row6["adjoint"]);
     EXPECT_NE(row5["finite_difference"], row6["finite_difference"]);
+    // The seeds wrap past 2^32 - 1 (the largest --seed).
+    RunResult wrapped = run(seeded + "4294967295");
+    ASSERT_EQ(wrapped.exitCode, 0) << wrapped.err;
+    EXPECT_EQ(nlohmann::json::parse(wrapped.out)["check"].size(), 1u);
     // Near the largest float the difference steps down only, not past float's range.
     RunResult huge = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
                          " --param media/fog/sigma_s --set media/fog/sigma_s=3e38 --spp 1 --check --check-seeds 2");
@@ -380,6 +384,15 @@ TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
     expectRefused(" --total-variation 0.5", "a total_variation weight is");
     expectRefused(" --grid-levels 2", "coarse-to-fine grid levels are");
     EXPECT_TRUE(fs::is_regular_file(out / "params.json")) << "the refused run left the earlier one as it was";
+    // In an experiment that fits no grid, such an option given on the command line is
+    // named as the option, not as a key of the file, which has none.
+    const std::string experiment = std::string(VKDR_TEST_SCENES_DIR) + "/experiments/cornell_absorption.json";
+    for (const std::string option : {"--smoothness 0.5", "--grid-levels 2"}) {
+        RunResult refused = run("optimize --experiment " + experiment + " " + option + " --out " +
+                                (dir_ / "experiment").string());
+        EXPECT_EQ(refused.exitCode, 2) << refused.err;
+        EXPECT_EQ(refused.err.rfind("error: " + option.substr(0, option.find(' ')) + ": ", 0), 0u) << refused.err;
+    }
 }
 
 TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {
@@ -442,6 +455,13 @@ TEST_F(CliTest, InfoNamesTheChosenDevice) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("Chosen:"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("shaderBufferInt64Atomics"), std::string::npos) << r.out;
+}
+
+// Without a driver the loader's "incompatible driver" becomes what to install.
+TEST_F(CliTest, InfoWithoutADriverSaysWhatToInstall) {
+    RunResult r = runCli("info", dir_, "VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "error: no Vulkan driver found (install mesa-vulkan-drivers for the CPU device lavapipe)\n");
 }
 
 TEST_F(CliTest, DeviceIndexOutOfRangeNamesTheDevices) {

@@ -81,6 +81,31 @@ TEST_F(Interrupt, OptimizeCheckpointsItsLastFinishedIterationAndResumeEndsLikeAn
     EXPECT_EQ(lineCount(cut / "log.jsonl"), 40u);
 }
 
+// A resumed run renders the start values again for its report (iteration 0's renders
+// were not kept): before its loop, so that a signal after the last iteration finds no
+// render left to stop and the outputs are written.
+TEST_F(Interrupt, ASignalAfterTheLastIterationOfAResumedRunLetsItWriteItsOutputs) {
+    std::string command = "optimize " + fog() + " --target " + target(32).string() +
+                          " --param media/fog/sigma_a --iters 2 --spp 64 --max-depth 3 --checkpoint-every 1";
+    fs::path run = dir_ / "run";
+    ASSERT_EQ(runCli(command + " --out " + run.string(), dir_, kThreads).exitCode, 0);
+    ASSERT_EQ(nlohmann::json::parse(slurp(run / "checkpoint.json"))["iteration"].get<size_t>(), 1u);
+    std::istringstream log(slurp(run / "log.jsonl"));
+    std::string firstLine;
+    std::getline(log, firstLine);
+    std::ofstream(run / "log.jsonl", std::ios::trunc) << firstLine << "\n";
+    for (const char* file : {"params.json", "final.exr", "scene.gltf"}) fs::remove(run / file);
+
+    RunningCli running(command + " --resume " + run.string(), dir_, kThreads);
+    ASSERT_TRUE(running.waitUntil([&] { return lineCount(run / "log.jsonl") >= 2; })) << slurp(dir_ / "stderr");
+    running.signal(SIGINT);
+    RunResult finished = running.finish();
+    EXPECT_EQ(finished.err.find("error:"), std::string::npos) << finished.err;
+    for (const char* file : {"params.json", "final.exr", "scene.gltf"}) {
+        EXPECT_TRUE(fs::exists(run / file)) << file << "\n" << finished.err;
+    }
+}
+
 TEST_F(Interrupt, OptimizeStoppedBeforeItsFirstIterationLeavesNoCheckpoint) {
     // 64x64 at 256 spp: the first iteration outlasts the signal by far.
     std::string command = "optimize " + fog() + " --target " + target(64).string() +
@@ -94,6 +119,34 @@ TEST_F(Interrupt, OptimizeStoppedBeforeItsFirstIterationLeavesNoCheckpoint) {
         << stopped.err;
     EXPECT_FALSE(fs::exists(dir_ / "out" / "checkpoint.json"));
     EXPECT_FALSE(fs::exists(dir_ / "out" / "log.jsonl"));
+}
+
+// --overwrite removes the old run just before the new one's first write: stopped before
+// then, the directory holds the old run whole, whose checkpoint this command would not
+// resume, and the message says so instead of pointing at it.
+TEST_F(Interrupt, OverwriteStoppedBeforeItsFirstWriteLeavesTheOldRunAndSaysSo) {
+    const std::string targetFile = target(64).string();
+    const fs::path out = dir_ / "out";
+    ASSERT_EQ(runCli("optimize " + fog() + " --target " + targetFile +
+                         " --param media/fog/g --iters 2 --spp 1 --max-depth 1 --checkpoint-every 1 --out " +
+                         out.string(),
+                     dir_)
+                  .exitCode,
+              0);
+    const std::string oldCheckpoint = slurp(out / "checkpoint.json");
+    fs::remove(dir_ / "stderr");  // the first run's, which says "iterations of adam" too
+    RunningCli running("optimize " + fog() + " --target " + targetFile +
+                           " --param media/fog/sigma_a --iters 5 --spp 256 --overwrite --out " + out.string(),
+                       dir_);
+    ASSERT_TRUE(running.waitUntil([&] { return printed("iterations of adam"); })) << slurp(dir_ / "stderr");
+    running.signal(SIGINT);
+    RunResult stopped = running.finish();
+    EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
+    EXPECT_NE(stopped.err.find("this run had written nothing, and the run " + out.string() + " held is left as it was"),
+              std::string::npos)
+        << stopped.err;
+    EXPECT_EQ(stopped.err.find("--resume"), std::string::npos) << stopped.err;
+    EXPECT_EQ(slurp(out / "checkpoint.json"), oldCheckpoint);
 }
 
 TEST_F(Interrupt, RenderStopsMidPassAndLeavesThePreviousFile) {

@@ -30,7 +30,7 @@ protected:
     std::string optimizeCommand(const fs::path& out) const {
         return "optimize " + fog() + " --target " + (dir_ / "target.exr").string() +
                " --param media/fog/sigma_a --param media/fog/g --set media/fog/sigma_a=0.2 --iters 3 --spp 1 "
-               "--max-depth 2 --out " + out.string();
+               "--max-depth 2 --adam-epsilon 1e-6 --out " + out.string();
     }
 };
 
@@ -117,6 +117,7 @@ TEST_F(OptimizeReport, PrintsTheFittedValuesAndWritesASelfContainedReport) {
     // The command and settings.
     EXPECT_NE(html.find("optimize " + fog()), std::string::npos);
     EXPECT_NE(html.find("<th>iterations</th><td>3</td>"), std::string::npos);
+    EXPECT_NE(html.find("<th>Adam epsilon</th><td>1e-06</td>"), std::string::npos);
     EXPECT_NE(html.find("<th>time taken</th>"), std::string::npos);
 }
 

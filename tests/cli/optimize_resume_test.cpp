@@ -117,6 +117,34 @@ TEST_F(OptimizeResume, RefusesAResumeWithOtherOptionsOrAnotherOut) {
     EXPECT_EQ(slurp(cut / "checkpoint.json"), checkpoint);
 }
 
+// The files a scene reads besides its glTF (here its density grid) decide the run as
+// much as the glTF does: a checkpoint is refused once one of them has changed.
+TEST_F(OptimizeResume, RefusesAResumeAfterAFileTheSceneReadsHasChanged) {
+    const fs::path scenes = VKDR_TEST_SCENES_DIR;
+    for (const char* file : {"cornell_plume.gltf", "cornell_plume.vdb"}) fs::copy_file(scenes / file, scratch_ / file);
+    const std::string plume = (scratch_ / "cornell_plume.gltf").string();
+    ASSERT_EQ(runCli("render " + plume + " --width 8 --height 8 --spp 2 --max-depth 2 -o " +
+                         (scratch_ / "plume.exr").string(),
+                     scratch_)
+                  .exitCode,
+              0);
+    const std::string command = "optimize " + plume + " --target " + (scratch_ / "plume.exr").string() +
+                                " --param media/plume/g --iters 2 --spp 1 --max-depth 2 --checkpoint-every 1";
+    const fs::path run = scratch_ / "plume_run";
+    RunResult first = runCli(command + " --out " + run.string(), scratch_);
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    ASSERT_TRUE(fs::exists(run / "checkpoint.json"));
+    RunResult same = runCli(command + " --resume " + run.string(), scratch_);
+    EXPECT_EQ(same.exitCode, 0) << same.err;
+
+    fs::copy_file(scenes / "experiments" / "smoke_plume.vdb", scratch_ / "cornell_plume.vdb",
+                  fs::copy_options::overwrite_existing);
+    RunResult changed = runCli(command + " --resume " + run.string(), scratch_);
+    EXPECT_EQ(changed.exitCode, 2) << changed.err;
+    EXPECT_NE(changed.err.find("scene_files 'cornell_plume.vdb, 63890 bytes"), std::string::npos) << changed.err;
+    EXPECT_EQ(changed.err.find("error: "), changed.err.rfind("error: ")) << changed.err;
+}
+
 // A log.jsonl that is not the checkpoint's run (another run's lines mixed in, lines
 // lost, a loss edited) would make the resumed run's log a mixture: --resume refuses it.
 TEST_F(OptimizeResume, RefusesALogThatDoesNotMatchTheCheckpoint) {

@@ -92,11 +92,14 @@ TEST(Checkpoint, AResumedRunEndsExactlyWhereTheUninterruptedRunEnds) {
     Scene resumed = loadScene(kFogScene).scene;
     QuadraticLossGradient resumedLoss(fogMinima());
     OptimizationReport report = runOptimization(resumedLoss, resumed, job);
-    EXPECT_EQ(resumedLoss.seeds().front(), 7u + 20u);  // iteration i still renders with seed + i
-    // The 20 iterations left, and once more at the start values with iteration 0's seed:
-    // the report's start images, which the stopped process rendered and did not keep.
+    // First, once at the start values with iteration 0's seed: the report's start images,
+    // which the stopped process rendered and did not keep (before the loop, so that a
+    // signal after its last iteration has no render to stop). Then the 20 iterations
+    // left, iteration i still rendering with seed + i.
     ASSERT_EQ(resumedLoss.seeds().size(), 21u);
-    EXPECT_EQ(resumedLoss.seeds().back(), 7u);
+    EXPECT_EQ(resumedLoss.seeds().front(), 7u);
+    EXPECT_EQ(resumedLoss.seeds()[1], 7u + 20u);
+    EXPECT_EQ(resumedLoss.seeds().back(), 7u + 39u);
     EXPECT_EQ(report.result.losses.size(), 40u);
 
     for (const char* name : {"media/fog/sigma_a", "media/fog/g"}) {
@@ -294,6 +297,8 @@ TEST(Checkpoint, RefusesNumbersOutOfRangeNamingTheFileAndKey) {
     expectRefused([](auto& d) { d["optimizer"]["mean_square"][0] = -1.0; }, {"mean_square", "[0, "});
     expectRefused([](auto& d) { d["iteration"] = 4294967296u; }, {"iteration", "[0, 4294967295]"});
     expectRefused([](auto& d) { d["optimizer"]["steps"] = -3; }, {"steps", "integer"});
+    expectRefused([](auto& d) { d["forward_ms"] = -1e300; }, {"forward_ms", ">= 0"});
+    expectRefused([](auto& d) { d["adjoint_ms"] = -1.0; }, {"adjoint_ms", ">= 0"});
 }
 
 // A value within float range but outside its parameter's range (g = 5) is refused when
@@ -312,6 +317,13 @@ TEST(Checkpoint, ResumeRefusesAValueOutsideItsParametersRange) {
     QuadraticLossGradient loss(fogMinima());
     expectErrorMentioning([&] { runOptimization(loss, scene, job); },
                           {file.string(), "values", "media/fog/g[0]", "outside"});
+    // Adam's step count, which its bias correction divides by, is one per iteration: a
+    // count that wrapped round to 0 would make the first step NaN.
+    document["values"][3] = 0.5;
+    document["optimizer"]["steps"] = 18446744073709551615u;
+    writeBytes(file, document.dump());
+    expectErrorMentioning([&] { runOptimization(loss, scene, job); },
+                          {file.string(), "optimizer.steps: expected 2, one per iteration done"});
 }
 
 // A density grid's checkpoint holds millions of numbers: vectors longer than 1024 are

@@ -161,8 +161,16 @@ TEST(Experiment, RejectsNumbersOutOfRangeNamingTheKeyAndTheRange) {
     expectRefused("adam_epsilon", -1e-8, {"finite number > 0"});
     expectRefused("learning_rates", {{"media/fog/sigma_a", -2.0}}, {"learning_rates.media/fog/sigma_a", "> 0"});
     expectRefused("start", {{"media/fog/sigma_a", 1e39}}, {"start.media/fog/sigma_a", "float range"});
-    expectRefused("cameras", {{{"name", "c"}, {"position", {0, 0, 0}}, {"look_at", {0, 0, -1}}, {"yfov_degrees", 1e300}}},
-                  {"cameras[0].yfov_degrees", "< 180"});
+    // The field of view as the camera keeps it, in float radians: 1e-300 is 0 there, and
+    // 179.99999999 is 180.
+    for (double yfov : {1e300, 1e-300, 179.99999999}) {
+        expectRefused("cameras",
+                      {{{"name", "c"}, {"position", {0, 0, 0}}, {"look_at", {0, 0, -1}}, {"yfov_degrees", yfov}}},
+                      {"cameras[0].yfov_degrees", "above 0 and below 180 once rounded to a float"});
+    }
+    // Each finite, but the view direction between them is not.
+    expectRefused("cameras", {{{"name", "c"}, {"position", {3e38, 1, 5}}, {"look_at", {-3e38, 1, 0}}}},
+                  {"cameras[0]", "the view they give is not finite"});
 }
 
 // Only a regular file is read: a directory is refused, and a FIFO without waiting for a writer.
@@ -344,6 +352,38 @@ TEST(Experiment, RecoversTheTrueValuesWithAnAnalyticBackend) {
     for (const char* file : {"log.jsonl", "params.json", "scene.gltf", "target.exr", "diff.png", "report.html"}) {
         EXPECT_TRUE(std::filesystem::is_regular_file(scratch / "out" / file)) << file;
     }
+}
+
+// scene.gltf goes last: a scene file edited during the run is refused there, and every
+// other output, the rendered target among them, is written all the same.
+TEST(Experiment, WritesItsTargetWhenTheFittedSceneIsRefused) {
+    ScratchDirectory scratch;
+    std::filesystem::copy_file(kScenes / "cornell_fog.gltf", scratch / "fog.gltf");
+    json description = fogExperiment(scratch.path());
+    description["scene"] = "fog.gltf";
+    description["iterations"] = 3;
+    description["learning_rates"] = {{"media/fog/g", 0.05}};
+    Experiment experiment = readExperiment(writeExperiment(scratch, description));
+    Scene scene = loadScene(experiment.scene).scene;
+    ExperimentBackend backend;
+    backend.render = [](const Scene&, const RenderSettings& settings) {
+        return Image{settings.width, settings.height, std::vector<float>(size_t(settings.width * settings.height * 3), 0.5f)};
+    };
+    backend.makeLossGradient = [&](const Scene&, std::vector<TargetView> views, std::vector<std::string>,
+                                   const RenderSettings&, LossKind) -> std::unique_ptr<LossGradient> {
+        std::ofstream(scratch / "fog.gltf", std::ios::app) << " ";  // edited once the run has started
+        auto loss = std::make_unique<QuadraticLossGradient>(
+            QuadraticLossGradient::Minima{{"media/fog/sigma_a", {0.05, 0.05, 0.05}}, {"media/fog/g", {0.0}}});
+        loss->setImageSize(views.at(0).target.width, views.at(0).target.height);
+        return loss;
+    };
+    expectErrorMentioning([&] { runExperiment(experiment, scene, backend, scratch / "out"); }, {"fog.gltf"});
+    for (const char* file : {"params.json", "report.html", "target.exr", "target.png"}) {
+        EXPECT_TRUE(std::filesystem::is_regular_file(scratch / "out" / file)) << file;
+    }
+    EXPECT_FALSE(std::filesystem::exists(scratch / "out" / "scene.gltf"));
+    const std::string report = readBytes(scratch / "out" / "report.html");
+    EXPECT_NE(report.find("<th>learning rate of media/fog/g</th><td>0.05</td>"), std::string::npos);
 }
 
 // A run directory that cannot be resumed, or that holds another run, is refused before
