@@ -49,6 +49,20 @@ const char* modeName(int mode) {
     }
 }
 
+// Rays are built from the camera's axes, which must be a rigid, right-handed frame. glTF
+// cameras look down their node's -Z with its +Y up: the view direction is the node's -Z,
+// up is the node's +Y made perpendicular to it, and right follows from the two, so a
+// scale (mirroring ones included) or a shear neither mirrors nor skews the image. In
+// doubles, so a large scale does not overflow; a collapsed frame comes out not finite.
+glm::mat4 rigidCameraToWorld(const glm::mat4& nodeToWorld) {
+    const glm::dvec3 back = glm::normalize(glm::dvec3(nodeToWorld[2]));
+    const glm::dvec3 nodeUp(nodeToWorld[1]);
+    const glm::dvec3 up = glm::normalize(nodeUp - glm::dot(nodeUp, back) * back);
+    const glm::dvec3 right = glm::cross(up, back);
+    return glm::mat4(glm::vec4(glm::vec3(right), 0.0f), glm::vec4(glm::vec3(up), 0.0f),
+                     glm::vec4(glm::vec3(back), 0.0f), nodeToWorld[3]);
+}
+
 std::string describe(std::string_view array, size_t index, const std::string& name) {
     return indexed(array, index) + (name.empty() ? "" : " ('" + name + "')");
 }
@@ -386,15 +400,12 @@ private:
             diagnostics_.warn(nodeField, "camera '" + given + "' is an earlier camera's name; this one is named '" +
                                              camera.name + "'");
         }
-        // Rays are built from the axes, so keep the rotation and position only.
-        camera.cameraToWorld = glm::mat4(glm::vec4(glm::normalize(glm::vec3(cameraToWorld[0])), 0.0f),
-                                         glm::vec4(glm::normalize(glm::vec3(cameraToWorld[1])), 0.0f),
-                                         glm::vec4(glm::normalize(glm::vec3(cameraToWorld[2])), 0.0f),
-                                         cameraToWorld[3]);
+        camera.cameraToWorld = rigidCameraToWorld(cameraToWorld);
         for (int column = 0; column < 4; ++column) {
             glm::vec4 axis = camera.cameraToWorld[column];
             if (!std::isfinite(axis.x) || !std::isfinite(axis.y) || !std::isfinite(axis.z)) {
-                diagnostics_.fail(nodeField, "the camera's transform is degenerate (a zero scale) or not finite");
+                diagnostics_.fail(nodeField, "the camera's transform is degenerate (it collapses the node's -Z "
+                                             "axis, or its +Y axis onto -Z) or not finite");
             }
         }
         scene_.cameras.push_back(std::move(camera));

@@ -434,6 +434,46 @@ TEST(LoadScene, ReadsPerspectiveAndOrthographicCamerasInNodeOrder) {
     EXPECT_TRUE(loaded.warnings.empty());
 }
 
+// The frame of a camera under `transform` (a node's members), with a triangle to render.
+glm::mat4 cameraToWorldUnder(const TemporaryDirectory& directory, json transform) {
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("triangle", kTriangle)}});
+    transform["camera"] = builder.addCamera({{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}});
+    builder.addNode(transform);
+    return loadScene(builder.writeGltf(directory / "camera.gltf")).scene.cameras.at(0).cameraToWorld;
+}
+
+void expectSameFrame(const glm::mat4& actual, const glm::mat4& expected) {
+    for (int column = 0; column < 4; ++column) {
+        SCOPED_TRACE("column " + std::to_string(column));
+        expectNear(glm::vec3(actual[column]), glm::vec3(expected[column]));
+    }
+}
+
+// A mirroring scale or a shear would otherwise mirror or skew the image: the frame is
+// always rigid and right-handed, from the node's -Z and +Y.
+TEST(LoadScene, CameraFramesAreRigidAndRightHandedUnderMirrorsAndShears) {
+    TemporaryDirectory directory;
+    const glm::mat4 plain = cameraToWorldUnder(directory, {{"translation", {0, 1, 5}}});
+    expectSameFrame(plain, glm::translate(glm::mat4(1.0f), {0, 1, 5}));
+    expectSameFrame(cameraToWorldUnder(directory, {{"translation", {0, 1, 5}}, {"scale", {-1, 1, 1}}}), plain);
+    expectSameFrame(cameraToWorldUnder(directory, {{"translation", {0, 1, 5}}, {"scale", {2, -3, 0.5}}}),
+                    glm::translate(glm::mat4(1.0f), {0, 1, 5}) * glm::scale(glm::mat4(1.0f), {-1, -1, 1}));
+    // The node's x axis sheared towards y: its -Z and +Y are the unscaled camera's.
+    expectSameFrame(cameraToWorldUnder(directory, {{"matrix", {1, 0.9, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 5, 1}}}),
+                    plain);
+    // A mirror along z reverses -Z: the camera looks along +z, still upright.
+    const glm::mat4 reversed = cameraToWorldUnder(directory, {{"translation", {0, 1, 5}}, {"scale", {1, 1, -1}}});
+    expectSameFrame(reversed, glm::translate(glm::mat4(1.0f), {0, 1, 5}) * glm::scale(glm::mat4(1.0f), {-1, 1, -1}));
+    // The node's y axis sheared towards x: up leans the same way, at right angles to -Z.
+    const glm::mat4 leaning =
+        cameraToWorldUnder(directory, {{"matrix", {1, 0, 0, 0, 0.9, 1, 0, 0, 0, 0, 1, 0, 0, 1, 5, 1}}});
+    expectNear(glm::vec3(leaning[1]), glm::normalize(glm::vec3(0.9f, 1.0f, 0.0f)));
+    expectNear(glm::vec3(leaning[2]), {0, 0, 1});
+    EXPECT_NEAR(glm::determinant(glm::mat3(leaning)), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(glm::vec3(leaning[0]), glm::vec3(leaning[1])), 0.0f, 1e-6f);
+}
+
 // COLOR_0 as RGBA normalized bytes (alpha dropped); a primitive without it is white.
 TEST(LoadScene, ReadsVertexColoursAndWhiteWhereAPrimitiveHasNone) {
     TemporaryDirectory directory;
