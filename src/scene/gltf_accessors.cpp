@@ -14,6 +14,7 @@ struct ElementRange {
     size_t stride = 0;  // bytes from one element to the next
     size_t count = 0;
     int componentType = 0;
+    bool normalized = false;  // integer components stand for [0, 1]
 };
 
 // Where the last of `count` elements ends: byteOffset + stride * (count - 1) + elementSize
@@ -94,7 +95,19 @@ ElementRange checkedElements(const tinygltf::Model& model, int accessorIndex, in
                                             viewField + " holds " + std::to_string(view.byteLength));
     }
     return {buffer.data.data() + view.byteOffset + accessor.byteOffset, stride, accessor.count,
-            accessor.componentType};
+            accessor.componentType, accessor.normalized};
+}
+
+// glTF 2.0 allows integer texture coordinates and colours as normalized values only;
+// plain integers are KHR_mesh_quantization's, which is not supported.
+void requireNormalizedIntegers(const ElementRange& range, int accessorIndex, const GltfDiagnostics& diagnostics,
+                               std::string_view field) {
+    if (range.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !range.normalized) {
+        diagnostics.fail(indexed("accessors", size_t(accessorIndex)) + ".normalized",
+                         "integer components of " + std::string(field) +
+                             " must be normalized (\"normalized\": true); plain integers need "
+                             "KHR_mesh_quantization, which is not supported");
+    }
 }
 
 template <typename T>
@@ -132,6 +145,7 @@ std::vector<glm::vec2> readTexcoords(const tinygltf::Model& model, int accessor,
         {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
          TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
         diagnostics, field);
+    requireNormalizedIntegers(range, accessor, diagnostics, field);
     size_t componentSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(range.componentType)));
     std::vector<glm::vec2> uvs(range.count);
     for (size_t i = 0; i < range.count; ++i) {
@@ -153,6 +167,7 @@ std::vector<glm::vec3> readColors(const tinygltf::Model& model, int accessor, co
         model, accessor, rgba ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
         {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
         diagnostics, field);
+    requireNormalizedIntegers(range, accessor, diagnostics, field);
     size_t componentSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(range.componentType)));
     std::vector<glm::vec3> colors(range.count);
     for (size_t i = 0; i < range.count; ++i) {

@@ -19,12 +19,14 @@ namespace vkdr {
 std::vector<glm::vec3> readVec3s(const tinygltf::Model& model, int accessor,
                                      const GltfDiagnostics& diagnostics, std::string_view field);
 
-// Float, or normalized unsigned byte / short (KHR_mesh_quantization spellings).
+// Float, or normalized unsigned byte / short; integers that are not normalized are
+// refused, naming the accessor.
 std::vector<glm::vec2> readTexcoords(const tinygltf::Model& model, int accessor,
                                      const GltfDiagnostics& diagnostics, std::string_view field);
 
 // COLOR_0: RGB or RGBA (alpha dropped), float or normalized unsigned byte / short, every
 // channel in [0, 1]: glTF's range, and a colour multiplies an albedo that must stay <= 1.
+// Integers that are not normalized are refused, naming the accessor.
 std::vector<glm::vec3> readColors(const tinygltf::Model& model, int accessor, const GltfDiagnostics& diagnostics,
                                   std::string_view field);
 

@@ -542,6 +542,29 @@ TEST(LoadSceneErrors, VertexColoursOutsideZeroToOne) {
                     {"meshes[0].primitives[0].attributes.COLOR_0", "colour 0 has R = -1; must be in [0, 1]"});
 }
 
+// Plain integers (KHR_mesh_quantization's) would otherwise be read as normalized ones.
+TEST(LoadSceneErrors, IntegerTextureCoordinatesAndColoursMustBeNormalized) {
+    TemporaryDirectory directory;
+    for (const char* attribute : {"TEXCOORD_0", "COLOR_0"}) {
+        for (int componentType : {5121, 5123}) {
+            SCOPED_TRACE(std::string(attribute) + " " + std::to_string(componentType));
+            GltfBuilder gltf;
+            gltf.addNode({{"mesh", gltf.addMesh("quad", floorQuad(1.0f))}});
+            const int view = gltf.addBufferView(std::vector<unsigned char>(4 * 4 * 2, 1));
+            gltf.document()["accessors"].push_back({{"bufferView", view},
+                                                    {"componentType", componentType},
+                                                    {"count", 4},
+                                                    {"type", std::string(attribute) == "COLOR_0" ? "VEC4" : "VEC2"}});
+            const size_t accessor = gltf.document()["accessors"].size() - 1;
+            gltf.document()["meshes"][0]["primitives"][0]["attributes"][attribute] = accessor;
+            expectLoadError(gltf.writeGltf(directory / "integers.gltf"),
+                            {"accessors[" + std::to_string(accessor) + "].normalized",
+                             std::string("integer components of meshes[0].primitives[0].attributes.") + attribute +
+                                 " must be normalized"});
+        }
+    }
+}
+
 // glTF gives a node one place; a node listed in several is rendered at each, and said.
 TEST(LoadSceneErrors, ANodeListedTwiceIsNamedInAWarning) {
     TemporaryDirectory directory;
