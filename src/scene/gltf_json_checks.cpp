@@ -4,8 +4,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <regex>
 #include <span>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -335,6 +338,34 @@ void checkDataUriBuffer(const json& buffer, const std::string& field, const Gltf
     }
 }
 
+// The version in `asset`'s member `key`, "<major>.<minor>" as the schema writes it, or
+// nothing where it is absent.
+std::optional<std::pair<int, int>> assetVersion(const json& asset, const char* key,
+                                                const GltfDiagnostics& diagnostics) {
+    if (!asset.contains(key)) return std::nullopt;
+    static const std::regex pattern(R"(([0-9]{1,9})\.([0-9]{1,9}))");
+    std::smatch match;
+    if (!asset[key].is_string() || !std::regex_match(asset[key].get_ref<const std::string&>(), match, pattern)) {
+        diagnostics.fail(member("asset", key), "expected a version such as \"2.0\", got " + describeValue(asset[key]));
+    }
+    return std::pair(std::stoi(match[1]), std::stoi(match[2]));
+}
+
+// The loader implements glTF 2.0. It reads any 2.x file, since minor versions add only
+// what a 2.0 reader may ignore, unless the file's minVersion asks for more.
+void checkAssetVersion(const json& document, const GltfDiagnostics& diagnostics) {
+    if (!document.contains("asset") || !document["asset"].is_object()) return;
+    const json& asset = document["asset"];
+    if (auto version = assetVersion(asset, "version", diagnostics); version && version->first != 2) {
+        diagnostics.fail("asset.version", "glTF " + asset["version"].get<std::string>() +
+                                              " is not supported; the loader reads glTF 2.x");
+    }
+    if (auto minVersion = assetVersion(asset, "minVersion", diagnostics); minVersion && *minVersion > std::pair(2, 0)) {
+        diagnostics.fail("asset.minVersion", "the file needs a glTF " + asset["minVersion"].get<std::string>() +
+                                                 " reader; the loader implements glTF 2.0");
+    }
+}
+
 // Calls `check` on each object of the top-level array `name`.
 template <typename Check>
 void forEachEntry(const json& document, const char* name, Check check) {
@@ -353,6 +384,7 @@ bool isUnderstoodExtension(std::string_view extension) {
 
 void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
     refuseNulls(document, "", diagnostics);
+    checkAssetVersion(document, diagnostics);
     requireObjectExtensions(document, "", diagnostics);
     if (document.contains("extensions")) {
         const json& extensions = document["extensions"];

@@ -357,6 +357,28 @@ TEST(LoadSceneErrors, WhatTinygltfWouldDropIsRefusedNamingTheField) {
                                                                  "expected an array"});
 }
 
+// A 2.0 reader reads any 2.x file unless its minVersion asks for more.
+TEST(LoadSceneErrors, GltfVersionsOtherThanTwo) {
+    TemporaryDirectory directory;
+    auto boxOfVersion = [](json asset) {
+        GltfBuilder builder = boxWithMaterial({{"name", "white"}});
+        builder.document()["asset"] = std::move(asset);
+        return builder;
+    };
+    expectLoadError(boxOfVersion({{"version", "1.0"}}).writeGltf(directory / "one.gltf"),
+                    {"asset.version", "glTF 1.0 is not supported; the loader reads glTF 2.x"});
+    expectLoadError(boxOfVersion({{"version", "3.0"}}).writeGltf(directory / "three.gltf"),
+                    {"asset.version", "glTF 3.0 is not supported"});
+    expectLoadError(boxOfVersion({{"version", "2"}}).writeGltf(directory / "bare.gltf"),
+                    {"asset.version", "expected a version such as \"2.0\", got \"2\""});
+    expectLoadError(boxOfVersion({{"version", "2.1"}, {"minVersion", "2.5"}}).writeGltf(directory / "min.gltf"),
+                    {"asset.minVersion", "the file needs a glTF 2.5 reader; the loader implements glTF 2.0"});
+    expectLoadError(boxOfVersion({{"version", "2.0"}, {"minVersion", "two"}}).writeGltf(directory / "word.gltf"),
+                    {"asset.minVersion", "expected a version such as \"2.0\""});
+    const GltfBuilder later = boxOfVersion({{"version", "2.1"}, {"minVersion", "2.0"}});
+    EXPECT_NO_THROW(loadScene(later.writeGltf(directory / "later.gltf")));
+}
+
 // A buffer's data URI may be megabytes: a message names the field and quotes its start.
 TEST(LoadSceneErrors, DataUriProblemsDoNotQuoteTheData) {
     TemporaryDirectory directory;
