@@ -149,11 +149,11 @@ private:
         }
         const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
         MeshInstance instance;
-        instance.description = describe("meshes", size_t(node.mesh), mesh.name) + " at " +
-                               describe("nodes", nodeIndex, node.name);
+        const std::string nodeDescription = describe("nodes", nodeIndex, node.name);
+        instance.description = describe("meshes", size_t(node.mesh), mesh.name) + " at " + nodeDescription;
         instance.firstTriangle = uint32_t(scene_.triangles.size());
         for (const DecodedPrimitive& primitive : decodedMesh(size_t(node.mesh))) {
-            addPrimitive(primitive, meshToWorld);
+            addPrimitive(primitive, meshToWorld, nodeDescription);
         }
         instance.triangleCount = uint32_t(scene_.triangles.size()) - instance.firstTriangle;
         instances_.push_back(std::move(instance));
@@ -239,7 +239,8 @@ private:
         return decoded;
     }
 
-    void addPrimitive(const DecodedPrimitive& primitive, const glm::mat4& meshToWorld) {
+    // `node` describes the node placing this instance, for messages.
+    void addPrimitive(const DecodedPrimitive& primitive, const glm::mat4& meshToWorld, const std::string& node) {
         requireRoomFor(primitive.positions.size(), primitive.triangles.size(), primitive.field);
         // A mirroring transform turns counter-clockwise triangles clockwise (glTF spec,
         // "Meshes": the determinant decides the winding), so swap two corners back.
@@ -250,7 +251,7 @@ private:
             glm::vec3 world = glm::vec3(meshToWorld * glm::vec4(primitive.positions[v], 1.0f));
             if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z)) {
                 diagnostics_.fail(primitive.field + ".attributes.POSITION",
-                                  "vertex " + std::to_string(v) + " is not finite in world space");
+                                  "vertex " + std::to_string(v) + " is not finite in world space, at " + node);
             }
             scene_.positions.push_back(world);
         }
@@ -271,12 +272,25 @@ private:
             scene_.normals.push_back(primitive.normals.empty() ? glm::vec3(0.0f)
                                                                : shadingNormal(normalToWorld * primitive.normals[v]));
         }
-        for (glm::uvec3 triangle : primitive.triangles) {
+        for (size_t t = 0; t < primitive.triangles.size(); ++t) {
+            glm::uvec3 triangle = primitive.triangles[t] + glm::uvec3(base);
             if (mirrored) {
                 std::swap(triangle.y, triangle.z);
             }
-            scene_.triangles.push_back(triangle + glm::uvec3(base));
+            requireFiniteArea(triangle, primitive.field, "triangle " + std::to_string(t) + " at " + node);
+            scene_.triangles.push_back(triangle);
             scene_.triangleMaterial.push_back(primitive.material);
+        }
+    }
+
+    // The renderer takes a triangle's normal and area from the cross product of its edges
+    // in float; where that overflows, the triangle would be missed by every ray.
+    void requireFiniteArea(glm::uvec3 triangle, const std::string& field, const std::string& what) const {
+        const glm::vec3 p0 = scene_.positions[triangle.x];
+        const glm::vec3 normal = glm::cross(scene_.positions[triangle.y] - p0, scene_.positions[triangle.z] - p0);
+        if (!std::isfinite(normal.x) || !std::isfinite(normal.y) || !std::isfinite(normal.z)) {
+            diagnostics_.fail(field, what + " is too large in world space: its edges' cross product (twice its area) "
+                                            "is beyond float range (3.4e+38)");
         }
     }
 

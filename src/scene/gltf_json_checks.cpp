@@ -15,6 +15,7 @@
 #include "scene/gltf_lights.h"
 #include "scene/gltf_media.h"
 #include "scene/gltf_textures.h"
+#include "scene/gltf_values.h"
 #include "scene/scene_file_access.h"
 
 namespace vkdr {
@@ -185,11 +186,24 @@ void requireAbove(const json& object, const std::string& field, const std::strin
     }
 }
 
+// Node transforms are applied as floats: an entry beyond float's range would make the
+// vertices below the node infinite, and the mesh would take the blame.
+void requireFloatEntries(const json& object, const std::string& field, const char* key,
+                         const GltfDiagnostics& diagnostics) {
+    if (!object.contains(key)) return;
+    for (size_t i = 0; i < object[key].size(); ++i) {
+        if (std::string problem = floatProblem(object[key][i].get<double>()); !problem.empty()) {
+            diagnostics.fail(indexed(member(field, key), i), problem);
+        }
+    }
+}
+
 void checkNode(const json& node, const std::string& field, const GltfDiagnostics& diagnostics) {
     requireNumbers(node, field, "matrix", 16, diagnostics);
     requireNumbers(node, field, "translation", 3, diagnostics);
     requireNumbers(node, field, "rotation", 4, diagnostics);
     requireNumbers(node, field, "scale", 3, diagnostics);
+    for (const char* key : {"matrix", "translation", "scale"}) requireFloatEntries(node, field, key, diagnostics);
     for (const char* key : {"mesh", "camera", "skin"}) requireIndexMember(node, field, key, diagnostics);
     if (node.contains("children")) {
         if (!node["children"].is_array()) diagnostics.fail(member(field, "children"), "expected an array of indices");

@@ -5,18 +5,6 @@
 namespace vkdr {
 namespace {
 
-// Empty when `number` is finite as the float it is stored as, else why not: 1e39 is a
-// finite number in the file, but beyond float's range.
-std::string floatProblem(double number) {
-    if (!std::isfinite(number)) {
-        return "must be finite, got " + formatNumber(number);
-    }
-    if (!std::isfinite(float(number))) {
-        return "must be finite, got " + formatNumber(number) + ": beyond float range (magnitude at most 3.4e+38)";
-    }
-    return "";
-}
-
 double finiteNumber(const GltfDiagnostics& diagnostics, const tinygltf::Value& value,
                     const std::string& path) {
     if (!value.IsNumber()) {
@@ -30,6 +18,16 @@ double finiteNumber(const GltfDiagnostics& diagnostics, const tinygltf::Value& v
 }
 
 }  // namespace
+
+std::string floatProblem(double number) {
+    if (!std::isfinite(number)) {
+        return "must be finite, got " + formatNumber(number);
+    }
+    if (!std::isfinite(float(number))) {
+        return "must be finite, got " + formatNumber(number) + ": beyond float range (magnitude at most 3.4e+38)";
+    }
+    return "";
+}
 
 double readNumber(const GltfDiagnostics& diagnostics, const tinygltf::Value& object,
                   std::string_view field, const std::string& key, double fallback) {

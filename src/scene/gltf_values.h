@@ -10,6 +10,10 @@
 
 namespace vkdr {
 
+// Empty when `number` is finite as the float it is stored as, else why not: 1e39 is a
+// finite number in the file, but beyond float's range.
+std::string floatProblem(double number);
+
 // Typed reads of extension members (tinygltf leaves extensions as untyped JSON values).
 // `object` is the JSON object at path `field`; a member that is absent gives `fallback`,
 // one of the wrong type or not finite fails with the member's full path.

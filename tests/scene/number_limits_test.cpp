@@ -2,6 +2,10 @@
 // radiance are bounded so that no pixel can overflow, numbers beyond float range are
 // called that (not "not a number"), and a scene that will render black or has emitters
 // that cannot emit is warned about.
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "expect_error.h"
@@ -95,6 +99,44 @@ TEST(NumberLimits, LoaderSaysWhenANumberIsBeyondFloatRange) {
     text.replace(strength, 7, "1e39");
     expectLoadErrorMentioning(writeText(directory / "float.gltf", text),
                               {"emissiveStrength", "got 1e+39", "beyond float range"});
+}
+
+// Coordinates that fit in a float but whose products do not: the renderer's edge cross
+// product overflows and no ray would hit the triangle, which would vanish without a word.
+TEST(NumberLimits, TrianglesTooLargeForAFloatNormalAreRefused) {
+    TemporaryDirectory directory;
+    GltfBuilder builder = litFloor(emissive("light", 5.0));
+    builder.addNode({{"name", "far"}, {"mesh", builder.addMesh("big", floorQuad(1e19f))}});
+    expectLoadErrorMentioning(builder.writeGltf(directory / "big.gltf"),
+                              {"meshes[2].primitives[0]", "triangle 0 at nodes[2] ('far') is too large in world space",
+                               "cross product"});
+    // The same through a node's scale.
+    GltfBuilder scaled = litFloor(emissive("light", 5.0));
+    scaled.addNode({{"mesh", scaled.addMesh("big", floorQuad(1.0f))}, {"scale", {1e19, 1, 1e19}}});
+    expectLoadErrorMentioning(scaled.writeGltf(directory / "scaled.gltf"),
+                              {"meshes[2].primitives[0]", "triangle 0 at nodes[2] is too large in world space"});
+    // 1e18 is still fine.
+    GltfBuilder large = litFloor(emissive("light", 5.0));
+    large.addNode({{"mesh", large.addMesh("large", floorQuad(1e18f))}});
+    EXPECT_NO_THROW(loadScene(large.writeGltf(directory / "large.gltf")));
+}
+
+// Applied as floats, they would make every vertex below the node infinite, and the
+// mesh's POSITION would take the blame.
+TEST(NumberLimits, NodeTransformsBeyondFloatRangeAreNamed) {
+    TemporaryDirectory directory;
+    const std::vector<std::pair<std::string, json>> transforms = {
+        {"translation", {0, 1e39, 0}},
+        {"scale", {1, 1e39, 1}},
+        {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1e39, 0, 1}}};
+    for (const auto& [key, value] : transforms) {
+        SCOPED_TRACE(key);
+        GltfBuilder builder = litFloor(emissive("light", 5.0));
+        builder.addNode({{"mesh", 0}, {key, value}});
+        expectLoadErrorMentioning(builder.writeGltf(directory / "node.gltf"),
+                                  {"nodes[2]." + key + (key == "matrix" ? "[13]" : "[1]"),
+                                   "must be finite, got 1e+39: beyond float range"});
+    }
 }
 
 TEST(SceneWarnings, NoneForALitScene) {
