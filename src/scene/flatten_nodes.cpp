@@ -381,14 +381,16 @@ private:
         std::string cameraField = indexed("cameras", size_t(node.camera));
         Camera camera;
         if (source.type == "perspective") {
-            // Held to the float the renderer takes: a double just under pi rounds to float's pi.
-            if (!(source.perspective.yfov > 0.0 && float(source.perspective.yfov) < std::numbers::pi_v<float>)) {
+            // Held to the float the renderer takes: a double just under pi rounds to float's
+            // pi, and one too small for a float (1e-50) to 0.
+            const float yfov = float(source.perspective.yfov);
+            if (!(yfov > 0.0f && yfov < std::numbers::pi_v<float>)) {
                 diagnostics_.fail(cameraField + ".perspective.yfov",
-                                  "must be in (0, pi), got " + formatNumber(source.perspective.yfov));
+                                  "must be in (0, pi) as a float, got " + formatNumber(source.perspective.yfov));
             }
             // Absent is 0 (the image's aspect ratio decides).
             requireUsableAspect(source.perspective.aspectRatio, cameraField + ".perspective.aspectRatio", "");
-            camera.yfov = float(source.perspective.yfov);
+            camera.yfov = yfov;
             camera.aspectRatio = float(source.perspective.aspectRatio);
         } else if (source.type == "orthographic") {
             const std::string field = cameraField + ".orthographic";

@@ -507,9 +507,10 @@ TEST(LoadSceneErrors, CamerasOutsideTheGltfSchema) {
     expectLoadError(withCamera({{"znear", -1.0}}), {field + ".znear", "got -1.0"});
     expectLoadError(withCamera({{"zfar", 0.001}}), {field + ".zfar", "must be a number > znear (0.01), got 0.001"});
     EXPECT_EQ(loadScene(withCamera({{"zfar", 100.0}, {"aspectRatio", 1.5}})).scene.cameras.at(0).aspectRatio, 1.5f);
-    // Just under pi as a double is pi as the float the renderer takes: refused here, not
-    // by the render after the load accepted it.
-    expectLoadError(withCamera({{"yfov", 3.14159265}}), {field + ".yfov", "must be in (0, pi)"});
+    // Just under pi as a double is pi as the float the renderer takes, and a tiny one is
+    // 0: refused here, not by the render after the load accepted it.
+    expectLoadError(withCamera({{"yfov", 3.14159265}}), {field + ".yfov", "must be in (0, pi) as a float"});
+    expectLoadError(withCamera({{"yfov", 1e-50}}), {field + ".yfov", "must be in (0, pi) as a float, got 1e-50"});
     EXPECT_LT(loadScene(withCamera({{"yfov", 3.1415}})).scene.cameras.at(0).yfov, std::numbers::pi_v<float>);
 }
 
