@@ -1,7 +1,13 @@
 #include "scene/medium_boundaries.h"
 
+#include <algorithm>
+#include <array>
 #include <bit>
+#include <cmath>
+#include <limits>
 #include <map>
+#include <numeric>
+#include <span>
 #include <unordered_map>
 
 #include "scene/boundary_rays.h"
@@ -61,17 +67,30 @@ private:
     uint32_t next_ = 0;
 };
 
-void requireClosed(const Scene& scene, const Boundary& boundary, const GltfDiagnostics& diagnostics) {
+// Each triangle's corners as welded vertex ids.
+using Corners = std::array<uint32_t, 3>;
+
+std::vector<Corners> weldedCorners(const Scene& scene, const Boundary& boundary) {
     PositionWelder welder;
+    std::vector<Corners> corners;
+    corners.reserve(boundary.triangles.size());
+    for (uint32_t t : boundary.triangles) {
+        const glm::uvec3 triangle = scene.triangles[t];
+        corners.push_back({welder.id(scene.positions[triangle.x]), welder.id(scene.positions[triangle.y]),
+                           welder.id(scene.positions[triangle.z])});
+    }
+    return corners;
+}
+
+// Zero area: neither opens nor closes the surface, and its winding does not matter.
+bool isDegenerate(const Corners& ids) { return ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0]; }
+
+void requireClosed(const Boundary& boundary, const std::vector<Corners>& corners,
+                   const GltfDiagnostics& diagnostics) {
     std::unordered_map<uint64_t, uint32_t> directedEdgeUses;
     auto edgeKey = [](uint32_t from, uint32_t to) { return uint64_t(from) << 32 | to; };
-    for (uint32_t t : boundary.triangles) {
-        glm::uvec3 corners = scene.triangles[t];
-        uint32_t ids[3] = {welder.id(scene.positions[corners.x]), welder.id(scene.positions[corners.y]),
-                           welder.id(scene.positions[corners.z])};
-        if (ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0]) {
-            continue;  // zero area: neither opens nor closes the surface
-        }
+    for (const Corners& ids : corners) {
+        if (isDegenerate(ids)) continue;
         for (int e = 0; e < 3; ++e) {
             ++directedEdgeUses[edgeKey(ids[e], ids[(e + 1) % 3])];
         }
@@ -92,9 +111,9 @@ void requireClosed(const Scene& scene, const Boundary& boundary, const GltfDiagn
 }
 
 // Divergence theorem: the sum of signed tetrahedra from the origin to each triangle.
-double signedVolume(const Scene& scene, const Boundary& boundary) {
+double signedVolume(const Scene& scene, std::span<const uint32_t> triangles) {
     double volume = 0.0;
-    for (uint32_t t : boundary.triangles) {
+    for (uint32_t t : triangles) {
         glm::uvec3 corners = scene.triangles[t];
         glm::dvec3 p0 = scene.positions[corners.x];
         glm::dvec3 p1 = scene.positions[corners.y];
@@ -104,10 +123,107 @@ double signedVolume(const Scene& scene, const Boundary& boundary) {
     return volume;
 }
 
-glm::dvec3 pointOn(const Scene& scene, const Boundary& boundary) {
-    glm::uvec3 corners = scene.triangles[boundary.triangles.front()];
+// One connected closed surface of a boundary.
+struct Shell {
+    std::vector<uint32_t> triangles;
+    double volume = 0.0;  // signed: positive where wound outwards
+    glm::dvec3 lower{std::numeric_limits<double>::infinity()};  // bounding box
+    glm::dvec3 upper{-std::numeric_limits<double>::infinity()};
+};
+
+// The representative of `i`'s set in a union-find forest, halving paths on the way.
+uint32_t rootOf(std::vector<uint32_t>& parent, uint32_t i) {
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    return i;
+}
+
+// The boundary's shells: its triangles joined by shared edges, zero-area ones left out.
+std::vector<Shell> shellsOf(const Scene& scene, const Boundary& boundary, const std::vector<Corners>& corners) {
+    std::vector<uint32_t> parent(corners.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    std::unordered_map<uint64_t, uint32_t> edgeTriangle;  // undirected edge -> a triangle on it
+    for (uint32_t i = 0; i < corners.size(); ++i) {
+        if (isDegenerate(corners[i])) continue;
+        for (int e = 0; e < 3; ++e) {
+            const auto [a, b] = std::minmax(corners[i][e], corners[i][(e + 1) % 3]);
+            auto [found, added] = edgeTriangle.try_emplace(uint64_t(a) << 32 | b, i);
+            if (!added) parent[rootOf(parent, i)] = rootOf(parent, found->second);
+        }
+    }
+    std::unordered_map<uint32_t, size_t> shellOfRoot;
+    std::vector<Shell> shells;
+    for (uint32_t i = 0; i < corners.size(); ++i) {
+        if (isDegenerate(corners[i])) continue;
+        auto [found, added] = shellOfRoot.try_emplace(rootOf(parent, i), shells.size());
+        if (added) shells.emplace_back();
+        Shell& shell = shells[found->second];
+        const uint32_t t = boundary.triangles[i];
+        shell.triangles.push_back(t);
+        for (int c = 0; c < 3; ++c) {
+            shell.lower = glm::min(shell.lower, glm::dvec3(scene.positions[scene.triangles[t][c]]));
+            shell.upper = glm::max(shell.upper, glm::dvec3(scene.positions[scene.triangles[t][c]]));
+        }
+    }
+    for (Shell& shell : shells) shell.volume = signedVolume(scene, shell.triangles);
+    return shells;
+}
+
+// Whether `point` lies inside `shell`, however the shell is wound.
+bool insideShell(const Scene& scene, const Shell& shell, glm::dvec3 point) {
+    if (glm::any(glm::lessThan(point, shell.lower)) || glm::any(glm::greaterThan(point, shell.upper))) return false;
+    std::optional<BoundaryHit> hit = closestBoundaryHit(scene, shell.triangles, point, kContainmentRayDirection);
+    return hit && hit->leaving == (shell.volume > 0.0);
+}
+
+glm::dvec3 centreOf(const Scene& scene, uint32_t triangle) {
+    glm::uvec3 corners = scene.triangles[triangle];
     return (glm::dvec3(scene.positions[corners.x]) + glm::dvec3(scene.positions[corners.y]) +
             glm::dvec3(scene.positions[corners.z])) / 3.0;
+}
+
+// Whether `shell` should be wound outwards: unless it lies inside an odd number of the
+// boundary's other shells, so that it bounds a cavity in the medium. A shell wound as
+// the shell directly around it is refused: a cavity wound the wrong way, or a medium
+// inside itself, is a guess either way.
+bool windsOutwards(const Scene& scene, const Boundary& boundary, const std::vector<Shell>& shells,
+                   const Shell& shell, const GltfDiagnostics& diagnostics) {
+    const glm::dvec3 point = centreOf(scene, shell.triangles.front());
+    const Shell* around = nullptr;  // the smallest shell containing this one
+    size_t containing = 0;
+    for (const Shell& other : shells) {
+        if (&other == &shell || !insideShell(scene, other, point)) continue;
+        ++containing;
+        if (!around || std::abs(other.volume) < std::abs(around->volume)) around = &other;
+    }
+    if (around && (around->volume > 0.0) == (shell.volume > 0.0)) {
+        diagnostics.fail(boundary.description,
+                         "a closed surface of it lies inside another and is wound the same way; wind a cavity "
+                         "opposite to the surface around it, or give a nested medium a material of its own");
+    }
+    return containing % 2 == 0;
+}
+
+// Winds every shell of `boundary` so that its normals point out of the medium; sets the
+// boundary's volume, the medium's net volume.
+void orientShells(Scene& scene, Boundary& boundary, const std::vector<Corners>& corners,
+                  const GltfDiagnostics& diagnostics) {
+    const std::vector<Shell> shells = shellsOf(scene, boundary, corners);
+    std::vector<bool> outwards;
+    for (const Shell& shell : shells) {
+        if (shell.volume == 0.0) diagnostics.fail(boundary.description, "encloses no volume");
+        outwards.push_back(windsOutwards(scene, boundary, shells, shell, diagnostics));
+    }
+    boundary.volume = 0.0;
+    for (size_t s = 0; s < shells.size(); ++s) {
+        if ((shells[s].volume > 0.0) != outwards[s]) {
+            for (uint32_t t : shells[s].triangles) std::swap(scene.triangles[t].y, scene.triangles[t].z);
+        }
+        boundary.volume += outwards[s] ? std::abs(shells[s].volume) : -std::abs(shells[s].volume);
+    }
+    if (!(boundary.volume > 0.0)) diagnostics.fail(boundary.description, "encloses no volume");
 }
 
 // Cheap intersection test: some of `inner`'s corners (at most 16, spread over it) are
@@ -145,23 +261,15 @@ void prepareMediumBoundaries(Scene& scene, const std::vector<MeshInstance>& inst
     std::vector<Boundary> boundaries = collectBoundaries(scene, instances);
 
     for (Boundary& boundary : boundaries) {
-        requireClosed(scene, boundary, diagnostics);
-        boundary.volume = signedVolume(scene, boundary);
-        if (boundary.volume == 0.0) {
-            diagnostics.fail(boundary.description, "encloses no volume");
-        }
-        if (boundary.volume < 0.0) {
-            for (uint32_t t : boundary.triangles) {
-                std::swap(scene.triangles[t].y, scene.triangles[t].z);
-            }
-            boundary.volume = -boundary.volume;
-        }
+        const std::vector<Corners> corners = weldedCorners(scene, boundary);
+        requireClosed(boundary, corners, diagnostics);
+        orientShells(scene, boundary, corners, diagnostics);
     }
 
     warnAboutOverlaps(scene, boundaries, diagnostics);
 
     for (const Boundary& boundary : boundaries) {
-        glm::dvec3 point = pointOn(scene, boundary);
+        glm::dvec3 point = centreOf(scene, boundary.triangles.front());
         const Boundary* innermost = nullptr;
         for (const Boundary& other : boundaries) {
             if (&other == &boundary) {

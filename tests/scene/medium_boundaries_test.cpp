@@ -35,12 +35,25 @@ MeshData boxWithSplitFaces(glm::vec3 min, glm::vec3 max) {
     return split;
 }
 
-// A scene of one box of the medium "smoke" from the origin to `corner`, in vacuum.
-Scene smokeBox(const std::filesystem::path& directory, glm::vec3 corner) {
+// Two meshes as one: the second's vertices follow the first's.
+MeshData joined(const MeshData& first, const MeshData& second) {
+    MeshData both = first;
+    both.positions.insert(both.positions.end(), second.positions.begin(), second.positions.end());
+    for (uint32_t index : second.indices) both.indices.push_back(index + uint32_t(first.positions.size()));
+    return both;
+}
+
+// A scene of one mesh of the medium "smoke".
+Scene smokeMesh(const std::filesystem::path& file, const MeshData& mesh) {
     GltfBuilder builder;
     int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
-    builder.addNode({{"mesh", builder.addMesh("box", box({0, 0, 0}, corner), smoke)}});
-    return loadScene(builder.writeGltf(directory / "box.gltf")).scene;
+    builder.addNode({{"mesh", builder.addMesh("smoke", mesh, smoke)}});
+    return loadScene(builder.writeGltf(file)).scene;
+}
+
+// A scene of one box of the medium "smoke" from the origin to `corner`, in vacuum.
+Scene smokeBox(const std::filesystem::path& directory, glm::vec3 corner) {
+    return smokeMesh(directory / "box.gltf", box({0, 0, 0}, corner));
 }
 
 TEST(MediumBoundaries, FlipsInwardWoundBoundariesAndWeldsSplitVertices) {
@@ -62,6 +75,46 @@ TEST(MediumBoundaries, FlipsInwardWoundBoundariesAndWeldsSplitVertices) {
         EXPECT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), outward), 0.0f) << "triangle " << t;
     }
     EXPECT_TRUE(loaded.warnings.empty());
+}
+
+// Each closed surface of one boundary is wound by its own volume: a box wound inwards
+// beside one wound outwards, in one mesh, loads as both wound outwards.
+TEST(MediumBoundaries, WindsEachShellOfABoundaryOnItsOwn) {
+    TemporaryDirectory directory;
+    const MeshData big = box({0, 0, 0}, {2, 2, 2});
+    const Scene outwards = smokeMesh(directory / "outwards.gltf", joined(big, box({3, 0, 0}, {4, 1, 1})));
+    const Scene mixed = smokeMesh(directory / "mixed.gltf", joined(big, box({3, 0, 0}, {4, 1, 1}, true)));
+    EXPECT_EQ(mixed.triangles, outwards.triangles);
+    EXPECT_EQ(mixed.triangleOutsideMedium, outwards.triangleOutsideMedium);
+    EXPECT_EQ(mediumAt(mixed, {3.5f, 0.5f, 0.5f}), 0);
+    EXPECT_EQ(mediumAt(mixed, {1, 1, 1}), 0);
+    EXPECT_EQ(mediumAt(mixed, {2.5f, 0.5f, 0.5f}), kNoMedium);
+}
+
+// A shell inside another bounds a cavity, wound inwards however the file winds the pair;
+// a pair wound the same way is refused, since which was meant is a guess.
+TEST(MediumBoundaries, AShellInsideAnotherBoundsACavity) {
+    TemporaryDirectory directory;
+    const glm::vec3 outerMin(0.0f), outerMax(4.0f), innerMin(1.0f), innerMax(3.0f);
+    const Scene hollow =
+        smokeMesh(directory / "hollow.gltf", joined(box(outerMin, outerMax), box(innerMin, innerMax, true)));
+    const Scene insideOut =
+        smokeMesh(directory / "inside_out.gltf", joined(box(outerMin, outerMax, true), box(innerMin, innerMax)));
+    EXPECT_EQ(insideOut.triangles, hollow.triangles);
+    for (const Scene* scene : {&hollow, &insideOut}) {
+        EXPECT_EQ(mediumAt(*scene, {2, 2, 2}), kNoMedium);
+        EXPECT_EQ(mediumAt(*scene, {0.5f, 0.5f, 0.5f}), 0);
+        EXPECT_EQ(mediumAt(*scene, {5, 5, 5}), kNoMedium);
+    }
+    for (bool inward : {false, true}) {
+        GltfBuilder builder;
+        int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
+        MeshData sameWay = joined(box(outerMin, outerMax, inward), box(innerMin, innerMax, inward));
+        builder.addNode({{"mesh", builder.addMesh("nested", sameWay, smoke)}});
+        expectLoadError(builder.writeGltf(directory / "same_way.gltf"),
+                        {"meshes[0] ('nested') at nodes[0]", "medium 'smoke'",
+                         "a closed surface of it lies inside another and is wound the same way"});
+    }
 }
 
 TEST(MediumBoundaries, NestedBoundariesSitInTheInnermostEnclosingMedium) {
