@@ -46,6 +46,107 @@ std::string describeValue(const json& value) {
     return text.size() <= 40 ? text : text.substr(0, 37) + "...";
 }
 
+// tinygltf reads a member of the wrong JSON type as absent, so its default would silently
+// take its place ("doubleSided": "true" is false): the members the loader reads are
+// checked for their type.
+enum class JsonKind { Object, Array, String, Number, Boolean };
+
+struct MemberKind {
+    std::string_view key;
+    JsonKind kind;
+};
+
+constexpr std::array<MemberKind, 14> kDocumentMembers = {{{"asset", JsonKind::Object},
+                                                          {"extensionsUsed", JsonKind::Array},
+                                                          {"extensionsRequired", JsonKind::Array},
+                                                          {"scenes", JsonKind::Array},
+                                                          {"nodes", JsonKind::Array},
+                                                          {"meshes", JsonKind::Array},
+                                                          {"materials", JsonKind::Array},
+                                                          {"cameras", JsonKind::Array},
+                                                          {"accessors", JsonKind::Array},
+                                                          {"bufferViews", JsonKind::Array},
+                                                          {"buffers", JsonKind::Array},
+                                                          {"textures", JsonKind::Array},
+                                                          {"images", JsonKind::Array},
+                                                          {"samplers", JsonKind::Array}}};
+constexpr std::array<MemberKind, 2> kSceneMembers = {{{"name", JsonKind::String}, {"nodes", JsonKind::Array}}};
+constexpr std::array<MemberKind, 1> kNamedMembers = {{{"name", JsonKind::String}}};
+constexpr std::array<MemberKind, 2> kPrimitiveMembers = {{{"attributes", JsonKind::Object},
+                                                          {"targets", JsonKind::Array}}};
+constexpr std::array<MemberKind, 7> kMaterialMembers = {{{"name", JsonKind::String},
+                                                         {"pbrMetallicRoughness", JsonKind::Object},
+                                                         {"doubleSided", JsonKind::Boolean},
+                                                         {"alphaMode", JsonKind::String},
+                                                         {"emissiveTexture", JsonKind::Object},
+                                                         {"normalTexture", JsonKind::Object},
+                                                         {"occlusionTexture", JsonKind::Object}}};
+constexpr std::array<MemberKind, 2> kPbrMembers = {{{"baseColorTexture", JsonKind::Object},
+                                                    {"metallicRoughnessTexture", JsonKind::Object}}};
+constexpr std::array<MemberKind, 4> kCameraMembers = {{{"name", JsonKind::String},
+                                                       {"type", JsonKind::String},
+                                                       {"perspective", JsonKind::Object},
+                                                       {"orthographic", JsonKind::Object}}};
+constexpr std::array<MemberKind, 2> kOrthographicMembers = {{{"znear", JsonKind::Number},
+                                                             {"zfar", JsonKind::Number}}};
+constexpr std::array<MemberKind, 3> kAccessorMembers = {{{"componentType", JsonKind::Number},
+                                                         {"type", JsonKind::String},
+                                                         {"normalized", JsonKind::Boolean}}};
+constexpr std::array<MemberKind, 4> kLightMembers = {{{"name", JsonKind::String},
+                                                      {"type", JsonKind::String},
+                                                      {"intensity", JsonKind::Number},
+                                                      {"spot", JsonKind::Object}}};
+constexpr std::array<MemberKind, 2> kSpotMembers = {{{"innerConeAngle", JsonKind::Number},
+                                                     {"outerConeAngle", JsonKind::Number}}};
+
+bool isKind(const json& value, JsonKind kind) {
+    switch (kind) {
+    case JsonKind::Object: return value.is_object();
+    case JsonKind::Array: return value.is_array();
+    case JsonKind::String: return value.is_string();
+    case JsonKind::Number: return value.is_number();
+    case JsonKind::Boolean: return value.is_boolean();
+    }
+    return false;
+}
+
+const char* kindName(JsonKind kind) {
+    switch (kind) {
+    case JsonKind::Object: return "an object";
+    case JsonKind::Array: return "an array";
+    case JsonKind::String: return "a string";
+    case JsonKind::Number: return "a number";
+    case JsonKind::Boolean: return "true or false";
+    }
+    return "";
+}
+
+void requireKind(const json& value, const std::string& field, JsonKind kind, const GltfDiagnostics& diagnostics) {
+    if (!isKind(value, kind)) {
+        diagnostics.fail(field, std::string("expected ") + kindName(kind) + ", got " + describeValue(value));
+    }
+}
+
+void requireMemberKinds(const json& object, const std::string& field, std::span<const MemberKind> members,
+                        const GltfDiagnostics& diagnostics) {
+    for (const auto& [key, kind] : members) {
+        const std::string name(key);
+        if (!object.contains(name)) continue;
+        requireKind(object[name], field.empty() ? name : member(field, name), kind, diagnostics);
+    }
+}
+
+// Every entry of the array `object[key]` must be of `kind`: tinygltf skips the others,
+// and the later entries' indices would shift.
+void requireEntryKinds(const json& object, const std::string& field, const std::string& key, JsonKind kind,
+                       const GltfDiagnostics& diagnostics) {
+    if (!object.contains(key) || !object[key].is_array()) return;
+    const std::string arrayField = field.empty() ? key : member(field, key);
+    for (size_t i = 0; i < object[key].size(); ++i) {
+        requireKind(object[key][i], indexed(arrayField, i), kind, diagnostics);
+    }
+}
+
 // Nulls are dropped by tinygltf wherever they stand, so the default silently takes their
 // place. Skipped: "extras" (anything goes there) and extensions the loader does not read.
 void refuseNulls(const json& value, const std::string& field, const GltfDiagnostics& diagnostics) {
@@ -241,6 +342,10 @@ void checkNode(const json& node, const std::string& field, const GltfDiagnostics
 }
 
 void checkCamera(const json& camera, const std::string& field, const GltfDiagnostics& diagnostics) {
+    requireMemberKinds(camera, field, kCameraMembers, diagnostics);
+    if (camera.contains("orthographic")) {
+        requireMemberKinds(camera["orthographic"], member(field, "orthographic"), kOrthographicMembers, diagnostics);
+    }
     if (camera.contains("perspective") && camera["perspective"].is_object()) {
         const json& perspective = camera["perspective"];
         const std::string perspectiveField = member(field, "perspective");
@@ -295,10 +400,12 @@ void checkTextureReference(const json& object, const std::string& field, const c
 }
 
 void checkMaterial(const json& material, const std::string& field, GltfDiagnostics& diagnostics) {
+    requireMemberKinds(material, field, kMaterialMembers, diagnostics);
     requireNumbers(material, field, "emissiveFactor", 3, diagnostics);
-    if (material.contains("pbrMetallicRoughness") && material["pbrMetallicRoughness"].is_object()) {
+    if (material.contains("pbrMetallicRoughness")) {
         const json& pbr = material["pbrMetallicRoughness"];
         const std::string pbrField = member(field, "pbrMetallicRoughness");
+        requireMemberKinds(pbr, pbrField, kPbrMembers, diagnostics);
         requireNumbers(pbr, pbrField, "baseColorFactor", 4, diagnostics);
         for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"}) {
             checkTextureReference(pbr, pbrField, key, diagnostics);
@@ -313,13 +420,37 @@ void checkMaterial(const json& material, const std::string& field, GltfDiagnosti
     }
 }
 
+// glTF requires a primitive's attributes; without POSITION there is nothing to draw.
 void checkPrimitiveMembers(const json& primitive, const std::string& field, const GltfDiagnostics& diagnostics) {
-    if (!primitive.is_object()) return;
+    requireKind(primitive, field, JsonKind::Object, diagnostics);
+    requireMemberKinds(primitive, field, kPrimitiveMembers, diagnostics);
     for (const char* key : {"indices", "material"}) requireIndexMember(primitive, field, key, diagnostics);
     requireWholeNumberMember(primitive, field, "mode", diagnostics);
-    if (primitive.contains("attributes") && primitive["attributes"].is_object()) {
-        for (const auto& [name, accessor] : primitive["attributes"].items()) {
-            requireIndex(accessor, member(member(field, "attributes"), name), diagnostics);
+    if (!primitive.contains("attributes")) diagnostics.fail(member(field, "attributes"), "missing; glTF requires it");
+    for (const auto& [name, accessor] : primitive["attributes"].items()) {
+        requireIndex(accessor, member(member(field, "attributes"), name), diagnostics);
+    }
+    if (!primitive["attributes"].contains("POSITION")) {
+        diagnostics.fail(member(field, "attributes"), "no POSITION attribute");
+    }
+}
+
+void checkPunctualLights(const json& extension, GltfDiagnostics& diagnostics) {
+    const std::string lightsField = member(member("extensions", kPunctualLightsExtension), "lights");
+    if (!extension.contains("lights")) return;
+    requireKind(extension["lights"], lightsField, JsonKind::Array, diagnostics);
+    for (size_t i = 0; i < extension["lights"].size(); ++i) {
+        const json& light = extension["lights"][i];
+        const std::string field = indexed(lightsField, i);
+        requireKind(light, field, JsonKind::Object, diagnostics);
+        requireMemberKinds(light, field, kLightMembers, diagnostics);
+        requireNumbers(light, field, "color", 3, diagnostics);
+        if (light.contains("spot")) requireMemberKinds(light["spot"], member(field, "spot"), kSpotMembers, diagnostics);
+        // Here, where a range written as 0 (not allowed by glTF, and ignored too) differs
+        // from none: tinygltf reads an absent one as 0.
+        if (light.contains("range")) {
+            diagnostics.warn(member(field, "range"), "ignored: a light's intensity falls off with the inverse square "
+                                                     "of distance, with no cut-off");
         }
     }
 }
@@ -380,6 +511,17 @@ void checkAssetVersion(const json& document, const GltfDiagnostics& diagnostics)
     }
 }
 
+// The document's own members: the lists of extension names hold strings, the other
+// top-level arrays objects.
+void checkDocumentMembers(const json& document, const GltfDiagnostics& diagnostics) {
+    requireMemberKinds(document, "", kDocumentMembers, diagnostics);
+    for (const auto& [key, kind] : kDocumentMembers) {
+        if (kind != JsonKind::Array) continue;
+        const JsonKind entries = key.starts_with("extensions") ? JsonKind::String : JsonKind::Object;
+        requireEntryKinds(document, "", std::string(key), entries, diagnostics);
+    }
+}
+
 // Calls `check` on each object of the top-level array `name`.
 template <typename Check>
 void forEachEntry(const json& document, const char* name, Check check) {
@@ -398,6 +540,7 @@ bool isUnderstoodExtension(std::string_view extension) {
 
 void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
     refuseNulls(document, "", diagnostics);
+    checkDocumentMembers(document, diagnostics);
     checkAssetVersion(document, diagnostics);
     requireObjectExtensions(document, "", diagnostics);
     if (document.contains("extensions")) {
@@ -408,25 +551,11 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
                             kBackgroundMembers, diagnostics);
         }
         if (extensions.contains(kPunctualLightsExtension)) {
-            const json& lights = extensions[kPunctualLightsExtension];
-            const std::string lightsField = member(member("extensions", kPunctualLightsExtension), "lights");
-            if (lights.contains("lights") && !lights["lights"].is_array()) {
-                diagnostics.fail(lightsField, "expected an array, got " + describeValue(lights["lights"]));
-            } else if (lights.contains("lights")) {
-                // Here, where a range written as 0 (not allowed by glTF, and ignored too)
-                // differs from none: tinygltf reads an absent one as 0.
-                for (size_t i = 0; i < lights["lights"].size(); ++i) {
-                    const json& light = lights["lights"][i];
-                    if (light.is_object() && light.contains("range")) {
-                        diagnostics.warn(member(indexed(lightsField, i), "range"),
-                                         "ignored: a light's intensity falls off with the inverse square of "
-                                         "distance, with no cut-off");
-                    }
-                }
-            }
+            checkPunctualLights(extensions[kPunctualLightsExtension], diagnostics);
         }
     }
     forEachEntry(document, "nodes", [&](const json& node, const std::string& field) {
+        requireMemberKinds(node, field, kNamedMembers, diagnostics);
         checkNode(node, field, diagnostics);
         requireObjectExtensions(node, field, diagnostics);
     });
@@ -443,6 +572,7 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
         checkDataUriBuffer(buffer, field, diagnostics);
     });
     forEachEntry(document, "meshes", [&](const json& mesh, const std::string& field) {
+        requireMemberKinds(mesh, field, kNamedMembers, diagnostics);
         if (!mesh.contains("primitives") || !mesh["primitives"].is_array() || mesh["primitives"].empty()) {
             diagnostics.fail(member(field, "primitives"), "a mesh needs an array of at least one primitive");
         }
@@ -458,12 +588,14 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
         diagnostics.fail("scenes", "an empty array: list at least one scene, or leave \"scenes\" out");
     }
     forEachEntry(document, "scenes", [&](const json& scene, const std::string& field) {
-        if (!scene.contains("nodes") || !scene["nodes"].is_array()) return;
+        requireMemberKinds(scene, field, kSceneMembers, diagnostics);
+        if (!scene.contains("nodes")) return;
         for (size_t n = 0; n < scene["nodes"].size(); ++n) {
             requireIndex(scene["nodes"][n], indexed(member(field, "nodes"), n), diagnostics);
         }
     });
     forEachEntry(document, "accessors", [&](const json& accessor, const std::string& field) {
+        requireMemberKinds(accessor, field, kAccessorMembers, diagnostics);
         requireIndexMember(accessor, field, "bufferView", diagnostics);
         requireWholeNumberMember(accessor, field, "byteOffset", diagnostics, std::numeric_limits<int64_t>::max());
         // glTF's minimum; a primitive reading none would be dropped without a word.

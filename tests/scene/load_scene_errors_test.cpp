@@ -461,6 +461,53 @@ TEST(LoadSceneErrors, IndicesThatAreNotWholeNumbersAreRefusedEverywhere) {
     expectLoadError(changed([](json& d) { d["accessors"][0].erase("bufferView"); }), {"accessors[0]", "no bufferView"});
 }
 
+// tinygltf reads a member of the wrong JSON type as absent: a primitive would vanish, a
+// light's intensity or a material's doubleSided would silently take its default.
+TEST(LoadSceneErrors, MembersOfTheWrongJsonTypeAreRefusedNamingTheField) {
+    TemporaryDirectory directory;
+    auto changed = [&](const std::function<void(json&)>& change) {
+        GltfBuilder builder = boxWithMaterial({{"name", "white"}});
+        change(builder.document());
+        return builder.writeGltf(directory / "kind.gltf");
+    };
+    const std::string primitive = "meshes[0].primitives[0]";
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"] = {5}; }),
+                    {primitive, "expected an object, got 5"});
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"] = {json::object()}; }),
+                    {primitive + ".attributes", "missing; glTF requires it"});
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["attributes"] = 5; }),
+                    {primitive + ".attributes", "expected an object, got 5"});
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); }),
+                    {primitive + ".attributes", "no POSITION attribute"});
+    expectLoadError(changed([](json& d) { d["nodes"].push_back(5); }), {"nodes[1]", "expected an object, got 5"});
+    expectLoadError(changed([](json& d) { d["scenes"][0]["nodes"] = "0"; }),
+                    {"scenes[0].nodes", "expected an array, got \"0\""});
+    expectLoadError(changed([](json& d) { d["extensionsRequired"] = "KHR_draco_mesh_compression"; }),
+                    {"extensionsRequired", "expected an array"});
+    expectLoadError(changed([](json& d) { d["extensionsUsed"] = {5}; }), {"extensionsUsed[0]", "expected a string"});
+    expectLoadError(changed([](json& d) { d["materials"][0]["doubleSided"] = "true"; }),
+                    {"materials[0].doubleSided", "expected true or false, got \"true\""});
+    expectLoadError(changed([](json& d) { d["materials"][0]["pbrMetallicRoughness"] = json::array(); }),
+                    {"materials[0].pbrMetallicRoughness", "expected an object, got []"});
+    expectLoadError(changed([](json& d) { d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = 0; }),
+                    {"materials[0].pbrMetallicRoughness.baseColorTexture", "expected an object, got 0"});
+    expectLoadError(changed([](json& d) {
+                        d["cameras"] = {{{"type", "orthographic"},
+                                         {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", "0"}, {"zfar", 9}}}}};
+                    }),
+                    {"cameras[0].orthographic.znear", "expected a number"});
+    const std::string light = "extensions.KHR_lights_punctual.lights[0]";
+    auto withLight = [&](json source) {
+        return changed([&](json& d) { d["extensions"]["KHR_lights_punctual"] = {{"lights", {source}}}; });
+    };
+    expectLoadError(withLight({{"type", "point"}, {"intensity", "5"}}),
+                    {light + ".intensity", "expected a number, got \"5\""});
+    expectLoadError(withLight({{"type", "point"}, {"color", "red"}}), {light + ".color", "expected an array of 3"});
+    expectLoadError(withLight({{"type", "spot"}, {"spot", {{"outerConeAngle", "0.3"}}}}),
+                    {light + ".spot.outerConeAngle", "expected a number"});
+    expectLoadError(withLight({{"type", "spot"}, {"spot", "wide"}}), {light + ".spot", "expected an object"});
+}
+
 TEST(LoadSceneErrors, NodesOutsideTheGltfSchema) {
     TemporaryDirectory directory;
     auto boxAt = [&](json node) {
