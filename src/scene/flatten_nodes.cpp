@@ -456,9 +456,32 @@ private:
     std::vector<MeshInstance> instances_;
 };
 
-// The node indices to start from, and the JSON path that lists them.
-std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model,
-                                                   const GltfDiagnostics& diagnostics) {
+
+// glTF gives a node one place, as a root of the scene or as a child of one node. A node
+// listed in several is rendered at each, as an instance; say so, since it is more often
+// a slip than meant.
+void warnOfNodesPlacedTwice(const tinygltf::Model& model, const std::vector<int>& roots, const std::string& rootsField,
+                            GltfDiagnostics& diagnostics) {
+    std::vector<uint32_t> places(model.nodes.size(), 0);
+    auto count = [&](int node) {
+        if (node >= 0 && size_t(node) < places.size()) ++places[size_t(node)];
+    };
+    for (int root : roots) count(root);
+    for (const tinygltf::Node& node : model.nodes) {
+        for (int child : node.children) count(child);
+    }
+    for (size_t n = 0; n < places.size(); ++n) {
+        if (places[n] > 1) {
+            diagnostics.warn(indexed("nodes", n), "listed " + std::to_string(places[n]) + " times in " + rootsField +
+                                                      " and the nodes' children; glTF gives a node one place, and "
+                                                      "it is rendered at each");
+        }
+    }
+}
+
+}  // namespace
+
+std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model, const GltfDiagnostics& diagnostics) {
     if (model.defaultScene >= 0 && size_t(model.defaultScene) >= model.scenes.size()) {
         diagnostics.fail("scene", "scene " + std::to_string(model.defaultScene) +
                                       " out of range (" + std::to_string(model.scenes.size()) +
@@ -484,30 +507,6 @@ std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model,
     }
     return {roots, "nodes"};
 }
-
-// glTF gives a node one place, as a root of the scene or as a child of one node. A node
-// listed in several is rendered at each, as an instance; say so, since it is more often
-// a slip than meant.
-void warnOfNodesPlacedTwice(const tinygltf::Model& model, const std::vector<int>& roots, const std::string& rootsField,
-                            GltfDiagnostics& diagnostics) {
-    std::vector<uint32_t> places(model.nodes.size(), 0);
-    auto count = [&](int node) {
-        if (node >= 0 && size_t(node) < places.size()) ++places[size_t(node)];
-    };
-    for (int root : roots) count(root);
-    for (const tinygltf::Node& node : model.nodes) {
-        for (int child : node.children) count(child);
-    }
-    for (size_t n = 0; n < places.size(); ++n) {
-        if (places[n] > 1) {
-            diagnostics.warn(indexed("nodes", n), "listed " + std::to_string(places[n]) + " times in " + rootsField +
-                                                      " and the nodes' children; glTF gives a node one place, and "
-                                                      "it is rendered at each");
-        }
-    }
-}
-
-}  // namespace
 
 glm::mat4 localTransform(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) {

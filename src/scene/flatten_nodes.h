@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -19,6 +20,10 @@ struct MeshInstance {
 
 // A node's transform relative to its parent: its matrix, or translation * rotation * scale.
 glm::mat4 localTransform(const tinygltf::Node& node);
+
+// The nodes the rendered scene starts from (the default scene's, else the first scene's,
+// else every node that is no node's child), and the JSON path that lists them.
+std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model, const GltfDiagnostics& diagnostics);
 
 // Walks the glTF scene's node hierarchy (the default scene, else the first, else every
 // root node) and bakes each mesh instance into world space: appends to

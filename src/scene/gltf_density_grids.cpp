@@ -22,6 +22,10 @@ glm::dmat4 nodeToWorld(const tinygltf::Model& model, int index, const std::strin
     }
     std::vector<int> parent(model.nodes.size(), -1);
     std::vector<int> parents(model.nodes.size(), 0);
+    // A root of the rendered scene is placed there as well as under any parent it has.
+    for (int root : rootNodes(model, diagnostics).first) {
+        if (root >= 0 && size_t(root) < model.nodes.size()) ++parents[size_t(root)];
+    }
     for (size_t n = 0; n < model.nodes.size(); ++n) {
         for (int child : model.nodes[n].children) {
             if (child >= 0 && size_t(child) < model.nodes.size()) {
@@ -38,7 +42,8 @@ glm::dmat4 nodeToWorld(const tinygltf::Model& model, int index, const std::strin
         }
         if (parents[size_t(n)] > 1) {
             diagnostics.fail(field, "node " + std::to_string(n) +
-                                        " has several parents, so the grid would be placed more than once");
+                                        " has several parents (a scene's root counts as one), so the grid would be "
+                                        "placed more than once");
         }
         transform = glm::dmat4(localTransform(model.nodes[size_t(n)])) * transform;
     }
@@ -93,7 +98,7 @@ int32_t readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& dens
         diagnostics.fail(field + ".uri", "a grid must be a .vdb or .nvdb file, not a data: URI");
     }
     if (const std::string scheme = uriScheme(uri); !scheme.empty()) {
-        diagnostics.fail(field + ".uri", "'" + uri + "': URIs with a scheme (" + scheme +
+        diagnostics.fail(field + ".uri", quotedUri(uri) + ": URIs with a scheme (" + scheme +
                                              ") are not read; give the grid file's path relative to the scene file");
     }
     const ResolvedFile resolved = files.resolveUri(uri);

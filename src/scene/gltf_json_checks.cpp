@@ -306,6 +306,12 @@ void checkNode(const json& node, const std::string& field, const GltfDiagnostics
     requireNumbers(node, field, "scale", 3, diagnostics);
     for (const char* key : {"matrix", "translation", "scale"}) requireFloatEntries(node, field, key, diagnostics);
     for (const char* key : {"mesh", "camera", "skin"}) requireIndexMember(node, field, key, diagnostics);
+    if (node.contains("extensions") && node["extensions"].is_object() &&
+        node["extensions"].contains(kPunctualLightsExtension) &&
+        node["extensions"][kPunctualLightsExtension].is_object()) {
+        requireIndexMember(node["extensions"][kPunctualLightsExtension],
+                           member(member(field, "extensions"), kPunctualLightsExtension), "light", diagnostics);
+    }
     if (node.contains("children")) {
         if (!node["children"].is_array()) diagnostics.fail(member(field, "children"), "expected an array of indices");
         for (size_t c = 0; c < node["children"].size(); ++c) {

@@ -35,6 +35,12 @@ std::string uriScheme(const std::string& uri) {
     return "";
 }
 
+std::string quotedUri(const std::string& uri) {
+    constexpr size_t kShown = 200;
+    if (uri.size() <= kShown) return "'" + uri + "'";
+    return "'" + uri.substr(0, kShown) + "...' (" + std::to_string(uri.size()) + " characters)";
+}
+
 SceneFiles::SceneFiles(const std::filesystem::path& sceneFile, SceneFileAccess access) : access_(access) {
     std::error_code ec;
     std::filesystem::path directory = std::filesystem::absolute(sceneFile, ec).parent_path();
@@ -48,8 +54,8 @@ ResolvedFile SceneFiles::resolveUri(const std::string& uri) const {
     if (uri.find('\0') != std::string::npos) return {{}, "contains a NUL character (\\u0000)"};
     std::string scheme = uriScheme(uri);
     if (!scheme.empty()) {
-        return {{}, "'" + uri + "': URIs with a scheme (" + scheme + ") are not read; give a path relative to "
-                    "the scene file, or a data: URI"};
+        return {{}, quotedUri(uri) + ": URIs with a scheme (" + scheme + ") are not read; give a path relative to "
+                                     "the scene file, or a data: URI (in lower case)"};
     }
     std::string problem;
     std::string path = decodeUriPath(uri, problem);

@@ -39,6 +39,11 @@ private:
 bool isDataUri(const std::string& uri);
 // The URI's scheme with its colon ("file:", "data:"), or "" for a relative reference.
 std::string uriScheme(const std::string& uri);
+
+// `uri` in quotes for a message; one of more than 200 characters (a data URI the reader
+// does not take as one, "DATA:", may be megabytes) by its start and its length.
+std::string quotedUri(const std::string& uri);
+
 // The path a relative URI names, decoded as tinygltf decodes it ("%2F" is '/', '+' a
 // space); empty `problem` when the encoding is sound.
 std::string decodeUriPath(const std::string& uri, std::string& problem);

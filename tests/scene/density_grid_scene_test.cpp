@@ -145,8 +145,14 @@ TEST(DensityGridScene, BadReferencesNameTheField) {
     GltfBuilder sheared = boxScene(gridMedium({{"uri", "smoke.vdb"}, {"node", 1}}));
     sheared.document()["nodes"][1] = {{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 1, 1, 1e-9, 0, 0, 0, 0, 1}}};
     expectLoadError(sheared.writeGltf(directory / "sheared.gltf"), {field, "placement", "singular"});
+    // The placement node is a root of the scene and a child of the box's node: two places.
+    GltfBuilder twice = boxScene(gridMedium({{"uri", "smoke.vdb"}, {"node", 1}}));
+    twice.document()["nodes"][0]["children"] = {1};
+    expectLoadError(twice.writeGltf(directory / "twice.gltf"), {field, "node 1 has several parents"});
     expectLoadError(write({{"uri", "../smoke.vdb"}}), {field + ".uri", "outside"});
     expectLoadError(write({{"uri", "file:///smoke.vdb"}}), {field + ".uri", "(file:) are not read", "relative"});
+    // A data URI in capitals is no data URI to the reader; the message quotes only its start.
+    expectLoadError(write({{"uri", "DATA:" + std::string(1000, 'A')}}), {"(DATA:) are not read", "(1005 characters)"});
     // Voxels so small that world-to-index coordinates leave float's range.
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 1}}, 1e-40), {field, "placement", "beyond float's range"});
     // Voxels of 1e20 placed at a scale of 1e20: index-to-world entries beyond float's range.

@@ -685,6 +685,9 @@ TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {
                     {"extensions.KHR_lights_punctual.lights[1].name", "'a' already names", "must be unique"});
     expectLoadError(floorWithLights({{{"type", "point"}}}, {{"light", 3}}).writeGltf(directory / "index.gltf"),
                     {"nodes[1].extensions.KHR_lights_punctual.light", "one of the 1 lights, got 3"});
+    // An index is written without a decimal point, as every other index of the file.
+    expectLoadError(floorWithLights({{{"type", "point"}}}, {{"light", 0.0}}).writeGltf(directory / "decimal.gltf"),
+                    {"nodes[1].extensions.KHR_lights_punctual.light", "expected an index", "without a decimal point"});
 }
 
 TEST(LoadSceneErrors, PunctualLightWarnings) {
