@@ -71,7 +71,9 @@ def vertex_instanced_lights(scene):
 def render_modifiers(scene):
     """A cube subdivided once for rendering (not in the viewport) and repeated by an Array
     modifier enabled for rendering only; another whose Array is enabled for the viewport
-    only."""
+    only; cubes subdivided once for rendering that are disabled in viewports, one
+    themselves and one by their collection; and Simplify on, at level 0 in the viewport
+    and 6 for the render."""
     bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
     cube = bpy.context.object
     cube.name = "Rendered"
@@ -84,6 +86,34 @@ def render_modifiers(scene):
     cube.name = "Viewport"
     array = cube.modifiers.new("Array", "ARRAY")
     array.count, array.show_render = 2, False
+    hidden = bpy.data.collections.new("NotInViewports")
+    scene.collection.children.link(hidden)
+    for name, x, collection in (("Disabled", 2.0, scene.collection), ("InDisabled", -2.0, hidden)):
+        cube = bpy.data.objects.new(name, bpy.data.meshes.new(name))
+        bmesh_cube(cube.data)
+        cube.location = (x, 0.0, 0.5)
+        collection.objects.link(cube)
+        subdivision = cube.modifiers.new("Subdivision", "SUBSURF")
+        subdivision.levels, subdivision.render_levels = 0, 1
+    bpy.data.objects["Disabled"].hide_viewport = True
+    hidden.hide_viewport = True
+    scene.render.use_simplify = True
+    scene.render.simplify_subdivision, scene.render.simplify_subdivision_render = 0, 6
+
+
+def bmesh_cube(mesh):
+    """A cube of side 0.5 into MESH, without operators (they need a visible object)."""
+    import bmesh
+    built = bmesh.new()
+    bmesh.ops.create_cube(built, size=0.5)
+    built.to_mesh(mesh)
+    built.free()
+
+
+def viewport_settings_after(directory):
+    return {"viewport_after": [bpy.data.objects["Disabled"].hide_viewport,
+                               bpy.data.collections["NotInViewports"].hide_viewport,
+                               bpy.context.scene.render.simplify_subdivision]}
 
 
 def vertex_colours(scene):
@@ -174,15 +204,16 @@ def corner_colour_attribute(scene):
 
 def fit_parameters(scene):
     """What the Fit panel offers: a grey and a pure red Diffuse (no log of red's 0 green), a
-    material with a surface and a volume (a medium's boundary, no colour), and area lamps
-    of 100 W and of 0 W."""
+    material with a surface and a volume (a medium's boundary, no colour), a material only
+    an object hidden from the render uses, and area lamps of 100 W and of 0 W."""
     for name, colour, x in (("Grey", (0.5, 0.5, 0.5, 1.0), -1.0), ("Red", (1.0, 0.0, 0.0, 1.0), 0.0),
-                            ("Foggy", (0.5, 0.5, 0.5, 1.0), 1.0)):
+                            ("Foggy", (0.5, 0.5, 0.5, 1.0), 1.0), ("HiddenOnly", (0.5, 0.5, 0.5, 1.0), 2.0)):
         bpy.ops.mesh.primitive_cube_add(size=0.4, location=(x, 0.0, 0.5))
         material = bpy.data.materials.new(name)
         material.use_nodes = True
         material.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = colour
         bpy.context.object.data.materials.append(material)
+    bpy.context.object.hide_render = True  # HiddenOnly's cube
     foggy = bpy.data.materials["Foggy"].node_tree
     volume = foggy.nodes.new("ShaderNodeVolumePrincipled")
     foggy.links.new(volume.outputs["Volume"], foggy.nodes["Material Output"].inputs["Volume"])
@@ -242,7 +273,7 @@ def added_volumes(scene):
 
 def hidden_lights(scene):
     """Area lamps in a collection disabled for rendering and in one the view layer excludes,
-    and a mirrored one that renders."""
+    a light portal, and a mirrored one that renders."""
     off = bpy.data.collections.new("Off")
     scene.collection.children.link(off)
     off.hide_render = True
@@ -253,6 +284,8 @@ def hidden_lights(scene):
     bpy.context.view_layer.layer_collection.children["Excluded"].exclude = True
     mirrored = add_light("AREA", "Mirrored", (0.0, 0.0, 2.0), 300.0, scene.collection)
     mirrored.scale = (-1.0, 1.0, 1.0)
+    portal = add_light("AREA", "Portal", (0.0, 0.0, 1.0), 300.0, scene.collection)
+    portal.data.cycles.is_portal = True
 
 
 def world_without_nodes(scene):
@@ -347,6 +380,15 @@ def glass(scene):
     material.node_tree.nodes["Principled BSDF"].inputs["Transmission"].default_value = 1.0
     bpy.context.object.data.materials.append(material)
     add_light("POINT", "Bulb", (0.0, -1.0, 2.0), 100.0, scene.collection)
+    # Beside it, a Principled BSDF whose Base Color is a procedural texture.
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(1.0, 0.0, 0.5))
+    noisy = bpy.data.materials.new("Noisy")
+    noisy.use_nodes = True
+    nodes = noisy.node_tree.nodes
+    nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.2, 0.4, 0.6, 1.0)
+    noisy.node_tree.links.new(nodes.new("ShaderNodeTexNoise").outputs["Color"],
+                              nodes["Principled BSDF"].inputs["Base Color"])
+    bpy.context.object.data.materials.append(noisy)
 
 
 def light_nodes(scene):
@@ -488,10 +530,21 @@ def missing_image(scene):
 
 
 def muted_volume(scene):
-    """A cube whose Principled Volume is muted, which Cycles renders empty."""
+    """A cube whose Principled Volume is muted, which Cycles renders empty, and one whose
+    Volume is a node group's, which the export cannot read."""
     bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
     material = volume_material("Muted", 3.0)
     material.node_tree.nodes["Principled Volume"].mute = True
+    bpy.context.object.data.materials.append(material)
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(1.0, 0.0, 0.5))
+    material = volume_material("Grouped", 3.0)
+    group = bpy.data.node_groups.new("Fog group", "ShaderNodeTree")
+    group.outputs.new("NodeSocketShader", "Volume")
+    group.links.new(group.nodes.new("ShaderNodeVolumePrincipled").outputs[0],
+                    group.nodes.new("NodeGroupOutput").inputs[0])
+    grouped = material.node_tree.nodes.new("ShaderNodeGroup")
+    grouped.node_tree = group
+    material.node_tree.links.new(grouped.outputs[0], material.node_tree.nodes["Material Output"].inputs["Volume"])
     bpy.context.object.data.materials.append(material)
 
 
@@ -635,9 +688,16 @@ def light_written_back(directory):
             "light_watts": {name: bpy.data.objects[name].data.energy for name in ("Key", "Light")}}
 
 
+def instanced_light_written_back(directory):
+    """A fitted emission of one of a lamp's instances, which all take it."""
+    return {"instanced_write_back_warnings": write_back.apply_fitted_values(
+        bpy.context.scene, bpy.context.view_layer, {"lights/Row.0.Panel.area/emission": [1.0, 1.0, 1.0]})}
+
+
 # What some cases read or do once they are exported: the Fit's view of the scene.
 AFTER_EXPORT = {"fit_parameters": offered_for_fit, "medium_write_back": g_written_back,
-                "light_write_back": light_written_back}
+                "light_write_back": light_written_back, "vertex_instanced_lights": instanced_light_written_back,
+                "render_modifiers": viewport_settings_after}
 
 
 def export_case(out, case, build, target=None):

@@ -9,8 +9,8 @@
       import FILE with the add-on's operator and write DIR/imported.json: the medium each
       material's and the World's nodes now give, each light's radiant intensity or
       irradiance as the add-on's mappings read its Blender values, whether numpy.bool
-      exists before and after, and the camera a copy of FILE with an orthographic camera
-      imports as."""
+      exists before and after, the camera a copy of FILE with an orthographic camera
+      imports as, and where the camera lands in files of Unit Scale 1 and 0.01."""
 import argparse
 import json
 import pathlib
@@ -103,6 +103,15 @@ def import_and_read(gltf, out):
     camera = bpy.context.scene.camera.data
     result["orthographic_camera"] = {"type": camera.type, "sensor_fit": camera.sensor_fit,
                                      "ortho_scale": camera.ortho_scale}
+    # The camera's place imported into a file whose Unit Scale is 1, then 0.01.
+    result["camera_location"] = {}
+    for scale in (1.0, 0.01):
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+        bpy.context.scene.unit_settings.scale_length = scale
+        bpy.ops.import_scene.vkdiffrender(filepath=str(gltf))
+        result["camera_location"][str(scale)] = {
+            "location": list(bpy.context.scene.camera.matrix_world.translation),
+            "unit_scale_after": bpy.context.scene.unit_settings.scale_length}
     bpy.ops.wm.read_factory_settings(use_empty=True)  # the add-on stays registered
     bpy.ops.import_scene.vkdiffrender(filepath=str(gltf))
     result["numpy_bool_after"] = hasattr(numpy, "bool")

@@ -75,6 +75,9 @@ def test_lamps_instanced_from_a_collection_are_exported_at_the_instance(exported
 
 
 def test_lamps_instanced_at_vertices_are_exported_at_each_vertex_and_not_at_their_own_place(exported, cli):
+    # One lamp's instances are one light data: a value fitted to one is written for all.
+    assert result(exported, "vertex_instanced_lights")["instanced_write_back_warnings"] == [
+        "lights/Row.0.Panel.area/emission: its light data is shared with Row.1.Panel.area, which takes the value too"]
     doc = document(exported, "vertex_instanced_lights")
     for index, x in enumerate((-1.5, 1.5)):
         centre, _ = area_emitter(doc, f"Row.{index}.Panel.area")
@@ -95,9 +98,14 @@ def test_modifiers_are_exported_as_the_render_evaluates_them_and_left_as_they_we
     doc = document(exported, "render_modifiers")
     assert triangles(doc, "Rendered") == 2 * 6 * 4 * 2  # two copies of a cube subdivided once
     assert triangles(doc, "Viewport") == 6 * 2  # its Array is for the viewport only
+    # Disabled in viewports, whose depsgraph does not evaluate them: subdivided all the same.
+    assert triangles(doc, "Disabled") == 6 * 4 * 2
+    assert triangles(doc, "InDisabled") == 6 * 4 * 2
     assert result(exported, "render_modifiers")["modifiers_after"] == {
         "Rendered": [["Subdivision", True, True, 0], ["Array", False, True, None]],
-        "Viewport": [["Array", True, False, None]]}
+        "Viewport": [["Array", True, False, None]],
+        "Disabled": [["Subdivision", True, True, 0]], "InDisabled": [["Subdivision", True, True, 0]]}
+    assert result(exported, "render_modifiers")["viewport_after"] == [True, True, 0]
     assert own_warnings(exported, "render_modifiers") == []
 
 
@@ -185,6 +193,7 @@ def test_the_fit_offers_only_what_optimize_can_step_in_log_units(exported):
     assert "materials/Foggy/base_color" not in fittable  # a medium's boundary has no colour
     assert "media/Foggy/sigma_s" in fittable
     assert "lights/Dark.area/emission" not in fittable  # 0 W
+    assert "materials/HiddenOnly/base_color" not in fittable  # on no rendered object: not exported
 
 
 def test_a_fitted_punctual_light_goes_to_the_lamp_whose_data_the_export_named_it_after(exported):
@@ -214,6 +223,9 @@ def test_lamps_that_cycles_does_not_render_are_not_exported_and_a_mirrored_one_s
     doc = document(exported, "hidden_lights")
     emitters = [m["name"] for m in doc["meshes"] if m["name"].endswith(".area")]
     assert emitters == ["Mirrored.area"]
+    assert any("'Portal': a light portal is not exported" in w for w in own_warnings(exported, "hidden_lights"))
+    emitter = next(m for m in doc["materials"] if m["name"] == "Mirrored.area")
+    assert emitter["pbrMetallicRoughness"]["metallicFactor"] == 0.0  # glTF's default, 1, is metal
     _, normal = area_emitter(doc, "Mirrored.area")
     assert normal == pytest.approx([0.0, -1.0, 0.0], abs=1e-6)
     assert render_mean(cli, exported, "hidden_lights") > 0.0, "the floor below the mirrored lamp is lit"
@@ -294,6 +306,10 @@ def test_glass_is_exported_opaque_with_a_warning_and_loads(exported, cli):
     assert not set(glass.get("extensions", {})) & {"KHR_materials_transmission", "KHR_materials_ior",
                                                     "KHR_materials_volume"}
     assert any("Transmission is exported as an opaque surface" in w for w in own_warnings(exported, "glass"))
+    # A procedural Base Color: its unlinked value, with a warning, not the exporter's white.
+    noisy = next(m for m in document(exported, "glass")["materials"] if m["name"] == "Noisy")
+    assert noisy["pbrMetallicRoughness"]["baseColorFactor"] == pytest.approx([0.2, 0.4, 0.6, 1.0], rel=1e-6)
+    assert any("material 'Noisy'" in w and "input 'Base Color' is linked" in w for w in own_warnings(exported, "glass"))
     render_mean(cli, exported, "glass")
 
 
@@ -303,6 +319,7 @@ def test_textured_emitters_keep_their_texture_and_what_glTF_cannot_carry_is_repo
     for name in ("Plain", "Odd"):
         material = next(m for m in doc["materials"] if m["name"] == name)
         assert "emissiveTexture" in material
+        assert material["pbrMetallicRoughness"]["metallicFactor"] == 0.0
         # The texture times Strength 2, not times the unlinked red Cycles does not use.
         strength = material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"]
         assert [strength * c for c in material["emissiveFactor"]] == pytest.approx([2.0, 2.0, 2.0])
@@ -374,6 +391,16 @@ def test_a_muted_volume_node_is_exported_as_cycles_renders_it_no_medium(exported
     doc = document(exported, "muted_volume")
     muted = next(m for m in doc["materials"] if m["name"] == "Muted")
     assert "VKDR_participating_media" not in muted.get("extensions", {})
+
+
+def test_a_volume_the_export_cannot_read_leaves_its_boundary_clear_not_opaque(exported, cli):
+    doc = document(exported, "muted_volume")
+    grouped = next(m for m in doc["materials"] if m["name"] == "Grouped")
+    medium = grouped["extensions"]["VKDR_participating_media"]
+    assert medium["sigma_a"] == [0.0] * 3 and medium["sigma_s"] == [0.0] * 3
+    assert any("material 'Grouped': its volume ('Group') cannot be exported" in w
+               for w in own_warnings(exported, "muted_volume"))
+    render_mean(cli, exported, "muted_volume")
 
 
 def test_an_output_for_cycles_alone_wins_over_the_active_one_for_all_renderers(exported):

@@ -118,3 +118,12 @@ def test_an_orthographic_camera_keeps_the_height_vkdiffrender_keeps(imported):
     camera = imported[2]["orthographic_camera"]
     assert (camera["type"], camera["sensor_fit"]) == ("ORTHO", "VERTICAL")
     assert camera["ortho_scale"] == pytest.approx(1.5)
+
+
+def test_a_file_of_another_unit_scale_imports_the_scene_at_the_size_it_was_exported(imported):
+    # The export writes Blender units as they are; Blender's own importer would divide
+    # the places by the Unit Scale, leaving the media's coefficients and the lights'
+    # powers those of a scene 100 times smaller.
+    placed = imported[2]["camera_location"]
+    assert placed["0.01"]["location"] == pytest.approx(placed["1.0"]["location"], rel=1e-6)
+    assert placed["0.01"]["unit_scale_after"] == pytest.approx(0.01)

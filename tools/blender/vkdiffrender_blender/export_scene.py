@@ -49,13 +49,26 @@ RENDERED_CAMERAS = ("PERSP", "ORTHO")
 RENDER_LEVELS = {"SUBSURF": ("levels", "render_levels"), "MULTIRES": ("levels", "render_levels")}
 
 
-def render_settings(objects):
-    """(modifier, attribute, the value a render uses) where the viewport evaluates a
-    modifier otherwise: enabled for one of the two, or subdividing to another level.
-    Linked library data cannot be changed and is left."""
+# Simplify's viewport settings, with the setting the render takes instead.
+SIMPLIFY_LEVELS = {"simplify_subdivision": "simplify_subdivision_render",
+                   "simplify_child_particles": "simplify_child_particles_render"}
+
+
+def render_settings(scene, objects, collections):
+    """(owner, attribute, the value a render uses) where the viewport's depsgraph evaluates
+    otherwise: a modifier enabled for one of the two, or subdividing to another level;
+    Simplify's viewport limits; objects and collections disabled in viewports, which it
+    does not evaluate at all (their modifiers would be left out). Linked library data
+    cannot be changed and is left."""
+    for viewport, render in SIMPLIFY_LEVELS.items():
+        yield scene.render, viewport, getattr(scene.render, render)
+    for collection in collections:
+        if collection.library is None:
+            yield collection, "hide_viewport", False
     for obj in objects:
         if obj.library is not None:
             continue
+        yield obj, "hide_viewport", False
         for modifier in obj.modifiers:
             yield modifier, "show_viewport", modifier.show_render
             if modifier.type in RENDER_LEVELS:
@@ -64,12 +77,12 @@ def render_settings(objects):
 
 
 @contextlib.contextmanager
-def modifiers_as_rendered():
+def modifiers_as_rendered(scene):
     """The scene's depsgraph, which the glTF exporter and rendered_objects read, evaluates
-    the viewport's modifier settings: for the export they take the render's
-    (render_settings), in every object, instanced assets too."""
+    the viewport's settings: for the export they take the render's (render_settings), in
+    every object, instanced assets too."""
     changed = []
-    for owner, attribute, value in list(render_settings(bpy.data.objects)):
+    for owner, attribute, value in list(render_settings(scene, bpy.data.objects, bpy.data.collections)):
         if getattr(owner, attribute) != value:
             changed.append((owner, attribute, getattr(owner, attribute)))
             setattr(owner, attribute, value)
@@ -168,7 +181,14 @@ def add_material_media(doc, view_layer, warnings):
             continue
         medium = node_graph.medium_of(blender_material, warnings, f"material '{material.get('name')}'")
         if medium is None:
-            continue
+            unread = node_graph.unsupported_volume_node(blender_material)
+            if unread is None or node_graph.surface_node(blender_material) is not None:
+                continue
+            # Cycles renders the boundary of a volume without a Surface clear; the glTF
+            # exporter would write an opaque white surface.
+            warnings.append(f"material '{blender_material.name}': its volume ('{unread.name}') cannot be "
+                            f"exported; its boundary is exported clear, enclosing no medium")
+            medium = mappings.Medium((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 0.0)
         require_closed_boundaries(blender_material, bodies, view_layer.depsgraph)
         if node_graph.surface_node(blender_material) is not None:
             warnings.append(f"material '{blender_material.name}': has a Surface shader besides its volume; "
@@ -194,6 +214,11 @@ def set_surfaces(doc, warnings):
         # A Color the exporter wrote as a texture, or as vertex colours, is that times a
         # factor of 1.
         textured = {"Color": (1.0, 1.0, 1.0, 1.0)}
+        if node.bl_idname in {"ShaderNodeBsdfDiffuse", "ShaderNodeEmission"}:
+            # glTF's metallicFactor defaults to 1: without it Blender's importer, and
+            # any other glTF viewer, would read these surfaces back as rough metal.
+            pbr["metallicFactor"] = 0.0
+            pbr["roughnessFactor"] = 1.0
         if node.bl_idname == "ShaderNodeBsdfDiffuse":
             carried = "baseColorTexture" in pbr or vertex_colours.attribute_read(blender_material) is not None
             albedo = mappings.base_color_to_albedo(node_graph.constant(
@@ -215,6 +240,13 @@ def set_surfaces(doc, warnings):
             warnings.append(f"{what}: Principled BSDF is exported as a Lambertian of its Base Color; Cycles adds "
                             f"its specular lobe (Specular {node.inputs['Specular'].default_value:g}) and a "
                             f"retro-reflective diffuse")
+            carried = "baseColorTexture" in pbr or vertex_colours.attribute_read(blender_material) is not None
+            if not carried and node_graph.is_fed(node.inputs["Base Color"]):
+                # The glTF exporter writes no factor for a Base Color it cannot read (a
+                # procedural texture): white, where the unlinked value is what the
+                # Diffuse BSDF's export uses too.
+                albedo = mappings.base_color_to_albedo(node_graph.constant(node, "Base Color", warnings, what))
+                pbr["baseColorFactor"] = [*albedo, 1.0]
             # The exporter writes KHR_materials_ior for any Specular but 0.5, which the loader
             # reads only with a transmission.
             extensions = material.get("extensions", {})
@@ -362,6 +394,17 @@ def area_light_material_name(name):
     return f"{name}.area"
 
 
+def is_portal(light):
+    """A Cycles light portal: it guides the sampling of the sky through a window and
+    emits nothing, nor blocks anything."""
+    return bool(getattr(getattr(light, "cycles", None), "is_portal", False))
+
+
+def emitting_area_light(obj):
+    """Whether OBJ is an area light that emits: one the export writes as an emitter."""
+    return obj.type == "LIGHT" and obj.data.type == "AREA" and not is_portal(obj.data)
+
+
 def add_area_lights(doc, view_layer, warnings):
     """Area lights, which the glTF exporter drops, become one-sided emissive polygons of
     Cycles' radiance Power / (4 area), black so that they reflect nothing; one for each
@@ -369,6 +412,10 @@ def add_area_lights(doc, view_layer, warnings):
     for rendered in rendered_objects(view_layer):
         obj = rendered.object
         if obj.type != "LIGHT" or obj.data.type != "AREA":
+            continue
+        if is_portal(obj.data):
+            warnings.append(f"light '{obj.name}': a light portal is not exported (vkdiffrender has no portals, and "
+                            f"samples the background without them)")
             continue
         light = obj.data
         if light.spread < math.pi - 1e-6:
@@ -386,7 +433,8 @@ def add_area_lights(doc, view_layer, warnings):
         radiance = mappings.area_light_radiance(light.color, light.energy, area)
         emission = mappings.radiance_to_emission(radiance)
         material = {"name": area_light_material_name(rendered.name), "doubleSided": False,
-                    "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]},
+                    "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0,
+                                             "roughnessFactor": 1.0},
                     "emissiveFactor": list(emission["color"]),
                     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": emission["strength"]}}}
         triangles = [(0, i, i + 1) for i in range(1, len(corners) - 1)]
@@ -507,7 +555,7 @@ def export_scene(context, filepath):
     staging = tempfile.mkdtemp(prefix=".vkdiffrender-export-", dir=directory)
     try:
         staged = os.path.join(staging, os.path.basename(filepath))
-        with modifiers_as_rendered():
+        with modifiers_as_rendered(scene):
             colours = vertex_colours.colour_exports([r.object for r in rendered_objects(view_layer)],
                                                     vertex_colours.reading_materials(), warnings)
             beyond = vertex_colours.first_value_outside_unit_range(colours)

@@ -133,6 +133,10 @@ def grid_medium(doc, material, volume, placement, name, copies, what, warnings):
         entry["albedoGrid"] = {**reference, "grid": albedo}
     if emission is not None and "emission" in entry:
         entry["emissionGrid"] = {**reference, "grid": emission}
+    elif "emission" in entry:
+        warnings.append(f"{what}: a constant Emission Strength, which Cycles emits evenly over the volume; "
+                        f"vkdiffrender emits it times the '{grid}' grid, so where that is below 1 the export glows "
+                        f"less; feed Emission Strength from a grid attribute for the two to agree")
     return entry
 
 

@@ -31,6 +31,21 @@ def numpy_bool_alias():
             del numpy.bool
 
 
+@contextlib.contextmanager
+def unit_scale_of_one(scene):
+    """Blender 3.4's glTF importer divides positions by the scene's Unit Scale, while its
+    exporter, and so the add-on's export, writes Blender units as they are: the importer
+    runs at a Unit Scale of 1, so that a scene comes back at the size it was exported
+    with and its media's coefficients and lights' powers still fit it."""
+    units = scene.unit_settings
+    scale = units.scale_length
+    units.scale_length = 1.0
+    try:
+        yield
+    finally:
+        units.scale_length = scale
+
+
 def read_gltf_json(path):
     """The JSON object of a .gltf or .glb file; ValueError naming the file where there is
     none."""
@@ -330,7 +345,7 @@ def import_scene(context, filepath):
         raise ValueError(f"{filepath}: {error}") from None
     materials_before = {m.name for m in bpy.data.materials}
     objects_before = {o.name for o in bpy.data.objects}
-    with numpy_bool_alias():
+    with numpy_bool_alias(), unit_scale_of_one(context.scene):
         bpy.ops.import_scene.gltf(filepath=filepath)
     warnings, renamed = [], []
     restore_media(media, new_ids(bpy.data.materials, materials_before), warnings, renamed)

@@ -142,6 +142,15 @@ def has_volume(owner):
     return socket is not None and is_fed(socket)
 
 
+def unsupported_volume_node(owner):
+    """The node feeding OWNER's Volume output that the export cannot read (a node group,
+    say), or None: Cycles still renders its volume, and no Surface beside it."""
+    socket = volume_input(owner)
+    node = linked_node(socket) if socket is not None else None
+    readable = VOLUME_NODES | {"ShaderNodeAddShader", "ShaderNodeMixShader"}
+    return node if node is not None and not node.mute and node.bl_idname not in readable else None
+
+
 def material_volume_node(material):
     """The single volume node of a material or world whose Volume output it feeds directly
     (the node the Fit operator writes back into), else None."""

@@ -27,7 +27,14 @@ def volume_owners(scene):
 def rendered_area_lights(view_layer):
     """{exported name: (light object, its world matrix)} of the area lights the export writes."""
     return {export_scene.area_light_material_name(r.name): (r.object, r.matrix_world)
-            for r in rendered_objects(view_layer) if r.object.type == "LIGHT" and r.object.data.type == "AREA"}
+            for r in rendered_objects(view_layer) if export_scene.emitting_area_light(r.object)}
+
+
+def rendered_materials(view_layer):
+    """The materials of the objects the export writes: a material used only by an object
+    hidden from the render is in no exported scene, and has no parameter to fit."""
+    return {slot.material for r in rendered_objects(view_layer) for slot in r.object.material_slots
+            if slot.material is not None}
 
 
 def fittable_parameters(scene, view_layer):
@@ -35,7 +42,10 @@ def fittable_parameters(scene, view_layer):
     steps coefficients in log units (fit_run.optimize_command), so a coefficient is
     offered only where every channel of it is above 0."""
     names = []
-    for name, _, node in volume_owners(scene):
+    rendered = rendered_materials(view_layer)
+    for name, owner, node in volume_owners(scene):
+        if isinstance(owner, bpy.types.Material) and owner not in rendered:
+            continue
         kinds = {"ShaderNodeVolumePrincipled": ("sigma_a", "sigma_s", "g", "emission"),
                  "ShaderNodeVolumeAbsorption": ("sigma_a",),
                  "ShaderNodeVolumeScatter": ("sigma_s", "g")}[node.bl_idname]
@@ -43,7 +53,7 @@ def fittable_parameters(scene, view_layer):
         names += [f"media/{name}/{kind}" for kind in kinds if kind == "g" or min(getattr(medium, kind)) > 0.0]
     for material in bpy.data.materials:
         # A material with a volume exports as a medium's boundary, which has no colour.
-        surface = node_graph.surface_node(material) if material.users else None
+        surface = node_graph.surface_node(material) if material in rendered else None
         if surface is None or surface.bl_idname not in SURFACE_COLOR_INPUTS or \
                 node_graph.material_volume_node(material) is not None:
             continue
@@ -119,10 +129,12 @@ def apply_fitted_values(scene, view_layer, params):
             corners = [axes.blender_to_gltf(p) for p in export_scene.area_light_polygon(obj, matrix_world)]
             light = mappings.radiance_to_area_light(value, export_scene.polygon_area(corners))
             obj.data.color, obj.data.energy = light["color"], light["power"]
-            sharing = [other for other, _ in area_lights.values() if other.data == obj.data and other != obj]
+            # Other objects of the same light data, and other instances of this object,
+            # are other emitters of the export: one value is written for them all.
+            sharing = [other for other, (light, _) in area_lights.items() if light.data == obj.data and other != owner]
             if sharing:
-                warnings.append(f"{name}: its light data is shared with {', '.join(o.name for o in sharing)}, which "
-                                f"takes the value too")
+                warnings.append(f"{name}: its light data is shared with {', '.join(sharing)}, which takes the "
+                                f"value too")
             warnings += linked_library_warnings(name, obj.data)
         elif kind == "lights" and value_name == "intensity":
             # Blender's exporter names a glTF light after its light data, which vkdiffrender's
