@@ -160,7 +160,9 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
 std::string resumeHint(const OptimizeCommandOptions& options) {
     const std::filesystem::path directory = options.out;
     if (options.overwrite && !*options.oldRunRemoved) {
-        return "this run had written nothing, and the run " + directory.string() + " held is left as it was";
+        const bool heldARun = !presentRunFiles(directory, !options.experiment.empty()).empty();
+        return "this run had written nothing" +
+               (heldARun ? ", and the run " + directory.string() + " held is left as it was" : std::string());
     }
     std::filesystem::path checkpoint = directory / kCheckpointFileName;
     std::error_code error;

@@ -184,17 +184,41 @@ glm::dvec3 centreOf(const Scene& scene, uint32_t triangle) {
             glm::dvec3(scene.positions[corners.z])) / 3.0;
 }
 
+// Whether `shell` lies inside `other`: its box within the other's (a shell nested in
+// another must be), and the centre of its first triangle inside.
+bool nestedIn(const Scene& scene, const Shell& shell, const Shell& other) {
+    const bool boxWithin = glm::all(glm::greaterThanEqual(shell.lower, other.lower)) &&
+                           glm::all(glm::lessThanEqual(shell.upper, other.upper));
+    return boxWithin && insideShell(scene, other, centreOf(scene, shell.triangles.front()));
+}
+
+// Whether some of `shell`'s triangle centres (at most 16, spread over it) lie outside
+// `other`: the two intersect rather than nest.
+bool partlyOutside(const Scene& scene, const Shell& shell, const Shell& other) {
+    const size_t step = std::max<size_t>(1, shell.triangles.size() / 16);
+    for (size_t i = 0; i < shell.triangles.size(); i += step) {
+        if (!insideShell(scene, other, centreOf(scene, shell.triangles[i]))) return true;
+    }
+    return false;
+}
+
 // Whether `shell` should be wound outwards: unless it lies inside an odd number of the
 // boundary's other shells, so that it bounds a cavity in the medium. A shell wound as
 // the shell directly around it is refused: a cavity wound the wrong way, or a medium
-// inside itself, is a guess either way.
+// inside itself, is a guess either way. Shells wound alike that intersect (spheres of a
+// cloud joined into one mesh) are not nested: they are warned of, as overlapping
+// boundaries are.
 bool windsOutwards(const Scene& scene, const Boundary& boundary, const std::vector<Shell>& shells,
-                   const Shell& shell, const GltfDiagnostics& diagnostics) {
-    const glm::dvec3 point = centreOf(scene, shell.triangles.front());
+                   const Shell& shell, GltfDiagnostics& diagnostics) {
     const Shell* around = nullptr;  // the smallest shell containing this one
     size_t containing = 0;
     for (const Shell& other : shells) {
-        if (&other == &shell || !insideShell(scene, other, point)) continue;
+        if (&other == &shell || !nestedIn(scene, shell, other)) continue;
+        if ((other.volume > 0.0) == (shell.volume > 0.0) && partlyOutside(scene, shell, other)) {
+            diagnostics.warn(boundary.description, "two closed surfaces of it intersect; overlapping media are not "
+                                                   "supported and render wrongly");
+            continue;
+        }
         ++containing;
         if (!around || std::abs(other.volume) < std::abs(around->volume)) around = &other;
     }
@@ -209,7 +233,7 @@ bool windsOutwards(const Scene& scene, const Boundary& boundary, const std::vect
 // Winds every shell of `boundary` so that its normals point out of the medium; sets the
 // boundary's volume, the medium's net volume.
 void orientShells(Scene& scene, Boundary& boundary, const std::vector<Corners>& corners,
-                  const GltfDiagnostics& diagnostics) {
+                  GltfDiagnostics& diagnostics) {
     const std::vector<Shell> shells = shellsOf(scene, boundary, corners);
     std::vector<bool> outwards;
     for (const Shell& shell : shells) {

@@ -147,6 +147,18 @@ TEST_F(Interrupt, OverwriteStoppedBeforeItsFirstWriteLeavesTheOldRunAndSaysSo) {
         << stopped.err;
     EXPECT_EQ(stopped.err.find("--resume"), std::string::npos) << stopped.err;
     EXPECT_EQ(slurp(out / "checkpoint.json"), oldCheckpoint);
+
+    // Into a directory that held no run, there is no old run to speak of.
+    fs::remove(dir_ / "stderr");
+    RunningCli fresh("optimize " + fog() + " --target " + targetFile +
+                         " --param media/fog/sigma_a --iters 5 --spp 256 --overwrite --out " + (dir_ / "new").string(),
+                     dir_);
+    ASSERT_TRUE(fresh.waitUntil([&] { return printed("iterations of adam"); })) << slurp(dir_ / "stderr");
+    fresh.signal(SIGINT);
+    RunResult freshStopped = fresh.finish();
+    EXPECT_EQ(freshStopped.exitCode, 130) << freshStopped.err;
+    EXPECT_NE(freshStopped.err.find("this run had written nothing"), std::string::npos) << freshStopped.err;
+    EXPECT_EQ(freshStopped.err.find("left as it was"), std::string::npos) << freshStopped.err;
 }
 
 TEST_F(Interrupt, RenderStopsMidPassAndLeavesThePreviousFile) {

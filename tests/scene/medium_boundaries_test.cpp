@@ -117,6 +117,42 @@ TEST(MediumBoundaries, AShellInsideAnotherBoundsACavity) {
     }
 }
 
+// A regular octahedron of vertices at `radius` on the axes, wound outwards.
+MeshData octahedron(float radius) {
+    MeshData mesh;
+    for (int axis = 0; axis < 3; ++axis) {
+        for (float sign : {radius, -radius}) {
+            glm::vec3 vertex(0.0f);
+            vertex[axis] = sign;
+            mesh.positions.push_back(vertex);  // +x, -x, +y, -y, +z, -z
+        }
+    }
+    for (int octant = 0; octant < 8; ++octant) {
+        const uint32_t x = octant & 1, y = 2 + (octant >> 1 & 1), z = 4 + (octant >> 2 & 1);
+        const bool odd = ((octant & 1) + (octant >> 1 & 1) + (octant >> 2 & 1)) % 2 == 1;
+        mesh.indices.insert(mesh.indices.end(), {x, odd ? z : y, odd ? y : z});
+    }
+    return mesh;
+}
+
+// Shells wound alike that intersect (a cloud of shapes joined into one mesh) are not
+// nested: the mesh loads, with a warning, whichever of them comes first.
+TEST(MediumBoundaries, ShellsThatIntersectAreWarnedOfNotRefused) {
+    TemporaryDirectory directory;
+    // The box's box lies within the octahedron's, and the box pokes out of its faces.
+    const MeshData diamond = octahedron(2.0f), cube = box({0.3f, 0.3f, 0.3f}, {1.2f, 1.2f, 1.2f});
+    for (const MeshData& mesh : {joined(diamond, cube), joined(cube, diamond)}) {
+        GltfBuilder builder;
+        int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
+        builder.addNode({{"mesh", builder.addMesh("cloud", mesh, smoke)}});
+        LoadedScene loaded = loadScene(builder.writeGltf(directory / "cloud.gltf"));
+        ASSERT_EQ(loaded.warnings.size(), 1u);
+        EXPECT_NE(loaded.warnings[0].find("two closed surfaces of it intersect"), std::string::npos)
+            << loaded.warnings[0];
+        EXPECT_EQ(mediumAt(loaded.scene, {0.1f, 0.1f, 0.1f}), 0);
+    }
+}
+
 TEST(MediumBoundaries, NestedBoundariesSitInTheInnermostEnclosingMedium) {
     TemporaryDirectory directory;
     GltfBuilder builder;
