@@ -214,13 +214,14 @@ def set_surfaces(doc, warnings):
         # A Color the exporter wrote as a texture, or as vertex colours, is that times a
         # factor of 1.
         textured = {"Color": (1.0, 1.0, 1.0, 1.0)}
+        # Whether the exporter carried the base colour as a texture or as vertex colours.
+        carried = "baseColorTexture" in pbr or vertex_colours.attribute_read(blender_material) is not None
         if node.bl_idname in {"ShaderNodeBsdfDiffuse", "ShaderNodeEmission"}:
             # glTF's metallicFactor defaults to 1: without it Blender's importer, and
             # any other glTF viewer, would read these surfaces back as rough metal.
             pbr["metallicFactor"] = 0.0
             pbr["roughnessFactor"] = 1.0
         if node.bl_idname == "ShaderNodeBsdfDiffuse":
-            carried = "baseColorTexture" in pbr or vertex_colours.attribute_read(blender_material) is not None
             albedo = mappings.base_color_to_albedo(node_graph.constant(
                 node, "Color", warnings, what, textured if carried else None))
             pbr["baseColorFactor"] = [*albedo, 1.0]
@@ -240,7 +241,6 @@ def set_surfaces(doc, warnings):
             warnings.append(f"{what}: Principled BSDF is exported as a Lambertian of its Base Color; Cycles adds "
                             f"its specular lobe (Specular {node.inputs['Specular'].default_value:g}) and a "
                             f"retro-reflective diffuse")
-            carried = "baseColorTexture" in pbr or vertex_colours.attribute_read(blender_material) is not None
             if not carried and node_graph.is_fed(node.inputs["Base Color"]):
                 # The glTF exporter writes no factor for a Base Color it cannot read (a
                 # procedural texture): white, where the unlinked value is what the

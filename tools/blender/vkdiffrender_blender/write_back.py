@@ -131,7 +131,8 @@ def apply_fitted_values(scene, view_layer, params):
             obj.data.color, obj.data.energy = light["color"], light["power"]
             # Other objects of the same light data, and other instances of this object,
             # are other emitters of the export: one value is written for them all.
-            sharing = [other for other, (light, _) in area_lights.items() if light.data == obj.data and other != owner]
+            sharing = [other for other, (other_obj, _) in area_lights.items()
+                       if other_obj.data == obj.data and other != owner]
             if sharing:
                 warnings.append(f"{name}: its light data is shared with {', '.join(sharing)}, which takes the "
                                 f"value too")
