@@ -158,6 +158,18 @@ void advanceToNextCell(INOUT(MajorantWalk) walk, GpuDensityGrid grid) {
     }
 }
 
+// The majorant density's integral over [0, tMax) of the ray: sigma_t times it is the
+// expected number of tentative collisions along it in that channel.
+float majorantIntegral(GpuDensityGrid grid, GridRay ray, float tMax) {
+    MajorantWalk walk = startMajorantWalk(grid, ray, tMax);
+    float integral = 0.0f;
+    while (!walkDone(walk)) {
+        integral += gridMajorant(grid, walk.cell) * (cellExit(walk) - walk.t);
+        advanceToNextCell(walk, grid);
+    }
+    return integral;
+}
+
 // The outcome of delta tracking along [0, tMax).
 struct GridFreeFlight {
     float t;                // the real collision, the pause, or tMax

@@ -4,9 +4,10 @@
 // sigma_t d(x). A segment through it gathers, whatever the free flight that ends it
 // samples, int_0^s T(t) j(t) dt, which is emission (1 - T(s)) / sigma_t exactly, since
 // dT/dt = -sigma_t d(t) T(t) (emission D(s), D the density's integral, where sigma_t is
-// 0): exact for a homogeneous medium, and in a density grid with ratio tracking's
-// unbiased estimate of T(s) (and stratified points' of D). The adjoint pass adds the
-// gradients of this contribution to the medium's emission, sigma and voxels.
+// 0): exact for a homogeneous medium; in a density grid, a blend of that with ratio
+// tracking's unbiased estimate of T(s) and of an estimate from points along the segment
+// (gatherGridEmission). The adjoint pass adds the gradients of this contribution to the
+// medium's emission, sigma and voxels.
 #ifndef VKDR_MEDIUM_EMISSION_GLSL
 #define VKDR_MEDIUM_EMISSION_GLSL
 #include "adjoint.glsl"
@@ -49,102 +50,128 @@ void gatherHomogeneousEmission(uint slot, uint medium, GpuMedium m, float tHit, 
     }
 }
 
-// In a density grid, T(s) comes from ratio tracking along the segment and D from
-// stratified points, each with numbers of its own; products of the two, which the
-// adjoint needs, are unbiased because they are independent.
-void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
-    GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
-    PathInfo info = loadPathInfo(slot);
-    vec3 origin = P.rayOrigin.v[slot].xyz;
-    vec3 direction = P.rayDirection.v[slot].xyz;
-    vec3 sigma_t = sigmaT(m);
-    TrackingRandom random = segmentTrackingRandom(info, kTrackingEmission);
-    float u = nextTrackingRandom(random).x;
+const uint kEmissionPoints = kMaxTransmittancePoints;
+
+// A segment's emission from points along it (docs/design.md, "Emissive media"): where
+// j(t) = emission f(t), f the trilinear value of `strength` (an emission grid, or the
+// density grid itself), the part [a, b) of the segment inside strength's cells gets N
+// stratified points t_k with one random offset, and int T(t) j(t) dt is estimated by
+// emission (b - a) / N sum_k f(t_k) T(t_k).
+struct EmissionPoints {
+    GridRay ray;                 // the segment in strength's index coordinates
+    TransmittancePoints points;  // the t_k (none where the segment misses the cells) and T(t_k)
+    float strength[kEmissionPoints];
+    float spacing;               // (b - a) / N, each point's share of the part
+};
+
+vec3 emissionPoint(EmissionPoints e, uint k) {
+    return e.ray.origin + e.points.t[k] * e.ray.direction;
+}
+
+EmissionPoints placeEmissionPoints(GpuDensityGrid strength, vec3 origin, vec3 direction, float tHit, float u) {
+    EmissionPoints e;
+    e.ray = gridRay(strength, origin, direction);
+    vec2 interval = cellsInterval(strength, e.ray, tHit);
+    e.points.count = interval.x < interval.y ? kEmissionPoints : 0u;
+    e.spacing = (interval.y - interval.x) / float(kEmissionPoints);
+    for (uint k = 0u; k < e.points.count; ++k) {
+        e.points.t[k] = interval.x + (float(k) + u) * e.spacing;
+        e.strength[k] = gridDensity(strength, emissionPoint(e, k));
+    }
+    return e;
+}
+
+// Gives the points T(t_k): exact in a homogeneous medium, and in a density grid the
+// running estimate of one ratio-tracking walk to tEnd (at least the last point), whose
+// numbers follow the points' offset in `random`, so the two are independent. Returns the
+// estimate of T(tEnd).
+vec3 trackToEmissionPoints(GpuMedium m, vec3 origin, vec3 direction, float tEnd, vec3 sigma_t,
+                           INOUT(TrackingRandom) random, INOUT(EmissionPoints) e) {
+    if (!(kDensityGrids && m.densityGrid != kNoDensityGrid)) {
+        for (uint k = 0u; k < e.points.count; ++k) {
+            e.points.transmittance[k] = transmittance(sigma_t, e.points.t[k]);
+        }
+        return transmittance(sigma_t, tEnd);
+    }
     bool truncated = false;
     uint stepsLeft = kMaxTransmittanceSteps;
-    vec3 transmittance = ratioTrackTransmittance(grid, origin, direction, tHit, sigma_t, random, stepsLeft, truncated);
+    vec3 atEnd = ratioTrackTransmittanceAt(P.densityGrids.v[m.densityGrid], origin, direction, tEnd, sigma_t, random,
+                                           stepsLeft, truncated, e.points);
     if (truncated) {
         atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
     }
-    bool anyUnattenuated = any(equal(sigma_t, vec3(0.0f)));
-    float integral = anyUnattenuated ? densityIntegralAdjoint(grid, origin, direction, tHit, u, 0.0f) : 0.0f;
-    vec3 perUnit;
-    for (int c = 0; c < 3; ++c) {
-        perUnit[c] = sigma_t[c] > 0.0f ? (1.0f - transmittance[c]) / sigma_t[c] : integral;
-    }
-    gather(slot, beta * m.emission * perUnit);
-    if (!kAdjoint) {
-        return;
-    }
-    vec3 g = contributionAdjoint(beta);
-    addMediumEmissionGradient(medium, g * perUnit);
-    // Where nothing is emitted the other gradients of the emission are 0, and without
-    // sigma or density gradients nothing else is wanted.
-    if (m.emission != vec3(0.0f) && gridGradientsWanted()) {
-        // d/d sigma_t of emission (1 - T) / sigma_t is emission (D T / sigma_t - (1 - T) / sigma_t^2),
-        // and -emission D^2 / 2 where sigma_t is 0; d/d D is emission T (emission where
-        // sigma_t is 0), so the voxels get emission T dD/d(voxel).
-        vec3 attenuation = mix(vec3(1.0f), transmittance, greaterThan(sigma_t, vec3(0.0f)));
-        float voxelWeight = dot(g, m.emission * attenuation);
-        TrackingRandom points = segmentTrackingRandom(info, kTrackingEmissionGradient);
-        float d1 = densityIntegralAdjoint(grid, origin, direction, tHit, nextTrackingRandom(points).x, -voxelWeight);
-        float d2 = anyUnattenuated ? densityIntegralAdjoint(grid, origin, direction, tHit,
-                                                            nextTrackingRandom(points).x, 0.0f)
-                                   : 0.0f;
-        vec3 dSigmaT;
-        for (int c = 0; c < 3; ++c) {
-            dSigmaT[c] = sigma_t[c] > 0.0f ? (d1 * transmittance[c] - perUnit[c]) / sigma_t[c] : -0.5f * d1 * d2;
-        }
-        addSigmaTGradient(medium, g * m.emission * dSigmaT);
-    }
+    return atEnd;
 }
 
-const uint kEmissionGridPoints = kMaxTransmittancePoints;
+// (b - a) / N sum_k f(t_k) T(t_k), per unit emission.
+vec3 emissionPointsSum(EmissionPoints e) {
+    vec3 sum = vec3(0.0f);
+    for (uint k = 0u; k < e.points.count; ++k) {
+        sum += (e.spacing * e.strength[k]) * e.points.transmittance[k];
+    }
+    return sum;
+}
 
-// With an emission grid, j(t) = emission f(t), f the grid's strength, no longer follows
-// the extinction, so the segment gathers int T(t) j(t) dt from stratified points t_k on
-// its part [a, b) in the grid: emission (b - a) / N sum_k f(t_k) T(t_k), with T(t_k) exact
-// in a homogeneous medium and ratio tracking's running estimate in a density grid, whose
-// numbers are independent of the points', so every product is unbiased.
-void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
-    GpuDensityGrid strength = P.densityGrids.v[m.emissionGrid];
-    vec3 origin = P.rayOrigin.v[slot].xyz;
-    vec3 direction = P.rayDirection.v[slot].xyz;
-    GridRay ray = gridRay(strength, origin, direction);
-    vec2 interval = cellsInterval(strength, ray, tHit);
-    if (!(interval.x < interval.y)) {
+// Adds the gradients of emissionPointsSum times `weight` per channel (the contribution's
+// adjoint times the emission and the points' share of the estimate): to strength's voxels
+// around each t_k, where gradients of `strengthKind` are wanted, and, since
+// d T_c(t) / d sigma_t,c = -D(t) T_c(t) (D(t) the density's integral over [0, t), t in a
+// homogeneous medium, estimated by stratified points from `gradientRandom`), to sigma_t
+// and -sigma_t,c T_c(t_k) dD(t_k)/d(voxel) to the density's voxels.
+void addEmissionPointsGradients(uint medium, GpuMedium m, vec3 origin, vec3 direction, vec3 sigma_t,
+                                GpuDensityGrid strength, uint strengthKind, EmissionPoints e, vec3 weight,
+                                INOUT(TrackingRandom) gradientRandom) {
+    if (gradientWanted(strengthKind)) {
+        for (uint k = 0u; k < e.points.count; ++k) {
+            addTrilinearGradient(strength, emissionPoint(e, k), vec3(e.spacing * dot(weight, e.points.transmittance[k])),
+                                 1u);
+        }
+    }
+    if (!gridGradientsWanted()) {
         return;
     }
+    bool inDensityGrid = kDensityGrids && m.densityGrid != kNoDensityGrid;
+    vec3 dSigmaT = vec3(0.0f);
+    for (uint k = 0u; k < e.points.count; ++k) {
+        vec3 ofTransmittance = weight * (e.spacing * e.strength[k]) * e.points.transmittance[k];
+        float integral = e.points.t[k];
+        if (inDensityGrid) {
+            integral = densityIntegralAdjoint(P.densityGrids.v[m.densityGrid], origin, direction, e.points.t[k],
+                                              nextTrackingRandom(gradientRandom).x, dot(ofTransmittance, sigma_t));
+        }
+        dSigmaT -= ofTransmittance * integral;
+    }
+    addSigmaTGradient(medium, dSigmaT);
+}
+
+// In a density grid j = emission d follows the extinction, so the segment also has the
+// closed form emission (1 - T(s)) / sigma_t, with the walk's estimate of T(s) (docs/design.md,
+// "Emissive media"). It is nearly exact where the segment is optically thick, but where
+// it is thin the walk seldom samples a tentative collision and the closed form is 0 on
+// most segments, while the points' estimate is smooth there. Each channel takes the
+// points' estimate with weight exp(-sigma_t M), M the majorant's integral along the
+// segment (sigma_t M tentative collisions are expected), and the closed form with the
+// rest. The weight is fixed by the scene and the ray, so the blend is unbiased; its
+// gradient blends the two estimates' gradients alike (the weight's own derivative
+// multiplies the difference of two unbiased estimates, 0 in expectation).
+void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
+    GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
+    vec3 origin = P.rayOrigin.v[slot].xyz;
+    vec3 direction = P.rayDirection.v[slot].xyz;
     PathInfo info = loadPathInfo(slot);
     TrackingRandom random = segmentTrackingRandom(info, kTrackingEmission);
-    float u = nextTrackingRandom(random).x;
-    float length = (interval.y - interval.x) / float(kEmissionGridPoints);
-    TransmittancePoints points;
-    points.count = kEmissionGridPoints;
-    float f[kEmissionGridPoints];
-    for (uint k = 0u; k < kEmissionGridPoints; ++k) {
-        points.t[k] = interval.x + (float(k) + u) * length;
-        f[k] = gridDensity(strength, ray.origin + points.t[k] * ray.direction);
+    EmissionPoints e = placeEmissionPoints(grid, origin, direction, tHit, nextTrackingRandom(random).x);
+    if (e.points.count == 0u) {
+        return;  // the segment misses the grid's cells, which hold all of its density
     }
     vec3 sigma_t = sigmaT(m);
-    bool inDensityGrid = m.densityGrid != kNoDensityGrid;
-    if (inDensityGrid) {
-        bool truncated = false;
-        uint stepsLeft = kMaxTransmittanceSteps;
-        ratioTrackTransmittanceAt(P.densityGrids.v[m.densityGrid], origin, direction,
-                                  points.t[kEmissionGridPoints - 1u], sigma_t, random, stepsLeft, truncated, points);
-        if (truncated) {
-            atomicAdd(P.queueCounters.c.truncatedTracking, 1u);
-        }
-    } else {
-        for (uint k = 0u; k < kEmissionGridPoints; ++k) {
-            points.transmittance[k] = transmittance(sigma_t, points.t[k]);
-        }
+    vec3 pointsShare = exp(-sigma_t * majorantIntegral(grid, e.ray, tHit));
+    vec3 transmittance = trackToEmissionPoints(m, origin, direction, tHit, sigma_t, random, e);
+    vec3 closedForm;
+    for (int c = 0; c < 3; ++c) {
+        closedForm[c] = sigma_t[c] > 0.0f ? (1.0f - transmittance[c]) / sigma_t[c] : 0.0f;
     }
-    vec3 perUnit = vec3(0.0f);
-    for (uint k = 0u; k < kEmissionGridPoints; ++k) {
-        perUnit += (length * f[k]) * points.transmittance[k];
-    }
+    vec3 perUnit = mix(closedForm, emissionPointsSum(e), pointsShare);
     gather(slot, beta * m.emission * perUnit);
     if (!kAdjoint) {
         return;
@@ -155,30 +182,54 @@ void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
     if (m.emission == vec3(0.0f)) {
         return;
     }
-    if (gradientWanted(kGradientKindEmissionGrid)) {
-        for (uint k = 0u; k < kEmissionGridPoints; ++k) {
-            addTrilinearGradient(strength, ray.origin + points.t[k] * ray.direction,
-                                 vec3(length * dot(g, m.emission * points.transmittance[k])), 1u);
-        }
-    }
+    TrackingRandom gradientRandom = segmentTrackingRandom(info, kTrackingEmissionGradient);
+    addEmissionPointsGradients(medium, m, origin, direction, sigma_t, grid, kGradientKindDensity, e,
+                               g * m.emission * pointsShare, gradientRandom);
     if (!gridGradientsWanted()) {
         return;
     }
-    // d T_c(t) / d sigma_t,c = -D(t) T_c(t), D(t) the density's integral over [0, t) (t in
-    // a homogeneous medium), estimated by points of its own; the voxels get
-    // -sigma_t,c T_c(t) dD(t)/d(voxel).
-    TrackingRandom gradientPoints = segmentTrackingRandom(info, kTrackingEmissionGradient);
-    vec3 dSigmaT = vec3(0.0f);
-    for (uint k = 0u; k < kEmissionGridPoints; ++k) {
-        vec3 weight = g * m.emission * (length * f[k]) * points.transmittance[k];  // of T(t_k)
-        float integral = points.t[k];
-        if (inDensityGrid) {
-            integral = densityIntegralAdjoint(P.densityGrids.v[m.densityGrid], origin, direction, points.t[k],
-                                              nextTrackingRandom(gradientPoints).x, dot(weight, sigma_t));
-        }
-        dSigmaT -= weight * integral;
+    // d/d sigma_t of (1 - T) / sigma_t is (D T - (1 - T) / sigma_t) / sigma_t, and d/dD is
+    // T, so the voxels get T dD/d(voxel) from points of their own.
+    vec3 closedFormWeight = g * m.emission * (vec3(1.0f) - pointsShare);
+    float integral = densityIntegralAdjoint(grid, origin, direction, tHit, nextTrackingRandom(gradientRandom).x,
+                                            -dot(closedFormWeight, transmittance));
+    vec3 dSigmaT;
+    for (int c = 0; c < 3; ++c) {
+        dSigmaT[c] = sigma_t[c] > 0.0f
+                         ? closedFormWeight[c] * (integral * transmittance[c] - closedForm[c]) / sigma_t[c]
+                         : 0.0f;
     }
     addSigmaTGradient(medium, dSigmaT);
+}
+
+// With an emission grid, j(t) = emission f(t) no longer follows the extinction, and the
+// points' estimate is the segment's whole gather; their transmittance is wanted only up
+// to the last point.
+void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
+    GpuDensityGrid strength = P.densityGrids.v[m.emissionGrid];
+    vec3 origin = P.rayOrigin.v[slot].xyz;
+    vec3 direction = P.rayDirection.v[slot].xyz;
+    PathInfo info = loadPathInfo(slot);
+    TrackingRandom random = segmentTrackingRandom(info, kTrackingEmission);
+    EmissionPoints e = placeEmissionPoints(strength, origin, direction, tHit, nextTrackingRandom(random).x);
+    if (e.points.count == 0u) {
+        return;
+    }
+    vec3 sigma_t = sigmaT(m);
+    trackToEmissionPoints(m, origin, direction, e.points.t[kEmissionPoints - 1u], sigma_t, random, e);
+    vec3 perUnit = emissionPointsSum(e);
+    gather(slot, beta * m.emission * perUnit);
+    if (!kAdjoint) {
+        return;
+    }
+    vec3 g = contributionAdjoint(beta);
+    addMediumEmissionGradient(medium, g * perUnit);
+    if (m.emission == vec3(0.0f)) {
+        return;
+    }
+    TrackingRandom gradientRandom = segmentTrackingRandom(info, kTrackingEmissionGradient);
+    addEmissionPointsGradients(medium, m, origin, direction, sigma_t, strength, kGradientKindEmissionGrid, e,
+                               g * m.emission, gradientRandom);
 }
 
 // Gathers the emission of `medium` along the segment [0, tHit) of the ray in `slot`

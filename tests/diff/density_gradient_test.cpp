@@ -157,6 +157,9 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
 INSTANTIATE_TEST_SUITE_P(Lightings, DensityGradientTest,
                          ::testing::Values(Lighting{"BackLit", 1.0f, 0.0f, 1.0f}, Lighting{"SideLit", 0.0f, 20.0f, 0.25f},
                                            Lighting{"Glowing", 0.0f, 0.0f, 0.5f, 2.0f},
+                                           // So thin that its emission is gathered mostly from points
+                                           // along each segment (medium_emission.glsl).
+                                           Lighting{"FaintlyGlowing", 0.0f, 0.0f, 0.02f, 2.0f},
                                            // With an emission grid: the density's voxels, and the emission grid's
                                            // (the first voxel is the one of zero strength).
                                            Lighting{"GlowingFlameDensity", 0.3f, 0.0f, 1.5f, 2.0f,

@@ -1,7 +1,8 @@
 // Emissive media against closed forms. A segment gathers the emission along it,
 // int_0^s T(t) j(t) dt = emission (1 - T(s)) / sigma_t (emission times the density's
-// integral where sigma_t is 0), exactly in a homogeneous medium and with ratio tracking's
-// transmittance in a density grid; with an emission grid, whose strength replaces the
+// integral where sigma_t is 0), exactly in a homogeneous medium, and in a density grid
+// blended from ratio tracking's transmittance and points along the segment (with little
+// noise where the grid is faint); with an emission grid, whose strength replaces the
 // density in the emission, from points along the segment. And furnaces: walls that emit Le and reflect albedo
 // rho hold the radiance L* = Le / (1 - rho) everywhere when every medium inside emits
 // exactly what it absorbs there, j = sigma_a L*, whatever it scatters: a homogeneous fog
@@ -60,6 +61,37 @@ TEST_F(EmissiveMediumTest, EmissionFollowingADensityRampMatchesTheClosedForm) {
     const auto pixel = pixelOverSeeds(fog.scene().write(dir, "glow"), {.spp = 1024, .maxDepth = 0}, 16);
     const double densityIntegral = kBoxDepth * fog.densityAt(glm::dvec3(0.0, 0.0, 2.25));
     expectPixelNear(pixel, emittedAlong(fog.emission, fog.sigmaA + fog.sigmaS, densityIntegral));
+}
+
+// A faintly absorbing glowing ramp, whose majorant optical depth along the pixel's ray is
+// at most tau = max(sigma_t) max(d) L, about 0.04 (max(d) the grid's largest voxel, two
+// voxels beyond the box). Ratio tracking samples a tentative
+// collision on about one segment in 1/tau, so (1 - T) / sigma_t alone is 0 on the others:
+// a relative deviation of about 1 / sqrt(tau) per sample. Points along the segment, with
+// the running transmittance to each, vary with where the points fall (for the ramp
+// d = a + b z, by b L / (4 sqrt(12) d_mid) relative) and by at most their whole value
+// where a tentative collision falls (probability below tau): a relative deviation below
+// the sum of the two and sqrt(tau) per sample. The bound allows twice that, for the
+// uncertainty of a standard error from 16 renders.
+TEST_F(EmissiveMediumTest, FaintGlowingGridIsGatheredWithLittleNoise) {
+    FogSetup fog = glowingBox();
+    fog.sigmaA = glm::dvec3(0.002, 0.004, 0.0);
+    fog.sigmaS = glm::dvec3(0.001, 0.0, 0.0);
+    fog.density = FogSetup::LinearDensity{0.3, 0.5, "density.vdb"};
+    const std::filesystem::path dir = tempDir();
+    writeDensityGridVdb(dir / fog.density->uri, linearDensityGrid(fog, 0.25));
+    constexpr int kSpp = 16;
+    constexpr int kRenders = 16;
+    const auto pixel = pixelOverSeeds(fog.scene().write(dir, "glow"), {.spp = kSpp, .maxDepth = 0}, kRenders);
+    const double middleDensity = fog.densityAt(glm::dvec3(0.0, 0.0, 2.25));
+    expectPixelNear(pixel, emittedAlong(fog.emission, fog.sigmaA + fog.sigmaS, kBoxDepth * middleDensity));
+    const double tau = 0.004 * fog.densityAt(glm::dvec3(0.0, 0.0, 4.5)) * kBoxDepth;
+    const double pointsSpread = fog.density->b * kBoxDepth / (4.0 * std::sqrt(12.0) * middleDensity);
+    const double relativeDeviation = pointsSpread + std::sqrt(tau);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_LT(pixel[c].error, 2.0 * relativeDeviation / std::sqrt(kSpp * kRenders) * pixel[c].mean)
+            << "channel " << c;
+    }
 }
 
 // e int_0^L T(s) (A + B s) ds with T(s) = exp(-k s), per channel.
