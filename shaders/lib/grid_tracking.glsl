@@ -159,7 +159,8 @@ void advanceToNextCell(INOUT(MajorantWalk) walk, GpuDensityGrid grid) {
 }
 
 // The majorant density's integral over [0, tMax) of the ray: sigma_t times it is the
-// expected number of tentative collisions along it in that channel.
+// majorant's optical depth, and ratio tracking samples max(sigma_t) times it tentative
+// collisions on average.
 float majorantIntegral(GpuDensityGrid grid, GridRay ray, float tMax) {
     MajorantWalk walk = startMajorantWalk(grid, ray, tMax);
     float integral = 0.0f;

@@ -150,8 +150,10 @@ void addEmissionPointsGradients(uint medium, GpuMedium m, vec3 origin, vec3 dire
 // it is thin the walk seldom samples a tentative collision and the closed form is 0 on
 // most segments, while the points' estimate is smooth there. Each channel takes the
 // points' estimate with weight exp(-sigma_t M), M the majorant's integral along the
-// segment (sigma_t M tentative collisions are expected), and the closed form with the
-// rest. The weight is fixed by the scene and the ray, so the blend is unbiased; its
+// segment (sigma_t M the channel's majorant optical depth; the walk samples
+// max(sigma_t) M tentative collisions on average), and the closed form with the rest. A
+// channel that attenuates little thus takes the points' estimate, whose running
+// transmittances stay near 1, even where another channel is thick. The weight is fixed by the scene and the ray, so the blend is unbiased; its
 // gradient blends the two estimates' gradients alike (the weight's own derivative
 // multiplies the difference of two unbiased estimates, 0 in expectation).
 void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {

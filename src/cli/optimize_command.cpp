@@ -225,7 +225,7 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
                   options.settings.equiangularSampling};
     job.resume = !options.resume.empty();
     job.replaceOldRun = oldRunRemover(options, false);
-    requireRunCanStart(job, scene);
+    job.identity = requireRunCanStart(job, scene);
 
     throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});

@@ -129,7 +129,7 @@ OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, con
     const std::vector<std::string>& names = experiment.optimize.parameters;
     OptimizationJob job = experimentJob(experiment, outputDirectory, resume, replaceOldRun);
     job.description = description;
-    requireRunCanStart(job, scene);  // before the targets are rendered
+    job.identity = requireRunCanStart(job, scene);  // before the targets are rendered
 
     applyValues(scene, experiment.trueValues);
     std::vector<std::vector<float>> truth = currentValues(scene, names);

@@ -123,9 +123,11 @@ RunIdentity identityOf(const OptimizationJob& job, const Scene& scene) {
 
 }  // namespace
 
-void requireRunCanStart(const OptimizationJob& job, const Scene& scene) {
-    std::optional<LoopState> resume = resumeState(job, scene, identityOf(job, scene));
+RunIdentity requireRunCanStart(const OptimizationJob& job, const Scene& scene) {
+    const RunIdentity identity = identityOf(job, scene);
+    std::optional<LoopState> resume = resumeState(job, scene, identity);
     if (resume) resumedLogLines(job.outputDirectory / kLogFileName, resume->losses);
+    return identity;
 }
 
 OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene, const OptimizationJob& job,
@@ -137,7 +139,7 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     LossGradient& lossGradient = withPriors ? static_cast<LossGradient&>(*withPriors) : imageLossGradient;
     const std::filesystem::path& directory = job.outputDirectory;
     const std::vector<std::string>& names = job.options.parameters;
-    RunIdentity identity = identityOf(job, scene);
+    const RunIdentity identity = job.identity ? *job.identity : identityOf(job, scene);
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
     removeStaleTemporaries(directory);  // a killed run's partial writes

@@ -1,6 +1,7 @@
 #pragma once
 #include <filesystem>
 #include <functional>
+#include <optional>
 
 #include "diff/loss_gradient.h"
 #include "image/image.h"
@@ -41,6 +42,9 @@ struct OptimizationJob {
     // Writes targets[0] as target.exr and target.png with the other outputs: an
     // experiment's target, which the run rendered and no file holds.
     bool writeTarget = false;
+    // The run's identity (optimize/run_identity.h) as requireRunCanStart found it, so that
+    // runOptimization does not read every file of the scene again; found there if not set.
+    std::optional<RunIdentity> identity;
 };
 
 struct OptimizationReport {
@@ -54,8 +58,8 @@ struct OptimizationReport {
 // them is a directory); a resumed run's checkpoint is this run's and fits the scene, and
 // log.jsonl holds that run's lines up to it. Throws vkdr::Error as runOptimization
 // would, and writes nothing: for a caller to make before its device work
-// (runOptimization makes them again).
-void requireRunCanStart(const OptimizationJob& job, const Scene& scene);
+// (runOptimization makes them again). Returns the run's identity, for job.identity.
+RunIdentity requireRunCanStart(const OptimizationJob& job, const Scene& scene);
 
 // Optimises `scene` in place and writes into job.outputDirectory, every file atomically:
 //   log.jsonl   after every iteration (optimize/iteration_log.h)

@@ -29,14 +29,23 @@ namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
-// Runs `work` with Python's lock released; when called from the main thread, Ctrl-C
-// stops it with KeyboardInterrupt. Must be entered with the lock held.
+// Whether Ctrl-C stops device work that this call waits for: on the main thread, where
+// Python handles signals, while SIGINT raises KeyboardInterrupt (Python's default). A
+// handler of the user's own is left to run as Python runs it, once the call returns.
+bool ctrlCStopsTheWork() {
+    const py::module_ threading = py::module_::import("threading");
+    if (!threading.attr("current_thread")().is(threading.attr("main_thread")())) return false;
+    const py::module_ signal = py::module_::import("signal");
+    return signal.attr("getsignal")(signal.attr("SIGINT")).is(signal.attr("default_int_handler"));
+}
+
+// Runs `work` with Python's lock released; Ctrl-C stops it with KeyboardInterrupt where
+// ctrlCStopsTheWork. Must be entered with the lock held.
 template <typename Work>
 auto runOnDevice(Work work) {
-    py::object threading = py::module_::import("threading");
-    const bool mainThread = threading.attr("current_thread")().is(threading.attr("main_thread")());
+    const bool stopOnCtrlC = ctrlCStopsTheWork();
     py::gil_scoped_release release;
-    StopSignalScope signals(mainThread);
+    StopSignalScope signals(stopOnCtrlC);
     auto result = work();
     throwIfInterrupted();
     return result;
@@ -354,6 +363,10 @@ void bindParameter(py::module_& m) {
             "lower", [](const ParameterInfo& p) { return p.range.lower; }, "the smallest valid value")
         .def_property_readonly(
             "upper", [](const ParameterInfo& p) { return p.range.upper; }, "the largest valid value (inf: none)")
+        .def_property_readonly(
+            "aliases", [](const ParameterInfo& p) { return py::tuple(py::cast(p.aliases)); },
+            "the other names of the same values: the base colour textures of materials that share this one's "
+            "texture")
         .def("__repr__", [](const ParameterInfo& p) {
             return "Parameter('" + p.name + "', shape=" + shapeText(p.shape) + ", range=[" +
                    py::str(py::float_(p.range.lower)).cast<std::string>() + ", " +

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <unistd.h>
+
 #include "core/error.h"
 #include "diff/gradient_slots.h"
 #include "image/finite_pixels.h"
@@ -51,7 +53,8 @@ struct SceneSession::CachedRenderer {
 
 SceneSession::SceneSession(const std::filesystem::path& file, const std::string& device, bool allowOutsideFiles)
     : file_(absoluteSceneFile(file)),
-      loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})) {
+      loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})),
+      process_(getpid()) {
     warnings_ = loaded_.warnings;
     for (std::string& warning : sceneWarnings(loaded_.scene)) {
         warnings_.push_back(std::move(warning));
@@ -61,11 +64,27 @@ SceneSession::SceneSession(const std::filesystem::path& file, const std::string&
 }
 
 SceneSession::~SceneSession() {
+    if (getpid() != process_) {
+        // A forked child's copy: the device objects are the parent's, and destroying them
+        // here would wait for the parent's device threads. The child's memory goes with it.
+        for (CachedRenderer& cached : renderers_) static_cast<void>(cached.renderer.release());
+        static_cast<void>(context_.release());
+        return;
+    }
     renderers_.clear();  // before the context they were made on
 }
 
+std::unique_lock<std::recursive_mutex> SceneSession::lockInOwnProcess() const {
+    if (getpid() != process_) {
+        throw Error("this Scene was made in another process, before a fork (a DataLoader's worker, or "
+                    "multiprocessing's fork): its device stayed there; make a vkdiffrender.Scene in each process "
+                    "that uses one (in a DataLoader, in its worker_init_fn)");
+    }
+    return std::unique_lock(mutex_);
+}
+
 std::vector<ParameterInfo> SceneSession::parameters() const {
-    std::lock_guard lock(mutex_);
+    auto lock = lockInOwnProcess();
     std::vector<ParameterInfo> infos;
     for (const std::string& name : parameterNames(loaded_.scene)) {
         infos.push_back(parameter(name));
@@ -74,7 +93,7 @@ std::vector<ParameterInfo> SceneSession::parameters() const {
 }
 
 ParameterInfo SceneSession::parameter(const std::string& name) const {
-    std::lock_guard lock(mutex_);
+    auto lock = lockInOwnProcess();
     const size_t values = getParameter(loaded_.scene, name).size();  // throws for an unknown name
     const ParameterDescription& description = *parseParameterName(name)->description;
     ParameterInfo info{name, {description.channels}, description.range};
@@ -83,6 +102,13 @@ ParameterInfo SceneSession::parameter(const std::string& name) const {
             if (!material.isMediumBoundary() && name == parameterName(description.kind, material.name)) {
                 const Texture& texture = loaded_.scene.textures[size_t(material.baseColorTexture)];
                 info.shape = {size_t(texture.height), size_t(texture.width), description.channels};
+                for (const Material& other : loaded_.scene.materials) {
+                    const std::string otherName = parameterName(description.kind, other.name);
+                    if (!other.isMediumBoundary() && other.baseColorTexture == material.baseColorTexture &&
+                        otherName != name) {
+                        info.aliases.push_back(otherName);
+                    }
+                }
             }
         }
     }
@@ -99,12 +125,12 @@ ParameterInfo SceneSession::parameter(const std::string& name) const {
 }
 
 std::vector<float> SceneSession::get(const std::string& name) const {
-    std::lock_guard lock(mutex_);
+    auto lock = lockInOwnProcess();
     return getParameter(loaded_.scene, name);
 }
 
 void SceneSession::set(const std::string& name, const std::vector<float>& values) {
-    std::lock_guard lock(mutex_);
+    auto lock = lockInOwnProcess();
     setParameter(loaded_.scene, name, values);
     ++parameterVersion_;
 }
@@ -146,7 +172,7 @@ auto SceneSession::withRenderer(const RenderSettings& settings, Work work) {
 }
 
 SceneSession::Rendered SceneSession::render(const RenderSettings& settings) {
-    std::lock_guard lock(mutex_);
+    auto lock = lockInOwnProcess();
     Rendered rendered = withRenderer(settings, [](CachedRenderer& cached) {
         Image image = cached.renderer->render();
         return Rendered{std::move(image), cached.renderer->stats().truncatedPaths};
@@ -161,7 +187,7 @@ SceneSession::Rendered SceneSession::render(const RenderSettings& settings) {
 
 SceneSession::Backpropagated SceneSession::backpropagate(const RenderSettings& settings, const Image& imageAdjoint,
                                                          const std::vector<std::string>& names) {
-    std::lock_guard lock(mutex_);
+    auto lock = lockInOwnProcess();
     for (size_t i = 0; i < imageAdjoint.rgb.size(); ++i) {
         if (!std::isfinite(imageAdjoint.rgb[i])) {
             const size_t pixel = i / 3;
@@ -194,7 +220,7 @@ SceneSession::Backpropagated SceneSession::backpropagate(const RenderSettings& s
 
 SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& settings, const Image& target,
                                                       LossKind loss, const std::vector<std::string>& names) {
-    std::lock_guard lock(mutex_);
+    auto lock = lockInOwnProcess();
     if (std::optional<std::string> bad = unrepresentablePixel(target)) {
         throw Error("the target's " + *bad);
     }
@@ -240,7 +266,7 @@ std::vector<ParameterGradient> SceneSession::namedGradients(const std::vector<Gr
 }
 
 void SceneSession::write(const std::filesystem::path& out) const {
-    std::lock_guard lock(mutex_);
+    auto lock = lockInOwnProcess();
     if (out.extension() != ".gltf") {
         throw Error(out.string() + ": the scene is written as .gltf; give a path ending in .gltf");
     }

@@ -4,6 +4,7 @@
 #include <list>
 #include <memory>
 #include <mutex>
+#include <sys/types.h>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct ParameterInfo {
     std::string name;
     std::vector<size_t> shape;
     ValueRange range;
+    // The other names of the same values: the base colour textures of the materials that
+    // share this one's texture.
+    std::vector<std::string> aliases;
 };
 
 // One loaded scene on one device, for the Python module: renders, differentiates an
@@ -92,6 +96,10 @@ private:
 
     std::vector<ParameterGradient> namedGradients(const std::vector<GradientSlot>& slots,
                                                   const SceneGradients& gradients) const;
+    // Every public call's lock, in the process that made the session only: a child forked
+    // from it (a DataLoader's worker) has its memory but not the device's threads, and
+    // would wait for them for ever (or for a lock another thread held at the fork).
+    std::unique_lock<std::recursive_mutex> lockInOwnProcess() const;
 
     mutable std::recursive_mutex mutex_;  // held by every public call; they call each other
     std::filesystem::path file_;
@@ -101,6 +109,7 @@ private:
     std::unique_ptr<VulkanContext> context_;
     std::list<CachedRenderer> renderers_;  // most recently used first
     uint64_t parameterVersion_ = 0;        // counts set() calls, so renderers know when to upload
+    pid_t process_;                        // the process that made it
 };
 
 }  // namespace vkdr

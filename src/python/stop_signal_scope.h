@@ -11,12 +11,13 @@ namespace vkdr {
 // it (core/interrupt.h): the renderer stops at its next poll and throws Interrupted,
 // which the module raises as KeyboardInterrupt. Unlike the command line's handler, a
 // second signal is only recorded too: it never kills the interpreter. Only the main
-// thread takes SIGINT over, as Python's own handling is the main thread's; a SIGINT the
-// process ignores stays ignored. Python's handler is back when the scope ends.
+// thread takes SIGINT over, as Python's own handling is the main thread's, and only
+// while Python's handler is its default (the caller says); a SIGINT the process ignores
+// stays ignored. Python's handler is back when the scope ends.
 class StopSignalScope {
 public:
-    explicit StopSignalScope(bool onMainThread) {
-        if (!onMainThread) return;
+    explicit StopSignalScope(bool takeOver) {
+        if (!takeOver) return;
         sigaction(SIGINT, nullptr, &previous_);
         if (previous_.sa_handler == SIG_IGN) return;
         struct sigaction action {};

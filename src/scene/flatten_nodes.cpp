@@ -462,14 +462,7 @@ private:
 // a slip than meant.
 void warnOfNodesPlacedTwice(const tinygltf::Model& model, const std::vector<int>& roots, const std::string& rootsField,
                             GltfDiagnostics& diagnostics) {
-    std::vector<uint32_t> places(model.nodes.size(), 0);
-    auto count = [&](int node) {
-        if (node >= 0 && size_t(node) < places.size()) ++places[size_t(node)];
-    };
-    for (int root : roots) count(root);
-    for (const tinygltf::Node& node : model.nodes) {
-        for (int child : node.children) count(child);
-    }
+    const std::vector<uint32_t> places = placesOfNodes(model, roots);
     for (size_t n = 0; n < places.size(); ++n) {
         if (places[n] > 1) {
             diagnostics.warn(indexed("nodes", n), "listed " + std::to_string(places[n]) + " times in " + rootsField +
@@ -480,6 +473,18 @@ void warnOfNodesPlacedTwice(const tinygltf::Model& model, const std::vector<int>
 }
 
 }  // namespace
+
+std::vector<uint32_t> placesOfNodes(const tinygltf::Model& model, const std::vector<int>& roots) {
+    std::vector<uint32_t> places(model.nodes.size(), 0);
+    auto count = [&](int node) {
+        if (node >= 0 && size_t(node) < places.size()) ++places[size_t(node)];
+    };
+    for (int root : roots) count(root);
+    for (const tinygltf::Node& node : model.nodes) {
+        for (int child : node.children) count(child);
+    }
+    return places;
+}
 
 std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model, const GltfDiagnostics& diagnostics) {
     if (model.defaultScene >= 0 && size_t(model.defaultScene) >= model.scenes.size()) {

@@ -25,6 +25,10 @@ glm::mat4 localTransform(const tinygltf::Node& node);
 // else every node that is no node's child), and the JSON path that lists them.
 std::pair<std::vector<int>, std::string> rootNodes(const tinygltf::Model& model, const GltfDiagnostics& diagnostics);
 
+// How many places each node has: one for each time `roots` or a node's children list it.
+// glTF gives a node one; a root that is also a child has two.
+std::vector<uint32_t> placesOfNodes(const tinygltf::Model& model, const std::vector<int>& roots);
+
 // Walks the glTF scene's node hierarchy (the default scene, else the first, else every
 // root node) and bakes each mesh instance into world space: appends to
 // Scene::positions, normals, uvs, triangles and triangleMaterial, and to Scene::cameras and

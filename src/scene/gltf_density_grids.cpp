@@ -20,17 +20,13 @@ glm::dmat4 nodeToWorld(const tinygltf::Model& model, int index, const std::strin
         diagnostics.fail(field, "node " + std::to_string(index) + " out of range (" +
                                     std::to_string(model.nodes.size()) + " nodes)");
     }
-    std::vector<int> parent(model.nodes.size(), -1);
-    std::vector<int> parents(model.nodes.size(), 0);
     // A root of the rendered scene is placed there as well as under any parent it has.
-    for (int root : rootNodes(model, diagnostics).first) {
-        if (root >= 0 && size_t(root) < model.nodes.size()) ++parents[size_t(root)];
-    }
+    const std::vector<uint32_t> places = placesOfNodes(model, rootNodes(model, diagnostics).first);
+    std::vector<int> parent(model.nodes.size(), -1);
     for (size_t n = 0; n < model.nodes.size(); ++n) {
         for (int child : model.nodes[n].children) {
             if (child >= 0 && size_t(child) < model.nodes.size()) {
                 parent[size_t(child)] = int(n);
-                ++parents[size_t(child)];
             }
         }
     }
@@ -40,7 +36,7 @@ glm::dmat4 nodeToWorld(const tinygltf::Model& model, int index, const std::strin
         if (++depth > model.nodes.size()) {
             diagnostics.fail(field, "node " + std::to_string(index) + " is its own ancestor");
         }
-        if (parents[size_t(n)] > 1) {
+        if (places[size_t(n)] > 1) {
             diagnostics.fail(field, "node " + std::to_string(n) +
                                         " has several parents (a scene's root counts as one), so the grid would be "
                                         "placed more than once");

@@ -187,6 +187,10 @@ INSTANTIATE_TEST_SUITE_P(
                       GlowCase{"ScatteringSigmaA", kAbsorbing, kScattering, false, "media/glow/sigma_a"},
                       GlowCase{"GridEmission", kAbsorbing, kScattering, true, "media/glow/emission"},
                       GlowCase{"GridSigmaA", kAbsorbing, kScattering, true, "media/glow/sigma_a"},
+                      // So thin that its emission is gathered mostly from points along
+                      // each segment (medium_emission.glsl).
+                      GlowCase{"FaintGridSigmaA", 0.05f * kAbsorbing, 0.05f * kScattering, true,
+                               "media/glow/sigma_a"},
                       // Blue neither absorbs nor scatters: its emission gathers the length
                       // (homogeneous) or the density's integral (grid).
                       GlowCase{"UnattenuatedBlueEmission", kAbsorbingRedGreen, glm::vec3(0.0f), false,

@@ -3,6 +3,7 @@ interpreter (and the scene) usable; Ctrl-C interrupts a render; the device works
 Python's lock released."""
 import os
 import re
+import select
 import signal
 import subprocess
 import sys
@@ -436,3 +437,54 @@ def test_ctrl_c_interrupts_a_render(fog_scene_file):
     assert child.returncode == 0, err
     assert out.startswith("interrupted after"), out + err
     assert "still works: (8, 8, 3)" in out
+
+
+HANDLED = """
+import signal, sys, time, vkdiffrender
+scene = vkdiffrender.Scene(sys.argv[1])
+stops = []
+signal.signal(signal.SIGINT, lambda number, frame: stops.append(number))
+scene.render(spp=1, width=8)
+print("rendering", flush=True)
+image = scene.render(spp=256, width=64)
+print("finished", image.shape, "handler called", len(stops), flush=True)
+"""
+
+
+def test_ctrl_c_runs_a_handler_of_ones_own_after_the_render(fog_scene_file):
+    child = subprocess.Popen([sys.executable, "-c", HANDLED, str(fog_scene_file)], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=os.environ)
+    assert child.stdout.readline().strip() == "rendering"
+    time.sleep(0.5)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=300)
+    assert child.returncode == 0, err
+    assert out.strip() == "finished (64, 64, 3) handler called 1", out + err
+
+
+def test_a_scene_from_before_a_fork_is_an_error_in_the_child_not_a_hang(scene):
+    scene.render(spp=1, width=8)  # the device's threads are running
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(read)
+        try:
+            scene.render(spp=1, width=8)
+            message = "rendered"
+        except vkdiffrender.Error as error:
+            message = str(error)
+        except BaseException as error:  # anything else is a failure the parent reports
+            message = repr(error)
+        os.write(write, message.encode())
+        os._exit(0)
+    os.close(write)
+    try:
+        ready, _, _ = select.select([read], [], [], 120)
+        message = os.read(read, 4096).decode() if ready else "no answer in 120 s"
+    finally:
+        os.close(read)
+        if not ready:
+            os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+    assert message.startswith("this Scene was made in another process, before a fork"), message
+    assert scene.render(spp=1, width=8).shape == (8, 8, 3)

@@ -18,7 +18,7 @@ torch = pytest.importorskip("torch")
 import vkdiffrender.torch as vt  # noqa: E402
 
 from sample_means import assert_agree, mean_and_standard_error
-from textured_scene import write_textured_fog_scene
+from textured_scene import write_shared_texture_scene, write_textured_fog_scene
 
 WIDTH, SPP, SEEDS = 32, 16, 16
 LUMINANCE = np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
@@ -148,6 +148,11 @@ def test_a_failing_forward_pass_leaves_the_scene_as_it_was(scene, parameters, se
     (lambda scene: vt.render(scene, {"media/fog/sigma_a": "0.3"}), "media/fog/sigma_a: expected a tensor or numbers"),
     (lambda scene: vt.render(scene, {"media/fog/sigma_a": torch.zeros(3, device="meta")}),
      "media/fog/sigma_a: a tensor on the meta device"),
+    # A bytes name would render, and its gradient would be lost under the str name.
+    (lambda scene: vt.render(scene, {b"media/fog/sigma_a": torch.tensor(0.3)}),
+     "parameters: a name must be a str, got bytes"),
+    (lambda scene: vt.render(scene, {"media/fog/sigma_a": torch.tensor([0.1, 0.2, 0.3]).to_sparse()}),
+     "media/fog/sigma_a: expected a dense tensor"),
 ])
 def test_arguments_of_the_wrong_kind_name_themselves(scene, call, message):
     before = scene["media/fog/sigma_a"].copy()
@@ -165,6 +170,22 @@ def test_a_gradient_beyond_a_half_precision_tensors_range_is_an_error_not_infini
     small = torch.tensor(0.05, dtype=torch.float16, requires_grad=True)
     vt.render(scene, {"media/fog/sigma_a": small}, spp=2, width=WIDTH).mean().backward()
     assert small.grad.dtype == torch.float16 and torch.isfinite(small.grad).all() and small.grad.item() != 0.0
+
+
+def test_a_float64_value_beyond_float_range_is_named_as_such(scene):
+    with pytest.raises(vkdiffrender.Error, match=r"media/fog/sigma_a: must be finite, got 1e\+300: beyond float range"):
+        vt.render(scene, {"media/fog/sigma_a": torch.tensor(1e300, dtype=torch.float64)}, width=WIDTH)
+
+
+def test_two_names_of_one_texture_are_refused(tmp_path):
+    shared = vkdiffrender.Scene(write_shared_texture_scene(tmp_path))
+    assert shared.parameter("materials/poster/base_color_texture").aliases == ("materials/poster2/base_color_texture",)
+    assert shared.parameter("materials/poster2/base_color_texture").aliases == ("materials/poster/base_color_texture",)
+    assert shared.parameter("media/fog/sigma_a").aliases == ()
+    with pytest.raises(ValueError, match="materials/poster/base_color_texture and "
+                                         "materials/poster2/base_color_texture name the same values"):
+        vt.render(shared, {"materials/poster/base_color_texture": torch.tensor(0.9),
+                           "materials/poster2/base_color_texture": torch.tensor(0.2)}, width=8)
 
 
 def test_complex_values_are_refused_not_cut_to_their_real_part(scene):

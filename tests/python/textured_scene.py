@@ -1,5 +1,6 @@
 """A copy of scenes/cornell_fog.gltf whose back wall carries a 4 x 4 base colour texture
-(material "poster"), for the tests of texel gradients."""
+(material "poster"), for the tests of texel gradients; and one whose left wall also
+carries it, with a material of its own ("poster2")."""
 import base64
 import json
 import struct
@@ -33,3 +34,19 @@ def write_textured_fog_scene(directory):
     path = directory / "textured_fog.gltf"
     path.write_text(json.dumps(gltf))
     return path
+
+
+def write_shared_texture_scene(directory):
+    path = write_textured_fog_scene(directory)
+    gltf = json.loads(path.read_text())
+    meshes = {mesh["name"]: mesh for mesh in gltf["meshes"]}
+    uvs = meshes["back_wall"]["primitives"][0]["attributes"]["TEXCOORD_0"]
+    left_wall = meshes["left_wall"]["primitives"][0]
+    assert gltf["accessors"][left_wall["attributes"]["POSITION"]]["count"] == 4
+    left_wall["attributes"]["TEXCOORD_0"] = uvs
+    left_wall["material"] = len(gltf["materials"])
+    gltf["materials"].append({"name": "poster2", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                                                                          "metallicFactor": 0.0}})
+    shared = directory / "shared_texture.gltf"
+    shared.write_text(json.dumps(gltf))
+    return shared

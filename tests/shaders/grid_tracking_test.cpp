@@ -120,6 +120,27 @@ TEST(GridTracking, RatioTrackingsRunningEstimatesAreUnbiasedAtEveryPoint) {
     }
 }
 
+// The majorant's integral along a ray (which weighs a grid's emission estimates) against
+// the midpoint rule over the cells, which errs by at most one step times the largest
+// majorant at each face the ray crosses, no more than the cells along the three axes.
+TEST(GridTracking, MajorantIntegralIsTheIntegralOverTheCellsTheRayCrosses) {
+    const HostDensityGrid grid = randomGrid(1.5f);
+    grid.bind();
+    const vec3 direction = normalize(kEnd - kOrigin);
+    for (float fraction : {0.4f, 1.0f, 3.0f}) {
+        const float length = fraction * glm::length(kEnd - kOrigin);
+        constexpr int kSteps = 20000;
+        const double step = double(length) / kSteps;
+        double sum = 0.0;
+        for (int i = 0; i < kSteps; ++i) sum += grid.majorant(dvec3(kOrigin) + (i + 0.5) * step * dvec3(direction));
+        const double largest = *std::max_element(grid.majorants.begin(), grid.majorants.end());
+        const ivec3 cells = ivec3(grid.grid.majorantCells);
+        const double integral = majorantIntegral(grid.grid, gridRay(grid.grid, kOrigin, direction), length);
+        EXPECT_NEAR(integral, sum * step, (cells.x + cells.y + cells.z) * step * largest) << "length " << length;
+        EXPECT_GE(integral, densityIntegral(grid, length)) << "length " << length;
+    }
+}
+
 TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
     const HostDensityGrid grid = randomGrid(1.5f);
     grid.bind();

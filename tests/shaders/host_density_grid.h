@@ -70,6 +70,14 @@ struct HostDensityGrid {
         return sum;
     }
 
+    // The majorant of the cell that holds world point p, 0 outside the cells.
+    double majorant(dvec3 p) const {
+        const ivec3 cell = ivec3(floor((p * double(voxelsPerUnit) - dvec3(ivec3(grid.majorantOrigin))) /
+                                       double(kMajorantCellVoxels)));
+        if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, ivec3(grid.majorantCells)))) return 0.0;
+        return majorants[size_t((cell.z * grid.majorantCells.y + cell.y) * grid.majorantCells.x + cell.x)];
+    }
+
     void bind() const {
         P.gridValues.v = voxels.data();
         P.gridMajorants.v = majorants.data();

@@ -56,8 +56,25 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
     settings = dict(spp=spp, seed=seed, width=width, height=height, max_depth=max_depth, camera=camera,
                     paths_per_pass=paths_per_pass, equiangular=equiangular)
     names = list(parameters)
+    for name in names:
+        if not isinstance(name, str):
+            raise TypeError(f"parameters: a name must be a str, got {type(name).__name__} ({name!r})")
     tensors = [_tensor_of(name, parameters[name]) for name in names]
+    _refuse_aliases(scene, names)
     return _Render.apply(scene, names, settings, *tensors)
+
+
+def _refuse_aliases(scene, names):
+    """Two names of the same values (a texture that materials share) would set them twice,
+    the second winning, and give each tensor the whole gradient."""
+    given = set(names)
+    for name in names:
+        if name not in scene:
+            continue  # the forward pass names it as unknown
+        for alias in scene.parameter(name).aliases:
+            if alias in given:
+                raise ValueError(f"parameters: {name} and {alias} name the same values (a texture both "
+                                 f"materials use); give one of them")
 
 
 def _tensor_of(name, value):
@@ -76,7 +93,17 @@ def _tensor_of(name, value):
         raise TypeError(f"{name}: expected real numbers, got a tensor of {tensor.dtype}")
     if tensor.device.type == "meta":
         raise TypeError(f"{name}: a tensor on the meta device holds no values")
+    if tensor.layout != torch.strided:
+        raise TypeError(f"{name}: expected a dense tensor, got one of layout {tensor.layout}; pass tensor.to_dense()")
     return tensor
+
+
+def _values_of(tensor):
+    """The tensor's values as numpy holds them for the scene: float64 as it is, so that a value
+    beyond float's range is named as such rather than as an infinity; every other dtype
+    (bfloat16, which numpy lacks, included) as float32."""
+    values = tensor.detach().to("cpu")
+    return (values if values.dtype == torch.float64 else values.to(torch.float32)).numpy()
 
 
 def _holds_tensor_requiring_grad(items):
@@ -93,7 +120,7 @@ class _Render(torch.autograd.Function):
             before = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
             try:
                 for name, tensor in zip(names, tensors):
-                    scene[name] = tensor.detach().to("cpu", torch.float32).numpy()
+                    scene[name] = _values_of(tensor)
                 image = scene.render(**settings)
             except BaseException:
                 for name, value in before.items():
