@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <utility>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -253,15 +255,14 @@ struct RenderKeywords {
     RenderKeywords { spp, seed, width, height, maxDepth, camera, pathsPerPass, equiangular }
 
 // The session's calls wait for another thread's render to finish: with Python's lock
-// released, so that other threads go on meanwhile.
+// released, so that other threads go on meanwhile, and as device work, so that Ctrl-C
+// stops that render and the wait.
 ParameterInfo parameterInfo(const SceneSession& session, const std::string& name) {
-    py::gil_scoped_release release;
-    return session.parameter(name);
+    return runOnDevice([&] { return session.parameter(name); });
 }
 
 std::vector<ParameterInfo> allParameters(const SceneSession& session) {
-    py::gil_scoped_release release;
-    return session.parameters();
+    return runOnDevice([&] { return session.parameters(); });
 }
 
 // Each parameter's gradient, shaped as the parameter, by name in the order asked for.
@@ -281,18 +282,15 @@ void setParameter(SceneSession& session, const std::string& name, const py::obje
                     shapeText(shapeOf(array)));
     }
     std::vector<float> values(array.data(), array.data() + array.size());
-    py::gil_scoped_release release;  // waits for another thread's render to finish
-    session.set(name, values);
+    runOnDevice([&] {
+        session.set(name, values);
+        return true;
+    });
 }
 
 py::array_t<float> getParameter(const SceneSession& session, const std::string& name) {
     const ParameterInfo info = parameterInfo(session, name);
-    std::vector<float> values;
-    {
-        py::gil_scoped_release release;
-        values = session.get(name);
-    }
-    return arrayOf(std::move(values), info.shape);
+    return arrayOf(runOnDevice([&] { return session.get(name); }), info.shape);
 }
 
 // A RuntimeWarning, as the command line warns, when paths of the call were cut short.
@@ -477,6 +475,27 @@ void bindFunctions(py::module_& m) {
 }
 
 }  // namespace
+// The message of an error from code the command line shares, with the command line's
+// options that it names spelled as the module's keywords (docs/python.md: `--camera`
+// stays, as the keyword is the option's name).
+std::string inPythonsTerms(std::string message) {
+    static const std::pair<const char*, const char*> kSpellings[] = {
+        {"--allow-outside-files is given", "allow_outside_files=True is given"},
+        {"--device ", "device "},
+        {"--paths-per-pass", "paths_per_pass"},
+        {"--width/--height", "width/height"},
+        {"--width and --height", "width and height"},
+        {"--spp ", "spp "},
+    };
+    for (const auto& [option, keyword] : kSpellings) {
+        for (size_t at = message.find(option); at != std::string::npos; at = message.find(option, at)) {
+            message.replace(at, std::strlen(option), keyword);
+            at += std::strlen(keyword);
+        }
+    }
+    return message;
+}
+
 }  // namespace vkdr
 
 PYBIND11_MODULE(_vkdiffrender, m) {
@@ -488,7 +507,7 @@ PYBIND11_MODULE(_vkdiffrender, m) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const Error& e) {
-            error(e.what());
+            error(inPythonsTerms(e.what()).c_str());
         } catch (const Interrupted& e) {
             PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
         }

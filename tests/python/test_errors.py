@@ -1,6 +1,7 @@
 """Bad input raises vkdiffrender.Error with the command line's message and leaves the
 interpreter (and the scene) usable; Ctrl-C interrupts a render; the device works with
 Python's lock released."""
+import json
 import os
 import re
 import select
@@ -281,11 +282,25 @@ def test_files_are_checked(scene, fog_scene_file, tmp_path):
         vkdiffrender.Scene(fog_scene_file, device="no such device")
 
 
+def test_a_file_outside_the_scenes_directory_is_refused_naming_the_keyword(tmp_path):
+    inner = tmp_path / "inner"
+    inner.mkdir()
+    path = write_textured_fog_scene(inner)
+    (inner / "poster.png").rename(tmp_path / "poster.png")
+    gltf = json.loads(path.read_text())
+    gltf["images"] = [{"uri": "../poster.png"}]
+    path.write_text(json.dumps(gltf))
+    with pytest.raises(vkdiffrender.Error) as raised:
+        vkdiffrender.Scene(path)
+    assert "unless allow_outside_files=True is given" in str(raised.value), str(raised.value)
+    assert vkdiffrender.Scene(path, allow_outside_files=True).parameter("materials/poster/base_color_texture")
+
+
 def test_a_device_is_an_index_or_part_of_a_name(fog_scene_file):
     name = vkdiffrender.devices()[0]
     assert vkdiffrender.Scene(fog_scene_file, device=0).device == name
     assert vkdiffrender.Scene(fog_scene_file, device=name[:4]).device == name
-    with pytest.raises(vkdiffrender.Error, match="no device has that index"):
+    with pytest.raises(vkdiffrender.Error, match=f"^device {len(vkdiffrender.devices())}: no device has that index"):
         vkdiffrender.Scene(fog_scene_file, device=len(vkdiffrender.devices()))
     for wrong in [1.0, True, None]:
         with pytest.raises(TypeError):
@@ -446,7 +461,7 @@ stops = []
 signal.signal(signal.SIGINT, lambda number, frame: stops.append(number))
 scene.render(spp=1, width=8)
 print("rendering", flush=True)
-image = scene.render(spp=256, width=64)
+image = scene.render(spp=64, width=64)
 print("finished", image.shape, "handler called", len(stops), flush=True)
 """
 
@@ -488,3 +503,44 @@ def test_a_scene_from_before_a_fork_is_an_error_in_the_child_not_a_hang(scene):
         os.waitpid(pid, 0)
     assert message.startswith("this Scene was made in another process, before a fork"), message
     assert scene.render(spp=1, width=8).shape == (8, 8, 3)
+
+
+WAITING = """
+import sys, threading, time, vkdiffrender
+scene = vkdiffrender.Scene(sys.argv[1])
+scene.render(spp=1, width=64)
+outcome = []
+
+def work():
+    try:
+        scene.render(spp=1 << 14, width=64)
+        outcome.append("finished")
+    except KeyboardInterrupt:
+        outcome.append("interrupted")
+
+worker = threading.Thread(target=work)
+worker.start()
+time.sleep(0.5)
+print("waiting", flush=True)
+start = time.monotonic()
+try:
+    scene["media/fog/g"] = 0.1
+    print("set after %.1f s" % (time.monotonic() - start), flush=True)
+except KeyboardInterrupt:
+    print("interrupted", flush=True)
+worker.join()
+print("worker", outcome[0], flush=True)
+"""
+
+
+def test_ctrl_c_stops_a_wait_for_another_threads_render(fog_scene_file):
+    """The main thread waiting to set a parameter while a thread renders: Ctrl-C stops the
+    render, as it stops device work under way in other threads, and the wait."""
+    child = subprocess.Popen([sys.executable, "-c", WAITING, str(fog_scene_file)], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=os.environ)
+    assert child.stdout.readline().strip() == "waiting"
+    time.sleep(0.5)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=120)
+    assert child.returncode == 0, err
+    assert out.split("\n")[:2] == ["interrupted", "worker interrupted"], out + err
