@@ -98,6 +98,13 @@ void writeParticipatingMedia(json& extension, const Medium& medium) {
 // the loader reads gives sigma_a back to float precision (or close, for channels far
 // thinner than the densest).
 void writeVolumeAttenuation(json& volume, glm::vec3 sigma_a) {
+    // A thicknessFactor of 0, glTF's default, makes the material thin-walled for other
+    // tools, which then apply no attenuation; vkdiffrender follows the mesh's own
+    // thickness and reads the attenuation whatever it says.
+    const auto thickness = volume.find("thicknessFactor");
+    if (thickness == volume.end() || !thickness->is_number() || !(thickness->get<double>() > 0.0)) {
+        volume["thicknessFactor"] = 1.0;
+    }
     float densest = largestChannel(sigma_a);
     if (densest == 0.0f) {
         volume.erase("attenuationDistance");  // absent = infinite: no absorption

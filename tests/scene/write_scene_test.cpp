@@ -145,7 +145,9 @@ TEST(WriteScene, KeepsTheKhronosSpellingForAnAbsorbingMedium) {
     json extensions =
         fittedKhrVolumeBox(directory, {{"media/ink/sigma_a", {0.3f, 0.0f, 4.0f}}})["materials"][0]["extensions"];
     EXPECT_FALSE(extensions.contains("VKDR_participating_media"));
-    EXPECT_TRUE(extensions.contains("KHR_materials_volume"));
+    ASSERT_TRUE(extensions.contains("KHR_materials_volume"));
+    // Without it (glTF's default 0) other tools would read a thin wall and no absorption.
+    EXPECT_EQ(extensions["KHR_materials_volume"].value("thicknessFactor", 0.0), 1.0);
 }
 
 TEST(WriteScene, SwitchesAKhronosMediumThatScattersToOurSpelling) {
