@@ -8,7 +8,6 @@
 #include "cli/experiment_backend.h"
 #include "cli/install_layout.h"
 #include "cli/number_options.h"
-#include "render/camera_setup.h"
 #include "image/output_paths.h"
 #include "optimize/density_grid_options.h"
 #include "cli/progress_bar.h"
@@ -100,14 +99,22 @@ void requireRunDirectory(const OptimizeCommandOptions& options) {
 }
 
 // The files a run writes into its directory (and --overwrite removes) must not be ones
-// it reads: `optimize scene.gltf --out .` would replace the user's scene.
+// it reads: `optimize scene.gltf --out .` would replace the user's scene. An input is
+// checked as named and as the file its symbolic links lead to, which the run's writes
+// would replace as well.
 void requireRunWritesNoInput(const std::filesystem::path& directory, bool experiment,
                              const std::vector<NamedOutput>& inputs) {
     for (const NamedOutput& input : inputs) {
-        const std::filesystem::path parent = input.path.parent_path().empty() ? "." : input.path.parent_path();
-        if (isRunFileName(input.path.filename().string(), experiment) && sameFile(parent, directory)) {
-            throw Error("--out " + directory.string() + ": the run writes " + input.path.filename().string() +
-                        " there, which is " + input.option + " " + input.path.string() + "; give another --out");
+        std::error_code unresolved;
+        const std::filesystem::path resolved = std::filesystem::weakly_canonical(input.path, unresolved);
+        for (const std::filesystem::path& path : {input.path, unresolved ? input.path : resolved}) {
+            const std::filesystem::path parent = path.parent_path().empty() ? "." : path.parent_path();
+            if (isRunFileName(path.filename().string(), experiment) && sameFile(parent, directory)) {
+                const std::string leadsTo = path == input.path ? "" : " (a link to " + path.string() + ")";
+                throw Error("--out " + directory.string() + ": the run writes " + path.filename().string() +
+                            " there, which is " + input.option + " " + input.path.string() + leadsTo +
+                            "; give another --out");
+            }
         }
     }
 }
@@ -316,8 +323,9 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     requireRunWritesNoInput(options.out, true, {{"the experiment's scene", experiment.scene}});
     applyOverrides(options, overrides, experiment);
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
+    // Not requireCamera: the experiment's own cameras may be the scene's only ones
+    // (prepareExperimentScene below adds them, and refuses views of a scene without one).
     LoadedScene loaded = loadScene(experiment.scene, options.scene.access);
-    requireCamera(loaded.scene, experiment.scene.string());
     for (const std::string& warning : loaded.warnings) printWarning(warning);
     requireRunWritesNoInput(options.out, true, filesTheSceneReads(loaded));
     Scene checked = loaded.scene;

@@ -124,6 +124,30 @@ TEST_F(CliTest, ASceneWithoutACameraSaysHowToGetOne) {
     expectCleanFailure("render " + noCamera.string(), "vkdiffrender Blender add-on");
 }
 
+// An experiment's cameras are added to its scene, which then needs none of its own.
+TEST_F(CliTest, AnExperimentMayBringTheOnlyCamera) {
+    nlohmann::json gltf = nlohmann::json::parse(slurp(scene("cornell_fog.gltf")));
+    gltf.erase("cameras");
+    for (nlohmann::json& node : gltf["nodes"]) node.erase("camera");
+    std::ofstream(dir_ / "no_camera.gltf") << gltf.dump();
+    nlohmann::json experiment = {
+        {"scene", "no_camera.gltf"}, {"width", 8}, {"height", 8}, {"spp", 1}, {"target_spp", 1}, {"max_depth", 2},
+        {"iterations", 1}, {"parameters", {"media/fog/sigma_a"}}, {"true", {{"media/fog/sigma_a", 0.05}}},
+        {"start", {{"media/fog/sigma_a", 0.2}}},
+        {"cameras", {{{"name", "front"}, {"position", {0, 1, 4}}, {"look_at", {0, 1, 0}}, {"yfov_degrees", 40}}}},
+        {"views", {"front"}}};
+    std::ofstream(dir_ / "experiment.json") << experiment.dump();
+    RunResult r = run("optimize --experiment " + (dir_ / "experiment.json").string() + " --out " +
+                      (dir_ / "run").string());
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    experiment.erase("cameras");
+    std::ofstream(dir_ / "experiment.json") << experiment.dump();
+    RunResult none = run("optimize --experiment " + (dir_ / "experiment.json").string() + " --out " +
+                         (dir_ / "other").string());
+    EXPECT_EQ(none.exitCode, 2);
+    EXPECT_NE(none.err.find("the scene has no camera; add one under \"cameras\""), std::string::npos) << none.err;
+}
+
 TEST_F(CliTest, UnknownParameterListsTheValidNames) {
     expectCleanFailure("render " + scene("cornell_fog.gltf") + " --set media/smog/sigma_a=1", "media/fog/sigma_a");
 }

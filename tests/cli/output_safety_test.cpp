@@ -86,7 +86,7 @@ TEST_F(OutputSafety, RefusesToReplaceAnythingButARegularFileBeforeAnyWork) {
     expectRefused(optimizeCommand(file) + " --out " + (file / "below").string(), "--out " + (file / "below").string());
     // A link to nothing: making the directory would fail only after the work.
     fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
-    for (const std::string& below : {"", "/", "/.", "/sub"}) {
+    for (const char* below : {"", "/", "/.", "/sub"}) {
         const std::string out = (dir_ / "dangling").string() + below;
         expectRefused(optimizeCommand(file) + " --out " + out,
                       "--out " + out + ": " + (dir_ / "dangling").string() + " is a symbolic link to nothing");
@@ -249,6 +249,23 @@ TEST_F(OutputSafety, ARunNeverWritesOverItsOwnInputs) {
     std::ofstream(out / "params.json") << "{}";
     expectRefused("optimize --experiment " + (out / "params.json").string() + " --overwrite --out " + out.string(),
                   "--experiment");
+    EXPECT_EQ(slurp(out / "params.json"), "{}");
+
+    // Named through symbolic links outside the directory: the writes would replace the
+    // files the links lead to (--overwrite removed the scene before it was read again).
+    fs::copy_file(fog(), out / "scene.gltf");
+    const std::string outScene = slurp(out / "scene.gltf");
+    fs::create_symlink(out / "scene.gltf", dir_ / "linked.gltf");
+    fs::create_symlink(out / "final.exr", dir_ / "linked.exr");
+    fs::create_symlink(out / "params.json", dir_ / "linked.json");
+    expectRefused("optimize " + (dir_ / "linked.gltf").string() + " --target " + target.string() +
+                      " --param media/fog/sigma_a --iters 1 --spp 1 --overwrite --out " + out.string(),
+                  "a link to");
+    expectRefused(optimizeCommand(dir_ / "linked.exr") + " --overwrite --out " + out.string(), "a link to");
+    expectRefused("optimize --experiment " + (dir_ / "linked.json").string() + " --overwrite --out " + out.string(),
+                  "a link to");
+    EXPECT_EQ(slurp(out / "scene.gltf"), outScene);
+    EXPECT_EQ(slurp(out / "final.exr"), pixels);
     EXPECT_EQ(slurp(out / "params.json"), "{}");
 }
 
