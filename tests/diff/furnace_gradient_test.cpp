@@ -1,6 +1,7 @@
 // In a furnace filled with conservative media (sigma_a = 0), the image is Le / (1 - rho)
 // whatever their sigma_s and g, so those gradients are zero: the adjoint's mean over
-// seeds must be within four standard errors of 0. sigma_a, which does change the image,
+// seeds must be within four standard errors of 0; likewise with media that emit what
+// they absorb, and there also along sigma_a with the emission following it. sigma_a, which does change the image,
 // must have a gradient many standard errors from 0, so the test sees real gradients.
 // Long free flights make single gradients heavy-tailed, so many cheap seeds (rather
 // than a few expensive ones) give a standard error that can be trusted.
@@ -47,6 +48,55 @@ TEST_F(FurnaceGradientTest, ScatteringAndAnisotropyDoNotChangeTheImage) {
                 EXPECT_NEAR(gradient.mean, 0.0, 4.0 * gradient.error)
                     << names[p] << "[" << c << "]: standard error " << gradient.error;
             }
+        }
+    }
+}
+
+// Media that emit what they absorb, emission = sigma_a L* with L* = Le / (1 - rho), keep
+// the furnace at L* whatever their sigma_s and g, and whatever sigma_a where the emission
+// follows it: dLoss/dsigma_a + L* dLoss/demission is 0 in each channel (a scene-wide fog,
+// and a box nested in it, the camera in both), as are the sigma_s and g gradients. The
+// combination's standard error comes from its value seed by seed, since the two
+// gradients share their paths; sigma_a alone, which darkens the image, must be many
+// standard errors from 0.
+TEST_F(FurnaceGradientTest, MediaInEquilibriumHaveNoGradientAlongIt) {
+    const glm::vec3 rho(0.5f);
+    const glm::vec3 radiance = kFurnaceLe / (1.0f - rho);
+    TestGltf g = furnace(rho);
+    const glm::vec3 fogSigmaA(0.3f, 0.6f, 1.2f), boxSigmaA(1.5f, 0.5f, 1.0f);
+    const glm::vec3 fogEmission = fogSigmaA * radiance, boxEmission = boxSigmaA * radiance;
+    g.extensions["VKDR_participating_media"] = {{"name", "fog"},
+                                                {"sigma_a", {fogSigmaA.x, fogSigmaA.y, fogSigmaA.z}},
+                                                {"sigma_s", {0.5, 1.0, 0.2}},
+                                                {"g", 0.4},
+                                                {"emission", {fogEmission.x, fogEmission.y, fogEmission.z}}};
+    nlohmann::json nested = vkdrMediumMaterial("box", boxSigmaA, glm::vec3(1.0f, 2.0f, 0.5f), -0.3f);
+    nested["extensions"]["VKDR_participating_media"]["emission"] = {boxEmission.x, boxEmission.y, boxEmission.z};
+    g.materials.push_back(nested);
+    g.meshes.push_back(box(glm::vec3(-0.6f), glm::vec3(0.6f), 1));
+    Scene scene = loadScene(g.write(tempDir(), "equilibrium")).scene;
+    Image black{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.0f)};
+    const std::vector<std::string> names = {"media/fog/sigma_a", "media/fog/emission", "media/box/sigma_a",
+                                            "media/box/emission", "media/fog/sigma_s", "media/box/g"};
+    RenderedLossGradient lg(testContext(), scene, {{"", black}}, names, {.spp = 8, .maxDepth = 400}, LossKind::L2);
+    const auto samples = gradientSamplesOverSeeds(lg, scene, kSeeds);
+    for (size_t medium : {0u, 2u}) {
+        for (size_t c = 0; c < 3; ++c) {
+            std::vector<double> along;
+            for (size_t s = 0; s < kSeeds; ++s) {
+                along.push_back(samples[medium][c][s] + double(radiance[int(c)]) * samples[medium + 1][c][s]);
+            }
+            const MeanAndError combined = meanAndError(along);
+            const MeanAndError sigmaA = meanAndError(samples[medium][c]);
+            EXPECT_NEAR(combined.mean, 0.0, 4.0 * combined.error) << names[medium] << "[" << c << "]";
+            EXPECT_LT(sigmaA.mean, -10.0 * sigmaA.error) << names[medium] << "[" << c << "]";
+        }
+    }
+    for (size_t p = 4; p < names.size(); ++p) {
+        for (size_t c = 0; c < samples[p].size(); ++c) {
+            const MeanAndError gradient = meanAndError(samples[p][c]);
+            ASSERT_GT(gradient.error, 0.0) << names[p] << "[" << c << "]";
+            EXPECT_NEAR(gradient.mean, 0.0, 4.0 * gradient.error) << names[p] << "[" << c << "]";
         }
     }
 }
