@@ -1,6 +1,8 @@
 #include "single_scattering_quadrature.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace vkdr::test {
 namespace {
@@ -47,9 +49,20 @@ double densityIntegral(const FogSetup& fog, glm::dvec3 origin, glm::dvec3 direct
 
 TestGltf FogSetup::scene() const {
     TestGltf gltf;
-    gltf.materials = {emissiveMaterial("lamp", glm::vec3(le), false)};
-    TestMesh lamp;
     float x = float(lightX), z = float(lightZ), h = float(lightHalf);
+    if (pointIntensity) {
+        // A point light's colour is at most 1, its intensity the rest.
+        const double strongest = std::max(std::max(pointIntensity->x, pointIntensity->y), pointIntensity->z);
+        const glm::dvec3 colour = *pointIntensity / strongest;
+        gltf.lights = {{{"name", "bulb"},
+                        {"type", "point"},
+                        {"color", {colour.x, colour.y, colour.z}},
+                        {"intensity", strongest}}};
+        gltf.lightNodes = {{0, glm::vec3(x, 0.0f, z)}};
+    }
+    // Black where the point light takes its place, so that the scene keeps its geometry.
+    gltf.materials = {emissiveMaterial("lamp", pointIntensity ? glm::vec3(0.0f) : glm::vec3(le), false)};
+    TestMesh lamp;
     lamp.positions = {{x, -h, z - h}, {x, h, z - h}, {x, h, z + h}, {x, -h, z + h}};
     lamp.triangles = {{0, 2, 1}, {0, 3, 2}};  // facing -x
     gltf.meshes = {lamp};
@@ -83,6 +96,23 @@ SingleScattering singleScattering(const FogSetup& fog) {
     constexpr double kRayEnd = 80.0;
     const double tanHalf = std::tan(0.5 * fog.yfov);
     const double cell = 2.0 * fog.lightHalf / kLightSteps;
+    // Where light arrives from, and its radiant intensity towards -x times the cell's area
+    // (its cosine is applied per point below), or a point light's intensity.
+    struct LightPoint {
+        glm::dvec3 position;
+        glm::dvec3 intensity;
+        bool square;
+    };
+    std::vector<LightPoint> lightPoints;
+    if (fog.pointIntensity) {
+        lightPoints.push_back({glm::dvec3(fog.lightX, 0.0, fog.lightZ), *fog.pointIntensity, false});
+    } else {
+        for (int j = 0; j < kLightSteps * kLightSteps; ++j) {
+            lightPoints.push_back({glm::dvec3(fog.lightX, -fog.lightHalf + (j % kLightSteps + 0.5) * cell,
+                                              fog.lightZ - fog.lightHalf + (j / kLightSteps + 0.5) * cell),
+                                   fog.le * cell * cell, true});
+        }
+    }
     SingleScattering out;
     for (int p = 0; p < kPixelSteps * kPixelSteps; ++p) {
         double ndcX = ((p % kPixelSteps) + 0.5) / kPixelSteps * 2.0 - 1.0;
@@ -98,10 +128,8 @@ SingleScattering singleScattering(const FogSetup& fog) {
             double cameraPath = densityIntegral(fog, glm::dvec3(0.0), direction, t);
             double density = fog.densityAt(x);
             glm::dvec3 albedo = fog.albedoAt(x);
-            for (int j = 0; j < kLightSteps * kLightSteps; ++j) {
-                glm::dvec3 y(fog.lightX, -fog.lightHalf + (j % kLightSteps + 0.5) * cell,
-                             fog.lightZ - fog.lightHalf + (j / kLightSteps + 0.5) * cell);
-                glm::dvec3 toLight = y - x;
+            for (const LightPoint& light : lightPoints) {
+                glm::dvec3 toLight = light.position - x;
                 double r = glm::length(toLight);
                 double mu = glm::dot(direction, toLight / r);
                 // The density's integral along the ray and towards the light: sigma_t times
@@ -109,8 +137,9 @@ SingleScattering singleScattering(const FogSetup& fog) {
                 double d = cameraPath + densityIntegral(fog, x, toLight / r, r);
                 // Everything but sigma_s: attenuation over the ray and the light path, and
                 // the density where the light scatters.
+                const double cosine = light.square ? toLight.x / r : 1.0;
                 glm::dvec3 base =
-                    fog.le * glm::exp(-sigmaT * d) * (density * hg(mu, fog.g) * (toLight.x / r) / (r * r));
+                    light.intensity * glm::exp(-sigmaT * d) * (density * hg(mu, fog.g) * cosine / (r * r));
                 glm::dvec3 f = fog.sigmaS * albedo * base;
                 out.radiance += f;
                 out.dSigmaA += -d * f;
@@ -119,7 +148,7 @@ SingleScattering singleScattering(const FogSetup& fog) {
             }
         }
     }
-    double weight = (kRayEnd / kRaySteps) * cell * cell / double(kPixelSteps * kPixelSteps);
+    double weight = (kRayEnd / kRaySteps) / double(kPixelSteps * kPixelSteps);
     out.radiance *= weight;
     out.dSigmaA *= weight;
     out.dSigmaS *= weight;

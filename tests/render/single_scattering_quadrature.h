@@ -1,7 +1,7 @@
 #pragma once
 // Single scattering of a camera ray through a medium, lit by a small one-sided square
-// emitter beside the ray: the reference for the single-scattering render tests and for
-// the analytic gradient tests. The medium fills all space (a scene-wide fog) or an
+// emitter beside the ray, or by a point light: the reference for the single-scattering
+// render tests and for the analytic gradient tests. The medium fills all space (a scene-wide fog) or an
 // axis-aligned box (an enclosed medium, vacuum outside); an enclosed one may have a
 // density that varies linearly along z, given to the renderer as a density grid.
 #include <optional>
@@ -25,6 +25,8 @@ struct FogSetup {
     double yfov = 0.01;  // one pixel, looking along +z from the origin
     // The emitter: a square in the plane x = lightX around (lightX, 0, lightZ), facing -x.
     double lightX = 1.5, lightZ = 2.0, lightHalf = 0.25;
+    // Set: a point light of this radiant intensity at (lightX, 0, lightZ) in its place.
+    std::optional<glm::dvec3> pointIntensity;
     struct Box {
         glm::dvec3 lo, hi;
     };

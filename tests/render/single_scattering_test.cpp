@@ -26,6 +26,23 @@ TEST_P(SingleScatteringTest, MatchesQuadrature) {
 
 INSTANTIATE_TEST_SUITE_P(Anisotropies, SingleScatteringTest, ::testing::Values(-0.6, 0.0, 0.5));
 
+// A point light beside the ray: a delta light, which next-event estimation alone reaches
+// (equiangular sampling places collisions near it), in a chromatic fog with g = 0.5,
+// with and without equiangular sampling.
+TEST_F(RenderTest, SingleScatteringFromAPointLightMatchesQuadrature) {
+    FogSetup fog;
+    fog.g = 0.5;
+    fog.lightX = 0.6;
+    fog.pointIntensity = glm::dvec3(2.0, 1.0, 0.5);
+    auto file = fog.scene().write(tempDir(), "point");
+    const glm::dvec3 expected = singleScattering(fog).radiance;
+    for (bool equiangular : {true, false}) {
+        SCOPED_TRACE(equiangular ? "with equiangular sampling" : "distance sampling only");
+        expectPixelNear(pixelOverSeeds(file, {.spp = 4096, .maxDepth = 1, .equiangularSampling = equiangular}, 16),
+                        expected);
+    }
+}
+
 // An emitter 0.1 from the camera ray: distance sampling alone finds the collisions close
 // to it rarely and weights them by 1 / r^2 (fireflies); equiangular sampling places them
 // there. Both estimators match quadrature, with and without equiangular sampling, and
