@@ -14,6 +14,11 @@ namespace vkdr {
 LogSpace::LogSpace(const ParameterVector& parameters, const std::vector<std::string>& logParameters)
     : logValue_(parameters.size(), false) {
     const std::vector<std::string>& names = parameters.names();
+    for (auto name = logParameters.begin(); name != logParameters.end(); ++name) {
+        if (std::find(logParameters.begin(), name, *name) != name) {
+            throw Error("'" + *name + "' is given twice to be optimised in log space");
+        }
+    }
     for (const std::string& name : logParameters) {
         auto found = std::find(names.begin(), names.end(), name);
         if (found == names.end()) {

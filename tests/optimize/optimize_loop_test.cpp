@@ -294,12 +294,12 @@ TEST(OptimizeLoop, LogSpaceValuesStayPositive) {
     expectValues(scene, "media/fog/sigma_a", {smallest, smallest, smallest}, 0.0f);
 }
 
-TEST(OptimizeLoop, RejectsLogSpaceForNegativeZeroOrMissingParameters) {
+TEST(OptimizeLoop, RejectsLogSpaceForNegativeZeroMissingOrRepeatedParameters) {
     Scene scene = sceneWithParameters();
     QuadraticLossGradient loss({{"media/fog/sigma_a", {0.1, 0.1, 0.1}}, {"media/fog/g", {0.0}}});
-    auto expectError = [&](const std::string& logParameter, const std::string& part) {
+    auto expectError = [&](const std::string& logParameter, const std::string& part, size_t times = 1) {
         OptimizeOptions options = optionsFor({"media/fog/sigma_a", "media/fog/g"}, OptimizerKind::Adam, 0.01, 1);
-        options.logParameters = {logParameter};
+        options.logParameters.assign(times, logParameter);
         try {
             optimize(loss, scene, options);
             ADD_FAILURE() << "no error for " << logParameter;
@@ -310,6 +310,7 @@ TEST(OptimizeLoop, RejectsLogSpaceForNegativeZeroOrMissingParameters) {
     };
     expectError("media/fog/g", "can be negative");
     expectError("media/fog/sigma_s", "not being optimised");
+    expectError("media/fog/sigma_a", "given twice", 2);  // as a repeated --param is refused
     setParameter(scene, "media/fog/sigma_a", std::vector<float>{0.1f, 0.0f, 0.1f});
     expectError("media/fog/sigma_a", "positive value");
 }
