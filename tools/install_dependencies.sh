@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # Installs what vkdiffrender needs to build, run and test on Debian 12 (the Python module's
 # pybind11, numpy, PyTorch and pytest among them; Blender for the add-on's tests against
-# Cycles; Chromium for the check of optimize's HTML report; clang with
-# its libFuzzer runtime for tools/fuzz.sh) from Debian's packages, then the Khronos glTF
+# Cycles; clang with its libFuzzer runtime for tools/fuzz.sh) from Debian's packages, then the Khronos glTF
 # validator from npm into build/npm for the test that validates the shipped and
 # documented scenes. Run as root; does nothing that is already done.
 set -euo pipefail
@@ -17,7 +16,7 @@ packages=(
   libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev libboost-dev
   libgtest-dev
   pybind11-dev python3-dev python3-numpy python3-torch python3-pytest
-  blender chromium
+  blender
   clang libclang-rt-14-dev
 )
 # node and npm run the glTF validator; a node from elsewhere (NodeSource) carries its own npm.

@@ -144,6 +144,29 @@ void addEmissionPointsGradients(uint medium, GpuMedium m, vec3 origin, vec3 dire
     addSigmaTGradient(medium, dSigmaT);
 }
 
+// Gathers emission mix(closedForm, the points' estimate, pointsShare) per channel and, in
+// the adjoint, adds its gradients for the emission and the points' estimate's, the
+// latter's points from `gradientRandom`. Returns the contribution's adjoint times the
+// emission, with which a caller adds the closed form's other gradients; 0 where there are
+// none (a forward pass, or a medium that emits nothing, whose other gradients are 0).
+vec3 gatherEmissionBlend(uint slot, uint medium, GpuMedium m, vec3 origin, vec3 direction, vec3 beta, vec3 sigma_t,
+                         GpuDensityGrid strength, uint strengthKind, EmissionPoints e, vec3 pointsShare,
+                         vec3 closedForm, INOUT(TrackingRandom) gradientRandom) {
+    vec3 perUnit = mix(closedForm, emissionPointsSum(e), pointsShare);
+    gather(slot, beta * m.emission * perUnit);
+    if (!kAdjoint) {
+        return vec3(0.0f);
+    }
+    vec3 g = contributionAdjoint(beta);
+    addMediumEmissionGradient(medium, g * perUnit);
+    if (m.emission == vec3(0.0f)) {
+        return vec3(0.0f);
+    }
+    addEmissionPointsGradients(medium, m, origin, direction, sigma_t, strength, strengthKind, e,
+                               g * m.emission * pointsShare, gradientRandom);
+    return g * m.emission;
+}
+
 // In a density grid j = emission d follows the extinction, so the segment also has the
 // closed form emission (1 - T(s)) / sigma_t, with the walk's estimate of T(s) (docs/design.md,
 // "Emissive media"). It is nearly exact where the segment is optically thick, but where
@@ -153,9 +176,10 @@ void addEmissionPointsGradients(uint medium, GpuMedium m, vec3 origin, vec3 dire
 // segment (sigma_t M the channel's majorant optical depth; the walk samples
 // max(sigma_t) M tentative collisions on average), and the closed form with the rest. A
 // channel that attenuates little thus takes the points' estimate, whose running
-// transmittances stay near 1, even where another channel is thick. The weight is fixed by the scene and the ray, so the blend is unbiased; its
-// gradient blends the two estimates' gradients alike (the weight's own derivative
-// multiplies the difference of two unbiased estimates, 0 in expectation).
+// transmittances stay near 1, even where another channel is thick. The weight is fixed
+// by the scene and the ray, so the blend is unbiased; its gradient blends the two
+// estimates' gradients alike (the weight's own derivative multiplies the difference of
+// two unbiased estimates, 0 in expectation).
 void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
     GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
     vec3 origin = P.rayOrigin.v[slot].xyz;
@@ -173,26 +197,15 @@ void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
     for (int c = 0; c < 3; ++c) {
         closedForm[c] = sigma_t[c] > 0.0f ? (1.0f - transmittance[c]) / sigma_t[c] : 0.0f;
     }
-    vec3 perUnit = mix(closedForm, emissionPointsSum(e), pointsShare);
-    gather(slot, beta * m.emission * perUnit);
-    if (!kAdjoint) {
-        return;
-    }
-    vec3 g = contributionAdjoint(beta);
-    addMediumEmissionGradient(medium, g * perUnit);
-    // Where nothing is emitted the other gradients of the emission are 0.
-    if (m.emission == vec3(0.0f)) {
-        return;
-    }
     TrackingRandom gradientRandom = segmentTrackingRandom(info, kTrackingEmissionGradient);
-    addEmissionPointsGradients(medium, m, origin, direction, sigma_t, grid, kGradientKindDensity, e,
-                               g * m.emission * pointsShare, gradientRandom);
-    if (!gridGradientsWanted()) {
+    vec3 weight = gatherEmissionBlend(slot, medium, m, origin, direction, beta, sigma_t, grid, kGradientKindDensity, e,
+                                      pointsShare, closedForm, gradientRandom);
+    if (weight == vec3(0.0f) || !gridGradientsWanted()) {
         return;
     }
     // d/d sigma_t of (1 - T) / sigma_t is (D T - (1 - T) / sigma_t) / sigma_t, and d/dD is
     // T, so the voxels get T dD/d(voxel) from points of their own.
-    vec3 closedFormWeight = g * m.emission * (vec3(1.0f) - pointsShare);
+    vec3 closedFormWeight = weight * (vec3(1.0f) - pointsShare);
     float integral = densityIntegralAdjoint(grid, origin, direction, tHit, nextTrackingRandom(gradientRandom).x,
                                             -dot(closedFormWeight, transmittance));
     vec3 dSigmaT;
@@ -205,8 +218,8 @@ void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
 }
 
 // With an emission grid, j(t) = emission f(t) no longer follows the extinction, and the
-// points' estimate is the segment's whole gather; their transmittance is wanted only up
-// to the last point.
+// points' estimate is the segment's whole gather (a blend with no closed form); their
+// transmittance is wanted only up to the last point.
 void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
     GpuDensityGrid strength = P.densityGrids.v[m.emissionGrid];
     vec3 origin = P.rayOrigin.v[slot].xyz;
@@ -219,19 +232,9 @@ void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
     }
     vec3 sigma_t = sigmaT(m);
     trackToEmissionPoints(m, origin, direction, e.points.t[kEmissionPoints - 1u], sigma_t, random, e);
-    vec3 perUnit = emissionPointsSum(e);
-    gather(slot, beta * m.emission * perUnit);
-    if (!kAdjoint) {
-        return;
-    }
-    vec3 g = contributionAdjoint(beta);
-    addMediumEmissionGradient(medium, g * perUnit);
-    if (m.emission == vec3(0.0f)) {
-        return;
-    }
     TrackingRandom gradientRandom = segmentTrackingRandom(info, kTrackingEmissionGradient);
-    addEmissionPointsGradients(medium, m, origin, direction, sigma_t, strength, kGradientKindEmissionGrid, e,
-                               g * m.emission, gradientRandom);
+    gatherEmissionBlend(slot, medium, m, origin, direction, beta, sigma_t, strength, kGradientKindEmissionGrid, e,
+                        vec3(1.0f), vec3(0.0f), gradientRandom);
 }
 
 // Gathers the emission of `medium` along the segment [0, tHit) of the ray in `slot`

@@ -109,12 +109,18 @@ DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dm
     if (box.empty()) return dense;
     const glm::i64vec3 extent = glm::i64vec3(box.max().x(), box.max().y(), box.max().z()) -
                                 glm::i64vec3(box.min().x(), box.min().y(), box.min().z()) + int64_t(1);
-    const uint64_t count = uint64_t(extent.x) * uint64_t(extent.y) * uint64_t(extent.z);
-    if (count > kMaxDenseVoxels) {
-        throw Error(formatText("its active voxels span a box of %lld x %lld x %lld = %llu voxels, more than the "
-                               "%llu (2^31 - 1) a dense grid may hold",
-                               (long long)extent.x, (long long)extent.y, (long long)extent.z,
-                               (unsigned long long)count, (unsigned long long)kMaxDenseVoxels));
+    // An extent reaches 2^32, so the product may pass 2^64: it is checked factor by
+    // factor, each partial product below kMaxDenseVoxels times 2^32.
+    uint64_t count = 1;
+    for (int64_t side : {extent.x, extent.y, extent.z}) {
+        count *= uint64_t(side);
+        if (count > kMaxDenseVoxels) {
+            throw Error(formatText("its active voxels span a box of %lld x %lld x %lld = %.6g voxels, more than the "
+                                   "%llu (2^31 - 1) a dense grid may hold",
+                                   (long long)extent.x, (long long)extent.y, (long long)extent.z,
+                                   double(extent.x) * double(extent.y) * double(extent.z),
+                                   (unsigned long long)kMaxDenseVoxels));
+        }
     }
     dense.firstVoxel = glm::ivec3(box.min().x(), box.min().y(), box.min().z());
     dense.size = glm::ivec3(extent);
@@ -135,10 +141,11 @@ DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dm
         float converted[Values::channels];
         Values::convert(*value, cells.min(), converted);
         if (std::all_of(converted, converted + Values::channels, [](float v) { return v == 0.0f; })) continue;
-        for (int z = cells.min().z(); z <= cells.max().z(); ++z) {
-            for (int y = cells.min().y(); y <= cells.max().y(); ++y) {
+        // 64-bit counters: a tile may end at the largest int.
+        for (int64_t z = cells.min().z(); z <= cells.max().z(); ++z) {
+            for (int64_t y = cells.min().y(); y <= cells.max().y(); ++y) {
                 const size_t row = (size_t(z - first.z()) * sizeY + size_t(y - first.y())) * sizeX;
-                for (int x = cells.min().x(); x <= cells.max().x(); ++x) {
+                for (int64_t x = cells.min().x(); x <= cells.max().x(); ++x) {
                     const size_t voxel = row + size_t(x - first.x());
                     std::copy_n(converted, Values::channels,
                                 dense.values.begin() + ptrdiff_t(voxel * size_t(Values::channels)));

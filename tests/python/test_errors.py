@@ -442,15 +442,23 @@ print("still works:", scene.render(spp=1, width=8).shape, flush=True)
 """
 
 
-def test_ctrl_c_interrupts_a_render(fog_scene_file):
-    child = subprocess.Popen([sys.executable, "-c", CHILD, str(fog_scene_file)], stdout=subprocess.PIPE,
+def interrupted_child(script, fog_scene_file, ready, wait, timeout=120):
+    """Runs `script` with the scene's path in a Python of its own, sends it SIGINT `wait`
+    seconds after it prints the line `ready`, and returns the rest of its output once it
+    has exited with 0."""
+    child = subprocess.Popen([sys.executable, "-c", script, str(fog_scene_file)], stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True, env=os.environ)
-    assert child.stdout.readline().strip() == "rendering"
-    time.sleep(1.0)
+    assert child.stdout.readline().strip() == ready
+    time.sleep(wait)
     child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=120)
+    out, err = child.communicate(timeout=timeout)
     assert child.returncode == 0, err
-    assert out.startswith("interrupted after"), out + err
+    return out + err
+
+
+def test_ctrl_c_interrupts_a_render(fog_scene_file):
+    out = interrupted_child(CHILD, fog_scene_file, "rendering", 1.0)
+    assert out.startswith("interrupted after"), out
     assert "still works: (8, 8, 3)" in out
 
 
@@ -467,14 +475,8 @@ print("finished", image.shape, "handler called", len(stops), flush=True)
 
 
 def test_ctrl_c_runs_a_handler_of_ones_own_after_the_render(fog_scene_file):
-    child = subprocess.Popen([sys.executable, "-c", HANDLED, str(fog_scene_file)], stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True, env=os.environ)
-    assert child.stdout.readline().strip() == "rendering"
-    time.sleep(0.5)
-    child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=300)
-    assert child.returncode == 0, err
-    assert out.strip() == "finished (64, 64, 3) handler called 1", out + err
+    out = interrupted_child(HANDLED, fog_scene_file, "rendering", 0.5, timeout=300)
+    assert out.strip() == "finished (64, 64, 3) handler called 1", out
 
 
 def test_a_scene_from_before_a_fork_is_an_error_in_the_child_not_a_hang(scene):
@@ -536,11 +538,5 @@ print("worker", outcome[0], flush=True)
 def test_ctrl_c_stops_a_wait_for_another_threads_render(fog_scene_file):
     """The main thread waiting to set a parameter while a thread renders: Ctrl-C stops the
     render, as it stops device work under way in other threads, and the wait."""
-    child = subprocess.Popen([sys.executable, "-c", WAITING, str(fog_scene_file)], stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True, env=os.environ)
-    assert child.stdout.readline().strip() == "waiting"
-    time.sleep(0.5)
-    child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=120)
-    assert child.returncode == 0, err
-    assert out.split("\n")[:2] == ["interrupted", "worker interrupted"], out + err
+    out = interrupted_child(WAITING, fog_scene_file, "waiting", 0.5)
+    assert out.split("\n")[:2] == ["interrupted", "worker interrupted"], out

@@ -306,7 +306,12 @@ TEST(DensityGridErrors, BoxTooLargeToHoldDensely) {
     ScratchDirectory directory;
     openvdb::FloatGrid::Ptr vdb = gridWithVoxel({2000, 2000, 2000}, 1.0f);
     writeOpenVdbGrid(directory / "far.vdb", vdb);
-    expectReadError(directory / "far.vdb", "density", {"2001 x 2001 x 2001 = 8012006001 voxels", "2^31 - 1"});
+    expectReadError(directory / "far.vdb", "density", {"2001 x 2001 x 2001 = 8.01201e+09 voxels", "2^31 - 1"});
+    // A box of 2^22 x 2^21 x 2^21 voxels, 2^64 in all, whose count wraps to 0 in 64 bits.
+    openvdb::FloatGrid::Ptr wide = gridWithVoxel({-(1 << 21), -(1 << 20), -(1 << 20)}, 1.0f);
+    wide->tree().setValueOn(openvdb::Coord((1 << 21) - 1, (1 << 20) - 1, (1 << 20) - 1), 1.0f);
+    writeOpenVdbGrid(directory / "wide.vdb", wide);
+    expectReadError(directory / "wide.vdb", "density", {"4194304 x 2097152 x 2097152 = 1.84467e+19 voxels"});
 }
 
 // The process's address space, from /proc/self/status (VmSize), in bytes.
