@@ -474,7 +474,6 @@ void bindFunctions(py::module_& m) {
         "The Vulkan devices a Scene can be loaded on, in index order: pass an index or part of a name as device=.");
 }
 
-}  // namespace
 // The message of an error from code the command line shares, with the command line's
 // options that it names spelled as the module's keywords (docs/python.md: `--camera`
 // stays, as the keyword is the option's name).
@@ -495,6 +494,8 @@ std::string inPythonsTerms(std::string message) {
     }
     return message;
 }
+
+}  // namespace
 
 }  // namespace vkdr
 
