@@ -4,9 +4,9 @@
 // sigma_t d(x). A segment through it gathers, whatever the free flight that ends it
 // samples, int_0^s T(t) j(t) dt, which is emission (1 - T(s)) / sigma_t exactly, since
 // dT/dt = -sigma_t d(t) T(t) (emission D(s), D the density's integral, where sigma_t is
-// 0): exact for a homogeneous medium; in a density grid, a blend of that with ratio
-// tracking's unbiased estimate of T(s) and of an estimate from points along the segment
-// (gatherGridEmission). The adjoint pass adds the gradients of this contribution to the
+// 0): exact for a homogeneous medium; in a density grid, a blend, channel by channel, of
+// that closed form (with ratio tracking's unbiased estimate of T(s)) and an estimate from
+// points along the segment (gatherGridEmission). The adjoint pass adds the gradients of this contribution to the
 // medium's emission, sigma and voxels.
 #ifndef VKDR_MEDIUM_EMISSION_GLSL
 #define VKDR_MEDIUM_EMISSION_GLSL
