@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `cmake --install` into a temporary prefix, then the installed tree is used the way a
-# user would: the binary's version, a render of an installed scene, the help text naming
+# user would: the binary's version, the scene and plume generators, a render of an
+# installed scene, the help text naming
 # the installed guide, the Python module imported from the installed dist-packages, and
 # the Blender add-on zip holding the add-on's Python files.
 # Usage: install_test.sh BUILD_DIR VERSION SOURCE_DIR PYTHON_BUILT(ON|OFF)
@@ -28,6 +29,11 @@ scenes=$prefix/share/vkdiffrender/scenes
 for scene in cornell_box.gltf cornell_fog.gltf cornell_smoke.gltf experiments/cornell_absorption.json; do
   [ -f "$scenes/$scene" ] || fail "$scene is not installed in $scenes"
 done
+# The generators of benchmark rooms and smoke plumes run from the prefix.
+"$prefix/bin/vkdr-make-scene" --triangles 200 -o "$prefix/room.glb" > /dev/null || fail "vkdr-make-scene"
+[ -s "$prefix/room.glb" ] || fail "vkdr-make-scene wrote no room.glb"
+"$prefix/bin/vkdr-make-plume" --resolution 8 --seed 1 "$prefix/plume.vdb" > /dev/null || fail "vkdr-make-plume"
+[ -s "$prefix/plume.vdb" ] || fail "vkdr-make-plume wrote no plume.vdb"
 # Rendered from the installed scenes, in a directory away from the source and build trees.
 (cd "$prefix" && "$binary" render "$scenes/cornell_fog.gltf" --width 8 --height 6 --spp 1 --max-depth 2 \
   -o "$prefix/fog.exr" --png "$prefix/fog.png" > /dev/null 2>&1) || fail "render of the installed cornell_fog.gltf"
