@@ -42,6 +42,25 @@ void scatterByAlbedoGrid(uint slot, GpuMedium m, vec3 position, inout vec3 beta)
     beta *= albedo;
 }
 
+// A real collision in a grid weighs density / chance (trackFreeFlight's defensive
+// acceptance; 1 otherwise). Where the density is 0 the primal path ends there, and the
+// adjoint pass goes on in derivative mode for the voxels around the point: the
+// derivative of the collision's factor with respect to the density there is 1 / chance.
+vec3 weighGridCollision(uint slot, uint gridIndex, vec3 index, GridFreeFlight flight, vec3 beta) {
+    if (flight.density == flight.chance) {
+        return beta;
+    }
+    vec3 after = beta * (flight.density / flight.chance);
+    if (kAdjoint && flight.density == 0.0f) {
+        uvec3 before = adjoint.targets;
+        after = enterDerivativeMode(after, vec3(0.0f), beta / flight.chance, kTargetDensityPoint, gridIndex);
+        if (adjoint.targets != before) {
+            P.densityTargetPoint.v[slot] = vec4(index, 0.0f);
+        }
+    }
+    return after;
+}
+
 // Free flight through a density grid medium along [0, tHit) (grid_tracking.glsl): the
 // medium vertex of a real collision, a pause where tracking reached its step bound, or
 // the surface. A medium that scatters nowhere is passed with its ratio-tracked
@@ -68,10 +87,15 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
     } else {
         vec4 u = segmentRandom(info, kDimFreeFlight);
         int hero = min(int(u.x * 3.0f), 2);
-        flight = trackFreeFlight(grid, origin, direction, tHit, sigma_t[hero], u.yz, random);
-        beta *= heroMisWeight(sigma_t, flight.tentative, flight.majorantIntegral);
+        float defensiveDensity = P.defensiveGridCollisions != 0u
+                                     ? kDefensiveCollisionsPerCrossing * grid.tracking.x / maxComponent(sigma_t)
+                                     : 0.0f;
+        flight = trackFreeFlight(grid, origin, direction, tHit, sigma_t[hero], u.yz, defensiveDensity, random);
+        beta *= heroMisWeight(sigma_t, flight.tentative, flight.majorantIntegral) * flight.nullWeight;
         if (flight.collided) {
             beta *= scatteringAlbedo(m.sigma_s, sigma_t);
+            GridRay ray = gridRay(grid, origin, direction);
+            beta = weighGridCollision(slot, m.densityGrid, ray.origin + flight.t * ray.direction, flight, beta);
             scatterByAlbedoGrid(slot, m, origin + flight.t * direction, beta);
         }
     }
@@ -85,7 +109,7 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
         vec3 dLogScattering = flight.collided ? logDerivativeOfLinear(m.sigma_s) : vec3(0.0f);
         addSigmaTGradient(medium, -integral * weight);
         addSigmaSGradient(medium, dLogScattering * weight);
-        if (flight.collided) {
+        if (flight.collided && flight.density > 0.0f) {
             GridRay ray = gridRay(grid, origin, direction);
             addTrilinearDensityGradient(grid, ray.origin + flight.t * ray.direction,
                                         (weight.x + weight.y + weight.z) / flight.density);

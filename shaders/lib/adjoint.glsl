@@ -14,6 +14,7 @@
 #define VKDR_ADJOINT_GLSL
 #include "compensated_sum.glsl"
 #include "fixed_point_sums.glsl"
+#include "grid_tracking.glsl"
 #include "scene_access.glsl"
 
 // Factors whose gradient waits for the next segment (derivative-mode targets are in
@@ -106,6 +107,33 @@ void addGradient(Int64Buffer gradients, uint copyStride, uint first, vec3 g, uin
 // A constant: the additions of the other kinds, and what only they read, are compiled out.
 bool gradientWanted(uint kind) {
     return (kGradientKinds & (1u << kind)) != 0u;
+}
+
+// Adds g times each of the point's trilinear weights (gridDensity's footprint) to the
+// gradient of its voxel, in any grid (a density, emission or albedo grid): channel c of
+// each voxel gets g[c] times the weight, for the grid's `channels` (1 or 3, a constant at
+// every call, so that the loop unrolls). Voxels outside the grid's box are not
+// parameters. The lanes of a subgroup seldom add to the same voxel, so each adds alone
+// (addFixedPointFromOneLane) into its subgroup's copy of the sums.
+void addTrilinearGradient(GpuDensityGrid grid, vec3 index, vec3 g, uint channels) {
+    vec3 base = floor(index);
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 offset = trilinearCorner(corner);
+        int voxel = gridVoxelOffset(grid, ivec3(base) + offset);
+        if (voxel >= 0) {
+            vec3 weighted = g * trilinearWeight(index - base, offset);
+            for (uint c = 0u; c < channels; ++c) {
+                addFixedPointFromOneLane(P.densityGradients,
+                                         subgroupCopyOfSum(P.densityGradientsCopyStride, uint(voxel) + c), weighted[c]);
+            }
+        }
+    }
+}
+
+void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
+    if (gradientWanted(kGradientKindDensity)) {
+        addTrilinearGradient(grid, index, vec3(g), 1u);
+    }
 }
 
 // The first of the sums a gradient with respect to sigma_t = sigma_a + sigma_s adds to.
@@ -270,8 +298,9 @@ void addAlbedoGradient(uint material, vec4 hit, vec3 g) {
 }
 
 // g = the gradient gathered by a path's derivative channels: channel c's part goes to
-// the parameter it follows, once for all the channels that follow the same one.
-void addTargetGradient(vec3 g) {
+// the parameter it follows, once for all the channels that follow the same one. A
+// density point's channels add to the voxels around the path's densityTargetPoint.
+void addTargetGradient(uint slot, vec3 g) {
     for (uint c = 0u; c < 3u; ++c) {
         uint target = adjoint.targets[c];
         bool followedByAnEarlierChannel = (c > 0u && adjoint.targets[0] == target) ||
@@ -282,6 +311,9 @@ void addTargetGradient(vec3 g) {
         vec3 part = g * vec3(equal(adjoint.targets, uvec3(target)));
         if ((target & 3u) == kTargetMediumScattering) {
             addSigmaSGradient(target >> 2u, part);
+        } else if ((target & 3u) == kTargetDensityPoint) {
+            addTrilinearDensityGradient(P.densityGrids.v[target >> 2u], P.densityTargetPoint.v[slot].xyz,
+                                        part.x + part.y + part.z);
         } else {
             addBaseColorGradient(target >> 2u, part);
         }
@@ -296,7 +328,7 @@ void gather(uint slot, vec3 c) {
     vec3 passed = c;
     if (kAdjoint) {
         passed = -c * normalMask(adjoint);
-        addTargetGradient(delta * c * derivativeMask(adjoint));
+        addTargetGradient(slot, delta * c * derivativeMask(adjoint));
     }
     CompensatedSum radiance = CompensatedSum(P.radiance.v[slot].rgb, P.radianceRounding.v[slot].rgb);
     radiance = addCompensated(radiance, passed);
@@ -320,8 +352,9 @@ vec3 logDerivativeOfLinear(vec3 f) {
 // derivative mode for (kind, index), carrying `derivative` (the factor's derivative,
 // times the throughput before it) instead of zero. Returns the new throughput.
 vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index) {
-    bool wanted = kind == kTargetMediumScattering
-                      ? gradientWanted(kGradientKindSigmaS)
+    bool wanted = kind == kTargetMediumScattering ? gradientWanted(kGradientKindSigmaS)
+                  : kind == kTargetDensityPoint
+                      ? gradientWanted(kGradientKindDensity)
                       : gradientWanted(kGradientKindBaseColor) || gradientWanted(kGradientKindBaseColorTexture);
     if (!wanted) {
         return betaAfter;  // no gradient of this kind is wanted: the path ends as in the primal pass

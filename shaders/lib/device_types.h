@@ -81,6 +81,7 @@ const uint kEveryGradientKind = 0x7ffu;
 const uint kTargetNone = 0u;
 const uint kTargetMediumScattering = 1u;  // sigma_s of a medium
 const uint kTargetBaseColor = 2u;         // base colour of a material (factor or texels)
+const uint kTargetDensityPoint = 3u;      // the density grid's voxels around one point (densityTargetPoint)
 
 // Where each parameter's gradient sits among its medium's kMediumGradientStride floats.
 const uint kMediumGradientSigmaA = 0u;  // rgb
@@ -144,7 +145,8 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(surfaceHit, Vec4Buffer)             /* the last surface vertex's hit: (-, b1, b2, triangle bits) */ \
     X(shadowScatterGradient, Vec4Buffer)  /* rgb dC/dalbedo (surface); w: d log phase / dg (medium) */ \
     X(shadowEmissionGradient, Vec4Buffer) /* rgb dC/demission; w: the emitter (uint bits, see kPunctualEmitter) */ \
-    X(shadowVertex, UVec4Buffer)          /* x: vertex kind, y: material or medium index, z: derivative channels */
+    X(shadowVertex, UVec4Buffer)          /* x: vertex kind, y: material or medium index, z: derivative channels */ \
+    X(densityTargetPoint, Vec4Buffer)     /* xyz: index coordinates of a kTargetDensityPoint's point */
 
 // The adjoint pass's gradient accumulators: X(name, SceneGradients field (host), sums
 // per item, copies, items (AdjointBuffers' count of them)). Each line declares the
@@ -249,6 +251,16 @@ const int kMajorantCellVoxels = 8;
 // (QueueCountersData.truncatedTracking) and the render refused.
 const uint kMaxFreeFlightSteps = 1024u;
 const uint kMaxTransmittanceSteps = 8192u;
+// Where a gradient pass differentiates the density, free flight also accepts tentative
+// collisions where the density is 0, so that a path can scatter there and find the
+// gradient of adding scattering (docs/density-grids.md, "Where the density is 0"): as if
+// the density there were c = kDefensiveCollisionsPerCrossing / (L max(sigma_t)), L the
+// diagonal of the box the density reaches (GpuDensityGrid.tracking.x holds 1 / L), so
+// that a ray crossing the grid meets about that many such collisions at most, and at
+// most kDefensiveCollisionShare of a cell's majorant. An empty cell is walked with the
+// majorant c / kDefensiveCollisionShare.
+const float kDefensiveCollisionsPerCrossing = 0.25f;
+const float kDefensiveCollisionShare = 0.25f;
 
 // A density grid as placed in the scene: its voxels (a dense box, x fastest) in
 // RenderParams.gridValues and its majorant cells in RenderParams.gridMajorants.
@@ -258,6 +270,8 @@ struct GpuDensityGrid {
     ivec4 size;                // xyz: voxels along each axis; w: offset of the first cell in gridMajorants
     ivec4 majorantOrigin;      // xyz: index coordinates of the lower corner of cell (0, 0, 0)
     ivec4 majorantCells;       // xyz: cells along each axis (0 for an albedo grid); w: values per voxel
+    vec4 tracking;             // x: 1 / the world length of the diagonal of the box the density
+                               // reaches (kDefensiveCollisionsPerCrossing); yzw: 0
 };
 
 struct GpuTexture {
@@ -376,6 +390,9 @@ struct RenderParams {
     uint imagePixels;                               // width * height
     uint sampleNonScatteringMedia;                  // 1: a gradient pass that wants sigma_s's gradient, which
                                                     // samples collisions in media that do not scatter
+    uint defensiveGridCollisions;                   // 1: a gradient pass that wants the density's gradient,
+                                                    // whose free flight scatters where the density is 0
+                                                    // (kDefensiveCollisionShare)
     uint secondStreamFrom;                          // > 0: samples from this index on draw their points
                                                     // from the next stream (rng.glsl), independent, as the
                                                     // halves of a split gradient estimate must

@@ -14,33 +14,6 @@ bool gridGradientsWanted() {
            gradientWanted(kGradientKindDensity);
 }
 
-// Adds g times each of the point's trilinear weights (gridDensity's footprint) to the
-// gradient of its voxel, in any grid (a density, emission or albedo grid): channel c of
-// each voxel gets g[c] times the weight, for the grid's `channels` (1 or 3, a constant at
-// every call, so that the loop unrolls). Voxels outside the grid's box are not
-// parameters. The lanes of a subgroup seldom add to the same voxel, so each adds alone
-// (addFixedPointFromOneLane) into its subgroup's copy of the sums.
-void addTrilinearGradient(GpuDensityGrid grid, vec3 index, vec3 g, uint channels) {
-    vec3 base = floor(index);
-    for (int corner = 0; corner < 8; ++corner) {
-        ivec3 offset = trilinearCorner(corner);
-        int voxel = gridVoxelOffset(grid, ivec3(base) + offset);
-        if (voxel >= 0) {
-            vec3 weighted = g * trilinearWeight(index - base, offset);
-            for (uint c = 0u; c < channels; ++c) {
-                addFixedPointFromOneLane(P.densityGradients,
-                                         subgroupCopyOfSum(P.densityGradientsCopyStride, uint(voxel) + c), weighted[c]);
-            }
-        }
-    }
-}
-
-void addTrilinearDensityGradient(GpuDensityGrid grid, vec3 index, float g) {
-    if (gradientWanted(kGradientKindDensity)) {
-        addTrilinearGradient(grid, index, vec3(g), 1u);
-    }
-}
-
 // An unbiased estimate of D over [0, tMax) of the ray from its kDensityIntegralPoints
 // points (offset by u in their strata). With `voxelWeight` != 0 it also adds
 // -voxelWeight dD/d(voxel) to every voxel's gradient: d log T_c / d(voxel) is

@@ -2,7 +2,8 @@
 // sigma_a and sigma_s times the trilinear density d(x) (docs/density-grids.md). Both
 // trackers sample tentative collisions against the majorant cells, walked with a DDA:
 // - free flight by delta tracking with the hero channel's rate sigma_t[hero] * m(x),
-//   accepting a tentative collision as real with probability d(x) / m(x);
+//   accepting a tentative collision as real with probability d(x) / m(x) (in a gradient
+//   pass that differentiates the density, defensively: defensiveChance);
 // - transmittance by ratio tracking at the rate max(sigma_t) * m(x).
 // Every channel's extinction is a multiple of the same density, so a tentative collision
 // is null with the same probability in every channel. The spectral MIS weight of a
@@ -176,23 +177,48 @@ struct GridFreeFlight {
     float t;                // the real collision, the pause, or tMax
     bool collided;          // a real collision at t
     float density;          // the density there
+    float chance;           // the density a real collision was accepted against there (defensiveChance)
     bool paused;            // the step bound was reached at t, short of a decision
     uint tentative;         // tentative collisions sampled, the real one included
     float majorantIntegral; // integral of the majorant density over [0, t]
+    float nullWeight;       // the null collisions' weights (1 unless defensive), the same in every channel
 };
+
+// The density against which a tentative collision at `density` under `majorant` is
+// accepted as real. Where the density is 0 a gradient pass that differentiates it
+// accepts some (device_types.h): as if the density were `defensiveDensity`, at most
+// kDefensiveCollisionShare of the majorant. Such a real collision weighs 0 (the primal
+// path ends, while the adjoint follows its derivative), a null one
+// majorant / (majorant - chance); both are the same in every channel, so the spectral
+// MIS weight is unchanged. Elsewhere, and in other passes, the chance is the density.
+float defensiveChance(float density, float majorant, float defensiveDensity) {
+    return density > 0.0f ? density : min(defensiveDensity, kDefensiveCollisionShare * majorant);
+}
+
+// Whether a lookup at index coordinates p blends any voxel of the grid's box: elsewhere
+// (in the majorant cells' rounding beyond it) no voxel is a parameter, and a defensive
+// collision would only end the path.
+bool blendsVoxelsOfTheBox(GpuDensityGrid grid, vec3 p) {
+    vec3 first = vec3(ivec3(grid.firstVoxel));
+    return all(greaterThanEqual(p, first - 1.0f)) && all(lessThan(p, first + vec3(ivec3(grid.size))));
+}
 
 // Delta tracking in the hero channel, whose extinction per unit density is `rate`.
 // `first` supplies the first distance (x) and acceptance (y) numbers; later ones come
-// from `random`.
+// from `random`. A `defensiveDensity` above 0 gives an empty cell the majorant
+// defensiveDensity / kDefensiveCollisionShare and accepts collisions by defensiveChance.
 GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction, float tMax, float rate, vec2 first,
-                               INOUT(TrackingRandom) random) {
+                               float defensiveDensity, INOUT(TrackingRandom) random) {
     GridFreeFlight flight;
     flight.t = tMax;
     flight.collided = false;
     flight.density = 0.0f;
+    flight.chance = 0.0f;
     flight.paused = false;
     flight.tentative = 0u;
     flight.majorantIntegral = 0.0f;
+    flight.nullWeight = 1.0f;
+    float emptyCellMajorant = defensiveDensity / kDefensiveCollisionShare;
     GridRay ray = gridRay(grid, origin, direction);
     MajorantWalk walk = startMajorantWalk(grid, ray, tMax);
     float tau = -log(1.0f - first.x);  // optical depth to the next tentative collision
@@ -205,18 +231,25 @@ GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction,
         }
         float exit = cellExit(walk);
         float majorant = gridMajorant(grid, walk.cell);
+        majorant = majorant > 0.0f ? majorant : emptyCellMajorant;
         float cellDepth = majorant * rate * (exit - walk.t);
         if (tau < cellDepth) {
             float dt = tau / (majorant * rate);
             flight.majorantIntegral += majorant * dt;
             walk.t += dt;
             ++flight.tentative;
-            float density = gridDensity(grid, ray.origin + walk.t * ray.direction);
-            if (accept * majorant < density) {
+            vec3 point = ray.origin + walk.t * ray.direction;
+            float density = gridDensity(grid, point);
+            float chance = defensiveChance(density, majorant, blendsVoxelsOfTheBox(grid, point) ? defensiveDensity : 0.0f);
+            if (accept * majorant < chance) {
                 flight.t = walk.t;
                 flight.collided = true;
                 flight.density = density;
+                flight.chance = chance;
                 return flight;
+            }
+            if (chance != density) {
+                flight.nullWeight *= (majorant - density) / (majorant - chance);
             }
             vec4 u = nextTrackingRandom(random);
             tau = -log(1.0f - u.x);

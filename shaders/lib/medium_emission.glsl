@@ -1,13 +1,13 @@
-// Emissive media (docs/design.md, "Emissive media"). A medium emits j(x) = emission d(x)
-// per unit length, d the density (1 in a homogeneous medium; an emission grid's strength
-// instead where it has one, gatherEmissionGrid), and attenuates with
-// sigma_t d(x). A segment through it gathers, whatever the free flight that ends it
-// samples, int_0^s T(t) j(t) dt, which is emission (1 - T(s)) / sigma_t exactly, since
-// dT/dt = -sigma_t d(t) T(t) (emission D(s), D the density's integral, where sigma_t is
-// 0): exact for a homogeneous medium; in a density grid, a blend, channel by channel, of
-// that closed form (with ratio tracking's unbiased estimate of T(s)) and an estimate from
-// points along the segment (gatherGridEmission). The adjoint pass adds the gradients of this contribution to the
-// medium's emission, sigma and voxels.
+// Emissive media (docs/design.md, "Emissive media"). A medium emits j(x) = emission
+// d(x) per unit length, d the density (1 in a homogeneous medium; an emission grid's
+// strength instead where it has one, gatherEmissionGrid), and attenuates with sigma_t
+// d(x). A segment through it gathers, whatever the free flight that ends it samples,
+// int_0^s T(t) j(t) dt, which is emission (1 - T(s)) / sigma_t exactly, since dT/dt =
+// -sigma_t d(t) T(t) (emission D(s), D the density's integral, where sigma_t is 0):
+// exact for a homogeneous medium; in a density grid, a blend, channel by channel, of
+// that closed form (with ratio tracking's unbiased estimate of T(s)) and an estimate
+// from points along the segment (gatherGridEmission). The adjoint pass adds the
+// gradients of this contribution to the medium's emission, sigma and voxels.
 #ifndef VKDR_MEDIUM_EMISSION_GLSL
 #define VKDR_MEDIUM_EMISSION_GLSL
 #include "adjoint.glsl"
@@ -79,6 +79,28 @@ EmissionPoints placeEmissionPoints(GpuDensityGrid strength, vec3 origin, vec3 di
         e.strength[k] = gridDensity(strength, emissionPoint(e, k));
     }
     return e;
+}
+
+// The segment of the ray in `slot` over [0, tHit), its emission points placed on
+// `strength`'s cells, and the streams its transmittance walk (random, after the points'
+// offset) and its gradients' points (gradientRandom) draw from.
+struct EmissionSegment {
+    vec3 origin;
+    vec3 direction;
+    TrackingRandom random;
+    TrackingRandom gradientRandom;
+    EmissionPoints e;
+};
+
+EmissionSegment startEmissionSegment(uint slot, GpuDensityGrid strength, float tHit) {
+    EmissionSegment s;
+    s.origin = P.rayOrigin.v[slot].xyz;
+    s.direction = P.rayDirection.v[slot].xyz;
+    PathInfo info = loadPathInfo(slot);
+    s.random = segmentTrackingRandom(info, kTrackingEmission);
+    s.gradientRandom = segmentTrackingRandom(info, kTrackingEmissionGradient);
+    s.e = placeEmissionPoints(strength, s.origin, s.direction, tHit, nextTrackingRandom(s.random).x);
+    return s;
 }
 
 // Gives the points T(t_k): exact in a homogeneous medium, and in a density grid the
@@ -182,31 +204,26 @@ vec3 gatherEmissionBlend(uint slot, uint medium, GpuMedium m, vec3 origin, vec3 
 // two unbiased estimates, 0 in expectation).
 void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
     GpuDensityGrid grid = P.densityGrids.v[m.densityGrid];
-    vec3 origin = P.rayOrigin.v[slot].xyz;
-    vec3 direction = P.rayDirection.v[slot].xyz;
-    PathInfo info = loadPathInfo(slot);
-    TrackingRandom random = segmentTrackingRandom(info, kTrackingEmission);
-    EmissionPoints e = placeEmissionPoints(grid, origin, direction, tHit, nextTrackingRandom(random).x);
-    if (e.points.count == 0u) {
+    EmissionSegment s = startEmissionSegment(slot, grid, tHit);
+    if (s.e.points.count == 0u) {
         return;  // the segment misses the grid's cells, which hold all of its density
     }
     vec3 sigma_t = sigmaT(m);
-    vec3 pointsShare = exp(-sigma_t * majorantIntegral(grid, e.ray, tHit));
-    vec3 transmittance = trackToEmissionPoints(m, origin, direction, tHit, sigma_t, random, e);
+    vec3 pointsShare = exp(-sigma_t * majorantIntegral(grid, s.e.ray, tHit));
+    vec3 transmittance = trackToEmissionPoints(m, s.origin, s.direction, tHit, sigma_t, s.random, s.e);
     vec3 closedForm;
     for (int c = 0; c < 3; ++c) {
         closedForm[c] = sigma_t[c] > 0.0f ? (1.0f - transmittance[c]) / sigma_t[c] : 0.0f;
     }
-    TrackingRandom gradientRandom = segmentTrackingRandom(info, kTrackingEmissionGradient);
-    vec3 weight = gatherEmissionBlend(slot, medium, m, origin, direction, beta, sigma_t, grid, kGradientKindDensity, e,
-                                      pointsShare, closedForm, gradientRandom);
+    vec3 weight = gatherEmissionBlend(slot, medium, m, s.origin, s.direction, beta, sigma_t, grid,
+                                      kGradientKindDensity, s.e, pointsShare, closedForm, s.gradientRandom);
     if (weight == vec3(0.0f) || !gridGradientsWanted()) {
         return;
     }
     // d/d sigma_t of (1 - T) / sigma_t is (D T - (1 - T) / sigma_t) / sigma_t, and d/dD is
     // T, so the voxels get T dD/d(voxel) from points of their own.
     vec3 closedFormWeight = weight * (vec3(1.0f) - pointsShare);
-    float integral = densityIntegralAdjoint(grid, origin, direction, tHit, nextTrackingRandom(gradientRandom).x,
+    float integral = densityIntegralAdjoint(grid, s.origin, s.direction, tHit, nextTrackingRandom(s.gradientRandom).x,
                                             -dot(closedFormWeight, transmittance));
     vec3 dSigmaT;
     for (int c = 0; c < 3; ++c) {
@@ -222,19 +239,14 @@ void gatherGridEmission(uint slot, uint medium, GpuMedium m, float tHit, vec3 be
 // transmittance is wanted only up to the last point.
 void gatherEmissionGrid(uint slot, uint medium, GpuMedium m, float tHit, vec3 beta) {
     GpuDensityGrid strength = P.densityGrids.v[m.emissionGrid];
-    vec3 origin = P.rayOrigin.v[slot].xyz;
-    vec3 direction = P.rayDirection.v[slot].xyz;
-    PathInfo info = loadPathInfo(slot);
-    TrackingRandom random = segmentTrackingRandom(info, kTrackingEmission);
-    EmissionPoints e = placeEmissionPoints(strength, origin, direction, tHit, nextTrackingRandom(random).x);
-    if (e.points.count == 0u) {
+    EmissionSegment s = startEmissionSegment(slot, strength, tHit);
+    if (s.e.points.count == 0u) {
         return;
     }
     vec3 sigma_t = sigmaT(m);
-    trackToEmissionPoints(m, origin, direction, e.points.t[kEmissionPoints - 1u], sigma_t, random, e);
-    TrackingRandom gradientRandom = segmentTrackingRandom(info, kTrackingEmissionGradient);
-    gatherEmissionBlend(slot, medium, m, origin, direction, beta, sigma_t, strength, kGradientKindEmissionGrid, e,
-                        vec3(1.0f), vec3(0.0f), gradientRandom);
+    trackToEmissionPoints(m, s.origin, s.direction, s.e.points.t[kEmissionPoints - 1u], sigma_t, s.random, s.e);
+    gatherEmissionBlend(slot, medium, m, s.origin, s.direction, beta, sigma_t, strength, kGradientKindEmissionGrid,
+                        s.e, vec3(1.0f), vec3(0.0f), s.gradientRandom);
 }
 
 // Gathers the emission of `medium` along the segment [0, tHit) of the ray in `slot`

@@ -15,8 +15,9 @@ static_assert(kWrapRepeat == uint32_t(TextureWrap::Repeat) && kWrapClampToEdge =
 static_assert(sizeof(GpuMedium) == 64);
 static_assert(offsetof(GpuMedium, g) == 12 && offsetof(GpuMedium, sigma_s) == 16);
 static_assert(offsetof(GpuMedium, densityGrid) == 28 && offsetof(GpuMedium, emission) == 32);
-static_assert(sizeof(GpuDensityGrid) == 112);
-static_assert(offsetof(GpuDensityGrid, firstVoxel) == 48 && offsetof(GpuDensityGrid, majorantCells) == 96);
+static_assert(sizeof(GpuDensityGrid) == 128);
+static_assert(offsetof(GpuDensityGrid, firstVoxel) == 48 && offsetof(GpuDensityGrid, majorantCells) == 96 &&
+              offsetof(GpuDensityGrid, tracking) == 112);
 static_assert(sizeof(GpuTexture) == 16);
 static_assert(sizeof(GpuPunctualLight) == 64);
 static_assert(offsetof(GpuPunctualLight, direction) == 16 && offsetof(GpuPunctualLight, intensity) == 32 &&

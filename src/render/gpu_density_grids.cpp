@@ -51,6 +51,10 @@ gpu::GpuDensityGrid deviceGrid(const SceneDensityGrid& placed, const MajorantGri
     grid.size = glm::ivec4(placed.grid.size, int32_t(firstMajorant));
     grid.majorantOrigin = glm::ivec4(majorants.origin, 0);
     grid.majorantCells = glm::ivec4(majorants.cells, placed.grid.channels);
+    // The trilinear density reaches one voxel beyond the box on every side.
+    const glm::dvec3 diagonal(placed.indexToWorld * glm::dvec4(glm::dvec3(placed.grid.size + 1), 0.0));
+    const double length = glm::length(diagonal);
+    grid.tracking = glm::vec4(length > 0.0 ? float(1.0 / length) : 0.0f, 0.0f, 0.0f, 0.0f);
     return grid;
 }
 

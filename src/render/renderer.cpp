@@ -208,6 +208,7 @@ void Renderer::uploadParams() {
         p.imagePixels = camera_.width * camera_.height;
         p.sampleNonScatteringMedia =
             inGradientPass_ && derivativeTargets_.wants(ParameterKind::SigmaS) ? 1u : 0u;
+        p.defensiveGridCollisions = inGradientPass_ && derivativeTargets_.wants(ParameterKind::Density) ? 1u : 0u;
     }
     overwriteBuffer(context_, params_, std::as_bytes(std::span(&p, 1)), "render params");
 }

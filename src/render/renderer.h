@@ -55,7 +55,8 @@ struct SceneGradients {
 // where that gradient is not wanted the path ends there, as in the primal pass. A wanted
 // gradient has the bits it has when every kind is wanted, unless the scene has a medium
 // that does not scatter, which a gradient pass samples only when sigma_s is wanted
-// (RenderParams.sampleNonScatteringMedia).
+// (RenderParams.sampleNonScatteringMedia), or a density grid, which a gradient pass
+// tracks defensively only when the density is wanted (RenderParams.defensiveGridCollisions).
 // Texel gradients take 216 bytes per texel of every texture, and density gradients 72
 // bytes per voxel of every grid: they are held only when wanted.
 struct DerivativeTargets {
@@ -211,8 +212,8 @@ private:
     // renderWithGradients() and loss() needs, or stratifies them together.
     enum class SampleHalves { Independent, Together };
     // Runs `pass`, a gradient pass (renderWithGradients, backpropagate, loss), with
-    // RenderParams.sampleNonScatteringMedia set as its derivative targets need and the
-    // sample halves as given; render() does neither, so an image does not depend on what
+    // RenderParams.sampleNonScatteringMedia and defensiveGridCollisions set as its
+    // derivative targets need and the sample halves as given; render() does neither, so an image does not depend on what
     // the renderer was set up for, and all its samples stratify together.
     template <typename Pass>
     auto asGradientPass(SampleHalves halves, Pass&& pass);

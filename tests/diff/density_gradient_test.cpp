@@ -2,14 +2,13 @@
 // numbers: a small grid in a box, lit from behind (where the transmittance's derivative
 // dominates), from the side (the scattering's) or by its own emission (following the
 // density, or an emission grid, whose voxels are tested too), and an albedo grid's voxels
-// lit from the side, at voxels inside
-// the medium, on its
-// face, and one of zero
-// density between denser ones. The loss is L1 against a target brighter than every
-// pixel, so it is linear in the image: the finite difference estimates the gradient of
-// the expected loss exactly as the adjoint does, and both are means over seeds whose
-// standard errors set the tolerance (5 combined standard errors per voxel). One voxel
-// denser than all the others holds the majorant fixed under the steps.
+// lit from the side, at voxels inside the medium, on its face, one of zero density
+// between denser ones, and voxels of zero density in a region of zeros. The loss is L1
+// against a target brighter than every pixel, so it is linear in the image: the finite
+// difference estimates the gradient of the expected loss exactly as the adjoint does,
+// and both are means over seeds whose standard errors set the tolerance (5 combined
+// standard errors per voxel). One voxel denser than all the others holds the majorant
+// fixed under the steps.
 #include <cmath>
 
 #include "diff/gradient_over_seeds.h"
@@ -29,12 +28,24 @@ constexpr int kSide = 8;
 constexpr int kVoxels = 6;
 constexpr uint32_t kSeeds = 32;
 
-DensityGrid smokeGrid() {
+size_t voxelIndex(glm::ivec3 v) {
+    return size_t(v.x + kVoxels * (v.y + kVoxels * v.z));
+}
+
+// With `emptyRegion`, the voxels around (1, 2, 3) are 0 as well: nothing scatters
+// anywhere near it unless a collision is sampled where the density is 0.
+DensityGrid smokeGrid(bool emptyRegion = false) {
     DensityGrid grid = gridOverMediumBox(kVoxels);
     for (int i = 0; i < kVoxels * kVoxels * kVoxels; ++i) {
         grid.values.push_back(0.4f + 1.6f * float((i * 37) % 11) / 10.0f);
     }
-    grid.values[size_t(1 + kVoxels * (2 + kVoxels * 3))] = 0.0f;
+    const glm::ivec3 centre(1, 2, 3);
+    const int reach = emptyRegion ? 1 : 0;
+    for (int z = centre.z - reach; z <= centre.z + reach; ++z) {
+        for (int y = centre.y - reach; y <= centre.y + reach; ++y) {
+            for (int x = centre.x - reach; x <= centre.x + reach; ++x) grid.values[voxelIndex({x, y, z})] = 0.0f;
+        }
+    }
     // The densest voxel sets the majorant, so that the steps of the voxels under test
     // leave it, and with it the tentative collisions of every path, unchanged.
     grid.values[size_t(4 + kVoxels * (1 + kVoxels * 1))] = 3.0f;
@@ -75,6 +86,7 @@ struct Lighting {
     const char* parameter = "media/smoke/density";
     bool flame = false;  // an emission grid (flameGrid) multiplies the emission instead of the density
     bool albedo = false;  // an albedo grid (albedoGrid) scales the scattering
+    bool emptyRegion = false;  // smokeGrid's empty region around (1, 2, 3)
 };
 
 void PrintTo(const Lighting& lighting, std::ostream* os) {
@@ -102,17 +114,13 @@ TestGltf smokeScene(const Lighting& lighting) {
     return g;
 }
 
-size_t voxelIndex(glm::ivec3 v) {
-    return size_t(v.x + kVoxels * (v.y + kVoxels * v.z));
-}
-
 class DensityGradientTest : public RenderTest, public ::testing::WithParamInterface<Lighting> {};
 
 TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
     const std::filesystem::path dir = tempDir();
     const Lighting& lighting = GetParam();
     const char* const kParameter = lighting.parameter;
-    writeDensityGridVdb(dir / "smoke.vdb", smokeGrid());
+    writeDensityGridVdb(dir / "smoke.vdb", smokeGrid(lighting.emptyRegion));
     writeDensityGridVdb(dir / "flame.vdb", flameGrid());
     writeDensityGridVdb(dir / "albedo.vdb", albedoGrid());
     Scene scene = loadScene(smokeScene(lighting).write(dir, "smoke")).scene;
@@ -126,7 +134,8 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
     const size_t channels = parseParameterName(kParameter)->description->channels;
     size_t tested = 0;
     for (glm::ivec3 voxel : {glm::ivec3(2, 2, 2), glm::ivec3(1, 2, 3), glm::ivec3(0, 3, 3), glm::ivec3(3, 1, 4)}) {
-        // (1, 2, 3) has zero density, and (2, 2, 2) zero strength in flameGrid.
+        // (1, 2, 3) has zero density (in an empty region, so do (2, 2, 2) and (0, 3, 3)), and
+        // (2, 2, 2) zero strength in flameGrid.
         const size_t index = voxelIndex(voxel) * channels + tested++ % channels;
         const double value = values[index];
         const double h = value > 0.0 ? 0.2 * value : 0.5;
@@ -154,6 +163,37 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
     }
 }
 
+// A gradient pass that differentiates the density tracks defensively (collisions where
+// the density is 0 end their paths, the others weigh more): its image must estimate the
+// same as a gradient pass that does not. The L1 loss against a bright target is linear in
+// the image; the two passes share their seeds, so their per-seed differences (mean 0)
+// set the tolerance, 5 standard errors.
+class DefensiveTrackingTest : public RenderTest {};
+
+TEST_F(DefensiveTrackingTest, LeavesTheImageUnbiased) {
+    const std::filesystem::path dir = tempDir();
+    // Half of the grid empty, so that many camera rays cross where the density is 0 towards
+    // the emitter behind.
+    DensityGrid grid = smokeGrid();
+    for (size_t i = 0; i < grid.values.size(); ++i) {
+        if (i % kVoxels < kVoxels / 2) grid.values[i] = 0.0f;
+    }
+    writeDensityGridVdb(dir / "smoke.vdb", grid);
+    Scene scene = loadScene(smokeScene(Lighting{"BackAndSideLit", 1.0f, 20.0f, 0.25f}).write(dir, "smoke")).scene;
+    Image bright{kSide, kSide, std::vector<float>(kSide * kSide * 3, 10.0f)};
+    const RenderSettings settings{.spp = 64, .maxDepth = 3};
+    RenderedLossGradient defensive(testContext(), scene, {{"", bright}}, {"media/smoke/density"}, settings,
+                                   LossKind::L1);
+    RenderedLossGradient plain(testContext(), scene, {{"", bright}}, {"media/smoke/sigma_a"}, settings, LossKind::L1);
+    std::vector<double> differences;
+    for (uint32_t seed = 0; seed < kSeeds; ++seed) {
+        differences.push_back(defensive.loss(scene, seed) - plain.loss(scene, seed));
+    }
+    const MeanAndError difference = meanAndError(differences);
+    EXPECT_NEAR(difference.mean, 0.0, 5.0 * difference.error) << difference.mean << " +- " << difference.error;
+    EXPECT_GT(difference.error, 0.0) << "the two passes rendered the same image: no defensive tracking";
+}
+
 INSTANTIATE_TEST_SUITE_P(Lightings, DensityGradientTest,
                          ::testing::Values(Lighting{"BackLit", 1.0f, 0.0f, 1.0f}, Lighting{"SideLit", 0.0f, 20.0f, 0.25f},
                                            Lighting{"Glowing", 0.0f, 0.0f, 0.5f, 2.0f},
@@ -168,7 +208,11 @@ INSTANTIATE_TEST_SUITE_P(Lightings, DensityGradientTest,
                                                     "media/smoke/emission_grid", true},
                                            // With an albedo grid: its voxels, where the scattering shows.
                                            Lighting{"SideLitAlbedo", 0.0f, 20.0f, 0.25f, 0.0f,
-                                                    "media/smoke/albedo_grid", false, true}),
+                                                    "media/smoke/albedo_grid", false, true},
+                                           // Voxels of density 0 among others of 0: the gradient of
+                                           // adding scattering where there is none.
+                                           Lighting{"SideLitEmptyRegion", 0.0f, 20.0f, 0.25f, 0.0f,
+                                                    "media/smoke/density", false, false, true}),
                          [](const ::testing::TestParamInfo<Lighting>& info) { return std::string(info.param.label); });
 
 }  // namespace

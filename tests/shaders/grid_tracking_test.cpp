@@ -2,7 +2,8 @@
 // along a ray through a random grid, ratio tracking's transmittance is unbiased for
 // exp(-sigma_t integral of d) in every channel, with a tight and with a loose majorant
 // and with its Russian roulette at work; and delta tracking's collisions follow the
-// distribution exp(-rate integral of d) sets, passing through with its probability.
+// distribution exp(-rate integral of d) sets, passing through with its probability, as
+// the weights of defensive delta tracking's do.
 // The reference integrals are quadratures of the trilinear density.
 #include <algorithm>
 #include <cmath>
@@ -26,6 +27,17 @@ HostDensityGrid randomGrid(float looseness) {
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     std::vector<float> voxels;
     for (int i = 0; i < 12 * 10 * 9; ++i) voxels.push_back(unit(random) < 0.3f ? 0.0f : unit(random));
+    return HostDensityGrid(ivec3(2, 1, 0), ivec3(12, 10, 9), std::move(voxels), kVoxelsPerUnit, looseness);
+}
+
+// randomGrid with its first 8 layers of voxels along x at 0, so that its majorant cells
+// at the lowest x (index coordinates 1 to 9) are empty.
+HostDensityGrid randomGridWithEmptyCells(float looseness) {
+    HostDensityGrid dense = randomGrid(looseness);
+    std::vector<float> voxels = dense.voxels;
+    for (size_t i = 0; i < voxels.size(); ++i) {
+        if (i % 12 < 8) voxels[i] = 0.0f;
+    }
     return HostDensityGrid(ivec3(2, 1, 0), ivec3(12, 10, 9), std::move(voxels), kVoxelsPerUnit, looseness);
 }
 
@@ -153,7 +165,7 @@ TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
     for (uint i = 0; i < kFlights; ++i) {
         TrackingRandom random = trackingRandom(i, 0u, 0u, 0u, kTrackingFreeFlight, 3u);
         const vec4 first = nextTrackingRandom(random);
-        GridFreeFlight flight = trackFreeFlight(grid.grid, kOrigin, direction, length, rate, vec2(first), random);
+        GridFreeFlight flight = trackFreeFlight(grid.grid, kOrigin, direction, length, rate, vec2(first), 0.0f, random);
         ASSERT_FALSE(flight.paused);
         counts[flight.collided ? std::min(kBins - 1, int(flight.t / length * kBins)) : kBins] += 1.0;
     }
@@ -165,6 +177,53 @@ TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
     int dof = 0;
     const double statistic = chiSquare(counts, expected, &dof);
     EXPECT_LT(statistic, chiSquareCritical(dof));
+}
+
+// Defensive delta tracking (a gradient pass that differentiates the density) collides
+// where the density is 0 too, in empty majorant cells as well, and its weights restore
+// the same distribution: the mean weight in each bin, the flights that pass through
+// included, is the probability the density sets, within 5 standard errors of the
+// weights' own spread.
+TEST(GridTracking, DefensiveDeltaTrackingWeighsToTheDensitysDistribution) {
+    const HostDensityGrid grid = randomGridWithEmptyCells(1.5f);
+    grid.bind();
+    const vec3 direction = normalize(kEnd - kOrigin);
+    const float length = glm::length(kEnd - kOrigin);
+    const float rate = 2.0f;
+    // As the renderer sets it: kDefensiveCollisionsPerCrossing / (the diagonal of the box
+    // the density reaches times the largest rate).
+    const double diagonal = glm::length(dvec3(ivec3(grid.grid.size) + 1)) / kVoxelsPerUnit;
+    const float defensiveDensity = float(kDefensiveCollisionsPerCrossing / (diagonal * rate));
+    constexpr int kBins = 10;
+    constexpr uint kFlights = 1u << 17;
+    std::vector<double> sums(kBins + 1, 0.0), sumsOfSquares(kBins + 1, 0.0);
+    uint emptyCellCollisions = 0;  // none unless empty cells are walked with a raised majorant
+    for (uint i = 0; i < kFlights; ++i) {
+        TrackingRandom random = trackingRandom(i, 0u, 0u, 0u, kTrackingFreeFlight, 3u);
+        const vec4 first = nextTrackingRandom(random);
+        GridFreeFlight flight =
+            trackFreeFlight(grid.grid, kOrigin, direction, length, rate, vec2(first), defensiveDensity, random);
+        ASSERT_FALSE(flight.paused);
+        double weight = flight.nullWeight;
+        if (flight.collided) {
+            weight *= flight.density / flight.chance;
+            const float x = (kOrigin + flight.t * direction).x * kVoxelsPerUnit;
+            emptyCellCollisions += x >= 1.0f && x < 9.0f ? 1u : 0u;
+        }
+        const size_t bin = flight.collided ? size_t(std::min(kBins - 1, int(flight.t / length * kBins))) : kBins;
+        sums[bin] += weight;
+        sumsOfSquares[bin] += weight * weight;
+    }
+    EXPECT_GT(emptyCellCollisions, 0u);
+    auto survival = [&](double t) { return std::exp(-double(rate) * densityIntegral(grid, t)); };
+    for (int b = 0; b <= kBins; ++b) {
+        const double expected = b < kBins ? survival(length * b / kBins) - survival(length * (b + 1) / kBins)
+                                          : survival(length);
+        const double mean = sums[size_t(b)] / kFlights;
+        const double error = std::sqrt((sumsOfSquares[size_t(b)] / kFlights - mean * mean) / (kFlights - 1));
+        // 1e-6 covers the quadrature's own error, where a bin outside the grid has no spread.
+        EXPECT_NEAR(mean, expected, 5.0 * error + 1e-6) << "bin " << b;
+    }
 }
 
 }  // namespace
