@@ -27,8 +27,9 @@ bool passesThroughAbsorbing(GpuMedium m) {
 // A collision in a medium with an albedo grid scatters a(x) of what it would otherwise,
 // and absorbs the rest: the extinction, and with it the free flight, are unchanged. The
 // adjoint pass adds delta * L_rem * w_v / a_c(x) to channel c of each voxel v that x
-// blends (w_v its trilinear weight); where a_c(x) is 0 the path ends in that channel and
-// the gradient is missed (docs/density-grids.md, "Albedo grids").
+// blends (w_v its trilinear weight); where a_c(x) is 0 the primal path ends in that
+// channel, and the adjoint goes on in derivative mode for the voxels around x
+// (docs/density-grids.md, "Albedo grids").
 void scatterByAlbedoGrid(uint slot, GpuMedium m, vec3 position, inout vec3 beta) {
     if (!kAlbedoGrids || m.albedoGrid == kNoDensityGrid) {
         return;
@@ -36,10 +37,20 @@ void scatterByAlbedoGrid(uint slot, GpuMedium m, vec3 position, inout vec3 beta)
     GpuDensityGrid grid = P.densityGrids.v[m.albedoGrid];
     vec3 index = gridRay(grid, position, vec3(0.0f)).origin;
     vec3 albedo = gridAlbedo(grid, index);
-    if (kAdjoint && gradientWanted(kGradientKindAlbedoGrid)) {
-        addTrilinearGradient(grid, index, factorGradient(slot, logDerivativeOfLinear(albedo)), 3u);
+    vec3 after = beta * albedo;
+    if (kAdjoint) {
+        if (gradientWanted(kGradientKindAlbedoGrid)) {
+            addTrilinearGradient(grid, index, factorGradient(slot, logDerivativeOfLinear(albedo)), 3u);
+        }
+        uvec3 before = adjoint.targets;
+        after = enterDerivativeMode(after, albedo, beta, kTargetAlbedoPoint, m.albedoGrid);
+        for (uint c = 0u; c < 3u; ++c) {
+            if (adjoint.targets[c] != before[c]) {
+                P.albedoTargetPoints.v[slot * 3u + c] = vec4(index, 0.0f);
+            }
+        }
     }
-    beta *= albedo;
+    beta = after;
 }
 
 // A real collision in a grid weighs density / chance (trackFreeFlight's defensive

@@ -25,7 +25,8 @@ const uint kPendingPhaseG = 2u;           // phase-function continuation weight 
 
 struct AdjointState {
     // Per channel, the parameter it follows in derivative mode: kTargetNone while the
-    // channel is in normal mode, else the kind (kTarget*) | the parameter's index << 2.
+    // channel is in normal mode, else the kind (kTarget*) | the parameter's index <<
+    // kTargetIndexShift.
     uvec3 targets;
     uint pending;             // pending kind | index << 8
 };
@@ -299,23 +300,35 @@ void addAlbedoGradient(uint material, vec4 hit, vec3 g) {
 
 // g = the gradient gathered by a path's derivative channels: channel c's part goes to
 // the parameter it follows, once for all the channels that follow the same one. A
-// density point's channels add to the voxels around the path's densityTargetPoint.
+// density grid's point adds to the voxels around the path's densityTargetPoint. An
+// albedo grid's point is the channel's own (channels may meet a zero albedo at
+// different collisions): channel c adds to channel c of the voxels around it.
 void addTargetGradient(uint slot, vec3 g) {
     for (uint c = 0u; c < 3u; ++c) {
         uint target = adjoint.targets[c];
+        uint kind = target & ((1u << kTargetIndexShift) - 1u);
+        uint index = target >> kTargetIndexShift;
+        if (kind == kTargetAlbedoPoint) {
+            if (gradientWanted(kGradientKindAlbedoGrid)) {
+                vec3 part = vec3(0.0f);
+                part[c] = g[c];
+                addTrilinearGradient(P.densityGrids.v[index], P.albedoTargetPoints.v[slot * 3u + c].xyz, part, 3u);
+            }
+            continue;
+        }
         bool followedByAnEarlierChannel = (c > 0u && adjoint.targets[0] == target) ||
                                           (c > 1u && adjoint.targets[1] == target);
         if (target == kTargetNone || followedByAnEarlierChannel) {
             continue;
         }
         vec3 part = g * vec3(equal(adjoint.targets, uvec3(target)));
-        if ((target & 3u) == kTargetMediumScattering) {
-            addSigmaSGradient(target >> 2u, part);
-        } else if ((target & 3u) == kTargetDensityPoint) {
-            addTrilinearDensityGradient(P.densityGrids.v[target >> 2u], P.densityTargetPoint.v[slot].xyz,
+        if (kind == kTargetMediumScattering) {
+            addSigmaSGradient(index, part);
+        } else if (kind == kTargetDensityPoint) {
+            addTrilinearDensityGradient(P.densityGrids.v[index], P.densityTargetPoint.v[slot].xyz,
                                         part.x + part.y + part.z);
         } else {
-            addBaseColorGradient(target >> 2u, part);
+            addBaseColorGradient(index, part);
         }
     }
 }
@@ -353,15 +366,16 @@ vec3 logDerivativeOfLinear(vec3 f) {
 // times the throughput before it) instead of zero. Returns the new throughput.
 vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index) {
     bool wanted = kind == kTargetMediumScattering ? gradientWanted(kGradientKindSigmaS)
-                  : kind == kTargetDensityPoint
-                      ? gradientWanted(kGradientKindDensity)
+                  : kind == kTargetDensityPoint ? gradientWanted(kGradientKindDensity)
+                  : kind == kTargetAlbedoPoint
+                      ? gradientWanted(kGradientKindAlbedoGrid)
                       : gradientWanted(kGradientKindBaseColor) || gradientWanted(kGradientKindBaseColorTexture);
     if (!wanted) {
         return betaAfter;  // no gradient of this kind is wanted: the path ends as in the primal pass
     }
     for (uint c = 0u; c < 3u; ++c) {
         if (factor[c] == 0.0f && adjoint.targets[c] == kTargetNone && derivative[c] != 0.0f) {
-            adjoint.targets[c] = kind | index << 2u;
+            adjoint.targets[c] = kind | index << kTargetIndexShift;
             betaAfter[c] = derivative[c];
         }
     }

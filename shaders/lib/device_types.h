@@ -19,6 +19,7 @@ using uint = uint32_t;
 // element, which size the per-path arrays.
 struct Vec4Buffer { static constexpr uint32_t kElementBytes = 16; };
 struct UVec4Buffer { static constexpr uint32_t kElementBytes = 16; };
+struct Vec4PerChannelBuffer { static constexpr uint32_t kElementBytes = 48; };
 struct UintBuffer { static constexpr uint32_t kElementBytes = 4; };
 struct FloatBuffer { static constexpr uint32_t kElementBytes = 4; };
 struct Vec2Buffer { static constexpr uint32_t kElementBytes = 8; };
@@ -78,10 +79,13 @@ const uint kEveryGradientKind = 0x7ffu;
 
 // Derivative-mode targets of the adjoint pass (shaders/lib/adjoint.glsl): the kinds of
 // parameter whose zero-valued factors it follows, where their gradients are wanted.
+// A target is its kind | the parameter's index << kTargetIndexShift.
 const uint kTargetNone = 0u;
 const uint kTargetMediumScattering = 1u;  // sigma_s of a medium
 const uint kTargetBaseColor = 2u;         // base colour of a material (factor or texels)
-const uint kTargetDensityPoint = 3u;      // the density grid's voxels around one point (densityTargetPoint)
+const uint kTargetDensityPoint = 3u;      // a density grid's voxels around one point (densityTargetPoint)
+const uint kTargetAlbedoPoint = 4u;       // an albedo grid's voxels around a point (albedoTargetPoints)
+const uint kTargetIndexShift = 3u;
 
 // Where each parameter's gradient sits among its medium's kMediumGradientStride floats.
 const uint kMediumGradientSigmaA = 0u;  // rgb
@@ -146,7 +150,8 @@ const uint kGradientCopyAlignment = 4u;  // sums: copies start 192 bytes apart
     X(shadowScatterGradient, Vec4Buffer)  /* rgb dC/dalbedo (surface); w: d log phase / dg (medium) */ \
     X(shadowEmissionGradient, Vec4Buffer) /* rgb dC/demission; w: the emitter (uint bits, see kPunctualEmitter) */ \
     X(shadowVertex, UVec4Buffer)          /* x: vertex kind, y: material or medium index, z: derivative channels */ \
-    X(densityTargetPoint, Vec4Buffer)     /* xyz: index coordinates of a kTargetDensityPoint's point */
+    X(densityTargetPoint, Vec4Buffer)     /* xyz: index coordinates of a kTargetDensityPoint's point */ \
+    X(albedoTargetPoints, Vec4PerChannelBuffer) /* per channel, xyz: the point of its kTargetAlbedoPoint */
 
 // The adjoint pass's gradient accumulators: X(name, SceneGradients field (host), sums
 // per item, copies, items (AdjointBuffers' count of them)). Each line declares the
@@ -321,6 +326,8 @@ struct QueueCountersData {
 #ifndef __cplusplus
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4Buffer { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer UVec4Buffer { uvec4 v[]; };
+// Three vec4s per path slot, one per channel: v[slot * 3 + c].
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4PerChannelBuffer { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintBuffer { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatBuffer { float v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Vec2Buffer { vec2 v[]; };
@@ -391,8 +398,8 @@ struct RenderParams {
     uint sampleNonScatteringMedia;                  // 1: a gradient pass that wants sigma_s's gradient, which
                                                     // samples collisions in media that do not scatter
     uint defensiveGridCollisions;                   // 1: a gradient pass that wants the density's gradient,
-                                                    // whose free flight scatters where the density is 0
-                                                    // (kDefensiveCollisionShare)
+                                                    // whose free flight also collides where the density
+                                                    // is 0 (kDefensiveCollisionsPerCrossing)
     uint secondStreamFrom;                          // > 0: samples from this index on draw their points
                                                     // from the next stream (rng.glsl), independent, as the
                                                     // halves of a split gradient estimate must

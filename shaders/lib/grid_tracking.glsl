@@ -240,7 +240,8 @@ GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction,
             ++flight.tentative;
             vec3 point = ray.origin + walk.t * ray.direction;
             float density = gridDensity(grid, point);
-            float chance = defensiveChance(density, majorant, blendsVoxelsOfTheBox(grid, point) ? defensiveDensity : 0.0f);
+            float chance =
+                defensiveChance(density, majorant, blendsVoxelsOfTheBox(grid, point) ? defensiveDensity : 0.0f);
             if (accept * majorant < chance) {
                 flight.t = walk.t;
                 flight.collided = true;

@@ -50,15 +50,17 @@ struct SceneGradients {
 // adjoint pipelines are compiled for these kinds alone: a CPU device runs every branch
 // of a shader whether or not a lane takes it, so adding gradients nobody reads would
 // cost as much as if they were read (docs/performance.md). A path that meets a
-// zero-valued factor (sigma_s = 0, a base colour of 0) goes on in derivative mode to find
-// that factor's gradient (docs/gradients.md), which costs as much as the rest of a path;
-// where that gradient is not wanted the path ends there, as in the primal pass. A wanted
-// gradient has the bits it has when every kind is wanted, unless the scene has a medium
-// that does not scatter, which a gradient pass samples only when sigma_s is wanted
+// zero-valued factor (sigma_s = 0, a base colour of 0, an albedo grid's 0, a density
+// grid's 0) goes on in derivative mode to find that factor's gradient
+// (docs/gradients.md), which costs as much as the rest of a path; where that gradient
+// is not wanted the path ends there, as in the primal pass. A wanted gradient has the
+// bits it has when every kind is wanted, unless the scene has a medium that does not
+// scatter, which a gradient pass samples only when sigma_s is wanted
 // (RenderParams.sampleNonScatteringMedia), or a density grid, which a gradient pass
-// tracks defensively only when the density is wanted (RenderParams.defensiveGridCollisions).
-// Texel gradients take 216 bytes per texel of every texture, and density gradients 72
-// bytes per voxel of every grid: they are held only when wanted.
+// tracks defensively only when the density is wanted
+// (RenderParams.defensiveGridCollisions). Texel gradients take 216 bytes per texel of
+// every texture, and density gradients 72 bytes per voxel of every grid: they are held
+// only when wanted.
 struct DerivativeTargets {
     uint32_t kinds = gpu::kEveryGradientKind;  // bit (1 << ParameterKind)
 

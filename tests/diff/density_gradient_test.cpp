@@ -3,7 +3,7 @@
 // dominates), from the side (the scattering's) or by its own emission (following the
 // density, or an emission grid, whose voxels are tested too), and an albedo grid's voxels
 // lit from the side, at voxels inside the medium, on its face, one of zero density
-// between denser ones, and voxels of zero density in a region of zeros. The loss is L1
+// between denser ones, and voxels of zero density (or albedo) in a region of zeros. The loss is L1
 // against a target brighter than every pixel, so it is linear in the image: the finite
 // difference estimates the gradient of the expected loss exactly as the adjoint does,
 // and both are means over seeds whose standard errors set the tolerance (5 combined
@@ -32,6 +32,20 @@ size_t voxelIndex(glm::ivec3 v) {
     return size_t(v.x + kVoxels * (v.y + kVoxels * v.z));
 }
 
+// Sets the values of the voxels within `reach` of (1, 2, 3) to 0, every channel of them.
+void clearAroundTheZeroVoxel(DensityGrid& grid, int reach) {
+    const glm::ivec3 centre(1, 2, 3);
+    for (int z = centre.z - reach; z <= centre.z + reach; ++z) {
+        for (int y = centre.y - reach; y <= centre.y + reach; ++y) {
+            for (int x = centre.x - reach; x <= centre.x + reach; ++x) {
+                for (int c = 0; c < grid.channels; ++c) {
+                    grid.values[voxelIndex({x, y, z}) * size_t(grid.channels) + size_t(c)] = 0.0f;
+                }
+            }
+        }
+    }
+}
+
 // With `emptyRegion`, the voxels around (1, 2, 3) are 0 as well: nothing scatters
 // anywhere near it unless a collision is sampled where the density is 0.
 DensityGrid smokeGrid(bool emptyRegion = false) {
@@ -39,13 +53,7 @@ DensityGrid smokeGrid(bool emptyRegion = false) {
     for (int i = 0; i < kVoxels * kVoxels * kVoxels; ++i) {
         grid.values.push_back(0.4f + 1.6f * float((i * 37) % 11) / 10.0f);
     }
-    const glm::ivec3 centre(1, 2, 3);
-    const int reach = emptyRegion ? 1 : 0;
-    for (int z = centre.z - reach; z <= centre.z + reach; ++z) {
-        for (int y = centre.y - reach; y <= centre.y + reach; ++y) {
-            for (int x = centre.x - reach; x <= centre.x + reach; ++x) grid.values[voxelIndex({x, y, z})] = 0.0f;
-        }
-    }
+    clearAroundTheZeroVoxel(grid, emptyRegion ? 1 : 0);
     // The densest voxel sets the majorant, so that the steps of the voxels under test
     // leave it, and with it the tentative collisions of every path, unchanged.
     grid.values[size_t(4 + kVoxels * (1 + kVoxels * 1))] = 3.0f;
@@ -63,8 +71,9 @@ DensityGrid flameGrid() {
     return grid;
 }
 
-// An RGB albedo over the same voxels, from 0.3 to 0.8 in each channel.
-DensityGrid albedoGrid() {
+// An RGB albedo over the same voxels, from 0.3 to 0.8 in each channel; with
+// `zeroRegion`, 0 around (1, 2, 3), where the density is not.
+DensityGrid albedoGrid(bool zeroRegion) {
     DensityGrid grid = smokeGrid();
     grid.name = "color";
     grid.channels = 3;
@@ -74,6 +83,7 @@ DensityGrid albedoGrid() {
             grid.values.push_back(0.3f + 0.5f * float((i * 13 + c * 5) % 9) / 8.0f);
         }
     }
+    if (zeroRegion) clearAroundTheZeroVoxel(grid, 1);
     return grid;
 }
 
@@ -86,7 +96,7 @@ struct Lighting {
     const char* parameter = "media/smoke/density";
     bool flame = false;  // an emission grid (flameGrid) multiplies the emission instead of the density
     bool albedo = false;  // an albedo grid (albedoGrid) scales the scattering
-    bool emptyRegion = false;  // smokeGrid's empty region around (1, 2, 3)
+    bool emptyRegion = false;  // the grid under test (with `albedo` the albedo grid) is 0 around (1, 2, 3)
 };
 
 void PrintTo(const Lighting& lighting, std::ostream* os) {
@@ -120,9 +130,9 @@ TEST_P(DensityGradientTest, AdjointMatchesFiniteDifferences) {
     const std::filesystem::path dir = tempDir();
     const Lighting& lighting = GetParam();
     const char* const kParameter = lighting.parameter;
-    writeDensityGridVdb(dir / "smoke.vdb", smokeGrid(lighting.emptyRegion));
+    writeDensityGridVdb(dir / "smoke.vdb", smokeGrid(lighting.emptyRegion && !lighting.albedo));
     writeDensityGridVdb(dir / "flame.vdb", flameGrid());
-    writeDensityGridVdb(dir / "albedo.vdb", albedoGrid());
+    writeDensityGridVdb(dir / "albedo.vdb", albedoGrid(lighting.emptyRegion && lighting.albedo));
     Scene scene = loadScene(smokeScene(lighting).write(dir, "smoke")).scene;
     Image bright{kSide, kSide, std::vector<float>(kSide * kSide * 3, 10.0f)};
     RenderedLossGradient lg(testContext(), scene, {{"", bright}}, {kParameter}, {.spp = 64, .maxDepth = 3},
@@ -212,7 +222,10 @@ INSTANTIATE_TEST_SUITE_P(Lightings, DensityGradientTest,
                                            // Voxels of density 0 among others of 0: the gradient of
                                            // adding scattering where there is none.
                                            Lighting{"SideLitEmptyRegion", 0.0f, 20.0f, 0.25f, 0.0f,
-                                                    "media/smoke/density", false, false, true}),
+                                                    "media/smoke/density", false, false, true},
+                                           // An albedo of 0 around voxels of albedo 0.
+                                           Lighting{"SideLitAlbedoZeroRegion", 0.0f, 20.0f, 0.25f, 0.0f,
+                                                    "media/smoke/albedo_grid", false, true, true}),
                          [](const ::testing::TestParamInfo<Lighting>& info) { return std::string(info.param.label); });
 
 }  // namespace

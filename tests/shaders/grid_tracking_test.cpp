@@ -153,27 +153,46 @@ TEST(GridTracking, MajorantIntegralIsTheIntegralOverTheCellsTheRayCrosses) {
     }
 }
 
-TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
-    const HostDensityGrid grid = randomGrid(1.5f);
+constexpr float kFlightRate = 2.0f;
+constexpr int kBins = 10;
+constexpr uint kFlights = 1u << 17;
+
+// kFlights free flights along the test ray through `grid` at kFlightRate, each handed to
+// `visit` with the bin it ends in: the tenth of the ray where it collided, or kBins where
+// it passed through.
+template <typename Visit>
+void trackFlights(const HostDensityGrid& grid, float defensiveDensity, Visit&& visit) {
     grid.bind();
     const vec3 direction = normalize(kEnd - kOrigin);
     const float length = glm::length(kEnd - kOrigin);
-    const float rate = 2.0f;
-    constexpr int kBins = 10;
-    constexpr uint kFlights = 1u << 17;
-    std::vector<double> counts(kBins + 1, 0.0), expected(kBins + 1, 0.0);
     for (uint i = 0; i < kFlights; ++i) {
         TrackingRandom random = trackingRandom(i, 0u, 0u, 0u, kTrackingFreeFlight, 3u);
         const vec4 first = nextTrackingRandom(random);
-        GridFreeFlight flight = trackFreeFlight(grid.grid, kOrigin, direction, length, rate, vec2(first), 0.0f, random);
+        const GridFreeFlight flight =
+            trackFreeFlight(grid.grid, kOrigin, direction, length, kFlightRate, vec2(first), defensiveDensity, random);
         ASSERT_FALSE(flight.paused);
-        counts[flight.collided ? std::min(kBins - 1, int(flight.t / length * kBins)) : kBins] += 1.0;
+        visit(flight, flight.collided ? size_t(std::min(kBins - 1, int(flight.t / length * kBins))) : size_t(kBins));
     }
-    auto survival = [&](double t) { return std::exp(-double(rate) * densityIntegral(grid, t)); };
+}
+
+// The probability of ending in each of trackFlights' bins that the density sets.
+std::vector<double> binProbabilities(const HostDensityGrid& grid) {
+    const float length = glm::length(kEnd - kOrigin);
+    auto survival = [&](double t) { return std::exp(-double(kFlightRate) * densityIntegral(grid, t)); };
+    std::vector<double> probabilities(kBins + 1);
     for (int b = 0; b < kBins; ++b) {
-        expected[size_t(b)] = kFlights * (survival(length * b / kBins) - survival(length * (b + 1) / kBins));
+        probabilities[size_t(b)] = survival(length * b / kBins) - survival(length * (b + 1) / kBins);
     }
-    expected[kBins] = kFlights * survival(length);
+    probabilities[kBins] = survival(length);
+    return probabilities;
+}
+
+TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
+    const HostDensityGrid grid = randomGrid(1.5f);
+    std::vector<double> counts(kBins + 1, 0.0);
+    trackFlights(grid, 0.0f, [&](const GridFreeFlight&, size_t bin) { counts[bin] += 1.0; });
+    std::vector<double> expected = binProbabilities(grid);
+    for (double& e : expected) e *= kFlights;
     int dof = 0;
     const double statistic = chiSquare(counts, expected, &dof);
     EXPECT_LT(statistic, chiSquareCritical(dof));
@@ -186,43 +205,30 @@ TEST(GridTracking, DeltaTrackingCollidesAsTheDensitySays) {
 // weights' own spread.
 TEST(GridTracking, DefensiveDeltaTrackingWeighsToTheDensitysDistribution) {
     const HostDensityGrid grid = randomGridWithEmptyCells(1.5f);
-    grid.bind();
-    const vec3 direction = normalize(kEnd - kOrigin);
-    const float length = glm::length(kEnd - kOrigin);
-    const float rate = 2.0f;
     // As the renderer sets it: kDefensiveCollisionsPerCrossing / (the diagonal of the box
     // the density reaches times the largest rate).
     const double diagonal = glm::length(dvec3(ivec3(grid.grid.size) + 1)) / kVoxelsPerUnit;
-    const float defensiveDensity = float(kDefensiveCollisionsPerCrossing / (diagonal * rate));
-    constexpr int kBins = 10;
-    constexpr uint kFlights = 1u << 17;
+    const float defensiveDensity = float(kDefensiveCollisionsPerCrossing / (diagonal * kFlightRate));
+    const vec3 direction = normalize(kEnd - kOrigin);
     std::vector<double> sums(kBins + 1, 0.0), sumsOfSquares(kBins + 1, 0.0);
     uint emptyCellCollisions = 0;  // none unless empty cells are walked with a raised majorant
-    for (uint i = 0; i < kFlights; ++i) {
-        TrackingRandom random = trackingRandom(i, 0u, 0u, 0u, kTrackingFreeFlight, 3u);
-        const vec4 first = nextTrackingRandom(random);
-        GridFreeFlight flight =
-            trackFreeFlight(grid.grid, kOrigin, direction, length, rate, vec2(first), defensiveDensity, random);
-        ASSERT_FALSE(flight.paused);
+    trackFlights(grid, defensiveDensity, [&](const GridFreeFlight& flight, size_t bin) {
         double weight = flight.nullWeight;
         if (flight.collided) {
             weight *= flight.density / flight.chance;
             const float x = (kOrigin + flight.t * direction).x * kVoxelsPerUnit;
             emptyCellCollisions += x >= 1.0f && x < 9.0f ? 1u : 0u;
         }
-        const size_t bin = flight.collided ? size_t(std::min(kBins - 1, int(flight.t / length * kBins))) : kBins;
         sums[bin] += weight;
         sumsOfSquares[bin] += weight * weight;
-    }
+    });
     EXPECT_GT(emptyCellCollisions, 0u);
-    auto survival = [&](double t) { return std::exp(-double(rate) * densityIntegral(grid, t)); };
+    const std::vector<double> expected = binProbabilities(grid);
     for (int b = 0; b <= kBins; ++b) {
-        const double expected = b < kBins ? survival(length * b / kBins) - survival(length * (b + 1) / kBins)
-                                          : survival(length);
         const double mean = sums[size_t(b)] / kFlights;
         const double error = std::sqrt((sumsOfSquares[size_t(b)] / kFlights - mean * mean) / (kFlights - 1));
         // 1e-6 covers the quadrature's own error, where a bin outside the grid has no spread.
-        EXPECT_NEAR(mean, expected, 5.0 * error + 1e-6) << "bin " << b;
+        EXPECT_NEAR(mean, expected[size_t(b)], 5.0 * error + 1e-6) << "bin " << b;
     }
 }
 
