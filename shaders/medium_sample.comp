@@ -57,7 +57,7 @@ void scatterByAlbedoGrid(uint slot, GpuMedium m, vec3 position, inout vec3 beta)
 // acceptance; 1 otherwise). Where the density is 0 the primal path ends there, and the
 // adjoint pass goes on in derivative mode for the voxels around the point: the
 // derivative of the collision's factor with respect to the density there is 1 / chance.
-vec3 weighGridCollision(uint slot, uint gridIndex, vec3 index, GridFreeFlight flight, vec3 beta) {
+vec3 weighGridCollision(uint slot, uint gridIndex, GridFreeFlight flight, vec3 beta) {
     if (flight.density == flight.chance) {
         return beta;
     }
@@ -66,7 +66,7 @@ vec3 weighGridCollision(uint slot, uint gridIndex, vec3 index, GridFreeFlight fl
         uvec3 before = adjoint.targets;
         after = enterDerivativeMode(after, vec3(0.0f), beta / flight.chance, kTargetDensityPoint, gridIndex);
         if (adjoint.targets != before) {
-            P.densityTargetPoint.v[slot] = vec4(index, 0.0f);
+            P.densityTargetPoint.v[slot] = vec4(flight.index, 0.0f);
         }
     }
     return after;
@@ -105,8 +105,7 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
         beta *= heroMisWeight(sigma_t, flight.tentative, flight.majorantIntegral) * flight.nullWeight;
         if (flight.collided) {
             beta *= scatteringAlbedo(m.sigma_s, sigma_t);
-            GridRay ray = gridRay(grid, origin, direction);
-            beta = weighGridCollision(slot, m.densityGrid, ray.origin + flight.t * ray.direction, flight, beta);
+            beta = weighGridCollision(slot, m.densityGrid, flight, beta);
             scatterByAlbedoGrid(slot, m, origin + flight.t * direction, beta);
         }
     }
@@ -121,9 +120,7 @@ uint sampleGridFreeFlightVertex(uint slot, uint medium, GpuMedium m, float tHit,
         addSigmaTGradient(medium, -integral * weight);
         addSigmaSGradient(medium, dLogScattering * weight);
         if (flight.collided && flight.density > 0.0f) {
-            GridRay ray = gridRay(grid, origin, direction);
-            addTrilinearDensityGradient(grid, ray.origin + flight.t * ray.direction,
-                                        (weight.x + weight.y + weight.z) / flight.density);
+            addTrilinearDensityGradient(grid, flight.index, (weight.x + weight.y + weight.z) / flight.density);
         }
     }
     if (!(flight.collided || flight.paused)) {

@@ -176,6 +176,7 @@ float majorantIntegral(GpuDensityGrid grid, GridRay ray, float tMax) {
 struct GridFreeFlight {
     float t;                // the real collision, the pause, or tMax
     bool collided;          // a real collision at t
+    vec3 index;             // the grid's index coordinates of the collision
     float density;          // the density there
     float chance;           // the density a real collision was accepted against there (defensiveChance)
     bool paused;            // the step bound was reached at t, short of a decision
@@ -212,6 +213,7 @@ GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction,
     GridFreeFlight flight;
     flight.t = tMax;
     flight.collided = false;
+    flight.index = vec3(0.0f);
     flight.density = 0.0f;
     flight.chance = 0.0f;
     flight.paused = false;
@@ -245,6 +247,7 @@ GridFreeFlight trackFreeFlight(GpuDensityGrid grid, vec3 origin, vec3 direction,
             if (accept * majorant < chance) {
                 flight.t = walk.t;
                 flight.collided = true;
+                flight.index = point;
                 flight.density = density;
                 flight.chance = chance;
                 return flight;
