@@ -42,10 +42,10 @@ void scatterByAlbedoGrid(uint slot, GpuMedium m, vec3 position, inout vec3 beta)
         if (gradientWanted(kGradientKindAlbedoGrid)) {
             addTrilinearGradient(grid, index, factorGradient(slot, logDerivativeOfLinear(albedo)), 3u);
         }
-        uvec3 before = adjoint.targets;
-        after = enterDerivativeMode(after, albedo, beta, kTargetAlbedoPoint, m.albedoGrid);
+        bvec3 entered;
+        after = enterDerivativeMode(after, albedo, beta, kTargetAlbedoPoint, m.albedoGrid, entered);
         for (uint c = 0u; c < 3u; ++c) {
-            if (adjoint.targets[c] != before[c]) {
+            if (entered[c]) {
                 P.albedoTargetPoints.v[slot * 3u + c] = vec4(index, 0.0f);
             }
         }
@@ -63,9 +63,9 @@ vec3 weighGridCollision(uint slot, uint gridIndex, GridFreeFlight flight, vec3 b
     }
     vec3 after = beta * (flight.density / flight.chance);
     if (kAdjoint && flight.density == 0.0f) {
-        uvec3 before = adjoint.targets;
-        after = enterDerivativeMode(after, vec3(0.0f), beta / flight.chance, kTargetDensityPoint, gridIndex);
-        if (adjoint.targets != before) {
+        bvec3 entered;
+        after = enterDerivativeMode(after, vec3(0.0f), beta / flight.chance, kTargetDensityPoint, gridIndex, entered);
+        if (any(entered)) {
             P.densityTargetPoint.v[slot] = vec4(flight.index, 0.0f);
         }
     }

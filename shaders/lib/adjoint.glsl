@@ -363,8 +363,10 @@ vec3 logDerivativeOfLinear(vec3 f) {
 
 // Channels where `factor` is zero and the path is still in normal mode switch to
 // derivative mode for (kind, index), carrying `derivative` (the factor's derivative,
-// times the throughput before it) instead of zero. Returns the new throughput.
-vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index) {
+// times the throughput before it) instead of zero. Returns the new throughput; `entered`
+// says which channels switched, for targets that keep a point per switch.
+vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind, uint index, out bvec3 entered) {
+    entered = bvec3(false);
     bool wanted = kind == kTargetMediumScattering ? gradientWanted(kGradientKindSigmaS)
                   : kind == kTargetDensityPoint ? gradientWanted(kGradientKindDensity)
                   : kind == kTargetAlbedoPoint
@@ -377,6 +379,7 @@ vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind
         if (factor[c] == 0.0f && adjoint.targets[c] == kTargetNone && derivative[c] != 0.0f) {
             adjoint.targets[c] = kind | index << kTargetIndexShift;
             betaAfter[c] = derivative[c];
+            entered[c] = true;
         }
     }
     return betaAfter;
@@ -388,7 +391,8 @@ vec3 enterDerivativeMode(vec3 betaAfter, vec3 factor, vec3 derivative, uint kind
 vec3 multiplyByParameter(vec3 beta, vec3 parameter, vec3 rest, uint targetKind, uint index) {
     vec3 after = beta * (parameter * rest);
     if (kAdjoint) {
-        after = enterDerivativeMode(after, parameter, beta * rest, targetKind, index);
+        bvec3 entered;
+        after = enterDerivativeMode(after, parameter, beta * rest, targetKind, index, entered);
     }
     return after;
 }

@@ -324,15 +324,13 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     applyOverrides(options, overrides, experiment);
     experiment.optimize.checkpointEvery = options.optimize.checkpointEvery;
     // Not requireCamera: the experiment's own cameras may be the scene's only ones
-    // (prepareExperimentScene below adds them, and refuses views of a scene without one).
+    // (startExperiment below adds them, and refuses views of a scene without one).
     LoadedScene loaded = loadScene(experiment.scene, options.scene.access);
     for (const std::string& warning : loaded.warnings) printWarning(warning);
     requireRunWritesNoInput(options.out, true, filesTheSceneReads(loaded));
-    Scene checked = loaded.scene;
-    prepareExperimentScene(experiment, checked);  // its errors before any rendering
-    requireRunCanStart(experimentJob(experiment, options.out, !options.resume.empty(), oldRunRemover(options, true)),
-                       checked);
-    for (const std::string& warning : sceneWarnings(checked)) printWarning(warning);
+    OptimizationJob job =
+        startExperiment(experiment, loaded.scene, options.out, !options.resume.empty(), oldRunRemover(options, true));
+    for (const std::string& warning : sceneWarnings(loaded.scene)) printWarning(warning);
 
     throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});
@@ -346,10 +344,9 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
                  context.description().name.c_str());
 
     ProgressBar bar("optimize");
-    OptimizationReport report = runExperiment(experiment, loaded.scene, backend, options.out, !options.resume.empty(),
-                                              progressOn(bar, experiment.optimize.iterations),
-                                              {options.commandLine, context.description().name},
-                                              oldRunRemover(options, true));
+    job.description = {options.commandLine, context.description().name};
+    OptimizationReport report =
+        runExperiment(experiment, loaded.scene, backend, std::move(job), progressOn(bar, experiment.optimize.iterations));
     bar.finish();
     requireNoValidationMessages(context);
     printOutputs(options.out, report, true);

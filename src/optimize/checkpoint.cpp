@@ -119,9 +119,13 @@ public:
     }
 
     // Milliseconds spent: the report prints them and divides them by the iterations.
+    // More than a run could have spent (about 32 years) is a damaged file.
     double duration(const Json& object, const std::string& key) const {
+        constexpr double kMostMilliseconds = 1e12;
         const double milliseconds = number(object, key);
-        if (milliseconds < 0.0) fail(key, "expected a finite number >= 0");
+        if (milliseconds < 0.0 || milliseconds > kMostMilliseconds) {
+            fail(key, "expected milliseconds from 0 to 1e12 (about 32 years)");
+        }
         return milliseconds;
     }
 

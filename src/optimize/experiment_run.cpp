@@ -110,27 +110,22 @@ std::vector<std::pair<std::string, std::string>> heldOutSettings(const std::vect
 
 }  // namespace
 
-OptimizationJob experimentJob(const Experiment& experiment, const std::filesystem::path& outputDirectory, bool resume,
-                              const std::function<void()>& replaceOldRun) {
+OptimizationJob startExperiment(const Experiment& experiment, Scene& scene,
+                                const std::filesystem::path& outputDirectory, bool resume,
+                                const std::function<void()>& replaceOldRun) {
+    prepareExperimentScene(experiment, scene);
     OptimizationJob job{experiment.scene, outputDirectory, experiment.optimize, experiment.loss, {}};
     job.inputs = {experiment.file, {}, {}, experiment.render.spp, experiment.render.maxDepth,
                   experiment.render.equiangularSampling};
     job.resume = resume;
     job.replaceOldRun = replaceOldRun;
+    job.identity = requireRunCanStart(job, scene);
     return job;
 }
 
 OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
-                                 const std::filesystem::path& outputDirectory, bool resume,
-                                 const std::function<void(const IterationRecord&)>& progress,
-                                 const RunDescription& description,
-                                 const std::function<void()>& replaceOldRun) {
-    prepareExperimentScene(experiment, scene);
+                                 OptimizationJob job, const std::function<void(const IterationRecord&)>& progress) {
     const std::vector<std::string>& names = experiment.optimize.parameters;
-    OptimizationJob job = experimentJob(experiment, outputDirectory, resume, replaceOldRun);
-    job.description = description;
-    job.identity = requireRunCanStart(job, scene);  // before the targets are rendered
-
     applyValues(scene, experiment.trueValues);
     std::vector<std::vector<float>> truth = currentValues(scene, names);
     std::vector<TargetView> targets = renderTargets(experiment, experiment.views, scene, backend);

@@ -31,27 +31,26 @@ inline constexpr uint32_t kTargetSeedOffset = 0x80000000u;
 // same samples each time, so that their error changes only with the values.
 inline constexpr uint32_t kHeldOutSeedOffset = 0x40000000u;
 
-// The job runExperiment gives runOptimization, as it is before the targets are rendered:
-// without them, the true values, the held-out views' settings and measures and the run's
-// description, but enough for requireRunCanStart.
-OptimizationJob experimentJob(const Experiment& experiment, const std::filesystem::path& outputDirectory, bool resume,
-                              const std::function<void()>& replaceOldRun = {});
+// Adds the experiment's cameras to `scene` (loaded from experiment.scene) and checks the
+// experiment against it (prepareExperimentScene), then returns the job runExperiment
+// gives runOptimization as it is before the targets are rendered, its run directory
+// checked as runOptimization checks it (requireRunCanStart: refused before any target
+// is rendered, and before a caller's device work) and its identity found. With `resume`
+// the optimisation continues from the directory's checkpoint, which must come from the
+// same experiment file, scene and settings. `replaceOldRun` is
+// OptimizationJob::replaceOldRun; a caller may set the job's description.
+OptimizationJob startExperiment(const Experiment& experiment, Scene& scene,
+                                const std::filesystem::path& outputDirectory, bool resume = false,
+                                const std::function<void()>& replaceOldRun = {});
 
-// Checks `experiment` against `scene` (loaded from experiment.scene), renders the targets
-// from the true values, resets to the start values and optimises, writing the outputs of
-// runOptimization into `outputDirectory` (report.html with the true values) plus
-// target.exr/.png (the first view's target). Each iteration's record carries, as
-// metrics, each held-out view's error (optimize/held_out_error.h) and each summarised
-// parameter's relative L2 error against its true values.
-// With `resume` the optimisation continues from the directory's checkpoint, which must
-// come from the same experiment file, scene and settings. The directory is refused as
-// runOptimization refuses it (requireRunCanStart) before any target is rendered.
-// The report's parameters carry their true values. `replaceOldRun` is
-// OptimizationJob::replaceOldRun.
+// Renders the targets of `experiment` from the true values into `scene` (as
+// startExperiment prepared it, with its `job`), resets to the start values and
+// optimises, writing the outputs of runOptimization into the job's directory
+// (report.html with the true values) plus target.exr/.png (the first view's target).
+// Each iteration's record carries, as metrics, each held-out view's error
+// (optimize/held_out_error.h) and each summarised parameter's relative L2 error against
+// its true values. The report's parameters carry their true values.
 OptimizationReport runExperiment(const Experiment& experiment, Scene& scene, const ExperimentBackend& backend,
-                                 const std::filesystem::path& outputDirectory, bool resume = false,
-                                 const std::function<void(const IterationRecord&)>& progress = {},
-                                 const RunDescription& description = {},
-                                 const std::function<void()>& replaceOldRun = {});
+                                 OptimizationJob job, const std::function<void(const IterationRecord&)>& progress = {});
 
 }  // namespace vkdr

@@ -120,7 +120,8 @@ void requireFinite(const GradientResult& result, const ParameterVector& paramete
 }
 
 // A finite gradient can still step a value past what a float holds (SGD with a large
-// rate); the scene stores floats, so such a step must not reach it.
+// rate); the scene stores floats, so such a step must not reach it, upwards or
+// downwards, whatever bound it would be clamped to.
 void requireFiniteSteps(const ParameterVector& parameters, uint32_t iteration) {
     if (allValues(parameters.values(), [](double value) { return std::isfinite(float(value)); })) return;
     for (size_t i = 0; i < parameters.names().size(); ++i) {
@@ -264,9 +265,9 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         logSpace.enter(parameters.values(), gradient);
         optimizer->step(parameters.values(), gradient);
         logSpace.leave(parameters.values());
+        requireFiniteSteps(parameters, iteration);  // before the bounds clamp a step beyond float range
         parameters.project();
         keepSceneWideEmissionBounded(parameters, scene);
-        requireFiniteSteps(parameters, iteration);
         parameters.writeTo(scene);
         const double iterationMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();

@@ -8,12 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <utility>
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/setting_names.h"
 #include "image/finite_pixels.h"
 #include "image/output_paths.h"
 #include "python/constructed_instance_caster.h"
@@ -474,27 +474,6 @@ void bindFunctions(py::module_& m) {
         "The Vulkan devices a Scene can be loaded on, in index order: pass an index or part of a name as device=.");
 }
 
-// The message of an error from code the command line shares, with the command line's
-// options that it names spelled as the module's keywords (docs/python.md: `--camera`
-// stays, as the keyword is the option's name).
-std::string inPythonsTerms(std::string message) {
-    static const std::pair<const char*, const char*> kSpellings[] = {
-        {"--allow-outside-files is given", "allow_outside_files=True is given"},
-        {"--device ", "device "},
-        {"--paths-per-pass", "paths_per_pass"},
-        {"--width/--height", "width/height"},
-        {"--width and --height", "width and height"},
-        {"--spp ", "spp "},
-    };
-    for (const auto& [option, keyword] : kSpellings) {
-        for (size_t at = message.find(option); at != std::string::npos; at = message.find(option, at)) {
-            message.replace(at, std::strlen(option), keyword);
-            at += std::strlen(keyword);
-        }
-    }
-    return message;
-}
-
 }  // namespace
 
 }  // namespace vkdr
@@ -503,12 +482,13 @@ PYBIND11_MODULE(_vkdiffrender, m) {
     using namespace vkdr;
     m.doc() = "vkdiffrender's native module; import vkdiffrender instead (docs/python.md)";
     m.attr("__version__") = VKDR_VERSION;
+    settingSpelling() = SettingSpelling::PythonKeywords;  // errors name the keywords, not the options
     static py::exception<Error> error(m, "Error");
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const Error& e) {
-            error(inPythonsTerms(e.what()).c_str());
+            error(e.what());
         } catch (const Interrupted& e) {
             PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
         }

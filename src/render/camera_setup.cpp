@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "core/setting_names.h"
 #include "core/format_text.h"
 #include "scene/medium_at.h"
 #include "scene/orthographic_view.h"
@@ -45,7 +46,7 @@ gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
     }
     if (settings.width < 0 || settings.height < 0 || settings.width > kMaxImageSide ||
         settings.height > kMaxImageSide) {
-        throw Error("--width/--height must be between 1 and " + std::to_string(kMaxImageSide));
+        throw Error(imageSizeSettingNames() + " must be between 1 and " + std::to_string(kMaxImageSide));
     }
     float aspect = camera.aspectRatio > 0.0f ? camera.aspectRatio : 1.0f;
     int width = settings.width;
@@ -64,7 +65,8 @@ gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
     if (width > kMaxImageSide || height > kMaxImageSide) {
         throw Error("camera " + camera.name + ": its aspect ratio " + std::to_string(aspect) + " makes the image " +
                     std::to_string(width) + "x" + std::to_string(height) + ", over " +
-                    std::to_string(kMaxImageSide) + " pixels a side; give both --width and --height");
+                    std::to_string(kMaxImageSide) + " pixels a side; give both " + settingName(Setting::Width) + " and " +
+                    settingName(Setting::Height));
     }
 
     gpu::GpuCamera out{};

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/setting_names.h"
 #include "core/interrupt.h"
 #include "render/camera_setup.h"
 #include "render/push_constants.h"
@@ -121,7 +122,7 @@ Renderer::Renderer(const VulkanContext& context, const Scene& scene, const Bvh& 
       lossKind_(LossKind::L2) {
     requireBoundedSceneEmission(scene);
     if (settings.spp == 0 || settings.spp > kMaxSamplesPerPixel) {
-        throw Error("--spp must be in [1, " + std::to_string(kMaxSamplesPerPixel) + "], got " +
+        throw Error(settingName(Setting::Spp) + " must be in [1, " + std::to_string(kMaxSamplesPerPixel) + "], got " +
                     std::to_string(settings.spp));
     }
     uint32_t pixels = camera_.width * camera_.height;

@@ -140,6 +140,40 @@ void requireReadableUris(const nlohmann::json& document, const SceneFiles& files
     }
 }
 
+// In a GLB only buffers[0] stands for the BIN chunk by leaving out its uri; tinygltf
+// would give any buffer without one the chunk's bytes.
+void requireUrisOfLaterGlbBuffers(const nlohmann::json& document, const GltfDiagnostics& diagnostics) {
+    if (!document.contains("buffers") || !document["buffers"].is_array()) return;
+    for (size_t i = 1; i < document["buffers"].size(); ++i) {
+        const nlohmann::json& buffer = document["buffers"][i];
+        if (buffer.is_object() && !buffer.contains("uri")) {
+            diagnostics.fail(indexed("buffers", i) + ".uri",
+                             "missing: only buffers[0] may leave out its uri, to stand for the GLB's BIN chunk");
+        }
+    }
+}
+
+// tinygltf's parser calls itself once per level of nesting, so a document nested tens of
+// thousands of levels deep (in "extras", which may hold anything) would overflow the
+// stack. A scene's own structure nests a few levels, the data in extras a few more.
+constexpr int kMaxJsonDepth = 512;
+
+// The document; not an object where the text is not JSON, which tinygltf then
+// describes. Refuses a document nested deeper than kMaxJsonDepth.
+nlohmann::json parsedDocument(std::string_view text, const GltfDiagnostics& diagnostics) {
+    int deepest = 0;
+    auto noteDepth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+        deepest = std::max(deepest, depth);
+        return true;
+    };
+    nlohmann::json document = nlohmann::json::parse(text, noteDepth, false);
+    if (deepest > kMaxJsonDepth) {
+        diagnostics.fail("", "its JSON nests values " + std::to_string(deepest) + " levels deep; at most " +
+                                 std::to_string(kMaxJsonDepth) + " are read");
+    }
+    return document;
+}
+
 // The JSON of a GLB file, after warning about the chunks tinygltf skips.
 std::string_view glbJson(std::string_view bytes, GltfDiagnostics& diagnostics) {
     GlbLayout layout = glbLayout(bytes);
@@ -166,10 +200,11 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
     bool binary = extension == ".glb";
     SceneFiles files(file, access);
     const nlohmann::json document =
-        nlohmann::json::parse(binary ? glbJson(bytes, diagnostics) : std::string_view(bytes), nullptr, false);
+        parsedDocument(binary ? glbJson(bytes, diagnostics) : std::string_view(bytes), diagnostics);
     // A document that is not a JSON object is left to tinygltf, which says what is wrong with it.
     if (document.is_object()) {
         requireWellFormedJson(document, diagnostics);
+        if (binary) requireUrisOfLaterGlbBuffers(document, diagnostics);
         requireReadableUris(document, files, diagnostics);
     }
 

@@ -2,13 +2,16 @@
 
 #include <cctype>
 
+#include "core/setting_names.h"
 #include "image/regular_file.h"
 
 namespace vkdr {
 namespace {
 
-constexpr const char* kOptOut = "; a scene reads only files in its own directory and below unless "
-                                "--allow-outside-files is given";
+std::string optOut() {
+    return "; a scene reads only files in its own directory and below unless " +
+           settingName(Setting::AllowOutsideFiles) + " is given";
+}
 
 bool isInside(const std::filesystem::path& file, const std::filesystem::path& directory) {
     std::filesystem::path relative = file.lexically_relative(directory);
@@ -69,7 +72,7 @@ ResolvedFile SceneFiles::resolveUri(const std::string& uri) const {
 
 ResolvedFile SceneFiles::resolvePath(const std::string& path) const {
     std::filesystem::path named(path);
-    if (named.is_absolute() && !access_.allowOutsideFiles) return {{}, std::string("is an absolute path") + kOptOut};
+    if (named.is_absolute() && !access_.allowOutsideFiles) return {{}, "is an absolute path" + optOut()};
     std::error_code ec;
     std::filesystem::path file = std::filesystem::weakly_canonical(directory_ / named, ec);
     if (ec) return {{}, "cannot be resolved: " + ec.message()};
@@ -77,7 +80,7 @@ ResolvedFile SceneFiles::resolvePath(const std::string& path) const {
     if (!access_.allowOutsideFiles && !isInside(file, directory_)) {
         bool throughLink = isInside((directory_ / named).lexically_normal(), directory_);
         return {{}, std::string("is outside the scene's directory") +
-                        (throughLink ? " (through a symbolic link)" : "") + kOptOut};
+                        (throughLink ? " (through a symbolic link)" : "") + optOut()};
     }
     std::string reason = notRegularFileReason(file);
     if (!reason.empty()) return {{}, reason == "no such file" ? "names no file" : reason};

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/setting_names.h"
 #include "vk/buffer.h"
 #include "vk/device_features.h"
 #include "vk/device_selection.h"
@@ -151,7 +152,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : validation_(valida
         chosen = static_cast<int>(deviceNamedBy(options.device, allDevices_));
         const DeviceDescription& d = allDevices_[chosen];
         if (!d.missingFeatures.empty()) {
-            std::string message = "--device " + options.device + ": " + d.name + " lacks:";
+            std::string message = settingName(Setting::Device) + " " + options.device + ": " + d.name + " lacks:";
             for (const std::string& f : d.missingFeatures) {
                 message += " " + f + ";";
             }

@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "core/error.h"
+#include "core/setting_names.h"
 
 namespace vkdr {
 namespace {
@@ -15,7 +16,7 @@ bool isIndex(const std::string& request) {
 
 [[noreturn]] void throwNoSuchDevice(const std::string& request, const std::string& reason,
                                     const std::vector<DeviceDescription>& devices) {
-    std::string message = "--device " + request + ": " + reason + "; the devices are:";
+    std::string message = settingName(Setting::Device) + " " + request + ": " + reason + "; the devices are:";
     for (const DeviceDescription& d : devices) {
         message += " [" + std::to_string(d.index) + "] " + d.name + ";";
     }

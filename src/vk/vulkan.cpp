@@ -1,6 +1,7 @@
 #include "vk/vulkan.h"
 
 #include "core/error.h"
+#include "core/setting_names.h"
 
 namespace vkdr {
 
@@ -27,11 +28,12 @@ void checkVk(VkResult result, const char* what) {
     }
     std::string message = std::string(what) + " failed: " + vkResultName(result);
     if (result == VK_ERROR_DEVICE_LOST) {
-        throw DeviceLostError(message + " (the GPU driver reset the device; a very long pass can trigger its "
-                                        "watchdog: try fewer --paths-per-pass or a smaller image)");
+        throw DeviceLostError(message +
+                              " (the GPU driver reset the device; a very long pass can trigger its watchdog: try "
+                              "fewer " + settingName(Setting::PathsPerPass) + " or a smaller image)");
     }
     if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
-        message += " (the scene or the image does not fit: try a smaller --width/--height)";
+        message += " (the scene or the image does not fit: try a smaller " + imageSizeSettingNames() + ")";
     }
     throw Error(message);
 }

@@ -1,5 +1,6 @@
 #pragma once
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -34,14 +35,15 @@ inline RunResult runCli(const std::string& args, const std::filesystem::path& sc
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(scratch / "stdout"), slurp(scratch / "stderr")};
 }
 
-// A command-line test with a scratch directory of its own, named after its suite and
-// test, made empty before the test and removed after it.
+// A command-line test with a scratch directory of its own, named after its suite, test
+// and process (two test runs on one machine keep apart), made empty before the test and
+// removed after it.
 class CliScratchTest : public ::testing::Test {
 protected:
     void SetUp() override {
         const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = std::filesystem::temp_directory_path() / ("vkdr_" + std::string(info->test_suite_name())) /
-               info->name();
+        dir_ = std::filesystem::temp_directory_path() /
+               ("vkdr_" + std::string(info->test_suite_name()) + "_" + std::to_string(getpid())) / info->name();
         std::filesystem::remove_all(dir_);
         std::filesystem::create_directories(dir_);
     }

@@ -99,6 +99,8 @@ TEST_F(CliTest, UsageErrorsAreOneLineNamingTheHelpToRead) {
                       "(see 'vkdiffrender --help')");
     expectOneLine("render", "scene is required; see 'vkdiffrender render --help'");
     expectOneLine("info --frob", "The following argument was not expected: --frob; see 'vkdiffrender info --help'");
+    expectOneLine("render scene.gltf --spp 2 --spp 3", "--spp: given 2 times; give it once; see 'vkdiffrender render "
+                                                       "--help'");
 }
 
 TEST_F(CliTest, MissingSceneFile) {

@@ -334,7 +334,8 @@ TEST(Experiment, RecoversTheTrueValuesWithAnAnalyticBackend) {
         loss->setImageSize(target.width, target.height);
         return loss;
     };
-    OptimizationReport report = runExperiment(experiment, scene, backend, scratch / "out");
+    OptimizationReport report =
+        runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out"));
 
     ASSERT_EQ(targetRenders.size(), 1u);
     EXPECT_EQ(targetRenders[0].spp, 8u);
@@ -377,7 +378,9 @@ TEST(Experiment, WritesItsTargetWhenTheFittedSceneIsRefused) {
         loss->setImageSize(views.at(0).target.width, views.at(0).target.height);
         return loss;
     };
-    expectErrorMentioning([&] { runExperiment(experiment, scene, backend, scratch / "out"); }, {"fog.gltf"});
+    expectErrorMentioning(
+        [&] { runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out")); },
+        {"fog.gltf"});
     for (const char* file : {"params.json", "report.html", "target.exr", "target.png"}) {
         EXPECT_TRUE(std::filesystem::is_regular_file(scratch / "out" / file)) << file;
     }
@@ -404,10 +407,13 @@ TEST(Experiment, RefusesItsRunDirectoryBeforeRenderingTargets) {
         return nullptr;
     };
     std::filesystem::create_directory(scratch / "out");
-    expectErrorMentioning([&] { runExperiment(experiment, scene, backend, scratch / "out", true); },
-                          {"checkpoint.json"});
+    expectErrorMentioning(
+        [&] { runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out", true)); },
+        {"checkpoint.json"});
     std::ofstream(scratch / "out" / "log.jsonl") << "{}\n";
-    expectErrorMentioning([&] { runExperiment(experiment, scene, backend, scratch / "out"); }, {"log.jsonl"});
+    expectErrorMentioning(
+        [&] { runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out")); },
+        {"log.jsonl"});
     EXPECT_EQ(renders, 0u);
 }
 
@@ -439,7 +445,8 @@ TEST(Experiment, MeasuresTheHeldOutViewAtEveryIteration) {
         loss->setImageSize(target.width, target.height);
         return loss;
     };
-    OptimizationReport report = runExperiment(experiment, scene, backend, scratch / "out");
+    OptimizationReport report =
+        runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out"));
 
     // The fitted view's target, the held-out target, the true held-out render, then one
     // render of the held-out view per iteration with the same seed.
@@ -477,7 +484,8 @@ TEST(Experiment, RefusesAHeldOutViewWhoseTargetIsBlack) {
         ADD_FAILURE() << "no loss gradient is made for a refused run";
         return nullptr;
     };
-    expectErrorMentioning([&] { runExperiment(experiment, scene, backend, scratch / "out"); },
+    expectErrorMentioning(
+        [&] { runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out")); },
                           {experiment.file.string(), "held_out_views", "camera 'side' is black"});
 }
 

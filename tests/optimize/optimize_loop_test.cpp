@@ -227,20 +227,24 @@ TEST(OptimizeLoop, StopsOnANonFiniteGradientNamingTheParameterAndIteration) {
     EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), valuesAfterIteration2);
 }
 
+// Downwards too, where sigma_s's bound at 0 would otherwise clamp the step to 0.
 TEST(OptimizeLoop, StopsOnAStepBeyondFloatRangeBeforeItReachesTheScene) {
-    Scene scene = sceneWithParameters();
-    // SGD's step is rate * 2 (sigma - 1e30): far beyond float range for this rate.
-    QuadraticLossGradient loss({{"media/fog/sigma_s", {1e30, 1e30, 1e30}}});
-    std::vector<float> before = getParameter(scene, "media/fog/sigma_s");
-    try {
-        optimize(loss, scene, optionsFor({"media/fog/sigma_s"}, OptimizerKind::Sgd, 1e20, 5));
-        FAIL() << "no error";
-    } catch (const Error& error) {
-        std::string message = error.what();
-        EXPECT_NE(message.find("iteration 0"), std::string::npos) << message;
-        EXPECT_NE(message.find("media/fog/sigma_s"), std::string::npos) << message;
+    for (double minimum : {1e30, -1e30}) {
+        Scene scene = sceneWithParameters();
+        // SGD's step is rate * 2 (sigma - minimum): far beyond float range for this rate.
+        QuadraticLossGradient loss({{"media/fog/sigma_s", {minimum, minimum, minimum}}});
+        std::vector<float> before = getParameter(scene, "media/fog/sigma_s");
+        try {
+            optimize(loss, scene, optionsFor({"media/fog/sigma_s"}, OptimizerKind::Sgd, 1e20, 5));
+            ADD_FAILURE() << "no error for a minimum at " << minimum;
+        } catch (const Error& error) {
+            std::string message = error.what();
+            EXPECT_NE(message.find("iteration 0"), std::string::npos) << message;
+            EXPECT_NE(message.find("media/fog/sigma_s"), std::string::npos) << message;
+            EXPECT_NE(message.find("beyond float range"), std::string::npos) << message;
+        }
+        EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), before);
     }
-    EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), before);
 }
 
 TEST(OptimizeLoop, RejectsUnknownRepeatedAndMissingParameters) {

@@ -1,11 +1,25 @@
 #include "render_test_support.h"
 
+#include <unistd.h>
+
 #include <cmath>
 
 #include "bvh/bvh.h"
 #include "scene/load_scene.h"
 
 namespace vkdr::test {
+
+namespace {
+
+// The running test's directory for its files, in one of this process: two test runs on
+// one machine keep apart.
+std::filesystem::path testDirectory() {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    return std::filesystem::temp_directory_path() / ("vkdr_render_tests_" + std::to_string(getpid())) /
+           (std::string(info->test_suite_name()) + "." + info->name());
+}
+
+}  // namespace
 
 VulkanContext& testContext() {
     static VulkanContext context(ContextOptions{});
@@ -16,14 +30,18 @@ void RenderTest::SetUp() {
     messagesBefore_ = testContext().validationMessageCount();
 }
 
+// A failed test's files stay for a person to look at.
 void RenderTest::TearDown() {
     EXPECT_EQ(testContext().validationMessageCount(), messagesBefore_) << "the Vulkan validation layer reported messages";
+    if (!HasFailure()) {
+        std::error_code ignored;
+        std::filesystem::remove_all(testDirectory(), ignored);
+        std::filesystem::remove(testDirectory().parent_path(), ignored);  // only once empty
+    }
 }
 
 std::filesystem::path RenderTest::tempDir() const {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::filesystem::path dir = std::filesystem::temp_directory_path() / "vkdr_render_tests" /
-                                (std::string(info->test_suite_name()) + "." + info->name());
+    const std::filesystem::path dir = testDirectory();
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;

@@ -147,7 +147,11 @@ std::filesystem::path GltfBuilder::writeGltf(const std::filesystem::path& file) 
 
 std::filesystem::path GltfBuilder::writeGlb(const std::filesystem::path& file) const {
     json document = document_;
-    document["buffers"] = json::array({{{"byteLength", buffer_.size()}}});
+    json buffers = json::array({{{"byteLength", buffer_.size()}}});
+    if (document_.contains("buffers")) {
+        for (const json& later : document_["buffers"]) buffers.push_back(later);
+    }
+    document["buffers"] = buffers;
     std::string text = document.dump();
     std::vector<unsigned char> jsonChunk(text.begin(), text.end());
     pad(jsonChunk, ' ');

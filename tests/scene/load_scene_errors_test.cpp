@@ -44,6 +44,33 @@ TEST(LoadSceneErrors, MalformedJsonIncludesTheParserMessage) {
                     {"cannot parse glTF", "parse error"});
 }
 
+// tinygltf's parser recurses per level: nesting this deep would overflow its stack.
+TEST(LoadSceneErrors, JsonNestedDeeperThanTheParserReads) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    const int depth = 100000;
+    std::string text = builder.gltfText();
+    text.insert(text.rfind('}'), ", \"extras\": " + std::string(depth, '[') + std::string(depth, ']'));
+    expectLoadError(writeText(directory / "deep.gltf", text), {"levels deep", "at most 512"});
+    builder.document()["extras"] = json::array();
+    json* innermost = &builder.document()["extras"];
+    for (int level = 0; level < 510; ++level) {
+        innermost->push_back(json::array());
+        innermost = &innermost->back();
+    }
+    EXPECT_NO_THROW(loadScene(builder.writeGltf(directory / "nested.gltf")));
+}
+
+// Only buffers[0] stands for a GLB's BIN chunk.
+TEST(LoadSceneErrors, AGlbBufferAfterTheFirstWithoutAUri) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+    builder.document()["buffers"] = json::array({{{"byteLength", 4}}});
+    expectLoadError(builder.writeGlb(directory / "two.glb"), {"buffers[1].uri", "only buffers[0]"});
+}
+
 TEST(LoadSceneErrors, TextureCoordinatesThatAreNotFinite) {
     TemporaryDirectory directory;
     for (float bad : {std::nanf(""), INFINITY}) {
