@@ -4,8 +4,8 @@
 #include <numbers>
 
 #include "core/error.h"
-#include "core/setting_names.h"
 #include "core/format_text.h"
+#include "core/setting_names.h"
 #include "scene/medium_at.h"
 #include "scene/orthographic_view.h"
 
@@ -28,7 +28,7 @@ const Camera& findCamera(const Scene& scene, const std::string& name) {
         }
         names += (names.empty() ? "" : ", ") + c.name;
     }
-    throw Error("--camera " + name + ": no such camera; the scene has: " + names);
+    throw Error(settingName(Setting::Camera) + " " + name + ": no such camera; the scene has: " + names);
 }
 
 void requireCamera(const Scene& scene, const std::string& file) {
@@ -65,8 +65,8 @@ gpu::GpuCamera setUpCamera(const Scene& scene, const RenderSettings& settings) {
     if (width > kMaxImageSide || height > kMaxImageSide) {
         throw Error("camera " + camera.name + ": its aspect ratio " + std::to_string(aspect) + " makes the image " +
                     std::to_string(width) + "x" + std::to_string(height) + ", over " +
-                    std::to_string(kMaxImageSide) + " pixels a side; give both " + settingName(Setting::Width) + " and " +
-                    settingName(Setting::Height));
+                    std::to_string(kMaxImageSide) + " pixels a side; give both " + settingName(Setting::Width) +
+                    " and " + settingName(Setting::Height));
     }
 
     gpu::GpuCamera out{};

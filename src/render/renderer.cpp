@@ -5,8 +5,8 @@
 #include <cstring>
 
 #include "core/error.h"
-#include "core/setting_names.h"
 #include "core/interrupt.h"
+#include "core/setting_names.h"
 #include "render/camera_setup.h"
 #include "render/push_constants.h"
 #include "scene/scene_medium_emission.h"

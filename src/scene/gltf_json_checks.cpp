@@ -72,6 +72,8 @@ constexpr std::array<MemberKind, 14> kDocumentMembers = {{{"asset", JsonKind::Ob
                                                           {"samplers", JsonKind::Array}}};
 constexpr std::array<MemberKind, 2> kSceneMembers = {{{"name", JsonKind::String}, {"nodes", JsonKind::Array}}};
 constexpr std::array<MemberKind, 1> kNamedMembers = {{{"name", JsonKind::String}}};
+// tinygltf reads a uri that is not text as none: a GLB's buffer would take the BIN chunk.
+constexpr std::array<MemberKind, 2> kFileMembers = {{{"name", JsonKind::String}, {"uri", JsonKind::String}}};
 constexpr std::array<MemberKind, 2> kPrimitiveMembers = {{{"attributes", JsonKind::Object},
                                                           {"targets", JsonKind::Array}}};
 constexpr std::array<MemberKind, 7> kMaterialMembers = {{{"name", JsonKind::String},
@@ -575,7 +577,11 @@ void requireWellFormedJson(const json& document, GltfDiagnostics& diagnostics) {
         }
     });
     forEachEntry(document, "buffers", [&](const json& buffer, const std::string& field) {
+        requireMemberKinds(buffer, field, kFileMembers, diagnostics);
         checkDataUriBuffer(buffer, field, diagnostics);
+    });
+    forEachEntry(document, "images", [&](const json& image, const std::string& field) {
+        requireMemberKinds(image, field, kFileMembers, diagnostics);
     });
     forEachEntry(document, "meshes", [&](const json& mesh, const std::string& field) {
         requireMemberKinds(mesh, field, kNamedMembers, diagnostics);

@@ -47,7 +47,11 @@ protected:
         std::filesystem::remove_all(dir_);
         std::filesystem::create_directories(dir_);
     }
-    void TearDown() override { std::filesystem::remove_all(dir_); }
+    void TearDown() override {
+        std::error_code ignored;
+        std::filesystem::remove_all(dir_, ignored);
+        std::filesystem::remove(dir_.parent_path(), ignored);  // only once empty
+    }
 
     RunResult run(const std::string& args) { return runCli(args, dir_); }
     static std::string fog() { return std::string(VKDR_TEST_SCENES_DIR) + "/cornell_fog.gltf"; }

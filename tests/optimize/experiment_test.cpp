@@ -389,32 +389,17 @@ TEST(Experiment, WritesItsTargetWhenTheFittedSceneIsRefused) {
     EXPECT_NE(report.find("<th>learning rate of media/fog/g</th><td>0.05</td>"), std::string::npos);
 }
 
-// A run directory that cannot be resumed, or that holds another run, is refused before
-// any target is rendered.
-TEST(Experiment, RefusesItsRunDirectoryBeforeRenderingTargets) {
+// A run directory that cannot be resumed, or that holds another run, is refused by
+// startExperiment, which renders nothing (runExperiment renders the targets).
+TEST(Experiment, StartRefusesARunDirectoryItCannotUse) {
     ScratchDirectory scratch;
     Experiment experiment = readExperiment(writeExperiment(scratch, fogExperiment(scratch.path())));
-    Scene scene = loadScene(experiment.scene).scene;
-    size_t renders = 0;
-    ExperimentBackend backend;
-    backend.render = [&](const Scene&, const RenderSettings& settings) {
-        ++renders;
-        return Image{settings.width, settings.height, std::vector<float>(size_t(settings.width * settings.height * 3))};
-    };
-    backend.makeLossGradient = [&](const Scene&, std::vector<TargetView>, std::vector<std::string>,
-                                   const RenderSettings&, LossKind) -> std::unique_ptr<LossGradient> {
-        ADD_FAILURE() << "no loss gradient is made for a refused run";
-        return nullptr;
-    };
     std::filesystem::create_directory(scratch / "out");
-    expectErrorMentioning(
-        [&] { runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out", true)); },
-        {"checkpoint.json"});
+    Scene scene = loadScene(experiment.scene).scene;
+    expectErrorMentioning([&] { startExperiment(experiment, scene, scratch / "out", true); }, {"checkpoint.json"});
     std::ofstream(scratch / "out" / "log.jsonl") << "{}\n";
-    expectErrorMentioning(
-        [&] { runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out")); },
-        {"log.jsonl"});
-    EXPECT_EQ(renders, 0u);
+    scene = loadScene(experiment.scene).scene;  // startExperiment has added the experiment's cameras to it
+    expectErrorMentioning([&] { startExperiment(experiment, scene, scratch / "out"); }, {"log.jsonl"});
 }
 
 // A held-out view renders its target once and, at every iteration, with the same

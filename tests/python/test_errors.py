@@ -147,7 +147,7 @@ def test_what_numpy_cannot_convert_is_refused_with_its_reason(scene):
     (lambda s: s.render(spp=0, width=WIDTH), "spp"),
     (lambda s: s.render(width=-1), "width"),
     (lambda s: s.render(width=WIDTH, max_depth=10**6), "max_depth"),
-    (lambda s: s.render(width=WIDTH, camera="nope"), "nope"),
+    (lambda s: s.render(width=WIDTH, camera="nope"), "^camera nope: no such camera"),
     (lambda s: s["nope"], "nope"),
     (lambda s: s.render(width=WIDTH, paths_per_pass=1 << 22), "paths_per_pass"),
     (lambda s: s.loss_gradient(np.full((WIDTH, WIDTH, 3), np.nan, np.float32), ["media/fog/g"], width=WIDTH,

@@ -134,9 +134,12 @@ int GltfBuilder::addCamera(json camera) {
 std::string GltfBuilder::gltfText() const {
     json document = document_;
     if (!buffer_.empty()) {  // glTF has no empty buffers
-        document["buffers"] = json::array(
-            {{{"byteLength", buffer_.size()},
-              {"uri", "data:application/octet-stream;base64," + base64(buffer_)}}});
+        json buffers = json::array(
+            {{{"byteLength", buffer_.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer_)}}});
+        if (document_.contains("buffers")) {
+            for (const json& later : document_["buffers"]) buffers.push_back(later);
+        }
+        document["buffers"] = buffers;
     }
     return document.dump(2);
 }

@@ -43,7 +43,8 @@ public:
     json& document() { return document_; }
     std::string gltfText() const;  // with the buffer as a data URI
     std::filesystem::path writeGltf(const std::filesystem::path& file) const;
-    // The BIN chunk is buffers[0]; buffers that document() lists come after it.
+    // The builder's buffer is buffers[0] (the data URI, or the BIN chunk); buffers that
+    // document() lists come after it.
     std::filesystem::path writeGlb(const std::filesystem::path& file) const;
 
 private:

@@ -44,31 +44,35 @@ TEST(LoadSceneErrors, MalformedJsonIncludesTheParserMessage) {
                     {"cannot parse glTF", "parse error"});
 }
 
-// tinygltf's parser recurses per level: nesting this deep would overflow its stack.
+// tinygltf's parser recurses per level: nesting 100000 deep would overflow its stack.
+// A level is a container around the deepest value: the root's "extras" is at level 1.
 TEST(LoadSceneErrors, JsonNestedDeeperThanTheParserReads) {
     TemporaryDirectory directory;
-    GltfBuilder builder;
-    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
-    const int depth = 100000;
-    std::string text = builder.gltfText();
-    text.insert(text.rfind('}'), ", \"extras\": " + std::string(depth, '[') + std::string(depth, ']'));
-    expectLoadError(writeText(directory / "deep.gltf", text), {"levels deep", "at most 512"});
-    builder.document()["extras"] = json::array();
-    json* innermost = &builder.document()["extras"];
-    for (int level = 0; level < 510; ++level) {
-        innermost->push_back(json::array());
-        innermost = &innermost->back();
-    }
-    EXPECT_NO_THROW(loadScene(builder.writeGltf(directory / "nested.gltf")));
+    auto nestedExtras = [&](int levels) {
+        GltfBuilder builder;
+        builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+        std::string text = builder.gltfText();
+        const int inside = levels - 1;  // arrays within "extras"
+        text.insert(text.rfind('}'), ", \"extras\": [" + std::string(inside, '[') + std::string(inside, ']') + "]");
+        return writeText(directory / ("nested" + std::to_string(levels) + ".gltf"), text);
+    };
+    expectLoadError(nestedExtras(100000), {"100000 levels deep", "at most 512"});
+    expectLoadError(nestedExtras(513), {"513 levels deep", "at most 512"});
+    EXPECT_NO_THROW(loadScene(nestedExtras(512)));
 }
 
-// Only buffers[0] stands for a GLB's BIN chunk.
+// Only buffers[0] stands for a GLB's BIN chunk; tinygltf reads a uri that is not text
+// as none.
 TEST(LoadSceneErrors, AGlbBufferAfterTheFirstWithoutAUri) {
     TemporaryDirectory directory;
-    GltfBuilder builder;
-    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
-    builder.document()["buffers"] = json::array({{{"byteLength", 4}}});
-    expectLoadError(builder.writeGlb(directory / "two.glb"), {"buffers[1].uri", "only buffers[0]"});
+    auto expectRefused = [&](const json& later, const std::string& problem) {
+        GltfBuilder builder;
+        builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+        builder.document()["buffers"] = json::array({later});
+        expectLoadError(builder.writeGlb(directory / "two.glb"), {"buffers[1].uri", problem});
+    };
+    expectRefused({{"byteLength", 4}}, "only buffers[0]");
+    expectRefused({{"byteLength", 4}, {"uri", 5}}, "expected a string");
 }
 
 TEST(LoadSceneErrors, TextureCoordinatesThatAreNotFinite) {
