@@ -16,6 +16,7 @@
 #include "image/regular_file.h"
 #include "scene/glb_layout.h"
 #include "scene/gltf_json_checks.h"
+#include "scene/parse_gltf_json.h"
 
 namespace vkdr {
 namespace {
@@ -153,27 +154,6 @@ void requireUrisOfLaterGlbBuffers(const nlohmann::json& document, const GltfDiag
     }
 }
 
-// tinygltf's parser calls itself once per level of nesting, so a document nested tens of
-// thousands of levels deep (in "extras", which may hold anything) would overflow the
-// stack. A scene's own structure nests a few levels, the data in extras a few more.
-constexpr int kMaxJsonDepth = 512;
-
-// The document; not an object where the text is not JSON, which tinygltf then
-// describes. Refuses a document nested deeper than kMaxJsonDepth.
-nlohmann::json parsedDocument(std::string_view text, const GltfDiagnostics& diagnostics) {
-    int deepest = 0;
-    auto noteDepth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-        deepest = std::max(deepest, depth);
-        return true;
-    };
-    nlohmann::json document = nlohmann::json::parse(text, noteDepth, false);
-    if (deepest > kMaxJsonDepth) {
-        diagnostics.fail("", "its JSON nests values " + std::to_string(deepest) + " levels deep; at most " +
-                                 std::to_string(kMaxJsonDepth) + " are read");
-    }
-    return document;
-}
-
 // The JSON of a GLB file, after warning about the chunks tinygltf skips.
 std::string_view glbJson(std::string_view bytes, GltfDiagnostics& diagnostics) {
     GlbLayout layout = glbLayout(bytes);
@@ -200,7 +180,7 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
     bool binary = extension == ".glb";
     SceneFiles files(file, access);
     const nlohmann::json document =
-        parsedDocument(binary ? glbJson(bytes, diagnostics) : std::string_view(bytes), diagnostics);
+        parseGltfJson(binary ? glbJson(bytes, diagnostics) : std::string_view(bytes), diagnostics);
     // A document that is not a JSON object is left to tinygltf, which says what is wrong with it.
     if (document.is_object()) {
         requireWellFormedJson(document, diagnostics);

@@ -61,6 +61,24 @@ TEST(LoadSceneErrors, JsonNestedDeeperThanTheParserReads) {
     EXPECT_NO_THROW(loadScene(nestedExtras(512)));
 }
 
+// glTF requires each key once in an object; a JSON parser would keep one of the two.
+TEST(LoadSceneErrors, AKeyGivenTwiceInOneObject) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    int paint = builder.addMaterial({{"name", "paint"}});
+    builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), paint)}});
+    std::string text = builder.gltfText();
+    const std::string name = "\"name\": \"paint\"";
+    ASSERT_NE(text.find(name), std::string::npos);
+    std::string twice = text;
+    twice.replace(twice.find(name), name.size(), name + ", \"name\": \"ink\"");
+    expectLoadError(writeText(directory / "material.gltf", twice), {"materials[0].name", "given twice"});
+    std::string rootTwice = text;
+    rootTwice.insert(rootTwice.rfind('}'), ", \"scene\": 0, \"scene\": 0");
+    expectLoadError(writeText(directory / "root.gltf", rootTwice), {": scene: given twice"});
+    EXPECT_NO_THROW(loadScene(writeText(directory / "once.gltf", text)));
+}
+
 // Only buffers[0] stands for a GLB's BIN chunk; tinygltf reads a uri that is not text
 // as none.
 TEST(LoadSceneErrors, AGlbBufferAfterTheFirstWithoutAUri) {
