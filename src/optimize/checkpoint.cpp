@@ -15,7 +15,7 @@
 #include "image/atomic_write.h"
 #include "image/regular_file.h"
 #include "optimize/base64.h"
-#include "optimize/json_without_repeated_keys.h"
+#include "scene/parse_json_text.h"
 
 namespace vkdr {
 namespace {
@@ -79,9 +79,9 @@ public:
     Json parse() const {
         const std::string text = readRegularFile(file_);
         if (text.find_first_not_of(" \t\r\n") == std::string::npos) fail("", "empty");
-        JsonWithRepeatedKey parsed;
+        ParsedJsonText<Json> parsed;
         try {
-            parsed = parseJsonNotingRepeatedKeys(text);
+            parsed = parseJsonText<Json>(text);
         } catch (const Json::parse_error& error) {
             // nlohmann's message starts with its own error id: "[json.exception.parse_error.101] ".
             const std::string message = error.what();

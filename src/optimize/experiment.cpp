@@ -15,13 +15,13 @@
 #include "optimize/coarse_grid_gradient.h"
 #include "optimize/density_grid_options.h"
 #include "optimize/grid_priors.h"
-#include "optimize/json_without_repeated_keys.h"
 #include "optimize/log_space.h"
 #include "optimize/loss_kind_text.h"
 #include "optimize/parameter_vector.h"
 #include "scene/gltf_diagnostics.h"
 #include "scene/orthographic_view.h"
 #include "scene/parameters.h"
+#include "scene/parse_json_text.h"
 
 namespace vkdr {
 namespace {
@@ -46,7 +46,7 @@ public:
 
     Json parse() const {
         try {
-            JsonWithRepeatedKey parsed = parseJsonNotingRepeatedKeys(readRegularFile(file_));
+            ParsedJsonText<Json> parsed = parseJsonText<Json>(readRegularFile(file_));
             if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, kRepeatedKeyProblem);
             if (!parsed.document.is_object()) fail("", "expected a JSON object");
             return std::move(parsed.document);
