@@ -82,7 +82,7 @@ public:
         ParsedJsonText<Json> parsed;
         try {
             parsed = parseJsonText<Json>(text);
-        } catch (const Json::parse_error& error) {
+        } catch (const Json::exception& error) {  // parse_error, or out_of_range for 1e999
             // nlohmann's message starts with its own error id: "[json.exception.parse_error.101] ".
             const std::string message = error.what();
             const size_t idEnd = message.find("] ");
@@ -90,7 +90,7 @@ public:
                          (idEnd == std::string::npos ? message : message.substr(idEnd + 2)));
         }
         // A checkpoint is written once per key; a repeated one was edited by hand.
-        if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, kRepeatedKeyProblem);
+        if (parsed.repeatedKey) fail(*parsed.repeatedKey, kRepeatedKeyProblem);
         Json& document = parsed.document;
         if (!document.is_object()) fail("", std::string("expected a JSON object, got ") + document.type_name());
         if (!document.contains("format") ||

@@ -47,7 +47,7 @@ public:
     Json parse() const {
         try {
             ParsedJsonText<Json> parsed = parseJsonText<Json>(readRegularFile(file_));
-            if (!parsed.repeatedKey.empty()) fail(parsed.repeatedKey, kRepeatedKeyProblem);
+            if (parsed.repeatedKey) fail(*parsed.repeatedKey, kRepeatedKeyProblem);
             if (!parsed.document.is_object()) fail("", "expected a JSON object");
             return std::move(parsed.document);
         } catch (const Json::exception& e) {

@@ -1,6 +1,7 @@
 #include "scene/parse_gltf_json.h"
 
 #include <string>
+#include <utility>
 
 #include "scene/parse_json_text.h"
 
@@ -18,8 +19,8 @@ nlohmann::json parseGltfJson(std::string_view text, const GltfDiagnostics& diagn
         diagnostics.fail("", "its JSON nests values " + std::to_string(parsed.depth) + " levels deep; at most " +
                                  std::to_string(kMaxJsonDepth) + " are read");
     }
-    if (!parsed.repeatedKey.empty() && parsed.document.is_object()) {
-        diagnostics.fail(parsed.repeatedKey, kRepeatedKeyProblem);
+    if (parsed.repeatedKey && parsed.document.is_object()) {
+        diagnostics.fail(*parsed.repeatedKey, kRepeatedKeyProblem);
     }
     return std::move(parsed.document);
 }

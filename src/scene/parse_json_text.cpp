@@ -9,7 +9,7 @@
 namespace vkdr {
 namespace {
 
-// An object or array being parsed: its path, and the keys it has given (an object) or
+// An object or array being read: its path, and the keys it has given (an object) or
 // how many entries it has (an array).
 struct OpenContainer {
     std::string field;
@@ -19,47 +19,78 @@ struct OpenContainer {
     std::string pendingKey;  // of the member whose value comes next
 };
 
+// A reading of the text's events that keeps no values: nlohmann's parser with a
+// callback rescans a container after each object in it, quadratic in the entries of a
+// glTF's arrays (seconds for 50,000 nodes), so the shape is read in a pass of its own.
+template <typename Json>
+class ShapeReader : public nlohmann::json_sax<Json> {
+public:
+    using Sax = nlohmann::json_sax<Json>;
+
+    int depth() const { return depth_; }
+    const std::optional<std::string>& repeatedKey() const { return repeatedKey_; }
+
+    bool null() override { return primitive(); }
+    bool boolean(bool) override { return primitive(); }
+    bool number_integer(typename Sax::number_integer_t) override { return primitive(); }
+    bool number_unsigned(typename Sax::number_unsigned_t) override { return primitive(); }
+    bool number_float(typename Sax::number_float_t, const typename Sax::string_t&) override { return primitive(); }
+    bool string(typename Sax::string_t&) override { return primitive(); }
+    bool binary(typename Sax::binary_t&) override { return primitive(); }
+    bool start_object(std::size_t) override { return start(false); }
+    bool start_array(std::size_t) override { return start(true); }
+    bool end_object() override { return end(); }
+    bool end_array() override { return end(); }
+    bool key(typename Sax::string_t& key) override {
+        OpenContainer& object = open_.back();
+        object.pendingKey = key;
+        if (!object.keys.insert(key).second && !repeatedKey_) repeatedKey_ = fieldOf(object, key);
+        noteDepth();
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;  // the document parse that follows reports it
+    }
+
+private:
+    // The root's members are named by their key alone.
+    std::string fieldOf(const OpenContainer& object, const std::string& key) const {
+        return open_.size() == 1 ? key : member(object.field, key);
+    }
+    void noteDepth() { depth_ = std::max(depth_, int(open_.size())); }
+    // A primitive needs only its place in an array: no key can repeat under it.
+    bool primitive() {
+        noteDepth();
+        if (!open_.empty() && open_.back().isArray) ++open_.back().entries;
+        return true;
+    }
+    bool start(bool isArray) {
+        std::string field;
+        if (!open_.empty()) {
+            OpenContainer& parent = open_.back();
+            field = parent.isArray ? indexed(parent.field, parent.entries++) : fieldOf(parent, parent.pendingKey);
+        }
+        noteDepth();
+        open_.push_back({std::move(field), isArray, 0, {}, ""});
+        return true;
+    }
+    bool end() {
+        open_.pop_back();
+        return true;
+    }
+
+    std::vector<OpenContainer> open_;
+    int depth_ = 0;
+    std::optional<std::string> repeatedKey_;
+};
+
 }  // namespace
 
 template <typename Json>
 ParsedJsonText<Json> parseJsonText(std::string_view text, bool allowExceptions) {
-    ParsedJsonText<Json> parsed;
-    std::vector<OpenContainer> open;
-    // The path of the value that starts now, counted as an entry of its container.
-    auto nextValueField = [&]() -> std::string {
-        if (open.empty()) return "";
-        OpenContainer& parent = open.back();
-        if (parent.isArray) return indexed(parent.field, parent.entries++);
-        return parent.field.empty() ? parent.pendingKey : member(parent.field, parent.pendingKey);
-    };
-    auto noteShape = [&](int depth, typename Json::parse_event_t event, Json& value) {
-        parsed.depth = std::max(parsed.depth, depth);
-        switch (event) {
-        case Json::parse_event_t::object_start:
-        case Json::parse_event_t::array_start:
-            open.push_back({nextValueField(), event == Json::parse_event_t::array_start, 0, {}, ""});
-            break;
-        case Json::parse_event_t::object_end:
-        case Json::parse_event_t::array_end:
-            open.pop_back();
-            break;
-        case Json::parse_event_t::key: {
-            OpenContainer& object = open.back();
-            object.pendingKey = value.template get<std::string>();
-            if (!object.keys.insert(object.pendingKey).second && parsed.repeatedKey.empty()) {
-                parsed.repeatedKey =
-                    object.field.empty() ? object.pendingKey : member(object.field, object.pendingKey);
-            }
-            break;
-        }
-        case Json::parse_event_t::value:
-            nextValueField();
-            break;
-        }
-        return true;
-    };
-    parsed.document = Json::parse(text, noteShape, allowExceptions);
-    return parsed;
+    ShapeReader<Json> shape;
+    Json::sax_parse(text, &shape);
+    return {Json::parse(text, nullptr, allowExceptions), shape.repeatedKey(), shape.depth()};
 }
 
 template ParsedJsonText<nlohmann::json> parseJsonText(std::string_view, bool);

@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -10,11 +11,10 @@ namespace vkdr {
 template <typename Json>
 struct ParsedJsonText {
     Json document;
-    // The first key the text gives twice in one object, as a path ("cameras[1].name"),
-    // empty if none: the parser keeps the last of two equal keys without a word, so in a
-    // file a person edits, the value edited in one place and not the other would
-    // silently win or lose.
-    std::string repeatedKey;
+    // The first key the text gives twice in one object, as a path ("cameras[1].name"):
+    // the parser keeps the last of two equal keys without a word, so in a file a person
+    // edits, the value edited in one place and not the other would silently win or lose.
+    std::optional<std::string> repeatedKey;
     // How many objects and arrays enclose the deepest value or key (the root's members
     // are at 1).
     int depth = 0;
@@ -24,7 +24,8 @@ struct ParsedJsonText {
 inline constexpr const char* kRepeatedKeyProblem = "given twice in one object; give each key once";
 
 // Parses `text` as nlohmann::json or nlohmann::ordered_json. Where it is not JSON, throws
-// Json::parse_error, or with `allowExceptions` false gives a discarded document.
+// Json::exception (parse_error, or out_of_range for a number beyond double range), or
+// with `allowExceptions` false gives a discarded document.
 template <typename Json>
 ParsedJsonText<Json> parseJsonText(std::string_view text, bool allowExceptions = true);
 
