@@ -21,7 +21,7 @@ struct OpenContainer {
 
 // A reading of the text's events that keeps no values: nlohmann's parser with a
 // callback rescans a container after each object in it, quadratic in the entries of a
-// glTF's arrays (seconds for 50,000 nodes), so the shape is read in a pass of its own.
+// glTF's arrays, so the shape is read in a pass of its own.
 template <typename Json>
 class ShapeReader : public nlohmann::json_sax<Json> {
 public:
