@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,8 @@
 #include "image/output_paths.h"
 #include "image/regular_file.h"
 #include "scene/glb_layout.h"
+#include "scene/gltf_diagnostics.h"
+#include "scene/parse_gltf_json.h"
 #include "scene/scene_file_access.h"
 #include "scene/scene_medium_emission.h"
 #include "volume/write_density_grid.h"
@@ -40,26 +43,30 @@ struct GltfSource {
     throw Error(file.string() + ": " + reason);
 }
 
+// The JSON read by the loader's own rules (scene/parse_gltf_json.h): the file is the one
+// the scene was loaded from, but a file that is not among the scene's sources (its path
+// changed since) is read here for the first time.
+json parseDocument(const std::filesystem::path& file, std::string_view text) {
+    json document = parseGltfJson(text, GltfDiagnostics(file.string()));
+    if (!document.is_object()) failReading(file, "its JSON is not an object");
+    return document;
+}
+
 GltfSource parseGlb(const std::filesystem::path& file, const std::string& bytes) {
     GlbLayout layout = glbLayout(bytes);
     if (!layout.problem.empty()) failReading(file, layout.problem);
-    GltfSource source{json::parse(layout.json), std::nullopt};
+    GltfSource source{parseDocument(file, layout.json), std::nullopt};
     if (layout.binary) source.binaryChunk = std::string(*layout.binary);
-    if (!source.document.is_object()) failReading(file, "the GLB's JSON chunk is not an object");
     return source;
 }
 
 GltfSource readGltfSource(const std::filesystem::path& file, const std::vector<SourceFile>& sources) {
     std::string bytes = readRegularFile(file);
     requireUnchangedSource(sources, file, bytes);
-    try {
-        if (file.extension() == ".glb" || file.extension() == ".GLB") {
-            return parseGlb(file, bytes);
-        }
-        return {json::parse(bytes), std::nullopt};
-    } catch (const json::exception& e) {
-        failReading(file, std::string("cannot parse glTF JSON: ") + e.what());
+    if (file.extension() == ".glb" || file.extension() == ".GLB") {
+        return parseGlb(file, bytes);
     }
+    return {parseDocument(file, bytes), std::nullopt};
 }
 
 // The shortest decimal that reads back as `value`, so 0.05f is written as 0.05 and

@@ -338,5 +338,27 @@ TEST(WriteScene, NamesAnUnreadableOriginal) {
     EXPECT_FALSE(std::filesystem::exists(directory / "out.gltf"));
 }
 
+// An original that is not among the scene's sources (here, a scene made in memory) is
+// read for the first time when the scene is written: by the loader's rules.
+TEST(WriteScene, ReadsAnOriginalByTheLoadersRules) {
+    TemporaryDirectory directory;
+    const std::filesystem::path original = directory / "original.gltf";
+    const std::string tooDeep = "{\"asset\": {\"version\": \"2.0\"}, \"extras\": " + std::string(600, '[') +
+                                std::string(600, ']') + "}";
+    const std::vector<std::pair<std::string, std::vector<std::string>>> refusals = {
+        {"{\"asset\": {\"version\": \"2.0\"}, \"asset\": {\"version\": \"2.0\"}}", {"asset", "given twice"}},
+        {tooDeep, {"levels deep", "at most 512"}},
+        {"[1, 2]", {"not an object"}},
+        {"{\"asset\": ", {"not an object"}},
+    };
+    for (const auto& [text, parts] : refusals) {
+        writeText(original, text);
+        std::vector<std::string> expected = {"original.gltf"};
+        expected.insert(expected.end(), parts.begin(), parts.end());
+        expectErrorMentioning([&] { writeSceneWithParameters(original, Scene{}, directory / "out.gltf"); }, expected);
+        EXPECT_FALSE(std::filesystem::exists(directory / "out.gltf")) << text.substr(0, 40);
+    }
+}
+
 }  // namespace
 }  // namespace vkdr::test
