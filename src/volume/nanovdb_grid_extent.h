@@ -5,6 +5,7 @@
 // leaf nodes, so a damaged file would be read past its end.
 #include <cstdint>
 #include <string>
+#include <type_traits>
 
 #include <nanovdb/NanoVDB.h>
 
@@ -36,7 +37,17 @@ void requireNodesWithinGrid(const nanovdb::NanoGrid<ValueT>& grid) {
         within(&*upper, sizeof(*upper), "an upper internal node");
         for (auto lower = upper->beginChild(); lower; ++lower) {
             within(&*lower, sizeof(*lower), "a lower internal node");
-            for (auto leaf = lower->beginChild(); leaf; ++leaf) within(&*leaf, sizeof(*leaf), "a leaf node");
+            for (auto leaf = lower->beginChild(); leaf; ++leaf) {
+                within(&*leaf, sizeof(*leaf), "a leaf node");
+                // An FpN leaf's values follow it, as many bits each as its flags say.
+                if constexpr (std::is_same_v<ValueT, nanovdb::FpN>) {
+                    if (leaf->data()->bitWidth() > 16) {
+                        throw Error("the grid is damaged (a leaf of its values takes " +
+                                    std::to_string(leaf->data()->bitWidth()) + " bits each; at most 16 are defined)");
+                    }
+                    within(&*leaf, leaf->data()->memUsage(), "a leaf node's values");
+                }
+            }
         }
     }
 }

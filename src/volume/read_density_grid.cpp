@@ -263,14 +263,23 @@ DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gr
         throw Error(formatText("the grid is damaged (its type is %u, which NanoVDB does not define)", unsigned(type)));
     }
     const bool isVector = Values::channels == 3 && type == nanovdb::GridType::Vec3f;
-    if (type != nanovdb::GridType::Float && type != nanovdb::GridType::Double && !isVector) {
+    const bool isQuantized = type == nanovdb::GridType::Fp4 || type == nanovdb::GridType::Fp8 ||
+                             type == nanovdb::GridType::Fp16 || type == nanovdb::GridType::FpN;
+    if (type != nanovdb::GridType::Float && type != nanovdb::GridType::Double && !isVector && !isQuantized) {
         throw Error(std::string("the grid holds ") + nanovdb::toStr(type) + " values, not " + Values::expected);
     }
     nanovdb::GridHandle<nanovdb::HostBuffer> handle = nanovdb::io::readGrid(file.string(), gridName);
     requireGridWithinBuffer(handle.data(), handle.size());
-    if (type == nanovdb::GridType::Float) return denseBoxOfNanoGrid<Values>(handle.grid<float>(), gridName);
-    if constexpr (Values::channels == 3) {
-        if (isVector) return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Vec3f>(), gridName);
+    switch (type) {
+    case nanovdb::GridType::Float: return denseBoxOfNanoGrid<Values>(handle.grid<float>(), gridName);
+    case nanovdb::GridType::Fp4: return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Fp4>(), gridName);
+    case nanovdb::GridType::Fp8: return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Fp8>(), gridName);
+    case nanovdb::GridType::Fp16: return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Fp16>(), gridName);
+    case nanovdb::GridType::FpN: return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::FpN>(), gridName);
+    case nanovdb::GridType::Vec3f:
+        if constexpr (Values::channels == 3) return denseBoxOfNanoGrid<Values>(handle.grid<nanovdb::Vec3f>(), gridName);
+        break;
+    default: break;
     }
     // The type checks above leave only a double grid.
     return denseBoxOfNanoGrid<Values>(handle.grid<double>(), gridName);

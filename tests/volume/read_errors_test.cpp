@@ -302,6 +302,24 @@ TEST(DensityGridErrors, NanoVdbMetadataAndOffsetsOutOfRange) {
     expectReadError(directory / "leaf.nvdb", "density", {"damaged", "leaf node"});
 }
 
+// An FpN leaf's flags give its values' width, and so the bytes that follow it: a width
+// NanoVDB does not define (beyond 16 bits) is damage, in a grid without a checksum.
+TEST(DensityGridErrors, NanoVdbLeafOfUndefinedWidth) {
+    ScratchDirectory directory;
+    nanovdb::OpenToNanoVDB<float, nanovdb::FpN> fpn;
+    fpn.oracle() = nanovdb::AbsDiff(1e-3f);
+    nanovdb::GridHandle<> handle =
+        fpn(*openVdbGrid(patternedGrid({0, 0, 0}, {12, 12, 12}, glm::dmat4(1.0))), nanovdb::StatsMode::Default,
+            nanovdb::ChecksumMode::Disable, 0);
+    nanovdb::NanoGrid<nanovdb::FpN>* grid = handle.grid<nanovdb::FpN>();
+    ASSERT_NE(grid, nullptr);
+    nanovdb::io::writeGrid((directory / "fpn.nvdb").string(), handle);
+    EXPECT_NO_THROW(readDensityGrid(directory / "fpn.nvdb", "density"));
+    grid->tree().getFirstNode<0>()->data()->mFlags |= uint8_t(7u << 5);  // 2^7 = 128 bits a value
+    nanovdb::io::writeGrid((directory / "wide.nvdb").string(), handle);
+    expectReadError(directory / "wide.nvdb", "density", {"damaged", "128 bits", "at most 16"});
+}
+
 TEST(DensityGridErrors, BoxTooLargeToHoldDensely) {
     ScratchDirectory directory;
     openvdb::FloatGrid::Ptr vdb = gridWithVoxel({2000, 2000, 2000}, 1.0f);

@@ -1,7 +1,10 @@
 // Density grids written as .vdb and .nvdb come back bit for bit, and what OpenVDB
 // itself writes (tiles, inactive voxels, double grids) reads as the dense box it means.
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include <unistd.h>
@@ -54,6 +57,46 @@ TEST(DensityGridFiles, ReadsCompressedNanoVdb) {
         nanovdb::io::writeGrid(file.string(), handle, codec);
         expectSameGrid(readDensityGrid(file, "density"), grid);
     }
+}
+
+// Quantized NanoVDB grids (Fp4, Fp8, Fp16 and the variable-width FpN) read as floats,
+// each voxel within its quantization's error of the grid written: half a quantum for
+// the fixed widths, where a leaf's 2^bits - 1 quanta span at most the grid's range of
+// values, and the oracle's tolerance for FpN.
+TEST(DensityGridFiles, ReadsQuantizedNanoVdb) {
+    ScratchDirectory directory;
+    const DensityGrid grid = patternedGrid({-3, 1, 4}, {11, 9, 10}, skewedTransform());
+    const float largest = *std::max_element(grid.values.begin(), grid.values.end());
+    const openvdb::FloatGrid::Ptr vdb = openVdbGrid(grid);
+    auto quantized = [&]<typename BuildT>(BuildT) {
+        return nanovdb::openToNanoVDB<nanovdb::HostBuffer, openvdb::FloatTree, BuildT>(*vdb);
+    };
+    const float fpnTolerance = 1e-3f;
+    nanovdb::OpenToNanoVDB<float, nanovdb::FpN> fpn;
+    fpn.oracle() = nanovdb::AbsDiff(fpnTolerance);
+    // Decoding rounds code * quantum + minimum to float.
+    const float decoding = 4.0f * std::numeric_limits<float>::epsilon() * largest;
+    auto expectWithin = [&](const std::string& name, const nanovdb::GridHandle<>& handle, float error) {
+        SCOPED_TRACE(name);
+        nanovdb::io::writeGrid((directory / (name + ".nvdb")).string(), handle);
+        const DensityGrid read = readDensityGrid(directory / (name + ".nvdb"), "density");
+        EXPECT_EQ(read.firstVoxel, grid.firstVoxel);
+        EXPECT_EQ(read.size, grid.size);
+        EXPECT_EQ(read.indexToLocal, grid.indexToLocal);
+        ASSERT_EQ(read.values.size(), grid.values.size());
+        float largestError = 0.0f;
+        for (size_t i = 0; i < grid.values.size(); ++i) {
+            largestError = std::max(largestError, std::abs(read.values[i] - grid.values[i]));
+            if (grid.values[i] == 0.0f) {
+                EXPECT_EQ(read.values[i], 0.0f) << "voxel " << i;  // inactive
+            }
+        }
+        EXPECT_LE(largestError, error + decoding);
+    };
+    expectWithin("fp4", quantized(nanovdb::Fp4()), 0.5f * largest / 15.0f);
+    expectWithin("fp8", quantized(nanovdb::Fp8()), 0.5f * largest / 255.0f);
+    expectWithin("fp16", quantized(nanovdb::Fp16()), 0.5f * largest / 65535.0f);
+    expectWithin("fpn", fpn(*vdb), fpnTolerance);
 }
 
 // Voxels of 1e-5 (a micro-CT scan in metres) are not flat, whatever OpenVDB's transforms
