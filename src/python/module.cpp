@@ -17,6 +17,7 @@
 #include "image/finite_pixels.h"
 #include "image/output_paths.h"
 #include "python/constructed_instance_caster.h"
+#include "python/released_python_lock.h"
 #include "python/scene_session.h"
 #include "python/stop_signal_scope.h"
 #include "render/cut_paths.h"
@@ -46,7 +47,7 @@ bool ctrlCStopsTheWork() {
 template <typename Work>
 auto runOnDevice(Work work) {
     const bool stopOnCtrlC = ctrlCStopsTheWork();
-    py::gil_scoped_release release;
+    ReleasedPythonLock released;
     StopSignalScope signals(stopOnCtrlC);
     auto result = work();
     throwIfInterrupted();
@@ -342,7 +343,7 @@ void writeImage(const std::filesystem::path& file, const py::object& array) {
     if (std::optional<std::string> bad = unrepresentablePixel(image)) {
         throw Error("the image's " + *bad + "; nothing was written");
     }
-    py::gil_scoped_release release;
+    ReleasedPythonLock released;
     if (*type == ImageFileType::Exr) {
         writeExr(file, image);
     } else {
@@ -385,7 +386,7 @@ void bindScene(py::module_& m) {
     py::class_<SceneSession>(m, "Scene", "A glTF scene loaded onto a Vulkan device (docs/python.md).")
         .def(py::init([](const std::filesystem::path& file, const py::object& device, bool allowOutsideFiles) {
                  const std::string selector = deviceSelector(device);
-                 py::gil_scoped_release release;
+                 ReleasedPythonLock released;
                  return std::make_unique<SceneSession>(file, selector, allowOutsideFiles);
              }),
              py::arg("file"), py::kw_only(), py::arg("device") = "", py::arg("allow_outside_files").none(false) = false,
@@ -433,7 +434,7 @@ void bindScene(py::module_& m) {
         .def(
             "write",
             [](const SceneSession& s, const std::filesystem::path& out) {
-                py::gil_scoped_release release;
+                ReleasedPythonLock released;
                 s.write(out);
             },
             py::arg("path"),
@@ -447,7 +448,7 @@ void bindFunctions(py::module_& m) {
         [](const std::filesystem::path& file) {
             Image image;
             {
-                py::gil_scoped_release release;
+                ReleasedPythonLock released;
                 image = readImage(file);
             }
             // As a --target is read: a loss against such an image is NaN or infinite.
@@ -465,7 +466,7 @@ void bindFunctions(py::module_& m) {
     m.def(
         "devices",
         []() {
-            py::gil_scoped_release release;
+            ReleasedPythonLock released;
             VulkanContext context(ContextOptions{});
             std::vector<std::string> names;
             for (const DeviceDescription& device : context.allDevices()) names.push_back(device.name);
@@ -483,6 +484,7 @@ PYBIND11_MODULE(_vkdiffrender, m) {
     m.doc() = "vkdiffrender's native module; import vkdiffrender instead (docs/python.md)";
     m.attr("__version__") = VKDR_VERSION;
     settingSpelling() = SettingSpelling::PythonKeywords;  // errors name the keywords, not the options
+    finishModuleWorkAtExit();
     static py::exception<Error> error(m, "Error");
     py::register_exception_translator([](std::exception_ptr p) {
         try {

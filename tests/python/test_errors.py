@@ -442,6 +442,36 @@ print("still works:", scene.render(spp=1, width=8).shape, flush=True)
 """
 
 
+DAEMONS_AT_EXIT = """
+import sys, threading, time, numpy as np, vkdiffrender
+scene = vkdiffrender.Scene(sys.argv[1])
+scene.render(spp=1, width=8)
+def render_forever():
+    while True:
+        scene.render(spp=16, width=32)
+def write_forever():
+    while True:
+        vkdiffrender.write_image(sys.argv[2], np.ones((1000, 1000, 3), np.float32))
+for work in (render_forever, write_forever):
+    threading.Thread(target=work, daemon=True).start()
+time.sleep(0.5)
+print("exiting", flush=True)
+"""
+
+
+def test_daemon_threads_in_device_work_let_the_process_exit(fog_scene_file, tmp_path):
+    """Python 3.11 ends a daemon thread that takes its lock back during finalization by
+    unwinding it, which aborted the process from the module's release of the lock; and
+    work still running as exit() tears the libraries down may crash it
+    (docs/python.md, "Errors and Ctrl-C")."""
+    for attempt in range(3):
+        child = subprocess.run([sys.executable, "-c", DAEMONS_AT_EXIT, str(fog_scene_file), str(tmp_path / "w.exr")],
+                               capture_output=True, text=True, env=os.environ, timeout=120)
+        assert child.returncode == 0, f"attempt {attempt}: exit status {child.returncode}: {child.stderr}"
+        assert child.stdout == "exiting\n"
+        assert "Traceback" not in child.stderr, child.stderr
+
+
 def interrupted_child(script, fog_scene_file, ready, wait, timeout=120):
     """Runs `script` with the scene's path in a Python of its own, sends it SIGINT `wait`
     seconds after it prints the line `ready`, and returns the rest of its output once it
