@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 
@@ -84,7 +85,16 @@ std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::ve
             throw Error("parameter '" + name + "' is given twice");
         }
         getParameter(scene, name);  // throws, listing the valid names, if unknown
-        slots.push_back(resolveGradientSlot(scene, name));
+        GradientSlot slot = resolveGradientSlot(scene, name);
+        // Each name would get the whole gradient, and a fit would step the values once
+        // for each.
+        for (const GradientSlot& other : slots) {
+            if (other.accumulator == slot.accumulator && other.first == slot.first) {
+                throw Error("parameters '" + other.name + "' and '" + name +
+                            "' name the same values (a texture or grid that both use); give one of them");
+            }
+        }
+        slots.push_back(std::move(slot));
     }
     return slots;
 }

@@ -29,7 +29,8 @@ struct GradientSlot {
 bool hasSigmaSGradient(const Medium& medium);
 
 // Resolves names like media/fog/sigma_a; an unknown name is a vkdr::Error listing the
-// valid ones (scene/parameters.h).
+// valid ones (scene/parameters.h), and so are a name given twice and two names of the
+// same values (a texture that two materials share).
 std::vector<GradientSlot> resolveGradientSlots(const Scene& scene, const std::vector<std::string>& names);
 
 // The kinds of gradient these slots need (render/renderer.h, DerivativeTargets): only

@@ -73,5 +73,21 @@ TEST(GradientSlot, KeepsTheKindForTheAdjointsDerivativeTargets) {
                           {"parameter 'media/fog/g' is given twice"});
 }
 
+// Two names of one texture (two materials share it) would each get the whole gradient,
+// and a fit would step the texels once for each.
+TEST(GradientSlot, RefusesTwoNamesOfTheSameValues) {
+    Scene scene = sceneWithTwoOfEverything();
+    scene.materials[0].baseColorTexture = 1;
+    expectErrorMentioning(
+        [&] { resolveGradientSlots(scene, {"materials/white/base_color_texture", "materials/light/base_color_texture"}); },
+        {"'materials/white/base_color_texture' and 'materials/light/base_color_texture' name the same values"});
+    scene.materials[0].baseColorTexture = 0;
+    EXPECT_EQ(resolveGradientSlots(scene, {"materials/white/base_color_texture", "materials/light/base_color_texture"})
+                  .size(),
+              2u);
+    // A medium's coefficients share an accumulator, not values.
+    EXPECT_EQ(resolveGradientSlots(scene, {"media/fog/sigma_a", "media/fog/sigma_s", "media/fog/g"}).size(), 3u);
+}
+
 }  // namespace
 }  // namespace vkdr::test

@@ -186,6 +186,13 @@ def test_two_names_of_one_texture_are_refused(tmp_path):
                                          "materials/poster2/base_color_texture name the same values"):
         vt.render(shared, {"materials/poster/base_color_texture": torch.tensor(0.9),
                            "materials/poster2/base_color_texture": torch.tensor(0.2)}, width=8)
+    # The module's own gradients refuse them too: each name would get the whole gradient.
+    both = ["materials/poster/base_color_texture", "materials/poster2/base_color_texture"]
+    with pytest.raises(vkdiffrender.Error, match="'materials/poster/base_color_texture' and "
+                                                 "'materials/poster2/base_color_texture' name the same values"):
+        shared.backpropagate(np.ones((8, 8, 3), np.float32), both, spp=2, width=8)
+    with pytest.raises(vkdiffrender.Error, match="name the same values"):
+        shared.loss_gradient(np.zeros((8, 8, 3), np.float32), both, spp=2, width=8)
 
 
 def test_complex_values_are_refused_not_cut_to_their_real_part(scene):
