@@ -1,8 +1,11 @@
 #include "render/gpu_scene.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
+#include "core/error.h"
+#include "core/format_text.h"
 #include "device_types.h"
 #include "render/light_distribution.h"
 #include "vk/context.h"
@@ -43,9 +46,24 @@ std::vector<gpu::GpuMaterial> deviceMaterials(const Scene& scene) {
     return out;
 }
 
+// A density grid's medium tracks sigma_a + sigma_s times the density: where that sum is
+// beyond float range, a voxel of density 0 gives infinity times 0 and the image NaN.
+// (Where the sum fits but the density's product does not, tracking counts too many steps
+// and the renderer refuses the medium as too dense.)
+void requireExtinctionInFloatRange(const Medium& medium) {
+    for (int c = 0; c < 3; ++c) {
+        if (double(medium.sigma_a[c]) + double(medium.sigma_s[c]) > double(std::numeric_limits<float>::max())) {
+            throw Error("the density grid medium '" + medium.name + "' is too dense to render: its sigma_a + sigma_s (" +
+                        formatText("%g + %g", double(medium.sigma_a[c]), double(medium.sigma_s[c])) + ", channel " +
+                        "RGB"[c] + ") is beyond float range; lower them");
+        }
+    }
+}
+
 std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
     std::vector<gpu::GpuMedium> out;
     for (const Medium& m : scene.media) {
+        if (m.isHeterogeneous()) requireExtinctionInFloatRange(m);
         out.push_back({m.sigma_a, m.g, m.sigma_s, m.isHeterogeneous() ? uint32_t(m.densityGrid) : gpu::kNoDensityGrid,
                        m.emission, m.hasEmissionGrid() ? uint32_t(m.emissionGrid) : gpu::kNoDensityGrid,
                        m.hasAlbedoGrid() ? uint32_t(m.albedoGrid) : gpu::kNoDensityGrid, {0u, 0u, 0u}});

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "bvh/bvh.h"
+#include "expect_error.h"
 #include "furnace_scene.h"
 #include "render_test_support.h"
 #include "single_scattering_quadrature.h"
@@ -203,6 +204,23 @@ TEST_F(GridMediumTest, SegmentsTooLongToTrackRefuseTheRenderNamingTheMedium) {
                                      std::to_string(gpu::kMaxTransmittanceSteps) + " tracking steps";
         EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
+}
+
+// sigma_a and sigma_s may each be as large as a float holds, but their sum, which a grid
+// medium tracks, then is not: the render is refused naming the medium, not returned NaN
+// where a voxel of density 0 multiplies it.
+TEST_F(GridMediumTest, AnExtinctionBeyondFloatRangeRefusesTheRenderNamingTheMedium) {
+    const float large = 2.0e38f;
+    const Scene scene = loadScene(furnaceWithOneDenseVoxelPerCell(glm::vec3(0.5f),
+                                                                  {.sigmaA = glm::vec3(1.0f, large, 1.0f),
+                                                                   .sigmaS = glm::vec3(1.0f, large, 1.0f)},
+                                                                  0, 0.0f, tempDir()))
+                            .scene;
+    const Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    expectErrorMentioning(
+        [&] { Renderer(testContext(), scene, bvh, {.width = 4, .height = 4, .spp = 1, .maxDepth = 1}).render(); },
+        {"the density grid medium 'sparse' is too dense to render", "2e+38 + 2e+38, channel G",
+         "beyond float range"});
 }
 
 // The renderer addresses voxels by index coordinates in float, exact up to 2^24: a grid
