@@ -126,11 +126,13 @@ void requireObjectsWithinFloatRange(const py::array& objects, const std::string&
                                 ? true
                                 : py::hasattr(item, "is_finite") ? py::cast<bool>(item.attr("is_finite")())
                                                                  : py::cast<bool>(math.attr("isfinite")(item));
+        // NaN and infinities are named once they are floats; comparing a Decimal NaN raises.
+        if (!finite) continue;
         // Python compares integers, Fractions and Decimals with a float exactly.
         const py::object magnitude = abs(item);
         const int beyond = PyObject_RichCompareBool(magnitude.ptr(), overflow.ptr(), Py_GE);
         if (beyond < 0) throw py::error_already_set();
-        if (finite && beyond == 1) {
+        if (beyond == 1) {
             std::string text = py::str(item);
             if (text.size() > 40) text = text.substr(0, 20) + "... (" + std::to_string(text.size()) + " digits)";
             throw Error(what + ": must be finite, got " + text + ": beyond float range (magnitude at most 3.4e+38)");
@@ -189,12 +191,22 @@ Image imageOfArray(const py::object& value, const std::string& what) {
     return image;
 }
 
+// "ValueError: boom" for the Python exception `error` holds, without its traceback.
+std::string pythonErrorText(const py::error_already_set& error) {
+    return std::string(py::str(error.type().attr("__name__"))) + ": " + std::string(py::str(error.value()));
+}
+
+// Python's or numpy's bool: an integer to Python, a mistake as a count or an index.
+bool isBool(const py::object& value) {
+    return py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_"));
+}
+
 // The command line's check of an integer option (cli/number_options.h), with the
 // keyword's name where the command line names its option. An int, or what Python takes
 // as one (a numpy integer): a float or a bool is a TypeError, not truncated.
 uint32_t integerIn(const char* keyword, const py::object& value, int64_t low, int64_t high,
                    const std::string& kind = "") {
-    if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) {
+    if (isBool(value) || !PyIndex_Check(value.ptr())) {
         throw py::type_error(std::string(keyword) + ": expected an integer, got " +
                              std::string(py::str(value.get_type().attr("__name__"))));
     }
@@ -204,7 +216,8 @@ uint32_t integerIn(const char* keyword, const py::object& value, int64_t low, in
         // element and a shape): numpy's own message would not name the keyword.
         const py::error_already_set error;
         throw py::type_error(std::string(keyword) + ": expected an integer, got " +
-                             std::string(py::str(value.get_type().attr("__name__"))) + " (" + error.what() + ")");
+                             std::string(py::str(value.get_type().attr("__name__"))) + " (" +
+                             pythonErrorText(error) + ")");
     }
     auto below = [&](int64_t bound) {
         return PyObject_RichCompareBool(number.ptr(), py::int_(bound).ptr(), Py_LT) == 1;
@@ -373,10 +386,23 @@ void bindParameter(py::module_& m) {
         });
 }
 
-// The command line's --device text for `device`: an index (an int, as the command line's
-// digits) or part of a device's name.
+// The command line's --device text for `device`: an index (an int or a numpy integer, as
+// the command line's digits) or part of a device's name.
 std::string deviceSelector(const py::object& device) {
-    if (py::isinstance<py::int_>(device) && !py::isinstance<py::bool_>(device)) return std::string(py::str(device));
+    if (!isBool(device) && !py::isinstance<py::str>(device) && PyIndex_Check(device.ptr())) {
+        const auto number = py::reinterpret_steal<py::object>(PyNumber_Index(device.ptr()));
+        if (!number) {
+            const py::error_already_set error;
+            throw py::type_error("device: expected an index or part of a device's name, got " +
+                                 std::string(py::str(device.get_type().attr("__name__"))) + " (" +
+                                 pythonErrorText(error) + ")");
+        }
+        const std::string index = py::str(number);
+        if (index.starts_with('-')) {
+            throw Error("device: an index is at least 0, got " + index + " (vkdiffrender.devices() lists them)");
+        }
+        return index;
+    }
     if (py::isinstance<py::str>(device)) return device.cast<std::string>();
     throw py::type_error("device: expected an index or part of a device's name, got " +
                          std::string(py::str(device.get_type().attr("__name__"))));

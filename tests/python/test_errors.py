@@ -75,6 +75,8 @@ def test_keyword_messages_are_the_command_lines_options(cli, fog_scene_file, tmp
     (np.zeros((1, 3), np.float32), "expected shape (3,)"),
     (1e300, "media/fog/sigma_a: must be finite, got 1e+300: beyond float range (magnitude at most 3.4e+38)"),
     ([0.1, -1e39, 0.1], "must be finite, got -1e+39: beyond float range"),
+    (Decimal("NaN"), "media/fog/sigma_a: must be finite, got nan"),  # comparing it with a float raises
+    ([Decimal("-Infinity"), 1, 1], "media/fog/sigma_a: must be finite, got -inf"),
 ])
 def test_bad_parameter_values_are_refused(scene, value, problem):
     before = scene["media/fog/sigma_a"].copy()
@@ -302,8 +304,11 @@ def test_a_device_is_an_index_or_part_of_a_name(fog_scene_file):
     assert vkdiffrender.Scene(fog_scene_file, device=name[:4]).device == name
     with pytest.raises(vkdiffrender.Error, match=f"^device {len(vkdiffrender.devices())}: no device has that index"):
         vkdiffrender.Scene(fog_scene_file, device=len(vkdiffrender.devices()))
-    for wrong in [1.0, True, None]:
-        with pytest.raises(TypeError):
+    assert vkdiffrender.Scene(fog_scene_file, device=np.int64(0)).device == name
+    with pytest.raises(vkdiffrender.Error, match=r"^device: an index is at least 0, got -1 "):
+        vkdiffrender.Scene(fog_scene_file, device=-1)
+    for wrong in [1.0, True, np.bool_(False), None]:
+        with pytest.raises(TypeError, match="^device: expected an index or part of a device's name"):
             vkdiffrender.Scene(fog_scene_file, device=wrong)
 
 
@@ -311,12 +316,18 @@ def test_integer_keywords_take_integers_only(scene):
     """numpy integers are integers; a float (numpy's too) or a bool is a TypeError rather than
     truncated, and an integer beyond 64 bits gets the keyword's range message."""
     assert scene.render(width=np.int64(WIDTH), spp=np.uint8(1)).shape == (WIDTH, WIDTH, 3)
-    for keyword, value in [("spp", np.float32(1.7)), ("width", 8.0), ("spp", True)]:
+    for keyword, value in [("spp", np.float32(1.7)), ("width", 8.0), ("spp", True), ("width", np.bool_(True))]:
         with pytest.raises(TypeError, match=f"^{keyword}: expected an integer, got {type(value).__name__}$"):
             scene.render(**{"width": WIDTH, "spp": 1, keyword: value})
     # numpy arrays claim to be integers, and are not one unless of one element and no shape.
     with pytest.raises(TypeError, match="^width: expected an integer, got ndarray"):
         scene.render(width=np.array([WIDTH]), spp=1)
+    # An __index__ that raises is named with its reason, not its traceback.
+    class BadIndex:
+        def __index__(self):
+            raise ValueError("no index here")
+    with pytest.raises(TypeError, match=r"^spp: expected an integer, got BadIndex \(ValueError: no index here\)$"):
+        scene.render(width=WIDTH, spp=BadIndex())
     with pytest.raises(vkdiffrender.Error, match=r"^spp: must be an integer from 1 to \d+, got 9223372036854775808$"):
         scene.render(width=WIDTH, spp=2**63)
     with pytest.raises(vkdiffrender.Error, match=r"^seed: must be a 32-bit unsigned integer .*, got 18446744073709551616$"):
