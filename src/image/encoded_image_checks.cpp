@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "image/image_formats.h"
+
 namespace vkdr {
 
 namespace {
@@ -45,8 +47,27 @@ uint32_t allowedPngBitDepths(unsigned colourType) {
     }
 }
 
+uint32_t bigEndian32(const unsigned char* bytes) {
+    return uint32_t(bytes[0]) << 24 | uint32_t(bytes[1]) << 16 | uint32_t(bytes[2]) << 8 | uint32_t(bytes[3]);
+}
+
+// The decoder refuses an image too large for it, or one of no pixels, with a reason that
+// its callers lose (they go on trying other formats): the header says it first.
+std::string imageSizeProblem(uint32_t width, uint32_t height) {
+    if (width == 0 || height == 0) {
+        return "the image is empty (" + std::to_string(width) + " x " + std::to_string(height) + " pixels)";
+    }
+    if (uint64_t(width) * uint64_t(height) > kMaxImagePixels) {
+        return std::to_string(width) + " x " + std::to_string(height) + " pixels is too large";
+    }
+    return {};
+}
+
 std::string pngHeaderProblem(const unsigned char* data, uint32_t length) {
     if (length != 13) return "the PNG header chunk holds " + std::to_string(length) + " bytes, not 13";
+    if (std::string problem = imageSizeProblem(bigEndian32(data), bigEndian32(data + 4)); !problem.empty()) {
+        return problem;
+    }
     const unsigned bitDepth = data[8], colourType = data[9];
     const uint32_t allowed = allowedPngBitDepths(colourType);
     if (allowed == 0) return "the PNG colour type " + std::to_string(colourType) + " is not one PNG defines";
@@ -73,8 +94,7 @@ std::string pngChunkProblem(const unsigned char* bytes, size_t size) {
     // Each chunk: a big-endian 32-bit data length, a 4-byte type, the data, a 4-byte CRC.
     size_t offset = sizeof(kPngSignature);
     while (size - offset >= 8) {
-        uint32_t length = uint32_t(bytes[offset]) << 24 | uint32_t(bytes[offset + 1]) << 16 |
-                          uint32_t(bytes[offset + 2]) << 8 | uint32_t(bytes[offset + 3]);
+        const uint32_t length = bigEndian32(bytes + offset);
         std::string type(reinterpret_cast<const char*>(bytes + offset + 4), 4);
         size_t left = size - offset - 8;
         if (length > left) {
@@ -110,6 +130,14 @@ std::string jpegProblem(const unsigned char* bytes, size_t size) {
             if (std::string problem = huffmanTableProblem(bytes + offset + 2, length - 2, offset); !problem.empty()) {
                 return problem;
             }
+        }
+        // A start of frame (SOF0 to SOF15 but for DHT, JPG and DAC): precision, then the
+        // height and width.
+        const bool startOfFrame = marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc;
+        if (startOfFrame && length >= 7) {
+            const uint32_t height = uint32_t(bytes[offset + 3]) << 8 | bytes[offset + 4];
+            const uint32_t width = uint32_t(bytes[offset + 5]) << 8 | bytes[offset + 6];
+            if (std::string problem = imageSizeProblem(width, height); !problem.empty()) return problem;
         }
         if (marker == 0xda) return {};  // start of scan: entropy-coded data follows
         offset += length;

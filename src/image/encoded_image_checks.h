@@ -12,16 +12,18 @@ namespace vkdr {
 bool isPngOrJpeg(const unsigned char* bytes, size_t size);
 
 // For bytes that start with the PNG signature: what is wrong when a chunk declares more
-// bytes than follow it, or the header gives a colour type and bit depth PNG does not
-// allow (empty when neither, or the bytes are not a PNG).
+// bytes than follow it, or the header gives no pixels, more than kMaxImagePixels, or a
+// colour type and bit depth PNG does not allow (empty when none, or the bytes are not a
+// PNG).
 // stb_image sizes its buffer for the compressed data by the declared lengths before
 // reading them, so a few corrupt bytes could make it claim gigabytes; callers check this
 // first.
 std::string pngChunkProblem(const unsigned char* bytes, size_t size);
 
 // For bytes that start as a JPEG: what is wrong when a marker segment before the scan
-// data is longer than the file, or a Huffman table declares more than 256 codes (empty
-// when neither, or the bytes are not a JPEG). Debian's stb_image writes past its
+// data is longer than the file, a Huffman table declares more than 256 codes, or the
+// frame header gives no pixels or more than kMaxImagePixels (empty when none, or the
+// bytes are not a JPEG). Debian's stb_image writes past its
 // Huffman arrays for such a table (found by tools/fuzz.sh), so callers check this first.
 std::string jpegProblem(const unsigned char* bytes, size_t size);
 

@@ -157,5 +157,41 @@ TEST(Jpeg, ReadsAndDecodesSrgb) {
     for (float v : read.rgb) EXPECT_NEAR(srgbFromLinear(v), 128.0f / 255, 2.0f / 255);
 }
 
+// The decoder refuses images of no pixels or too many for it, and its callers lose its
+// reason: the header's size is named instead of "unknown image type".
+TEST(EncodedImages, SizesTheHeaderGivesAreNamed) {
+    test::ScratchDirectory dir;
+    auto expectRefused = [&](const std::string& file, const std::string& part) {
+        try {
+            readImage(dir / file);
+            ADD_FAILURE() << file << " was read";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+        }
+    };
+    // A header of 20000 x 20000 pixels over one row's samples: the size is checked first.
+    std::string huge = Png16Encoder::encode(1, 1, 1, {0});
+    const std::string big = {0, 0, 0x4e, 0x20};  // 20000, big-endian
+    huge.replace(16, 4, big).replace(20, 4, big);
+    test::writeBytes(dir / "huge.png", huge);
+    expectRefused("huge.png", "20000 x 20000 pixels is too large");
+    std::string empty = Png16Encoder::encode(1, 1, 1, {0});
+    empty.replace(16, 4, std::string(4, '\0'));
+    test::writeBytes(dir / "empty.png", empty);
+    expectRefused("empty.png", "the image is empty (0 x 1 pixels)");
+
+    std::vector<unsigned char> pixels(8 * 8 * 3, 128);
+    ASSERT_TRUE(stbi_write_jpg((dir / "grey.jpg").c_str(), 8, 8, 3, pixels.data(), 100));
+    std::string jpeg = test::readBytes(dir / "grey.jpg");
+    const size_t frame = jpeg.find("\xff\xc0");
+    ASSERT_NE(frame, std::string::npos);
+    // After the marker: the segment's length (2 bytes), precision (1), height and width (2 each).
+    test::writeBytes(dir / "wide.jpg", std::string(jpeg).replace(frame + 5, 4, std::string("\x40\x00\xff\xff", 4)));
+    expectRefused("wide.jpg", "65535 x 16384 pixels is too large");
+    test::writeBytes(dir / "flat.jpg", std::string(jpeg).replace(frame + 5, 2, std::string(2, '\0')));
+    expectRefused("flat.jpg", "the image is empty (8 x 0 pixels)");
+}
+
 }  // namespace
 }  // namespace vkdr
