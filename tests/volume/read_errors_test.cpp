@@ -300,6 +300,16 @@ TEST(DensityGridErrors, NanoVdbMetadataAndOffsetsOutOfRange) {
     ASSERT_TRUE(child);
     writeBytes(directory / "leaf.nvdb", unchecked(inGrid(&lower->mTable[*child].child), int64_t(1) << 40));
     expectReadError(directory / "leaf.nvdb", "density", {"damaged", "leaf node"});
+
+    // NanoVDB's checksum addresses each level's nodes by the tree header's counts, and
+    // a breadth-first grid's from the level's first node: both must match the tree.
+    ASSERT_GT(grid->tree().nodeCount(0), 1u);
+    writeBytes(directory / "count.nvdb", unchecked(inGrid(&tree->mNodeCount[0]), uint32_t(1)));
+    expectReadError(directory / "count.nvdb", "density",
+                    {"damaged", "counts 1 nodes at level 0, its tree holds " + std::to_string(grid->tree().nodeCount(0))});
+    ASSERT_TRUE(grid->isBreadthFirst());
+    writeBytes(directory / "first.nvdb", unchecked(inGrid(&tree->mNodeOffset[0]), uint64_t(gridSize - 64)));
+    expectReadError(directory / "first.nvdb", "density", {"damaged", "the array of its leaf nodes lies outside"});
 }
 
 // An FpN leaf's flags give its values' width, and so the bytes that follow it: a width
