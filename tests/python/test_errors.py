@@ -483,6 +483,40 @@ def test_daemon_threads_in_device_work_let_the_process_exit(fog_scene_file, tmp_
         assert "Traceback" not in child.stderr, child.stderr
 
 
+FORK_WHILE_RENDERING = """
+import atexit, os, sys
+parent = os.getpid()
+def leave_child():  # registered first, so run after the module's own handler
+    if os.getpid() != parent:
+        print("child's atexit handlers ran", flush=True)
+        os._exit(0)  # as multiprocessing's children leave: TBB's exit handler is not fork-safe
+atexit.register(leave_child)
+import threading, time, numpy as np, vkdiffrender
+scene = vkdiffrender.Scene(sys.argv[1])
+def render_forever():
+    while True:
+        scene.render(spp=16, width=32)
+threading.Thread(target=render_forever, daemon=True).start()
+time.sleep(0.5)
+pid = os.fork()
+if pid == 0:
+    vkdiffrender.write_image(sys.argv[2], np.ones((8, 8, 3), np.float32))
+    sys.exit(0)
+_, status = os.waitpid(pid, 0)
+print("child", os.waitstatus_to_exitcode(status), flush=True)
+"""
+
+
+def test_a_child_forked_while_a_thread_renders_exits(fog_scene_file, tmp_path):
+    """The child has none of its parent's other threads, nor their work in flight: its own
+    exit must not wait for them (the module's atexit handler waited for ever)."""
+    child = subprocess.run([sys.executable, "-c", FORK_WHILE_RENDERING, str(fog_scene_file), str(tmp_path / "c.exr")],
+                           capture_output=True, text=True, env=os.environ, timeout=120)
+    assert child.returncode == 0, child.stderr
+    assert child.stdout == "child's atexit handlers ran\nchild 0\n", child.stderr
+    assert vkdiffrender.read_image(tmp_path / "c.exr").shape == (8, 8, 3)
+
+
 def interrupted_child(script, fog_scene_file, ready, wait, timeout=120):
     """Runs `script` with the scene's path in a Python of its own, sends it SIGINT `wait`
     seconds after it prints the line `ready`, and returns the rest of its output once it
