@@ -235,9 +235,7 @@ uint32_t integerIn(const char* keyword, const py::object& value, int64_t low, in
 
 // The keywords every device call takes, with the command line's defaults.
 struct RenderKeywords {
-    py::object spp, seed, width, height, maxDepth;
-    std::string camera;
-    py::object pathsPerPass;
+    py::object spp, seed, width, height, maxDepth, camera, pathsPerPass;
     bool equiangular;
 
     RenderSettings settings() const {
@@ -249,7 +247,11 @@ struct RenderKeywords {
         settings.width = int(integerIn("width", width, 0, kMaxImageSide));
         settings.height = int(integerIn("height", height, 0, kMaxImageSide));
         settings.maxDepth = integerIn("max_depth", maxDepth, 0, kMaxScatteringVertices);
-        settings.camera = camera;
+        if (!py::isinstance<py::str>(camera)) {
+            throw py::type_error("camera: expected a camera's name (\"\" for the scene's first), got " +
+                                 std::string(py::str(camera.get_type().attr("__name__"))));
+        }
+        settings.camera = camera.cast<std::string>();
         settings.pathsPerPass = integerIn("paths_per_pass", pathsPerPass, 0, 1 << 21);
         settings.equiangularSampling = equiangular;
         return settings;
@@ -263,7 +265,7 @@ struct RenderKeywords {
 
 #define VKDR_RENDER_KEYWORD_PARAMETERS                                                                 \
     const py::object &spp, const py::object &seed, const py::object &width, const py::object &height, \
-        const py::object &maxDepth, const std::string &camera, const py::object &pathsPerPass, bool equiangular
+        const py::object &maxDepth, const py::object &camera, const py::object &pathsPerPass, bool equiangular
 
 #define VKDR_RENDER_KEYWORD_VALUES \
     RenderKeywords { spp, seed, width, height, maxDepth, camera, pathsPerPass, equiangular }
@@ -321,8 +323,32 @@ py::array_t<float> render(SceneSession& session, const RenderKeywords& keywords)
     return arrayOfImage(std::move(rendered.image));
 }
 
-py::dict backpropagate(SceneSession& session, const py::object& imageAdjoint, const std::vector<std::string>& names,
+// The parameters' names: a list (or other iterable) of str. A lone str is refused rather
+// than taken as the names of its characters.
+std::vector<std::string> parameterNamesOf(const py::object& names) {
+    if (py::isinstance<py::str>(names) || py::isinstance<py::bytes>(names)) {
+        throw py::type_error("parameters: expected a list of names, got " +
+                             std::string(py::str(names.get_type().attr("__name__"))) + " (a list of one name: [" +
+                             std::string(py::repr(names)) + "])");
+    }
+    if (!py::isinstance<py::iterable>(names)) {
+        throw py::type_error("parameters: expected a list of names, got " +
+                             std::string(py::str(names.get_type().attr("__name__"))));
+    }
+    std::vector<std::string> result;
+    for (const py::handle name : names) {
+        if (!py::isinstance<py::str>(name)) {
+            throw py::type_error("parameters: a name must be a str, got " +
+                                 std::string(py::str(name.get_type().attr("__name__"))));
+        }
+        result.push_back(name.cast<std::string>());
+    }
+    return result;
+}
+
+py::dict backpropagate(SceneSession& session, const py::object& imageAdjoint, const py::object& parameters,
                        const RenderKeywords& keywords) {
+    const std::vector<std::string> names = parameterNamesOf(parameters);
     const RenderSettings settings = keywords.settings();
     const Image adjoint = imageOfArray(imageAdjoint, "the image adjoint");
     SceneSession::Backpropagated result = runOnDevice([&] { return session.backpropagate(settings, adjoint, names); });
@@ -330,8 +356,9 @@ py::dict backpropagate(SceneSession& session, const py::object& imageAdjoint, co
     return gradientDictionary(session, result.gradients);
 }
 
-py::tuple lossGradient(SceneSession& session, const py::object& targetArray, const std::vector<std::string>& names,
+py::tuple lossGradient(SceneSession& session, const py::object& targetArray, const py::object& parameters,
                        const std::string& lossName, const RenderKeywords& keywords) {
+    const std::vector<std::string> names = parameterNamesOf(parameters);
     const RenderSettings settings = keywords.settings();
     const Image target = imageOfArray(targetArray, "the target");
     if (lossName != "l2" && lossName != "l1") {
@@ -442,16 +469,17 @@ void bindScene(py::module_& m) {
             "give the same image bit for bit, the image of `vkdiffrender render`.")
         .def(
             "backpropagate",
-            [](SceneSession& s, const py::object& adjoint, const std::vector<std::string>& names,
-               VKDR_RENDER_KEYWORD_PARAMETERS) { return backpropagate(s, adjoint, names, VKDR_RENDER_KEYWORD_VALUES); },
+            [](SceneSession& s, const py::object& adjoint, const py::object& names, VKDR_RENDER_KEYWORD_PARAMETERS) {
+                return backpropagate(s, adjoint, names, VKDR_RENDER_KEYWORD_VALUES);
+            },
             py::arg("image_adjoint"), py::arg("parameters"), VKDR_RENDER_KEYWORDS,
             "dLoss/dparameter for each named parameter, given dLoss/dI (an (H, W, 3) array) of the image "
             "render() gives with the same keywords; a dict of float64 arrays shaped as the parameters. The "
             "paths are replayed with random numbers independent of that image's (docs/python.md).")
         .def(
             "loss_gradient",
-            [](SceneSession& s, const py::object& target, const std::vector<std::string>& names,
-               const std::string& loss, VKDR_RENDER_KEYWORD_PARAMETERS) {
+            [](SceneSession& s, const py::object& target, const py::object& names, const std::string& loss,
+               VKDR_RENDER_KEYWORD_PARAMETERS) {
                 return lossGradient(s, target, names, loss, VKDR_RENDER_KEYWORD_VALUES);
             },
             py::arg("target"), py::arg("parameters"), py::arg("loss") = "l2", VKDR_RENDER_KEYWORDS,

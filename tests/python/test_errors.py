@@ -170,6 +170,25 @@ def test_bad_calls_raise(scene, call, problem):
     assert scene.render(spp=1, width=WIDTH).shape == (WIDTH, WIDTH, 3)  # still usable
 
 
+@pytest.mark.parametrize("call,problem", [
+    (lambda s: s.backpropagate(np.zeros((WIDTH, WIDTH, 3), np.float32), "media/fog/g", width=WIDTH),
+     "parameters: expected a list of names, got str (a list of one name: ['media/fog/g'])"),
+    (lambda s: s.loss_gradient(np.zeros((WIDTH, WIDTH, 3), np.float32), 3, width=WIDTH),
+     "parameters: expected a list of names, got int"),
+    (lambda s: s.backpropagate(np.zeros((WIDTH, WIDTH, 3), np.float32), ["media/fog/g", None], width=WIDTH),
+     "parameters: a name must be a str, got NoneType"),
+    (lambda s: s.render(width=WIDTH, camera=None), 'camera: expected a camera\'s name ("" for the scene\'s first), '
+                                                   "got NoneType"),
+    (lambda s: s.render(width=WIDTH, camera=0), 'camera: expected a camera\'s name ("" for the scene\'s first), got int'),
+])
+def test_names_that_are_not_text_are_type_errors_naming_the_argument(scene, call, problem):
+    """pybind11's own message would list the signatures and print the arrays passed."""
+    with pytest.raises(TypeError, match="^" + re.escape(problem) + "$"):
+        call(scene)
+    assert scene.backpropagate(np.zeros((8, 8, 3), np.float32), ("media/fog/g" for _ in range(1)), width=8,
+                               spp=2)["media/fog/g"].shape == (1,)
+
+
 def test_objects_made_without_init_raise_instead_of_crashing(tmp_path):
     bare = vkdiffrender.Scene.__new__(vkdiffrender.Scene)
     image = np.zeros((WIDTH, WIDTH, 3), np.float32)
