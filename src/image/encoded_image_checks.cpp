@@ -137,6 +137,11 @@ std::string jpegProblem(const unsigned char* bytes, size_t size) {
         if (startOfFrame && length >= 7) {
             const uint32_t height = uint32_t(bytes[offset + 3]) << 8 | bytes[offset + 4];
             const uint32_t width = uint32_t(bytes[offset + 5]) << 8 | bytes[offset + 6];
+            // A height of 0 is left to a DNL marker after the first scan, which stb_image
+            // does not read.
+            if (height == 0 && width > 0) {
+                return "the JPEG frame header leaves its height to a DNL marker, which is not read";
+            }
             if (std::string problem = imageSizeProblem(width, height); !problem.empty()) return problem;
         }
         if (marker == 0xda) return {};  // start of scan: entropy-coded data follows

@@ -190,7 +190,9 @@ TEST(EncodedImages, SizesTheHeaderGivesAreNamed) {
     test::writeBytes(dir / "wide.jpg", std::string(jpeg).replace(frame + 5, 4, std::string("\x40\x00\xff\xff", 4)));
     expectRefused("wide.jpg", "65535 x 16384 pixels is too large");
     test::writeBytes(dir / "flat.jpg", std::string(jpeg).replace(frame + 5, 2, std::string(2, '\0')));
-    expectRefused("flat.jpg", "the image is empty (8 x 0 pixels)");
+    expectRefused("flat.jpg", "leaves its height to a DNL marker");
+    test::writeBytes(dir / "narrow.jpg", std::string(jpeg).replace(frame + 7, 2, std::string(2, '\0')));
+    expectRefused("narrow.jpg", "the image is empty (0 x 8 pixels)");
 }
 
 }  // namespace
