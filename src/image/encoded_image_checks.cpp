@@ -51,18 +51,6 @@ uint32_t bigEndian32(const unsigned char* bytes) {
     return uint32_t(bytes[0]) << 24 | uint32_t(bytes[1]) << 16 | uint32_t(bytes[2]) << 8 | uint32_t(bytes[3]);
 }
 
-// The decoder refuses an image too large for it, or one of no pixels, with a reason that
-// its callers lose (they go on trying other formats): the header says it first.
-std::string imageSizeProblem(uint32_t width, uint32_t height) {
-    if (width == 0 || height == 0) {
-        return "the image is empty (" + std::to_string(width) + " x " + std::to_string(height) + " pixels)";
-    }
-    if (uint64_t(width) * uint64_t(height) > kMaxImagePixels) {
-        return std::to_string(width) + " x " + std::to_string(height) + " pixels is too large";
-    }
-    return {};
-}
-
 std::string pngHeaderProblem(const unsigned char* data, uint32_t length) {
     if (length != 13) return "the PNG header chunk holds " + std::to_string(length) + " bytes, not 13";
     if (std::string problem = imageSizeProblem(bigEndian32(data), bigEndian32(data + 4)); !problem.empty()) {
@@ -83,6 +71,16 @@ std::string pngHeaderProblem(const unsigned char* data, uint32_t length) {
 }
 
 }  // namespace
+
+std::string imageSizeProblem(uint64_t width, uint64_t height) {
+    if (width == 0 || height == 0) {
+        return "the image is empty (" + std::to_string(width) + " x " + std::to_string(height) + " pixels)";
+    }
+    if (width > kMaxImagePixels || height > kMaxImagePixels || width * height > kMaxImagePixels) {
+        return std::to_string(width) + " x " + std::to_string(height) + " pixels is too large";
+    }
+    return {};
+}
 
 bool isPngOrJpeg(const unsigned char* bytes, size_t size) {
     return startsWith(bytes, size, kPngSignature, sizeof(kPngSignature)) ||

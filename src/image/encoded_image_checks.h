@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace vkdr {
@@ -10,6 +11,12 @@ namespace vkdr {
 // PNM and others by their content, and some of those decode a header of a few bytes into
 // a huge image of zeros; targets may only be PNG or JPEG (or EXR), so the rest are refused.
 bool isPngOrJpeg(const unsigned char* bytes, size_t size);
+
+// What is wrong with an image of width x height pixels: none, or more than
+// kMaxImagePixels (empty when nothing). The decoder refuses such an image with a reason
+// that its callers lose (they go on trying other formats), so the header's size is
+// checked first, and the decoder's again after it.
+std::string imageSizeProblem(uint64_t width, uint64_t height);
 
 // For bytes that start with the PNG signature: what is wrong when a chunk declares more
 // bytes than follow it, or the header gives no pixels, more than kMaxImagePixels, or a

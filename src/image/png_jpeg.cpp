@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <fstream>
@@ -104,9 +105,10 @@ Image readPngOrJpeg(const std::filesystem::path& file) {
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))
         failToRead(file, "not a PNG or JPEG image we can decode (" + stbReason() + ")");
-    if (width <= 0 || height <= 0) failToRead(file, "the image is empty");
-    if (size_t(width) * size_t(height) > kMaxImagePixels)
-        failToRead(file, std::to_string(width) + " x " + std::to_string(height) + " pixels is too large");
+    if (std::string problem = imageSizeProblem(uint64_t(std::max(width, 0)), uint64_t(std::max(height, 0)));
+        !problem.empty()) {
+        failToRead(file, problem);
+    }
 
     if (stbi_is_16_bit_from_memory(bytes.data(), length)) {
         std::unique_ptr<stbi_us, StbFree> pixels(stbi_load_16_from_memory(bytes.data(), length, &width, &height, &channels, 0));
