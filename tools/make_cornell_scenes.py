@@ -3,8 +3,8 @@
 cornell_fire.gltf and cornell_softbox.gltf.
 
 The geometry is the published Cornell box data (https://www.graphics.cornell.edu/online/box/data.html),
-kept in millimetres in the buffer and scaled to metres by the root node, so the box is
-about 5.55 units across and media coefficients are per metre. Each quad is wound so
+kept in millimetres in the buffer and scaled by 0.01 by the root node, so the box is
+about 5.55 units across (a unit is 100 mm) and media coefficients are per unit. Each quad is wound so
 that its front face points into the room (walls), out of the block (blocks), or down
 (the light); the script checks this rather than trusting the data's vertex order.
 
@@ -99,7 +99,7 @@ MATERIALS = {
     "plume": {"extensions": {"VKDR_participating_media": {
         "sigma_a": [2.0, 2.0, 2.0], "sigma_s": [150.0, 150.0, 150.0], "g": 0.3,
         "density": {"uri": "cornell_plume.vdb", "grid": "density"}}}},
-    # The same smoke, thinner, burning at its base: the emission (radiance per metre at a
+    # The same smoke, thinner, burning at its base: the emission (radiance per unit at a
     # flame strength of 1) follows the flame grid.
     "fire": {"extensions": {"VKDR_participating_media": {
         "sigma_a": [1.0, 1.0, 1.0], "sigma_s": [60.0, 60.0, 60.0], "g": 0.3, "emission": [40.0, 12.0, 2.5],

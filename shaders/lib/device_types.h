@@ -45,7 +45,7 @@ const uint kVertexPause = 2u;
 
 // Sample streams (RenderParams.firstStream, rng.glsl): images draw from streams 0 and 1
 // (the halves of a split gradient estimate), paths replayed independently of any image
-// from kReplayStream and the one after it.
+// from kReplayStream (such a replay is never split in halves).
 const uint kImageStream = 0u;
 const uint kReplayStream = 2u;
 
@@ -103,9 +103,10 @@ const uint kColorGradientStride = 3u;
 // Gradients and the loss are summed as fixed-point numbers (shaders/lib/fixed_point.glsl),
 // so that a sum has the same bits whatever order its terms arrive in: kFixedPointWords
 // signed 64-bit words, word k weighing 2^(32 k + kFixedPointLowestBit), then one word of
-// kFixedPoint* flags. Terms are held from 2^-96 (smaller ones are dropped, 26 orders of
-// magnitude below any gradient a float image can give) up to the largest float, with two
-// words to spare above it for the carries of a sum.
+// kFixedPoint* flags. Terms are held from 2^-96 (smaller ones are dropped, 20 orders of
+// magnitude below the smallest per-path term a float image gives) up to the largest
+// float, which fills the low 32 bits of word 6: word 7 and every word's upper bits hold
+// the carries of a sum.
 const uint kFixedPointWords = 8u;
 const int kFixedPointLowestBit = -96;
 const uint kFixedPointFlagsWord = kFixedPointWords;
