@@ -636,6 +636,73 @@ def packed_texture(scene, colour=None):
     bpy.context.object.data.materials.append(material)
 
 
+def negative_lamp(scene):
+    add_light("POINT", "Drain", (0.0, 0.0, 2.0), -100.0, scene.collection)
+
+
+def negative_emission(scene):
+    """A plane whose Emission shader has Strength -2."""
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 0.5))
+    material = bpy.data.materials.new("Sink")
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Strength"].default_value = -2.0
+    material.node_tree.links.new(emission.outputs[0], nodes["Material Output"].inputs["Surface"])
+    bpy.context.object.data.materials.append(material)
+
+
+def negative_world(scene):
+    tree = new_world(scene, "Dark")
+    tree.nodes["Background"].inputs["Strength"].default_value = -1.0
+
+
+def unexported_geometry(scene):
+    """A metaball with a volume material, and a mesh of three points whose Geometry Nodes
+    instance a cube on each: Cycles renders both, Blender's glTF exporter neither. A lamp
+    whose shadows are off."""
+    bpy.ops.object.metaball_add(location=(0.0, 0.0, 1.0))
+    bpy.context.object.name = "Blob"
+    bpy.context.object.data.materials.append(volume_material("BlobFog", 2.0))
+    points = bpy.data.meshes.new("Points")
+    points.from_pydata([(-1.0, 0.0, 0.5), (1.0, 0.0, 0.5), (0.0, 1.0, 0.5)], [], [])
+    scatter = bpy.data.objects.new("Scatter", points)
+    scene.collection.objects.link(scatter)
+    cube = bpy.data.objects.new("Pebble", bpy.data.meshes.new("Pebble"))
+    bmesh_cube(cube.data)
+    tree = bpy.data.node_groups.new("Scatter", "GeometryNodeTree")
+    tree.inputs.new("NodeSocketGeometry", "Geometry")
+    tree.outputs.new("NodeSocketGeometry", "Geometry")
+    on_points, info = tree.nodes.new("GeometryNodeInstanceOnPoints"), tree.nodes.new("GeometryNodeObjectInfo")
+    info.inputs["Object"].default_value = cube
+    tree.links.new(tree.nodes.new("NodeGroupInput").outputs[0], on_points.inputs["Points"])
+    tree.links.new(info.outputs["Geometry"], on_points.inputs["Instance"])
+    tree.links.new(on_points.outputs[0], tree.nodes.new("NodeGroupOutput").inputs[0])
+    scatter.modifiers.new("Scatter", "NODES").node_group = tree
+    add_light("POINT", "Shadowless", (0.0, 0.0, 2.0), 100.0, scene.collection).data.cycles.cast_shadow = False
+
+
+def unused_slot(scene):
+    """The floor with a second material in a slot no face uses."""
+    floor = bpy.data.objects["Plane"]
+    for name, colour in (("Floor", (0.5, 0.5, 0.5, 1.0)), ("Unused", (0.8, 0.1, 0.1, 1.0))):
+        material = bpy.data.materials.new(name)
+        material.use_nodes = True
+        material.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = colour
+        floor.data.materials.append(material)
+    add_light("SUN", "Sun", (0.0, 0.0, 3.0), 3.0, scene.collection)
+
+
+def split_volume_cube(scene):
+    """A volume cube whose faces an Edge Split modifier splits apart: its vertices differ,
+    its surface is closed."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.5))
+    bpy.context.object.data.materials.append(volume_material("SplitFog", 2.0))
+    bpy.context.object.modifiers.new("Split", "EDGE_SPLIT").split_angle = 0.0
+    add_light("POINT", "Bulb", (0.0, 0.0, 2.0), 100.0, scene.collection)
+
+
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
@@ -653,7 +720,10 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "nan_light_power": nan_light_power,
          "area_light_of_no_size": area_light_of_no_size,
          "area_emitter_named_like_a_material": area_emitter_named_like_a_material,
-         "world_named_like_two_materials": world_named_like_two_materials}
+         "world_named_like_two_materials": world_named_like_two_materials,
+         "negative_lamp": negative_lamp, "negative_emission": negative_emission, "negative_world": negative_world,
+         "unexported_geometry": unexported_geometry, "unused_slot": unused_slot,
+         "split_volume_cube": split_volume_cube}
 
 
 def failing_export(scene, directory):
@@ -695,7 +765,8 @@ def instanced_light_written_back(directory):
 
 
 # What some cases read or do once they are exported: the Fit's view of the scene.
-AFTER_EXPORT = {"fit_parameters": offered_for_fit, "medium_write_back": g_written_back,
+AFTER_EXPORT = {"fit_parameters": offered_for_fit, "unexported_geometry": offered_for_fit,
+                "unused_slot": offered_for_fit, "medium_write_back": g_written_back,
                 "light_write_back": light_written_back, "vertex_instanced_lights": instanced_light_written_back,
                 "render_modifiers": viewport_settings_after}
 
@@ -751,6 +822,9 @@ def main():
     export_case(out, "symbolic_link", lambda scene: None, out / "link.gltf")
     export_case(out, "missing_directory", lambda scene: None, out / "no such directory" / "scene.gltf")
     export_case(out, "glb_path", lambda scene: None, out / "glb_path" / "scene.glb")
+    (out / "percent_name").mkdir()
+    export_case(out, "percent_in_name", lambda scene: add_light("SUN", "Sun", (0.0, 0.0, 3.0), 3.0, scene.collection),
+                out / "percent_name" / "a%20b.gltf")
 
 
 main()

@@ -448,9 +448,49 @@ def test_an_orthographic_camera_is_exported_with_the_view_cycles_renders(exporte
     ("area_emitter_named_like_a_material", "light 'Lamp': its emitter's material would be named 'Lamp.area'"),
     ("bright_colour_attribute", "mesh 'Bright': colour attribute 'Col' holds (0.5, 1.5, 0.5) at element 0; vertex "
                                 "colours must be within [0, 1]"),
+    # Cycles subtracts negative light; exported as none it would render another image.
+    ("negative_lamp", "light 'Drain': its Power (a sun's Strength) is negative (-100); Cycles subtracts such light"),
+    ("negative_emission", "material 'Sink': its Emission (Color x Strength) is negative (-2, -2, -2)"),
+    ("negative_world", "world 'Dark': its Background (Color x Strength) is negative"),
 ])
 def test_what_cannot_be_exported_is_refused_before_anything_is_written(exported, case, message):
     assert message in result(exported, case)["error"]
     assert not (exported / case / "scene.gltf").exists()
     assert (exported / "elsewhere.gltf").read_text() == "the user's file"
     assert not (exported / "no such directory").exists()
+
+
+def test_faces_without_a_material_get_cycles_default_surface(exported, cli):
+    doc = document(exported, "unused_slot")
+    floor = doc["meshes"][next(n["mesh"] for n in doc["nodes"] if n.get("name") == "Plane")]
+    assert [doc["materials"][p["material"]]["name"] for p in floor["primitives"]] == ["Floor"]
+    doc = document(exported, "split_volume_cube")  # its floor has no material
+    floor = doc["meshes"][next(n["mesh"] for n in doc["nodes"] if n.get("name") == "Plane")]
+    default = doc["materials"][floor["primitives"][0]["material"]]
+    assert default["name"] == "default surface"
+    assert default["pbrMetallicRoughness"] == {"baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0,
+                                               "roughnessFactor": 1.0}
+    assert render_mean(cli, exported, "split_volume_cube") > 0.0
+
+
+def test_a_volume_whose_faces_are_split_apart_is_closed_as_the_loader_counts_it(exported, cli):
+    assert "error" not in result(exported, "split_volume_cube")
+    doc = document(exported, "split_volume_cube")
+    assert "VKDR_participating_media" in next(m for m in doc["materials"] if m["name"] == "SplitFog")["extensions"]
+
+
+def test_what_blenders_exporter_leaves_out_is_warned_of_and_not_offered_for_a_fit(exported):
+    warnings = own_warnings(exported, "unexported_geometry")
+    assert any(w.startswith("object 'Blob': a metaball, which Blender's glTF exporter leaves out") for w in warnings)
+    assert any(w.startswith("object 'Scatter': its 3 Geometry Nodes instances are not exported") for w in warnings)
+    assert any(w.startswith("light 'Shadowless': its ray visibility and Cast Shadow are not exported")
+               for w in warnings)
+    assert not any("BlobFog" in name for name in result(exported, "unexported_geometry")["fittable"])
+    # A material in a slot no face uses is in no exported mesh.
+    assert result(exported, "unused_slot")["fittable"] == ["materials/Floor/base_color"]
+
+
+def test_a_scene_name_with_a_percent_sign_refers_to_its_own_buffer(exported, cli):
+    doc = json.loads((exported / "percent_name" / "a%20b.gltf").read_text())
+    assert doc["buffers"][0]["uri"] == "a%2520b.bin"
+    assert render_mean(cli, exported / "percent_name", ".", "a%20b.gltf") > 0.0

@@ -13,6 +13,7 @@ import math
 import os
 import shutil
 import tempfile
+import urllib.parse
 
 import bpy
 import mathutils
@@ -23,7 +24,7 @@ from . import (corner_colours, export_checks, gltf_json, grid_media, mappings, n
                texture_lookups, vertex_colours)
 from .axes import blender_to_gltf
 from .gltf_json import EXTENSION, TRANSMISSION_EXTENSIONS, medium_json
-from .rendered_objects import rendered_objects
+from .rendered_objects import EXPORTED_GEOMETRY, Instances, rendered_objects
 
 
 class ExportError(Exception):
@@ -113,15 +114,35 @@ def renders_as_cycles(scene, view_layer):
             obj.hide_render = hidden
 
 
+# Objects Cycles renders that Blender's glTF exporter leaves out, as the warning names them.
+UNEXPORTED_GEOMETRY = {"META": "a metaball", "CURVES": "hair curves", "POINTCLOUD": "a point cloud"}
+
+
 def warn_render_differences(view_layer, warnings):
     """What the render does with an object that the export cannot follow."""
     ray_visibility = ("visible_camera", "visible_diffuse", "visible_glossy", "visible_transmission",
                       "visible_volume_scatter", "visible_shadow")
+    instances = Instances(view_layer)
     for rendered in rendered_objects(view_layer):
         obj, what = rendered.object, f"object '{rendered.name}'"
         if obj.type in {"MESH", "VOLUME"} and (obj.is_holdout or
                                                not all(getattr(obj, flag, True) for flag in ray_visibility)):
             warnings.append(f"{what}: its ray visibility (or holdout) is not exported: every ray sees it")
+        # A light's Camera flag is off by default (docs/blender.md: vkdiffrender shows area
+        # lights), and Cast Shadow stands for its Shadow flag.
+        if obj.type == "LIGHT" and (not getattr(getattr(obj.data, "cycles", None), "cast_shadow", True) or
+                                    not all(getattr(obj, flag, True) for flag in ray_visibility[1:-1])):
+            warnings.append(f"light '{rendered.name}': its ray visibility and Cast Shadow are not exported: it "
+                            f"lights every surface and medium, and everything casts its shadow")
+        if obj.type in UNEXPORTED_GEOMETRY:
+            warnings.append(f"{what}: {UNEXPORTED_GEOMETRY[obj.type]}, which Blender's glTF exporter leaves out "
+                            f"(it writes meshes, curves, surfaces and text); convert it to a mesh to export it")
+        if obj.type in EXPORTED_GEOMETRY and not obj.is_instancer and not rendered.in_collection_instance:
+            placed = instances.of(obj)
+            if placed:
+                warnings.append(f"{what}: its {len(placed)} Geometry Nodes instances are not exported (Blender's "
+                                f"glTF exporter leaves them out); a Realize Instances node at the end of its node "
+                                f"tree exports their meshes (instanced lights stay out)")
         if obj.library is not None and any(m.show_viewport != m.show_render for m in obj.modifiers):
             warnings.append(f"{what}: its modifiers enabled for the viewport or for rendering only are exported as "
                             f"the viewport shows them (it is linked from a library, whose settings the export "
@@ -200,6 +221,47 @@ def add_material_media(doc, view_layer, warnings):
         extensions[EXTENSION] = medium_json(medium)
 
 
+def non_negative(radiance, what, source):
+    """RADIANCE, or ExportError naming WHAT and SOURCE where a channel is negative: Cycles
+    subtracts such light, which vkdiffrender cannot (it would be exported as none)."""
+    if min(radiance) < 0.0:
+        raise ExportError(f"{what}: {source} is negative ({', '.join(f'{c:g}' for c in radiance)}); Cycles "
+                          f"subtracts such light, which vkdiffrender cannot: make it 0 or more")
+    return radiance
+
+
+# Cycles renders faces without a material with its default surface, a Diffuse BSDF of
+# grey 0.8; glTF's default material, which a primitive without one gets, is white.
+DEFAULT_SURFACE_ALBEDO = 0.8
+
+
+def add_default_surface(doc):
+    """A material of Cycles' default surface for every triangle primitive without one, named
+    apart from the document's and Blender's materials (so that no fit writes into it)."""
+    primitives = [primitive for mesh in doc.get("meshes", []) for primitive in mesh.get("primitives", [])
+                  if "material" not in primitive and primitive.get("mode", 4) == 4]
+    if not primitives:
+        return
+    taken = {m.get("name") for m in doc.get("materials", [])} | {m.name for m in bpy.data.materials}
+    name = next(n for n in itertools.chain(["default surface"], (f"default surface.{k}" for k in itertools.count(2)))
+                if n not in taken)
+    materials = doc.setdefault("materials", [])
+    materials.append({"name": name, "pbrMetallicRoughness": {
+        "baseColorFactor": [DEFAULT_SURFACE_ALBEDO] * 3 + [1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+    for primitive in primitives:
+        primitive["material"] = len(materials) - 1
+
+
+def quote_file_uris(doc):
+    """Blender's glTF exporter writes its buffer's file name as the URI as it is, where a
+    URI escapes '%', spaces and other characters (and the loader decodes them): a scene
+    named 'a%20b.gltf' would refer to 'a b.bin'."""
+    for buffer in doc.get("buffers", []):
+        uri = buffer.get("uri")
+        if isinstance(uri, str) and not uri.startswith("data:"):
+            buffer["uri"] = urllib.parse.quote(uri)
+
+
 def set_surfaces(doc, warnings):
     """Surfaces as Cycles shades them where the exporter reads only Principled BSDF: a
     Diffuse BSDF is Lambertian with its Color; an Emission shader emits Color x Strength
@@ -228,9 +290,9 @@ def set_surfaces(doc, warnings):
             if node.inputs["Roughness"].default_value > 0.0 or node_graph.is_fed(node.inputs["Roughness"]):
                 warnings.append(f"{what}: Diffuse BSDF roughness (Oren-Nayar) is exported as Lambertian")
         elif node.bl_idname == "ShaderNodeEmission":
-            radiance = mappings.emission_to_radiance(
+            radiance = non_negative(mappings.emission_to_radiance(
                 node_graph.constant(node, "Color", warnings, what, textured if "emissiveTexture" in material else None),
-                node_graph.constant(node, "Strength", warnings, what))
+                node_graph.constant(node, "Strength", warnings, what)), what, "its Emission (Color x Strength)")
             emission = mappings.radiance_to_emission(radiance)
             pbr["baseColorFactor"] = [0.0, 0.0, 0.0, 1.0]
             material["emissiveFactor"] = list(emission["color"])
@@ -277,9 +339,10 @@ def add_world(doc, scene, warnings):
     out = node_graph.owner_output(world)
     background = node_graph.linked_node(out.inputs["Surface"]) if out else None
     if background is not None and background.bl_idname == "ShaderNodeBackground":
-        radiance = mappings.emission_to_radiance(
+        radiance = non_negative(mappings.emission_to_radiance(
             node_graph.constant(background, "Color", warnings, f"world '{world.name}'"),
-            node_graph.constant(background, "Strength", warnings, f"world '{world.name}'"))
+            node_graph.constant(background, "Strength", warnings, f"world '{world.name}'")),
+            f"world '{world.name}'", "its Background (Color x Strength)")
         if max(radiance) > 0.0:
             doc.setdefault("extensions", {})["VKDR_background"] = {"radiance": list(radiance)}
     elif background is not None:
@@ -496,8 +559,9 @@ def check_cameras(scene, view_layer, warnings):
             warnings.append(f"camera '{camera.name}': depth of field is exported as a pinhole (all in focus)")
         if camera.data.shift_x != 0.0 or camera.data.shift_y != 0.0:
             warnings.append(f"camera '{camera.name}': lens shift is not exported (the view is centred)")
-    if len(cameras) > 1:
-        warnings.append(f"the scene has {len(cameras)} cameras; vkdiffrender renders the first in the file unless "
+    exported = [camera for camera in cameras if camera.data.type in RENDERED_CAMERAS]
+    if len(exported) > 1:
+        warnings.append(f"the scene has {len(exported)} cameras; vkdiffrender renders the first in the file unless "
                         f"given `--camera NAME` (the scene camera is '{scene.camera.name}')")
 
 
@@ -526,6 +590,8 @@ def check_values(scene, view_layer, warnings):
             name = scene_checks.non_finite_light_value(obj.data)
             if name is not None:
                 raise ExportError(f"light '{obj.name}': its {name} is not a finite number")
+            if obj.data.energy < 0.0 and not is_portal(obj.data):
+                non_negative((obj.data.energy,), f"light '{obj.name}'", "its Power (a sun's Strength)")
         materials.update(slot.material for slot in getattr(obj, "material_slots", []) if slot.material is not None)
     owners = [(m, f"material '{m.name}'") for m in sorted(materials, key=lambda m: m.name)]
     if scene.world is not None:
@@ -575,6 +641,8 @@ def export_scene(context, filepath):
             set_punctual_lights(doc, warnings)
             add_area_lights(doc, view_layer, warnings)
             grid_media.add_grid_media(doc, scene, view_layer, staged, warnings)
+            add_default_surface(doc)
+            quote_file_uris(doc)
             warn_bounce_limits(scene, warnings)
             warn_render_differences(view_layer, warnings)
             warn_added_volumes(scene, view_layer, warnings)

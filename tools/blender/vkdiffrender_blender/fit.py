@@ -9,6 +9,7 @@ import bpy
 from bpy.props import BoolProperty, CollectionProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from . import export_scene, fit_run, write_back
+from .rendered_objects import rendered_objects
 
 
 class VKDR_Preferences(bpy.types.AddonPreferences):
@@ -69,8 +70,11 @@ class VKDR_OT_fit_refresh(bpy.types.Operator):
             entry = settings.parameters.add()
             entry.name, entry.enabled = name, name in chosen
         settings.targets.clear()
+        # The cameras the export writes: those the render shows (and the scene camera),
+        # of a type vkdiffrender renders through.
+        shown = {r.object for r in rendered_objects(context.view_layer)} | {context.scene.camera}
         for obj in context.scene.objects:
-            if obj.type == "CAMERA":
+            if obj.type == "CAMERA" and obj in shown and obj.data.type in export_scene.RENDERED_CAMERAS:
                 entry = settings.targets.add()
                 entry.name, entry.image = obj.name, images.get(obj.name, "")
         return {"FINISHED"}

@@ -5,6 +5,7 @@ files in its own directory)."""
 import os
 import re
 import shutil
+import urllib.parse
 
 import bpy
 import mathutils
@@ -127,7 +128,7 @@ def grid_medium(doc, material, volume, placement, name, copies, what, warnings):
     nodes = doc.setdefault("nodes", [])
     nodes.append({"name": name + ".grid", "matrix": [matrix[row][column] for column in range(4) for row in range(4)]})
     entry = medium_json(medium)
-    reference = {"uri": copy, "node": len(nodes) - 1}
+    reference = {"uri": urllib.parse.quote(copy), "node": len(nodes) - 1}
     entry["density"] = {**reference, "grid": grid}
     if albedo is not None:
         entry["albedoGrid"] = {**reference, "grid": albedo}

@@ -336,6 +336,35 @@ def restore_orthographic_views(doc, new_objects, renamed):
             obj.data.ortho_scale = 2.0 * float(cameras[index]["orthographic"]["ymag"])
 
 
+# What Blender's glTF importer adds to the file, objects first since they use the rest.
+IMPORTED_DATA = ("objects", "meshes", "materials", "cameras", "lights", "images", "textures", "node_groups",
+                 "actions", "collections")
+
+
+@contextlib.contextmanager
+def removed_if_failed():
+    """Removes what the glTF importer added where it fails part way (a node that refers to
+    a mesh the file lacks, after the objects before it were made): a failed import
+    changes nothing."""
+    before = {kind: set(getattr(bpy.data, kind)) for kind in IMPORTED_DATA}
+    try:
+        yield
+    except Exception:
+        for kind in IMPORTED_DATA:
+            data = getattr(bpy.data, kind)
+            for added in set(data) - before[kind]:
+                data.remove(added)
+        raise
+
+
+def importer_failure(error):
+    """What a RuntimeError of Blender's glTF importer says went wrong: its last line
+    before the operator call's 'Location:'."""
+    lines = [line.strip() for line in str(error).splitlines()
+             if line.strip() and not line.strip().startswith("Location:")]
+    return lines[-1] if lines else type(error).__name__
+
+
 def import_scene(context, filepath):
     """Imports FILEPATH into the current scene; returns the warnings."""
     doc = read_gltf_json(filepath)
@@ -345,7 +374,7 @@ def import_scene(context, filepath):
         raise ValueError(f"{filepath}: {error}") from None
     materials_before = {m.name for m in bpy.data.materials}
     objects_before = {o.name for o in bpy.data.objects}
-    with numpy_bool_alias(), unit_scale_of_one(context.scene):
+    with numpy_bool_alias(), unit_scale_of_one(context.scene), removed_if_failed():
         bpy.ops.import_scene.gltf(filepath=filepath)
     warnings, renamed = [], []
     restore_media(media, new_ids(bpy.data.materials, materials_before), warnings, renamed)
@@ -376,10 +405,9 @@ class IMPORT_OT_vkdiffrender(bpy.types.Operator, ImportHelper):
             return {"CANCELLED"}
         except RuntimeError as error:
             # Blender's glTF importer, which reports a file it cannot read (and its own
-            # failures, with a traceback) as a RuntimeError: its last line says what.
-            lines = [line.strip() for line in str(error).splitlines() if line.strip()]
+            # failures, with a traceback) as a RuntimeError.
             self.report({"ERROR"}, f"{self.filepath}: Blender's glTF importer cannot read it "
-                                   f"({lines[-1] if lines else type(error).__name__})")
+                                   f"({importer_failure(error)}); nothing was imported")
             return {"CANCELLED"}
         for warning in warnings:
             self.report({"WARNING"}, warning)

@@ -12,6 +12,9 @@ import mathutils
 # instances itself would never end).
 MAX_INSTANCE_DEPTH = 8
 
+# The object types Blender's glTF exporter writes as meshes.
+EXPORTED_GEOMETRY = frozenset({"MESH", "CURVE", "SURFACE", "FONT"})
+
 
 class RenderedObject(NamedTuple):
     object: object            # the Blender object (its data: the light, the volume)

@@ -58,13 +58,22 @@ def non_finite_node_input(owner):
 
 def open_boundary_edges(obj, material, depsgraph):
     """How many edges of OBJ's faces of MATERIAL, as the render evaluates the object,
-    are not shared by exactly two of those faces: a medium's boundary must be closed."""
+    are not shared by exactly two of those faces: a medium's boundary must be closed.
+    Vertices at the same position are one, as vkdiffrender's loader counts them, so a mesh
+    split along its edges (an Edge Split modifier, a glTF import) still closes."""
     slots = {i for i, slot in enumerate(obj.material_slots) if slot.material == material}
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
     try:
-        faces_at = Counter(key for polygon in mesh.polygons if polygon.material_index in slots
-                           for key in polygon.edge_keys)
+        position = [tuple(vertex.co) for vertex in mesh.vertices]
+        faces_at = Counter()
+        for polygon in mesh.polygons:
+            if polygon.material_index not in slots:
+                continue
+            corners = [position[v] for v in polygon.vertices]
+            for a, b in zip(corners, corners[1:] + corners[:1]):
+                if a != b:  # an edge of no length bounds nothing
+                    faces_at[min(a, b), max(a, b)] += 1
     finally:
         evaluated.to_mesh_clear()
     return sum(1 for count in faces_at.values() if count != 2)

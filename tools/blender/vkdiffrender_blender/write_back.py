@@ -7,7 +7,7 @@ import json
 import bpy
 
 from . import axes, export_scene, mappings, node_graph
-from .rendered_objects import rendered_objects
+from .rendered_objects import EXPORTED_GEOMETRY, rendered_objects
 
 SURFACE_COLOR_INPUTS = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffuse": "Color"}
 # A medium's values that its volume node holds, and those of its grids, which it does not.
@@ -30,11 +30,33 @@ def rendered_area_lights(view_layer):
             for r in rendered_objects(view_layer) if export_scene.emitting_area_light(r.object)}
 
 
+def face_materials(obj, depsgraph):
+    """The materials of OBJ's faces as DEPSGRAPH evaluates it: the glTF exporter writes
+    only those, not a slot that no face uses."""
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        used = {polygon.material_index for polygon in mesh.polygons}
+    finally:
+        evaluated.to_mesh_clear()
+    slots = evaluated.material_slots
+    return {slots[i].material.original for i in used if i < len(slots) and slots[i].material is not None}
+
+
 def rendered_materials(view_layer):
-    """The materials of the objects the export writes: a material used only by an object
-    hidden from the render is in no exported scene, and has no parameter to fit."""
-    return {slot.material for r in rendered_objects(view_layer) for slot in r.object.material_slots
-            if slot.material is not None}
+    """The materials the export writes: those of the exported faces, and Volume objects'
+    (grid_media). A material used only by an object hidden from the render, by one the
+    glTF exporter leaves out (a metaball) or by no face is in no exported scene, and has no
+    parameter to fit."""
+    depsgraph = view_layer.depsgraph
+    depsgraph.update()  # the faces as the objects are now
+    materials = set()
+    for obj in {r.object for r in rendered_objects(view_layer)}:
+        if obj.type in EXPORTED_GEOMETRY:
+            materials |= face_materials(obj, depsgraph)
+        elif obj.type == "VOLUME":
+            materials |= {slot.material for slot in obj.material_slots if slot.material is not None}
+    return materials
 
 
 def fittable_parameters(scene, view_layer):
