@@ -73,15 +73,17 @@ def attribute_input(node, name):
 
 
 def constant(node, name, warnings, what, overrides=None):
-    """A node input's value; a linked input (texture, attribute) varies in space and cannot
-    be expressed, so its unlinked value is used with a warning. `overrides` gives the
-    values of inputs whose variation the caller exports otherwise (as a grid)."""
+    """A node input's value; a linked input (a texture or attribute varies in space, and
+    the export evaluates no node) cannot be expressed, so its unlinked value is used with a
+    warning. `overrides` gives the values of inputs whose variation the caller exports
+    otherwise (as a grid)."""
     if overrides and name in overrides:
         return overrides[name]
     socket = node.inputs[name]
-    if is_fed(socket):
-        warnings.append(f"{what}: '{node.name}' input '{name}' is linked (a texture or attribute), which the "
-                        f"export cannot follow; its unlinked value is used")
+    source = linked_node(socket)
+    if source is not None:
+        warnings.append(f"{what}: '{node.name}' input '{name}' is linked from '{source.name}' ({source.bl_idname}), "
+                        f"which the export does not evaluate; its unlinked value is used")
     value = socket.default_value
     return tuple(value) if hasattr(value, "__len__") else float(value)
 
@@ -197,15 +199,16 @@ def write_medium(node, medium, kinds=("sigma_a", "sigma_s", "g", "emission")):
     (Density, Color, Absorption Color) only where sigma_a or sigma_s was fitted, the
     Anisotropy where g was or they were, a Principled Volume's emission inputs only where
     emission was; the others, which may be linked, stay as they were. Returns warnings:
-    where the node cannot hold the medium exactly, and inputs written that are linked (a
-    texture or attribute drives them, so Cycles does not use the value)."""
+    where the node cannot hold the medium exactly, and inputs written that are linked
+    (another node drives them, so Cycles does not use the value)."""
     warnings = []
 
     def write(name, value):
         socket = node.inputs[name]
-        if is_fed(socket):
-            warnings.append(f"'{node.name}' input '{name}' is linked (a texture or attribute); the fitted value "
-                            f"goes to its unlinked default, which Cycles does not use")
+        source = linked_node(socket)
+        if source is not None:
+            warnings.append(f"'{node.name}' input '{name}' is linked from '{source.name}'; the fitted value goes "
+                            f"to its unlinked default, which Cycles does not use")
         socket.default_value = value
 
     if not {"sigma_a", "sigma_s"} & set(kinds):
