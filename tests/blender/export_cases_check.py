@@ -694,6 +694,15 @@ def unused_slot(scene):
     add_light("SUN", "Sun", (0.0, 0.0, 3.0), 3.0, scene.collection)
 
 
+def see_through(scene):
+    """A plane of a Principled BSDF with Alpha 0.3."""
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 0.5))
+    material = bpy.data.materials.new("Veil")
+    material.use_nodes = True
+    material.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = 0.3
+    bpy.context.object.data.materials.append(material)
+
+
 def split_volume_cube(scene):
     """A volume cube whose faces an Edge Split modifier splits apart: its vertices differ,
     its surface is closed."""
@@ -723,7 +732,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "world_named_like_two_materials": world_named_like_two_materials,
          "negative_lamp": negative_lamp, "negative_emission": negative_emission, "negative_world": negative_world,
          "unexported_geometry": unexported_geometry, "unused_slot": unused_slot,
-         "split_volume_cube": split_volume_cube}
+         "split_volume_cube": split_volume_cube, "see_through": see_through}
 
 
 def failing_export(scene, directory):

@@ -494,3 +494,8 @@ def test_a_scene_name_with_a_percent_sign_refers_to_its_own_buffer(exported, cli
     doc = json.loads((exported / "percent_name" / "a%20b.gltf").read_text())
     assert doc["buffers"][0]["uri"] == "a%2520b.bin"
     assert render_mean(cli, exported / "percent_name", ".", "a%20b.gltf") > 0.0
+
+
+def test_alpha_below_one_is_warned_of(exported):
+    assert any(w.startswith("material 'Veil': Alpha below 1 is exported as an opaque surface")
+               for w in own_warnings(exported, "see_through"))

@@ -317,6 +317,9 @@ def set_surfaces(doc, warnings):
             if node.inputs["Transmission"].default_value > 0.0 or node_graph.is_fed(node.inputs["Transmission"]):
                 warnings.append(f"{what}: Transmission is exported as an opaque surface (vkdiffrender does not "
                                 f"refract)")
+            if node.inputs["Alpha"].default_value < 1.0 or node_graph.is_fed(node.inputs["Alpha"]):
+                warnings.append(f"{what}: Alpha below 1 is exported as an opaque surface (vkdiffrender ignores "
+                                f"alpha)")
         else:
             warnings.append(f"{what}: surface shader {node.bl_idname} is exported as the glTF exporter reads it")
 
