@@ -681,10 +681,32 @@ def unexported_geometry(scene):
     tree.links.new(on_points.outputs[0], tree.nodes.new("NodeGroupOutput").inputs[0])
     scatter.modifiers.new("Scatter", "NODES").node_group = tree
     add_light("POINT", "Shadowless", (0.0, 0.0, 2.0), 100.0, scene.collection).data.cycles.cast_shadow = False
+    # Text, whose mesh Blender hands out as an instance of its object: no node tree's.
+    bpy.ops.object.text_add(location=(0.0, 1.0, 0.2))
+    bpy.context.object.name = "Label"
+    # A cube whose node tree sets its faces' material: the glTF exporter writes its own
+    # slot's material, Painted, not the tree's.
+    cube = bpy.data.objects.new("Painted", bpy.data.meshes.new("Painted"))
+    bmesh_cube(cube.data)
+    cube.location = (2.0, 0.0, 0.5)
+    scene.collection.objects.link(cube)
+    for name in ("Painted", "FromNodes"):
+        material = bpy.data.materials.new(name)
+        material.use_nodes = True
+    cube.data.materials.append(bpy.data.materials["Painted"])
+    tree = bpy.data.node_groups.new("Paint", "GeometryNodeTree")
+    tree.inputs.new("NodeSocketGeometry", "Geometry")
+    tree.outputs.new("NodeSocketGeometry", "Geometry")
+    paint = tree.nodes.new("GeometryNodeSetMaterial")
+    paint.inputs["Material"].default_value = bpy.data.materials["FromNodes"]
+    tree.links.new(tree.nodes.new("NodeGroupInput").outputs[0], paint.inputs["Geometry"])
+    tree.links.new(paint.outputs[0], tree.nodes.new("NodeGroupOutput").inputs[0])
+    cube.modifiers.new("Paint", "NODES").node_group = tree
 
 
 def unused_slot(scene):
-    """The floor with a second material in a slot no face uses."""
+    """The floor with a second material in a slot no face uses; a panoramic camera and one
+    hidden from the render beside the scene camera."""
     floor = bpy.data.objects["Plane"]
     for name, colour in (("Floor", (0.5, 0.5, 0.5, 1.0)), ("Unused", (0.8, 0.1, 0.1, 1.0))):
         material = bpy.data.materials.new(name)
@@ -692,14 +714,31 @@ def unused_slot(scene):
         material.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = colour
         floor.data.materials.append(material)
     add_light("SUN", "Sun", (0.0, 0.0, 3.0), 3.0, scene.collection)
+    for name, hidden in (("Pano", False), ("Off", True)):
+        camera = bpy.data.objects.new(name, bpy.data.cameras.new(name))
+        camera.location, camera.rotation_euler, camera.hide_render = (0.0, -4.0, 1.0), (1.5708, 0.0, 0.0), hidden
+        camera.data.type = "PANO" if name == "Pano" else "PERSP"
+        scene.collection.objects.link(camera)
 
 
 def see_through(scene):
-    """A plane of a Principled BSDF with Alpha 0.3."""
+    """A plane of a Principled BSDF with Alpha 0.3, whose Base Color a Math node feeds."""
     bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 0.5))
     material = bpy.data.materials.new("Veil")
     material.use_nodes = True
-    material.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = 0.3
+    principled = material.node_tree.nodes["Principled BSDF"]
+    principled.inputs["Alpha"].default_value = 0.3
+    math = material.node_tree.nodes.new("ShaderNodeMath")
+    material.node_tree.links.new(math.outputs[0], principled.inputs["Base Color"])
+    bpy.context.object.data.materials.append(material)
+
+
+def negative_principled_emission(scene):
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 0.5))
+    material = bpy.data.materials.new("Hole")
+    material.use_nodes = True
+    material.node_tree.nodes["Principled BSDF"].inputs["Emission Strength"].default_value = -5.0
+    material.node_tree.nodes["Principled BSDF"].inputs["Emission"].default_value = (1.0, 1.0, 1.0, 1.0)
     bpy.context.object.data.materials.append(material)
 
 
@@ -732,7 +771,8 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "world_named_like_two_materials": world_named_like_two_materials,
          "negative_lamp": negative_lamp, "negative_emission": negative_emission, "negative_world": negative_world,
          "unexported_geometry": unexported_geometry, "unused_slot": unused_slot,
-         "split_volume_cube": split_volume_cube, "see_through": see_through}
+         "split_volume_cube": split_volume_cube, "see_through": see_through,
+         "negative_principled_emission": negative_principled_emission}
 
 
 def failing_export(scene, directory):
@@ -744,7 +784,8 @@ def failing_export(scene, directory):
 
 
 def offered_for_fit(directory):
-    return {"fittable": write_back.fittable_parameters(bpy.context.scene, bpy.context.view_layer)}
+    return {"fittable": write_back.fittable_parameters(bpy.context.scene, bpy.context.view_layer),
+            "cameras": [c.name for c in export_scene.exported_cameras(bpy.context.scene, bpy.context.view_layer)]}
 
 
 def g_written_back(directory):

@@ -122,27 +122,32 @@ def warn_render_differences(view_layer, warnings):
     """What the render does with an object that the export cannot follow."""
     ray_visibility = ("visible_camera", "visible_diffuse", "visible_glossy", "visible_transmission",
                       "visible_volume_scatter", "visible_shadow")
+    # A light's Camera flag is off by default (docs/blender.md: vkdiffrender shows area
+    # lights), and Cast Shadow stands for its Shadow flag.
+    lit_by_light = ("visible_diffuse", "visible_glossy", "visible_transmission", "visible_volume_scatter")
     instances = Instances(view_layer)
     for rendered in rendered_objects(view_layer):
         obj, what = rendered.object, f"object '{rendered.name}'"
         if obj.type in {"MESH", "VOLUME"} and (obj.is_holdout or
                                                not all(getattr(obj, flag, True) for flag in ray_visibility)):
             warnings.append(f"{what}: its ray visibility (or holdout) is not exported: every ray sees it")
-        # A light's Camera flag is off by default (docs/blender.md: vkdiffrender shows area
-        # lights), and Cast Shadow stands for its Shadow flag.
         if obj.type == "LIGHT" and (not getattr(getattr(obj.data, "cycles", None), "cast_shadow", True) or
-                                    not all(getattr(obj, flag, True) for flag in ray_visibility[1:-1])):
+                                    not all(getattr(obj, flag, True) for flag in lit_by_light)):
             warnings.append(f"light '{rendered.name}': its ray visibility and Cast Shadow are not exported: it "
                             f"lights every surface and medium, and everything casts its shadow")
         if obj.type in UNEXPORTED_GEOMETRY:
             warnings.append(f"{what}: {UNEXPORTED_GEOMETRY[obj.type]}, which Blender's glTF exporter leaves out "
                             f"(it writes meshes, curves, surfaces and text); convert it to a mesh to export it")
-        if obj.type in EXPORTED_GEOMETRY and not obj.is_instancer and not rendered.in_collection_instance:
+        if obj.type in EXPORTED_GEOMETRY and not obj.is_instancer and not rendered.in_collection_instance and \
+                any(m.type == "NODES" and m.show_render for m in obj.modifiers):
+            # Blender hands out what a node tree makes besides the mesh (instances, and
+            # points, curves or volumes) as instances of the object, and so does the
+            # mesh of a curve or text object: the tree's are looked for only where one is.
             placed = instances.of(obj)
             if placed:
-                warnings.append(f"{what}: its {len(placed)} Geometry Nodes instances are not exported (Blender's "
-                                f"glTF exporter leaves them out); a Realize Instances node at the end of its node "
-                                f"tree exports their meshes (instanced lights stay out)")
+                warnings.append(f"{what}: its Geometry Nodes make {len(placed)} instances (or points, curves or "
+                                f"volumes), which Blender's glTF exporter leaves out; a Realize Instances node at "
+                                f"the end of its node tree exports instanced meshes (instanced lights stay out)")
         if obj.library is not None and any(m.show_viewport != m.show_render for m in obj.modifiers):
             warnings.append(f"{what}: its modifiers enabled for the viewport or for rendering only are exported as "
                             f"the viewport shows them (it is linked from a library, whose settings the export "
@@ -317,6 +322,10 @@ def set_surfaces(doc, warnings):
             if node.inputs["Transmission"].default_value > 0.0 or node_graph.is_fed(node.inputs["Transmission"]):
                 warnings.append(f"{what}: Transmission is exported as an opaque surface (vkdiffrender does not "
                                 f"refract)")
+            colour = node.inputs["Emission"]
+            non_negative(mappings.emission_to_radiance(
+                (1.0, 1.0, 1.0) if node_graph.is_fed(colour) else colour.default_value,
+                node.inputs["Emission Strength"].default_value), what, "its Emission x Emission Strength")
             if node.inputs["Alpha"].default_value < 1.0 or node_graph.is_fed(node.inputs["Alpha"]):
                 warnings.append(f"{what}: Alpha below 1 is exported as an opaque surface (vkdiffrender ignores "
                                 f"alpha)")
@@ -544,6 +553,15 @@ def checked_output_path(filepath):
     return path
 
 
+def exported_cameras(scene, view_layer):
+    """The camera objects the export writes: those the render shows, and the scene camera,
+    of a type vkdiffrender renders through (the glTF exporter leaves panoramic ones out)."""
+    shown = [r.object for r in rendered_objects(view_layer) if r.object.type == "CAMERA"]
+    if scene.camera is not None and scene.camera.type == "CAMERA" and scene.camera not in shown:
+        shown.append(scene.camera)
+    return [camera for camera in dict.fromkeys(shown) if camera.data.type in RENDERED_CAMERAS]
+
+
 def check_cameras(scene, view_layer, warnings):
     """vkdiffrender renders perspective and orthographic cameras, without depth of field or
     lens shift, and the first camera of the file unless told another (`--camera`)."""
@@ -562,7 +580,7 @@ def check_cameras(scene, view_layer, warnings):
             warnings.append(f"camera '{camera.name}': depth of field is exported as a pinhole (all in focus)")
         if camera.data.shift_x != 0.0 or camera.data.shift_y != 0.0:
             warnings.append(f"camera '{camera.name}': lens shift is not exported (the view is centred)")
-    exported = [camera for camera in cameras if camera.data.type in RENDERED_CAMERAS]
+    exported = exported_cameras(scene, view_layer)
     if len(exported) > 1:
         warnings.append(f"the scene has {len(exported)} cameras; vkdiffrender renders the first in the file unless "
                         f"given `--camera NAME` (the scene camera is '{scene.camera.name}')")
@@ -594,7 +612,9 @@ def check_values(scene, view_layer, warnings):
             if name is not None:
                 raise ExportError(f"light '{obj.name}': its {name} is not a finite number")
             if obj.data.energy < 0.0 and not is_portal(obj.data):
-                non_negative((obj.data.energy,), f"light '{obj.name}'", "its Power (a sun's Strength)")
+                raise ExportError(f"light '{obj.name}': its Power (a sun's Strength) is negative "
+                                  f"({obj.data.energy:g}); Cycles subtracts such light, which vkdiffrender cannot: "
+                                  f"make it 0 or more")
         materials.update(slot.material for slot in getattr(obj, "material_slots", []) if slot.material is not None)
     owners = [(m, f"material '{m.name}'") for m in sorted(materials, key=lambda m: m.name)]
     if scene.world is not None:

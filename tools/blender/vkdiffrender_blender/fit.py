@@ -9,7 +9,6 @@ import bpy
 from bpy.props import BoolProperty, CollectionProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from . import export_scene, fit_run, write_back
-from .rendered_objects import rendered_objects
 
 
 class VKDR_Preferences(bpy.types.AddonPreferences):
@@ -70,11 +69,9 @@ class VKDR_OT_fit_refresh(bpy.types.Operator):
             entry = settings.parameters.add()
             entry.name, entry.enabled = name, name in chosen
         settings.targets.clear()
-        # The cameras the export writes: those the render shows (and the scene camera),
-        # of a type vkdiffrender renders through.
-        shown = {r.object for r in rendered_objects(context.view_layer)} | {context.scene.camera}
+        exported = set(export_scene.exported_cameras(context.scene, context.view_layer))
         for obj in context.scene.objects:
-            if obj.type == "CAMERA" and obj in shown and obj.data.type in export_scene.RENDERED_CAMERAS:
+            if obj in exported:
                 entry = settings.targets.add()
                 entry.name, entry.image = obj.name, images.get(obj.name, "")
         return {"FINISHED"}

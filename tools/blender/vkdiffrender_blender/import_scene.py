@@ -337,8 +337,8 @@ def restore_orthographic_views(doc, new_objects, renamed):
 
 
 # What Blender's glTF importer adds to the file, objects first since they use the rest.
-IMPORTED_DATA = ("objects", "meshes", "materials", "cameras", "lights", "images", "textures", "node_groups",
-                 "actions", "collections")
+IMPORTED_DATA = ("objects", "meshes", "armatures", "materials", "cameras", "lights", "images", "node_groups",
+                 "actions")
 
 
 @contextlib.contextmanager

@@ -65,7 +65,9 @@ def open_boundary_edges(obj, material, depsgraph):
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
     try:
-        position = [tuple(vertex.co) for vertex in mesh.vertices]
+        coordinates = [0.0] * (3 * len(mesh.vertices))
+        mesh.vertices.foreach_get("co", coordinates)
+        position = list(zip(coordinates[0::3], coordinates[1::3], coordinates[2::3]))
         faces_at = Counter()
         for polygon in mesh.polygons:
             if polygon.material_index not in slots:

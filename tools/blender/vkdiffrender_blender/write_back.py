@@ -31,31 +31,41 @@ def rendered_area_lights(view_layer):
 
 
 def face_materials(obj, depsgraph):
-    """The materials of OBJ's faces as DEPSGRAPH evaluates it: the glTF exporter writes
-    only those, not a slot that no face uses."""
+    """The materials of OBJ's faces as the glTF exporter writes them, not a slot that no
+    face uses: the faces as DEPSGRAPH evaluates the object, each with the material of the
+    object's own slot of its index, the last slot's past them (a node tree's Set Material
+    adds to the evaluated mesh's materials, not to the object's slots), as the exporter
+    does, which leaves a curve's, surface's or text's empty slots out first."""
+    materials = [slot.material for slot in obj.material_slots]
+    if obj.type != "MESH":
+        materials = [material for material in materials if material is not None]
     evaluated = obj.evaluated_get(depsgraph)
-    mesh = evaluated.to_mesh()
     try:
-        used = {polygon.material_index for polygon in mesh.polygons}
+        mesh = evaluated.to_mesh()
+        used = {polygon.material_index for polygon in mesh.polygons} if mesh is not None else set()
+    except RuntimeError:  # no geometry to make a mesh of, which the exporter skips too
+        used = set()
     finally:
         evaluated.to_mesh_clear()
-    slots = evaluated.material_slots
-    return {slots[i].material.original for i in used if i < len(slots) and slots[i].material is not None}
+    if not materials:
+        return set()
+    return {materials[min(i, len(materials) - 1)] for i in used} - {None}
 
 
-def rendered_materials(view_layer):
+def rendered_materials(scene, view_layer):
     """The materials the export writes: those of the exported faces, and Volume objects'
     (grid_media). A material used only by an object hidden from the render, by one the
     glTF exporter leaves out (a metaball) or by no face is in no exported scene, and has no
     parameter to fit."""
-    depsgraph = view_layer.depsgraph
-    depsgraph.update()  # the faces as the objects are now
     materials = set()
-    for obj in {r.object for r in rendered_objects(view_layer)}:
-        if obj.type in EXPORTED_GEOMETRY:
-            materials |= face_materials(obj, depsgraph)
-        elif obj.type == "VOLUME":
-            materials |= {slot.material for slot in obj.material_slots if slot.material is not None}
+    with export_scene.modifiers_as_rendered(scene):
+        depsgraph = view_layer.depsgraph
+        depsgraph.update()  # the faces as the render evaluates them, as the export writes them
+        for obj in {r.object for r in rendered_objects(view_layer)}:
+            if obj.type in EXPORTED_GEOMETRY:
+                materials |= face_materials(obj, depsgraph)
+            elif obj.type == "VOLUME":
+                materials |= {slot.material for slot in obj.material_slots if slot.material is not None}
     return materials
 
 
@@ -64,7 +74,7 @@ def fittable_parameters(scene, view_layer):
     steps coefficients in log units (fit_run.optimize_command), so a coefficient is
     offered only where every channel of it is above 0."""
     names = []
-    rendered = rendered_materials(view_layer)
+    rendered = rendered_materials(scene, view_layer)
     for name, owner, node in volume_owners(scene):
         if isinstance(owner, bpy.types.Material) and owner not in rendered:
             continue
