@@ -12,8 +12,8 @@ namespace vkdr {
 // a huge image of zeros; targets may only be PNG or JPEG (or EXR), so the rest are refused.
 bool isPngOrJpeg(const unsigned char* bytes, size_t size);
 
-// What is wrong with an image of width x height pixels: none, or more than
-// kMaxImagePixels (empty when nothing). The decoder refuses such an image with a reason
+// What is wrong with an image of width x height pixels: no pixels, or more than
+// kMaxImagePixels (empty when nothing is). The decoder refuses such an image with a reason
 // that its callers lose (they go on trying other formats), so the header's size is
 // checked first, and the decoder's again after it.
 std::string imageSizeProblem(uint64_t width, uint64_t height);

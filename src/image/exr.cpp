@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "image/atomic_write.h"
+#include "image/encoded_image_checks.h"
 #include "image/image_formats.h"
 
 namespace vkdr {
@@ -52,9 +53,11 @@ Image readExrFile(const std::filesystem::path& file) {
     const Imath::Box2i& window = header.dataWindow();
     int64_t width = int64_t(window.max.x) - window.min.x + 1;
     int64_t height = int64_t(window.max.y) - window.min.y + 1;
-    if (width <= 0 || height <= 0) failToRead(file, "the image is empty");
-    if (size_t(width) * size_t(height) > kMaxImagePixels)
-        failToRead(file, std::to_string(width) + " x " + std::to_string(height) + " pixels is too large");
+    if (std::string problem = imageSizeProblem(uint64_t(std::max<int64_t>(width, 0)),
+                                               uint64_t(std::max<int64_t>(height, 0)));
+        !problem.empty()) {
+        failToRead(file, problem);
+    }
 
     Image image;
     image.width = int(width);
