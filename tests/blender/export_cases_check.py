@@ -205,9 +205,11 @@ def corner_colour_attribute(scene):
 def fit_parameters(scene):
     """What the Fit panel offers: a grey and a pure red Diffuse (no log of red's 0 green), a
     material with a surface and a volume (a medium's boundary, no colour), a material only
-    an object hidden from the render uses, and area lamps of 100 W and of 0 W."""
+    an object hidden from the render uses, a colour and a volume's Density that a Math
+    node feeds, and area lamps of 100 W and of 0 W."""
     for name, colour, x in (("Grey", (0.5, 0.5, 0.5, 1.0), -1.0), ("Red", (1.0, 0.0, 0.0, 1.0), 0.0),
-                            ("Foggy", (0.5, 0.5, 0.5, 1.0), 1.0), ("HiddenOnly", (0.5, 0.5, 0.5, 1.0), 2.0)):
+                            ("Foggy", (0.5, 0.5, 0.5, 1.0), 1.0), ("Computed", (0.5, 0.5, 0.5, 1.0), -2.0),
+                            ("HiddenOnly", (0.5, 0.5, 0.5, 1.0), 2.0)):
         bpy.ops.mesh.primitive_cube_add(size=0.4, location=(x, 0.0, 0.5))
         material = bpy.data.materials.new(name)
         material.use_nodes = True
@@ -217,6 +219,13 @@ def fit_parameters(scene):
     foggy = bpy.data.materials["Foggy"].node_tree
     volume = foggy.nodes.new("ShaderNodeVolumePrincipled")
     foggy.links.new(volume.outputs["Volume"], foggy.nodes["Material Output"].inputs["Volume"])
+    computed = bpy.data.materials["Computed"].node_tree
+    computed.links.new(computed.nodes.new("ShaderNodeMath").outputs[0],
+                       computed.nodes["Principled BSDF"].inputs["Base Color"])
+    bpy.ops.mesh.primitive_cube_add(size=0.4, location=(-2.0, 1.0, 0.5))
+    bpy.context.object.data.materials.append(volume_material("ComputedFog", 2.0))
+    fog = bpy.data.materials["ComputedFog"].node_tree
+    fog.links.new(fog.nodes.new("ShaderNodeMath").outputs[0], fog.nodes["Principled Volume"].inputs["Density"])
     add_light("AREA", "Lit", (0.0, 0.0, 2.5), 100.0, scene.collection)
     add_light("AREA", "Dark", (1.0, 0.0, 2.5), 0.0, scene.collection)
 

@@ -194,6 +194,9 @@ def test_the_fit_offers_only_what_optimize_can_step_in_log_units(exported):
     assert "media/Foggy/sigma_s" in fittable
     assert "lights/Dark.area/emission" not in fittable  # 0 W
     assert "materials/HiddenOnly/base_color" not in fittable  # on no rendered object: not exported
+    # A value fed by a node would be written where Cycles does not use it.
+    assert "materials/Computed/base_color" not in fittable
+    assert "media/ComputedFog/g" in fittable and "media/ComputedFog/sigma_s" not in fittable
 
 
 def test_a_fitted_punctual_light_goes_to_the_lamp_whose_data_the_export_named_it_after(exported):

@@ -69,27 +69,39 @@ def rendered_materials(scene, view_layer):
     return materials
 
 
+# The kinds of medium each volume node holds, with the inputs a fitted value of the kind
+# is written to (node_graph.write_medium).
+WRITTEN_INPUTS = {
+    "ShaderNodeVolumePrincipled": {"sigma_a": ("Density", "Color", "Absorption Color", "Anisotropy"),
+                                   "sigma_s": ("Density", "Color", "Absorption Color", "Anisotropy"),
+                                   "g": ("Anisotropy",), "emission": ("Emission Color", "Emission Strength")},
+    "ShaderNodeVolumeAbsorption": {"sigma_a": ("Density", "Color")},
+    "ShaderNodeVolumeScatter": {"sigma_s": ("Density", "Color", "Anisotropy"), "g": ("Anisotropy",)},
+}
+
+
 def fittable_parameters(scene, view_layer):
     """Parameter names in vkdiffrender's spelling, each with a label for the UI. The Fit
     steps coefficients in log units (fit_run.optimize_command), so a coefficient is
-    offered only where every channel of it is above 0."""
+    offered only where every channel of it is above 0; and a value only where no node
+    feeds an input it would be written to, which Cycles would not use."""
     names = []
     rendered = rendered_materials(scene, view_layer)
     for name, owner, node in volume_owners(scene):
         if isinstance(owner, bpy.types.Material) and owner not in rendered:
             continue
-        kinds = {"ShaderNodeVolumePrincipled": ("sigma_a", "sigma_s", "g", "emission"),
-                 "ShaderNodeVolumeAbsorption": ("sigma_a",),
-                 "ShaderNodeVolumeScatter": ("sigma_s", "g")}[node.bl_idname]
         medium = node_graph.volume_medium(node, [], name)
-        names += [f"media/{name}/{kind}" for kind in kinds if kind == "g" or min(getattr(medium, kind)) > 0.0]
+        names += [f"media/{name}/{kind}" for kind, inputs in WRITTEN_INPUTS[node.bl_idname].items()
+                  if (kind == "g" or min(getattr(medium, kind)) > 0.0) and
+                  not any(node_graph.is_fed(node.inputs[i]) for i in inputs)]
     for material in bpy.data.materials:
         # A material with a volume exports as a medium's boundary, which has no colour.
         surface = node_graph.surface_node(material) if material in rendered else None
         if surface is None or surface.bl_idname not in SURFACE_COLOR_INPUTS or \
                 node_graph.material_volume_node(material) is not None:
             continue
-        if min(surface.inputs[SURFACE_COLOR_INPUTS[surface.bl_idname]].default_value[:3]) > 0.0:
+        colour = surface.inputs[SURFACE_COLOR_INPUTS[surface.bl_idname]]
+        if min(colour.default_value[:3]) > 0.0 and not node_graph.is_fed(colour):
             names.append(f"materials/{material.name}/base_color")
     names += [f"lights/{name}/emission" for name, (obj, _) in rendered_area_lights(view_layer).items()
               if obj.data.energy > 0.0 and min(obj.data.color) > 0.0]
