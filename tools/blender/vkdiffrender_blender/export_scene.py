@@ -611,10 +611,8 @@ def check_values(scene, view_layer, warnings):
             name = scene_checks.non_finite_light_value(obj.data)
             if name is not None:
                 raise ExportError(f"light '{obj.name}': its {name} is not a finite number")
-            if obj.data.energy < 0.0 and not is_portal(obj.data):
-                raise ExportError(f"light '{obj.name}': its Power (a sun's Strength) is negative "
-                                  f"({obj.data.energy:g}); Cycles subtracts such light, which vkdiffrender cannot: "
-                                  f"make it 0 or more")
+            if not is_portal(obj.data):
+                non_negative((obj.data.energy,), f"light '{obj.name}'", "its Power (a sun's Strength)")
         materials.update(slot.material for slot in getattr(obj, "material_slots", []) if slot.material is not None)
     owners = [(m, f"material '{m.name}'") for m in sorted(materials, key=lambda m: m.name)]
     if scene.world is not None:

@@ -193,6 +193,17 @@ def surface_node(material):
     return linked_node(out.inputs["Surface"]) if out else None
 
 
+# The kinds of medium each volume node holds, with the inputs write_medium writes a fitted
+# value of the kind to.
+WRITTEN_INPUTS = {
+    "ShaderNodeVolumePrincipled": {"sigma_a": ("Density", "Color", "Absorption Color", "Anisotropy"),
+                                   "sigma_s": ("Density", "Color", "Absorption Color", "Anisotropy"),
+                                   "g": ("Anisotropy",), "emission": ("Emission Color", "Emission Strength")},
+    "ShaderNodeVolumeAbsorption": {"sigma_a": ("Density", "Color")},
+    "ShaderNodeVolumeScatter": {"sigma_s": ("Density", "Color", "Anisotropy"), "g": ("Anisotropy",)},
+}
+
+
 def write_medium(node, medium, kinds=("sigma_a", "sigma_s", "g", "emission")):
     """Write a fitted medium into the node it came from, with the inverse mapping of that
     node's type, into the inputs that hold the fitted KINDS: the coefficients' inputs

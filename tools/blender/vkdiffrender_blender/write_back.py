@@ -69,17 +69,6 @@ def rendered_materials(scene, view_layer):
     return materials
 
 
-# The kinds of medium each volume node holds, with the inputs a fitted value of the kind
-# is written to (node_graph.write_medium).
-WRITTEN_INPUTS = {
-    "ShaderNodeVolumePrincipled": {"sigma_a": ("Density", "Color", "Absorption Color", "Anisotropy"),
-                                   "sigma_s": ("Density", "Color", "Absorption Color", "Anisotropy"),
-                                   "g": ("Anisotropy",), "emission": ("Emission Color", "Emission Strength")},
-    "ShaderNodeVolumeAbsorption": {"sigma_a": ("Density", "Color")},
-    "ShaderNodeVolumeScatter": {"sigma_s": ("Density", "Color", "Anisotropy"), "g": ("Anisotropy",)},
-}
-
-
 def fittable_parameters(scene, view_layer):
     """Parameter names in vkdiffrender's spelling, each with a label for the UI. The Fit
     steps coefficients in log units (fit_run.optimize_command), so a coefficient is
@@ -91,7 +80,7 @@ def fittable_parameters(scene, view_layer):
         if isinstance(owner, bpy.types.Material) and owner not in rendered:
             continue
         medium = node_graph.volume_medium(node, [], name)
-        names += [f"media/{name}/{kind}" for kind, inputs in WRITTEN_INPUTS[node.bl_idname].items()
+        names += [f"media/{name}/{kind}" for kind, inputs in node_graph.WRITTEN_INPUTS[node.bl_idname].items()
                   if (kind == "g" or min(getattr(medium, kind)) > 0.0) and
                   not any(node_graph.is_fed(node.inputs[i]) for i in inputs)]
     for material in bpy.data.materials:
