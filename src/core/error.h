@@ -15,4 +15,11 @@ public:
     explicit Error(const std::string& message) : std::runtime_error(printableText(message)) {}
 };
 
+// The scene's parameter values cannot be rendered faithfully (a density grid medium too
+// dense to track): where an optimiser's step led there, it names the step.
+class UnrenderableValuesError : public Error {
+public:
+    using Error::Error;
+};
+
 }  // namespace vkdr

@@ -40,6 +40,10 @@ public:
     // Renders every view with `scene`'s current parameter values; `seed` picks the
     // random numbers (an optimiser passes a new one each iteration).
     virtual GradientResult evaluate(const Scene& scene, uint32_t seed) = 0;
+    // Throws UnrenderableValuesError where `scene`'s current values do not render (a grid
+    // medium too dense to track): an optimiser asks it of the values its last step left,
+    // which no evaluation renders. What cannot fail to render checks nothing.
+    virtual void requireRenderable(const Scene&, uint32_t /*seed*/) {}
 };
 
 }  // namespace vkdr

@@ -102,6 +102,10 @@ double RenderedLossGradient::loss(const Scene& scene, uint32_t seed) {
     return total / double(impl_->targets.size());
 }
 
+void RenderedLossGradient::requireRenderable(const Scene& scene, uint32_t seed) {
+    loss(scene, seed);
+}
+
 GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
     GradientResult result;
     result.images.resize(impl_->targets.size());

@@ -29,6 +29,8 @@ public:
     ~RenderedLossGradient() override;
 
     GradientResult evaluate(const Scene& scene, uint32_t seed) override;
+    // Renders every view once, as loss() does.
+    void requireRenderable(const Scene& scene, uint32_t seed) override;
     // The loss alone, rendered with the random numbers evaluate() uses for its image:
     // finite differences over it share their noise (common random numbers).
     double loss(const Scene& scene, uint32_t seed);

@@ -33,6 +33,7 @@ public:
     // `inner` must outlive this; every named parameter must be a density grid's.
     GridPriorLossGradient(LossGradient& inner, std::map<std::string, GridPriorWeights> weights);
     GradientResult evaluate(const Scene& scene, uint32_t seed) override;
+    void requireRenderable(const Scene& scene, uint32_t seed) override { inner_.requireRenderable(scene, seed); }
 
 private:
     LossGradient& inner_;

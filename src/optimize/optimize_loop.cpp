@@ -137,6 +137,30 @@ void requireFiniteSteps(const ParameterVector& parameters, uint32_t iteration) {
     }
 }
 
+// An evaluation whose values do not render (a step that left a grid too dense to track)
+// names its iteration. Other failures (a lost device) keep their kind.
+GradientResult evaluateAt(LossGradient& lossGradient, const Scene& scene, uint32_t seed, uint32_t iteration) {
+    try {
+        return lossGradient.evaluate(scene, seed);
+    } catch (const UnrenderableValuesError& failure) {
+        throw Error("iteration " + std::to_string(iteration) + ": " + failure.what());
+    }
+}
+
+// No evaluation renders the values the last step leaves, which the run writes out as
+// its fit: they are rendered once more, so that a run does not end with a fit that does
+// not render. A signal during that render stops only the check: the iterations are done,
+// and a signal after them lets the outputs be written (optimization_run.cpp).
+void requireLastStepRenders(LossGradient& lossGradient, const Scene& scene, const OptimizeOptions& options) {
+    try {
+        lossGradient.requireRenderable(scene, options.seed + options.iterations);
+    } catch (const Interrupted&) {
+    } catch (const UnrenderableValuesError& failure) {
+        throw Error("the values of the last step (iteration " + std::to_string(options.iterations - 1) +
+                    ") do not render: " + failure.what() + "; a smaller learning rate takes smaller steps");
+    }
+}
+
 // The gradient in the ParameterVector's layout, not yet checked to be finite. A LossGradient that does not answer for
 // exactly the parameters asked for is a bug, not a user error.
 std::vector<double> flatGradient(const ParameterVector& parameters, const GradientResult& result) {
@@ -248,7 +272,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         std::vector<Metric> metrics;
         try {
             throwIfInterrupted();
-            evaluation = lossGradient.evaluate(scene, options.seed + iteration);
+            evaluation = evaluateAt(lossGradient, scene, options.seed + iteration, iteration);
             requireFinite(evaluation, parameters, iteration);
             if (callbacks.measure) metrics = callbacks.measure(scene, iteration);
         } catch (const Interrupted&) {
@@ -292,6 +316,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
             callbacks.checkpoint(stateAfter(done));
         }
     }
+    requireLastStepRenders(lossGradient, scene, options);
     return result;
 }
 

@@ -111,7 +111,10 @@ struct OptimizeResult {
 // (optimize/constraints.h) and writes the new values into `scene`. Throws vkdr::Error
 // naming the iteration, the parameter, its values and the likely cause when the loss or
 // a gradient is not finite, before anything of that iteration reaches `scene` or the
-// callbacks. On a SIGINT or SIGTERM (core/interrupt.h), noticed between iterations or
+// callbacks, and an Error naming the iteration when an evaluation fails (a step that
+// left a density grid too dense to track). After the last step it renders the values it
+// leaves once more (LossGradient::requireRenderable, with the seed a next iteration would
+// take) and throws Error if they do not render. On a SIGINT or SIGTERM (core/interrupt.h), noticed between iterations or
 // within one (by the LossGradient or by the renders of OptimizeCallbacks::measure), it
 // calls the checkpoint callback with the state after the last finished iteration (if one
 // finished since the start or the resume) and rethrows Interrupted.

@@ -53,9 +53,10 @@ std::vector<gpu::GpuMaterial> deviceMaterials(const Scene& scene) {
 void requireExtinctionInFloatRange(const Medium& medium) {
     for (int c = 0; c < 3; ++c) {
         if (double(medium.sigma_a[c]) + double(medium.sigma_s[c]) > double(std::numeric_limits<float>::max())) {
-            throw Error("the density grid medium '" + medium.name + "' is too dense to render: its sigma_a + sigma_s (" +
-                        formatText("%g + %g", double(medium.sigma_a[c]), double(medium.sigma_s[c])) + ", channel " +
-                        "RGB"[c] + ") is beyond float range; lower them");
+            throw UnrenderableValuesError("the density grid medium '" + medium.name +
+                                          "' is too dense to render: its sigma_a + sigma_s (" +
+                                          formatText("%g + %g", double(medium.sigma_a[c]), double(medium.sigma_s[c])) +
+                                          ", channel " + "RGB"[c] + ") is beyond float range; lower them");
         }
     }
 }

@@ -373,10 +373,11 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
         stats_.truncatedPaths += counters.truncatedPaths;
     }
     if (counters.truncatedTracking > 0) {
-        throw Error(std::to_string(counters.truncatedTracking) + " rays through the density grid medium " +
-                    gridMedia_ + " needed more than " + std::to_string(gpu::kMaxTransmittanceSteps) +
-                    " tracking steps for their transmittance; the medium is too dense to render faithfully "
-                    "(lower its sigma_a and sigma_s, or its density)");
+        throw UnrenderableValuesError(std::to_string(counters.truncatedTracking) +
+                                      " rays through the density grid medium " + gridMedia_ + " needed more than " +
+                                      std::to_string(gpu::kMaxTransmittanceSteps) +
+                                      " tracking steps for their transmittance; the medium is too dense to render "
+                                      "faithfully (lower its sigma_a and sigma_s, or its density)");
     }
     if (counters.truncatedLoops > 0) {
         throw Error("internal: " + std::to_string(counters.truncatedLoops) +

@@ -395,6 +395,14 @@ TEST_F(CliTest, OptimizeFitsADensityGridAndWritesItBesideTheScene) {
     RunResult rendered = run("render " + (out / "scene.gltf").string() + " --width 8 --height 8 --spp 1 -o " +
                              (dir_ / "fitted.exr").string());
     EXPECT_EQ(rendered.exitCode, 0) << rendered.err;
+    // A step to a grid too dense to track, the last one, is refused, not written as the fit.
+    const fs::path diverged = dir_ / "diverged";
+    RunResult tooDense = run("optimize " + scene("cornell_plume.gltf") + " --target " + target.string() +
+                             " --iters 1 --spp 2 --lr 1e6 --param media/plume/density --out " + diverged.string());
+    EXPECT_EQ(tooDense.exitCode, 2);
+    EXPECT_NE(tooDense.err.find("error: the values of the last step (iteration 0) do not render: "), std::string::npos)
+        << tooDense.err;
+    EXPECT_FALSE(fs::exists(diverged / "scene.gltf"));
 
     // The fit's options with its smoothness replaced by `option`, on a parameter that is no grid.
     auto expectRefused = [&](const std::string& option, const std::string& message) {

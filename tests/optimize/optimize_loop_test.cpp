@@ -233,6 +233,37 @@ TEST(OptimizeLoop, StopsOnAStepBeyondFloatRangeBeforeItReachesTheScene) {
     }
 }
 
+// The values the last step leaves are what a run writes out, and no iteration renders
+// them: the loop renders them once more, with the seed the next iteration would take.
+TEST(OptimizeLoop, RendersTheLastStepsValuesOnceMore) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/g", {0.0}}});
+    OptimizeOptions options = optionsFor({"media/fog/g"}, OptimizerKind::Adam, 0.01, 3);
+    options.seed = 40;
+    optimize(loss, scene, options);
+    EXPECT_EQ(loss.seeds(), (std::vector<uint32_t>{40, 41, 42}));
+    EXPECT_EQ(loss.renderabilitySeeds(), (std::vector<uint32_t>{43}));
+}
+
+TEST(OptimizeLoop, StopsWhenTheLastStepsValuesDoNotRender) {
+    Scene scene = sceneWithParameters();
+    // SGD steps sigma_a from 0.3 towards 10 by 0.1 * 2 * 9.7 = 1.94 at the first step.
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {10.0, 10.0, 10.0}}});
+    loss.renderOnlyUpTo(1.0);
+    expectErrorMentioning([&] { optimize(loss, scene, optionsFor({"media/fog/sigma_a"}, OptimizerKind::Sgd, 0.1, 1)); },
+                          {"last step (iteration 0)", "too large to render", "smaller learning rate"});
+    EXPECT_EQ(loss.seeds().size(), 1u);
+}
+
+TEST(OptimizeLoop, NamesTheIterationWhoseRenderFailed) {
+    Scene scene = sceneWithParameters();
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {10.0, 10.0, 10.0}}});
+    loss.renderOnlyUpTo(1.0);
+    expectErrorMentioning([&] { optimize(loss, scene, optionsFor({"media/fog/sigma_a"}, OptimizerKind::Sgd, 0.1, 5)); },
+                          {"iteration 1: ", "too large to render"});
+    EXPECT_EQ(loss.seeds().size(), 1u);
+}
+
 TEST(OptimizeLoop, RejectsUnknownRepeatedAndMissingParameters) {
     Scene scene = sceneWithParameters();
     QuadraticLossGradient loss({});

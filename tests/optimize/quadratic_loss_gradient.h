@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "diff/loss_gradient.h"
 #include "scene/parameters.h"
 
@@ -27,9 +28,19 @@ public:
         width_ = width;
         height_ = height;
     }
+    // From now on its "render" fails (UnrenderableValuesError) where the first parameter's first value
+    // is above `most`, as a renderer's does on a density grid too dense to track.
+    void renderOnlyUpTo(double most) { mostRenderable_ = most; }
     const std::vector<uint32_t>& seeds() const { return seeds_; }
+    const std::vector<uint32_t>& renderabilitySeeds() const { return renderabilitySeeds_; }
+
+    void requireRenderable(const Scene& scene, uint32_t seed) override {
+        renderabilitySeeds_.push_back(seed);
+        requireRenders(scene);
+    }
 
     GradientResult evaluate(const Scene& scene, uint32_t seed) override {
+        requireRenders(scene);
         GradientResult result;
         for (const auto& [name, minimum] : minima_) {
             std::vector<float> value = getParameter(scene, name);
@@ -53,8 +64,16 @@ public:
     }
 
 private:
+    void requireRenders(const Scene& scene) const {
+        if (getParameter(scene, minima_.front().first).front() > mostRenderable_) {
+            throw UnrenderableValuesError("the value is too large to render");
+        }
+    }
+
     Minima minima_;  // the parameters, in the order the optimiser asks for them
     std::vector<uint32_t> seeds_;
+    std::vector<uint32_t> renderabilitySeeds_;
+    double mostRenderable_ = std::numeric_limits<double>::infinity();
     size_t failFrom_ = std::numeric_limits<size_t>::max();
     std::string failing_;
     int width_ = 4;
