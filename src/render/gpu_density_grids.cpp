@@ -15,8 +15,10 @@ namespace {
 // Grids share the device with the path state, the BVH and the images.
 constexpr uint64_t kGridShareOfDeviceMemory = 2;
 
-// The shaders hold index coordinates as floats, exact to 2^24.
-constexpr int32_t kLargestIndexCoordinate = 1 << 24;
+// Index arithmetic is in 32 bits (a box's last voxel, the corners of its majorant cells a
+// cell beyond it): coordinates are refused from 2^30 in magnitude, far from where it wraps.
+// The shaders' float coordinates count from the box (deviceGrid), so they do not limit it.
+constexpr int32_t kLargestIndexCoordinate = 1 << 30;
 
 void requireFits(const VulkanContext& context, const SceneDensityGrid& placed, uint64_t valuesBefore) {
     // In 64 bits: a box that ends at int32's largest coordinate would overflow.
@@ -26,7 +28,8 @@ void requireFits(const VulkanContext& context, const SceneDensityGrid& placed, u
         glm::any(glm::greaterThan(last, glm::i64vec3(kLargestIndexCoordinate - 1)))) {
         throw Error(placed.file.string() + ": grid '" + placed.grid.name + "' has voxels at index coordinates beyond " +
                     std::to_string(kLargestIndexCoordinate - 1) +
-                    " in magnitude, which the renderer cannot address exactly; move its voxels nearer the origin");
+                    " in magnitude, more than the renderer's 32-bit index arithmetic keeps exact; move its voxels "
+                    "nearer the origin");
     }
     const uint64_t budget = context.deviceLocalHeapBytes() / kGridShareOfDeviceMemory;
     const uint64_t fittingVoxels = std::min<uint64_t>(budget / sizeof(float), std::numeric_limits<int32_t>::max());
@@ -39,17 +42,23 @@ void requireFits(const VulkanContext& context, const SceneDensityGrid& placed, u
     }
 }
 
+// The device's index coordinates count from the grid's box (its majorant grid's origin
+// for a density grid): a float holds a point within a voxel to 2^-24 of the box's extent,
+// where coordinates counted from the file's origin, which may lie millions of voxels
+// away, would lose the fraction that trilinear lookups need.
 gpu::GpuDensityGrid deviceGrid(const SceneDensityGrid& placed, const MajorantGrid& majorants, size_t firstValue,
                                size_t firstMajorant) {
-    const glm::mat4 worldToIndex(glm::inverse(placed.indexToWorld));
+    const glm::ivec3 origin = placed.grid.channels == 1 ? majorants.origin : placed.grid.firstVoxel;
+    glm::dmat4 worldToIndex = glm::inverse(placed.indexToWorld);
+    worldToIndex[3] -= glm::dvec4(glm::dvec3(origin), 0.0);
     gpu::GpuDensityGrid grid{};
     for (int row = 0; row < 3; ++row) {
         grid.worldToIndex[row] = glm::vec4(worldToIndex[0][row], worldToIndex[1][row], worldToIndex[2][row],
                                            worldToIndex[3][row]);
     }
-    grid.firstVoxel = glm::ivec4(placed.grid.firstVoxel, int32_t(firstValue));
+    grid.firstVoxel = glm::ivec4(placed.grid.firstVoxel - origin, int32_t(firstValue));
     grid.size = glm::ivec4(placed.grid.size, int32_t(firstMajorant));
-    grid.majorantOrigin = glm::ivec4(majorants.origin, 0);
+    grid.majorantOrigin = glm::ivec4(majorants.origin - origin, 0);
     grid.majorantCells = glm::ivec4(majorants.cells, placed.grid.channels);
     // The trilinear density reaches one voxel beyond the box on every side.
     const glm::dvec3 diagonal(placed.indexToWorld * glm::dvec4(glm::dvec3(placed.grid.size + 1), 0.0));

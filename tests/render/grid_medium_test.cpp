@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "bvh/bvh.h"
 #include "expect_error.h"
 #include "furnace_scene.h"
@@ -223,22 +225,41 @@ TEST_F(GridMediumTest, AnExtinctionBeyondFloatRangeRefusesTheRenderNamingTheMedi
          "beyond float range"});
 }
 
-// The renderer addresses voxels by index coordinates in float, exact up to 2^24: a grid
-// reaching beyond is refused, including one whose box ends at int32's largest coordinate
-// (where its last index, computed in 32 bits, would wrap round).
+// A grid whose voxels lie millions of voxels from the file's index origin (moved there,
+// with its transform moved back) renders the same bits as at the origin: the device
+// counts index coordinates from the grid's box, where a float keeps the fraction within
+// a voxel that trilinear lookups read (from 2^23 on, a float holds whole numbers only).
+TEST_F(GridMediumTest, AGridFarFromItsIndexOriginRendersAsAtTheOrigin) {
+    const std::filesystem::path dir = tempDir();
+    const Scene near = loadScene(writeFog(rampFog(0.3, 0.5), dir)).scene;
+    const Bvh bvh = buildBvh(near.positions, near.triangles);
+    const RenderSettings settings{.width = 16, .height = 16, .spp = 16, .maxDepth = 2};
+    const Image expected = Renderer(testContext(), near, bvh, settings).render();
+    for (int32_t shift : {(1 << 23) + 12345, (1 << 24) - 4096}) {
+        Scene far = near;
+        const glm::ivec3 offset(shift, -shift, shift);
+        far.densityGrids[0].grid.firstVoxel += offset;
+        far.densityGrids[0].indexToWorld *= glm::translate(glm::dmat4(1.0), -glm::dvec3(offset));
+        EXPECT_EQ(Renderer(testContext(), far, bvh, settings).render().rgb, expected.rgb) << "moved by " << shift;
+    }
+}
+
+// The renderer's index arithmetic is in 32 bits: a grid reaching 2^30 is refused,
+// including one whose box ends at int32's largest coordinate (where its last index,
+// computed in 32 bits, would wrap round).
 TEST_F(GridMediumTest, GridsBeyondTheExactIndexRangeAreRefused) {
     Scene scene = loadScene(furnaceWithOneDenseVoxelPerCell(glm::vec3(0.5f), {.sigmaS = glm::vec3(1.0f)}, 0, 0.0f,
                                                            tempDir()))
                       .scene;
     const Bvh bvh = buildBvh(scene.positions, scene.triangles);
     const int32_t width = scene.densityGrids[0].grid.size.x;
-    for (int32_t lastX : {(1 << 24), std::numeric_limits<int32_t>::max()}) {
+    for (int32_t lastX : {(1 << 30), std::numeric_limits<int32_t>::max()}) {
         scene.densityGrids[0].grid.firstVoxel.x = lastX - width + 1;
         try {
             Renderer(testContext(), scene, bvh, {.width = 4, .height = 4, .spp = 1, .maxDepth = 1}).render();
             ADD_FAILURE() << "a grid ending at x = " << lastX << " was rendered";
         } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find("index coordinates beyond 16777215"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("index coordinates beyond 1073741823"), std::string::npos) << e.what();
         }
     }
 }
