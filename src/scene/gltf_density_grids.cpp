@@ -138,7 +138,7 @@ void readGridsOf(const tinygltf::Model& model, const tinygltf::ExtensionMap& ext
         int32_t& grid;
     };
     for (const Reference& reference : {Reference{"density", "density", readDensityGrid, medium.densityGrid},
-                                       Reference{"emissionGrid", "flame", readDensityGrid, medium.emissionGrid},
+                                       Reference{"emissionGrid", "flame", readEmissionGrid, medium.emissionGrid},
                                        Reference{"albedoGrid", "color", readAlbedoGrid, medium.albedoGrid}}) {
         if (extension.Has(reference.key)) {
             reference.grid = readMediumGrid(model, extension.Get(reference.key), field + "." + reference.key,

@@ -54,15 +54,16 @@ void requireUsableTransform(const glm::dmat4& indexToLocal) {
     if (!problem.empty()) throw Error(problem);
 }
 
-// A voxel's (or a tile's) value as a density: finite, >= 0 and within float's range.
+// A voxel's (or a tile's) value as `quantity` (a density, an emission strength): finite,
+// >= 0 and within float's range.
 template <typename ValueT>
-float densityOf(ValueT value, const openvdb::Coord& voxel) {
-    const float density = float(value);
-    if (!(value >= ValueT(0)) || !std::isfinite(density)) {
-        throw Error(formatText("voxel (%d, %d, %d) holds %g; a density must be finite, >= 0 and within float's range",
-                               voxel.x(), voxel.y(), voxel.z(), double(value)));
+float nonNegativeOf(ValueT value, const openvdb::Coord& voxel, const char* quantity) {
+    const float converted = float(value);
+    if (!(value >= ValueT(0)) || !std::isfinite(converted)) {
+        throw Error(formatText("voxel (%d, %d, %d) holds %g; %s must be finite, >= 0 and within float's range",
+                               voxel.x(), voxel.y(), voxel.z(), double(value), quantity));
     }
-    return density;
+    return converted;
 }
 
 // One channel of an albedo: in [0, 1].
@@ -80,7 +81,16 @@ struct DensityValues {
     static constexpr const char* expected = "scalar densities (float or double)";
     template <typename ValueT>
     static void convert(ValueT value, const openvdb::Coord& voxel, float* out) {
-        out[0] = densityOf(value, voxel);
+        out[0] = nonNegativeOf(value, voxel, "a density");
+    }
+};
+
+struct EmissionValues {
+    static constexpr int channels = 1;
+    static constexpr const char* expected = "scalar emission strengths (float or double)";
+    template <typename ValueT>
+    static void convert(ValueT value, const openvdb::Coord& voxel, float* out) {
+        out[0] = nonNegativeOf(value, voxel, "an emission strength");
     }
 };
 
@@ -321,6 +331,10 @@ DensityGrid readGrid(const std::filesystem::path& file, const std::string& gridN
 
 DensityGrid readDensityGrid(const std::filesystem::path& file, const std::string& gridName) {
     return readGrid<DensityValues>(file, gridName, "density");
+}
+
+DensityGrid readEmissionGrid(const std::filesystem::path& file, const std::string& gridName) {
+    return readGrid<EmissionValues>(file, gridName, "emission");
 }
 
 DensityGrid readAlbedoGrid(const std::filesystem::path& file, const std::string& gridName) {

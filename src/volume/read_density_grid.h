@@ -18,6 +18,9 @@ namespace vkdr {
 // (indexTransformProblem), and a box of more than kMaxDenseVoxels voxels.
 DensityGrid readDensityGrid(const std::filesystem::path& file, const std::string& gridName);
 
+// The same for an emission grid (a scalar strength per voxel, refused and named as such).
+DensityGrid readEmissionGrid(const std::filesystem::path& file, const std::string& gridName);
+
 // The same for an albedo grid (channels 3): a vector grid (float or double; Vec3f in
 // NanoVDB) gives each voxel its RGB, a scalar grid a grey one. Every channel must lie in
 // [0, 1]; the other refusals are readDensityGrid's.

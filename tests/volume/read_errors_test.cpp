@@ -189,6 +189,22 @@ TEST(DensityGridErrors, NegativeAndNonFiniteVoxels) {
     expectReadError(directory / "huge.vdb", "density", {"voxel (1, 1, 1)", "1e+300", "float's range"});
 }
 
+// An emission grid's refusals name it and its values as such, not as a density's.
+TEST(DensityGridErrors, AnEmissionGridIsNamedAsOne) {
+    ScratchDirectory directory;
+    writeOpenVdbGrid(directory / "flame.vdb", gridWithVoxel({2, 2, 2}, -1.0f));
+    try {
+        readEmissionGrid(directory / "flame.vdb", "density");
+        ADD_FAILURE() << "a negative emission strength was read";
+    } catch (const Error& error) {
+        const std::string message = error.what();
+        EXPECT_EQ(message.rfind("cannot read emission grid 'density'", 0), 0u) << message;
+        EXPECT_NE(message.find("voxel (2, 2, 2) holds -1; an emission strength must be finite, >= 0"),
+                  std::string::npos)
+            << message;
+    }
+}
+
 TEST(DensityGridErrors, TransformThatIsNotAffine) {
     ScratchDirectory directory;
     openvdb::FloatGrid::Ptr vdb = gridWithVoxel({1, 1, 1}, 1.0f);
