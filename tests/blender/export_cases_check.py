@@ -731,14 +731,14 @@ def unused_slot(scene):
 
 
 def see_through(scene):
-    """A plane of a Principled BSDF with Alpha 0.3, whose Base Color a Math node feeds."""
+    """A plane of a Principled BSDF with Alpha 0.3, whose Base Color a Noise Texture feeds."""
     bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 0.5))
     material = bpy.data.materials.new("Veil")
     material.use_nodes = True
     principled = material.node_tree.nodes["Principled BSDF"]
     principled.inputs["Alpha"].default_value = 0.3
-    math = material.node_tree.nodes.new("ShaderNodeMath")
-    material.node_tree.links.new(math.outputs[0], principled.inputs["Base Color"])
+    noise = material.node_tree.nodes.new("ShaderNodeTexNoise")
+    material.node_tree.links.new(noise.outputs["Fac"], principled.inputs["Base Color"])
     bpy.context.object.data.materials.append(material)
 
 

@@ -511,5 +511,5 @@ def test_a_scene_name_with_a_percent_sign_refers_to_its_own_buffer(exported, cli
 def test_alpha_below_one_and_a_base_color_of_nodes_are_warned_of(exported):
     warnings = own_warnings(exported, "see_through")
     assert any(w.startswith("material 'Veil': Alpha below 1 is exported as an opaque surface") for w in warnings)
-    assert any(w.startswith("material 'Veil': 'Principled BSDF' input 'Base Color' is linked from 'Math' "
-                            "(ShaderNodeMath)") for w in warnings)
+    assert any(w.startswith("material 'Veil': 'Principled BSDF' input 'Base Color' is linked from 'Noise "
+                            "Texture' (ShaderNodeTexNoise)") for w in warnings)

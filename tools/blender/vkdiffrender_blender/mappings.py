@@ -33,6 +33,62 @@ def _positive(x):
     return max(x, 0.0)
 
 
+# --- constant nodes --------------------------------------------------------------------
+
+def _safe_divide(a, b):
+    return a / b if b != 0.0 else 0.0
+
+
+def _safe_power(a, b):
+    if a < 0.0 and b != int(b):
+        return 0.0
+    if a == 0.0 and b < 0.0:
+        return math.inf
+    try:
+        return math.pow(a, b)
+    except OverflowError:
+        return math.inf
+
+
+def _safe_log(a, base):
+    if a <= 0.0 or base <= 0.0:
+        return 0.0
+    return _safe_divide(math.log(a), math.log(base))
+
+
+def _exponent(a):
+    try:
+        return math.exp(a)
+    except OverflowError:
+        return math.inf
+
+
+# Cycles' svm_math (kernel/svm/math_util.h) for the Math node's operations whose result
+# an export can take as a constant, with its safe functions' values at their edges
+# (a division by 0 gives 0, a power of a negative base and a fractional exponent 0).
+_MATH_OPERATIONS = {
+    "ADD": lambda a, b, c: a + b,
+    "SUBTRACT": lambda a, b, c: a - b,
+    "MULTIPLY": lambda a, b, c: a * b,
+    "DIVIDE": lambda a, b, c: _safe_divide(a, b),
+    "MULTIPLY_ADD": lambda a, b, c: a * b + c,
+    "POWER": lambda a, b, c: _safe_power(a, b),
+    "LOGARITHM": lambda a, b, c: _safe_log(a, b),
+    "SQRT": lambda a, b, c: math.sqrt(max(a, 0.0)),
+    "EXPONENT": lambda a, b, c: _exponent(a),
+    "ABSOLUTE": lambda a, b, c: abs(a),
+    "MINIMUM": lambda a, b, c: min(a, b),
+    "MAXIMUM": lambda a, b, c: max(a, b),
+}
+
+
+def math_operation(operation, operands):
+    """A Math node's result for OPERATION (Blender's enum name) on its three inputs' values,
+    or None for an operation not evaluated here."""
+    function = _MATH_OPERATIONS.get(operation)
+    return float(function(*operands)) if function else None
+
+
 # --- volumes: Blender node inputs -> vkdiffrender medium ----------------------------
 
 def principled_volume_to_medium(color, density, absorption_color, anisotropy, emission_color=0.0,

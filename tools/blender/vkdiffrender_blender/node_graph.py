@@ -72,20 +72,58 @@ def attribute_input(node, name):
     return source.attribute_name if link.from_socket.name == "Fac" else None
 
 
+def socket_value(socket):
+    """A socket's own value: a float, or a tuple (a colour's RGBA)."""
+    value = socket.default_value
+    return tuple(value) if hasattr(value, "__len__") else float(value)
+
+
+def folded_value(socket):
+    """SOCKET's value where only constants feed it, as Cycles evaluates them: its own
+    value where nothing feeds it, a Value or RGB node's, or a Math node's of such inputs
+    (mappings.math_operation). A float feeding a colour is that grey, as in Cycles. None
+    where anything else feeds it (a texture or attribute varies in space; other nodes are
+    not evaluated), or a colour feeds a float."""
+    link = source_link(socket)
+    if link is None:
+        return socket_value(socket)
+    node = link.from_node
+    if node.mute:
+        return None
+    if node.bl_idname in {"ShaderNodeValue", "ShaderNodeRGB"}:
+        value = socket_value(link.from_socket)
+    elif node.bl_idname == "ShaderNodeMath":
+        # An input the operation does not use (not enabled) is not read.
+        operands = [folded_value(s) if s.enabled else 0.0 for s in node.inputs]
+        if any(not isinstance(v, float) for v in operands):
+            return None
+        value = mappings.math_operation(node.operation, operands)
+        if value is None:
+            return None
+        if node.use_clamp:
+            value = min(max(value, 0.0), 1.0)
+    else:
+        return None
+    if isinstance(value, float) and socket.type == "RGBA":
+        return (value, value, value, 1.0)
+    return value if isinstance(value, float) == (socket.type == "VALUE") else None
+
+
 def constant(node, name, warnings, what, overrides=None):
-    """A node input's value; a linked input (a texture or attribute varies in space, and
-    the export evaluates no node) cannot be expressed, so its unlinked value is used with a
-    warning. `overrides` gives the values of inputs whose variation the caller exports
-    otherwise (as a grid)."""
+    """A node input's value, with constant nodes feeding it evaluated (folded_value); an
+    input fed otherwise (a texture or attribute varies in space) cannot be expressed, so
+    its unlinked value is used with a warning. `overrides` gives the values of inputs
+    whose variation the caller exports otherwise (as a grid)."""
     if overrides and name in overrides:
         return overrides[name]
     socket = node.inputs[name]
+    value = folded_value(socket)
+    if value is not None:
+        return value
     source = linked_node(socket)
-    if source is not None:
-        warnings.append(f"{what}: '{node.name}' input '{name}' is linked from '{source.name}' ({source.bl_idname}), "
-                        f"which the export does not evaluate; its unlinked value is used")
-    value = socket.default_value
-    return tuple(value) if hasattr(value, "__len__") else float(value)
+    warnings.append(f"{what}: '{node.name}' input '{name}' is linked from '{source.name}' ({source.bl_idname}), "
+                    f"which the export does not evaluate; its unlinked value is used")
+    return socket_value(socket)
 
 
 def volume_medium(node, warnings, what, overrides=None):
