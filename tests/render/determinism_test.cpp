@@ -1,7 +1,7 @@
 // The same scene, seed and device give the same image bit for bit, whatever order the
 // paths finish in; another seed gives another image. New parameter values given to a
 // renderer render as a renderer made for them does. Gradients have the same bits
-// however their lanes add them.
+// however their lanes add them, and however the paths are split into passes.
 #include "render_test_support.h"
 #include "bvh/bvh.h"
 #include "scene/load_scene.h"
@@ -34,6 +34,37 @@ TEST_F(DeterminismTest, SameSeedSameBitsOtherSeedOtherImage) {
     settings.seed = 8;
     Image c = renderFile(file, settings);
     EXPECT_NE(a.rgb, c.rgb);
+}
+
+// However the paths are split into passes (one pass; several of whole pixels' samples;
+// passes that split pixels' samples, and split them unevenly around the gradient's two
+// halves), the image, the loss and every gradient have the same bits: the film adds
+// each pixel's samples one by one in sample order, and the gradients are fixed-point sums.
+TEST_F(DeterminismTest, TheBitsDoNotDependOnHowPathsAreSplitIntoPasses) {
+    Scene scene = loadScene(smokeInGlowingBox(glm::vec3(2.0f)).write(tempDir(), "scene")).scene;
+    Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    RenderSettings settings{.width = 16, .height = 12, .spp = 8, .maxDepth = 6, .seed = 7};
+    const Image target = Renderer(testContext(), scene, bvh, settings).render();
+    scene.media[0].sigma_s *= 0.5f;
+    auto evaluate = [&](uint32_t pathsPerPass) {
+        RenderSettings split = settings;
+        split.pathsPerPass = pathsPerPass;
+        Renderer renderer(testContext(), scene, bvh, split);
+        renderer.enableGradients(target, LossKind::L2, DerivativeTargets{});
+        return std::make_pair(renderer.render(), renderer.renderWithGradients());
+    };
+    const auto [image, expected] = evaluate(0);
+    ASSERT_TRUE(allFinite(image));
+    for (uint32_t pathsPerPass : {16u * 12u * 2u, 500u, 37u}) {
+        const auto [splitImage, evaluation] = evaluate(pathsPerPass);
+        EXPECT_EQ(splitImage.rgb, image.rgb) << pathsPerPass << " paths per pass";
+        EXPECT_EQ(evaluation.image.rgb, expected.image.rgb) << pathsPerPass << " paths per pass";
+        EXPECT_EQ(evaluation.loss, expected.loss) << pathsPerPass << " paths per pass";
+#define VKDR_EXPECT_SAME_GRADIENTS(name, field, ...) \
+    EXPECT_EQ(evaluation.gradients.field, expected.gradients.field) << #field << ", " << pathsPerPass << " paths per pass";
+        VKDR_GRADIENT_ACCUMULATORS(VKDR_EXPECT_SAME_GRADIENTS)
+#undef VKDR_EXPECT_SAME_GRADIENTS
+    }
 }
 
 // setParameters keeps the emitter distribution when no emission changed and rebuilds it
