@@ -21,6 +21,7 @@
 #include "optimize/parameter_vector.h"
 #include "optimize/scene_emission_bound.h"
 #include "scene/parameters.h"
+#include "scene/scene_medium_emission.h"
 
 namespace vkdr {
 namespace {
@@ -63,10 +64,31 @@ constexpr double kExtremeMagnitude = 1e6;
 // float range is caught by requireFiniteSteps, so it is a render beyond float range
 // (values, fitted or not, that each lie in their range but together make too much
 // light), an extreme value the steps reached, or the renderer itself.
-std::string nonFiniteCause(const GradientResult& result, const ParameterVector& parameters) {
+// The radiance that every ray leaving the scene gathers from an emitting scene-wide
+// medium, emission / (sigma_a + sigma_s), where it is extreme in a channel (its sigmas
+// stepped to 0, or to the least that keepSceneWideEmissionBounded allows): that, named.
+std::optional<std::string> extremeSceneWideEmission(const Scene& scene) {
+    const Medium* medium = boundedSceneWideMedium(scene);
+    if (!medium) return std::nullopt;
+    for (int c = 0; c < 3; ++c) {
+        const EmissionAndAttenuation values = emissionAndAttenuation(*medium, c);
+        const double radiance = values.emission / (values.sigma_a + values.sigma_s);
+        if (values.emission > 0.0 && !(radiance <= kExtremeMagnitude)) {
+            return "every ray that leaves the scene gathers emission / (sigma_a + sigma_s) = " + numberText(radiance) +
+                   " (channel " + "RGB"[c] + ") from the scene-wide medium '" + medium->name + "', beyond " +
+                   numberText(kExtremeMagnitude) +
+                   ": the render's float arithmetic overflows there (a smaller learning rate keeps its sigmas from "
+                   "0)";
+        }
+    }
+    return std::nullopt;
+}
+
+std::string nonFiniteCause(const GradientResult& result, const ParameterVector& parameters, const Scene& scene) {
     if (std::optional<std::string> bad = unrepresentableRender(result)) {
         return *bad + ": the scene's values, fitted or not, make more light than a float holds";
     }
+    if (std::optional<std::string> emission = extremeSceneWideEmission(scene)) return *emission;
     std::string extreme;
     for (size_t i = 0; i < parameters.names().size(); ++i) {
         std::span<const double> values = parameters.values().subspan(parameters.offset(i), parameters.count(i));
@@ -93,7 +115,8 @@ bool allValues(std::span<const double> values, Predicate holds) {
         std::logical_and<bool>());
 }
 
-void requireFinite(const GradientResult& result, const ParameterVector& parameters, uint32_t iteration) {
+void requireFinite(const GradientResult& result, const ParameterVector& parameters, const Scene& scene,
+                   uint32_t iteration) {
     std::string where = "iteration " + std::to_string(iteration) + ": ";
     const std::string kept = "; no values from this iteration were kept; ";
     if (!std::isfinite(result.loss)) {
@@ -103,7 +126,7 @@ void requireFinite(const GradientResult& result, const ParameterVector& paramete
                   valuesText(parameters.values().subspan(parameters.offset(i), parameters.count(i)));
         }
         throw Error(where + "the loss is " + numberText(result.loss) + " at " + at + kept +
-                    nonFiniteCause(result, parameters));
+                    nonFiniteCause(result, parameters, scene));
     }
     for (size_t i = 0; i < result.parameters.size(); ++i) {
         const ParameterGradient& parameter = result.parameters[i];
@@ -113,7 +136,7 @@ void requireFinite(const GradientResult& result, const ParameterVector& paramete
                 std::span<const double> values =
                     parameters.values().subspan(parameters.offset(i), parameters.count(i));
                 throw Error(where + "the gradient of " + parameter.name + " is " + numberText(gradient) + " at " +
-                            parameter.name + " = " + valuesText(values) + kept + nonFiniteCause(result, parameters));
+                            parameter.name + " = " + valuesText(values) + kept + nonFiniteCause(result, parameters, scene));
             }
         }
     }
@@ -273,7 +296,7 @@ OptimizeResult optimize(LossGradient& lossGradient, Scene& scene, const Optimize
         try {
             throwIfInterrupted();
             evaluation = evaluateAt(lossGradient, scene, options.seed + iteration, iteration);
-            requireFinite(evaluation, parameters, iteration);
+            requireFinite(evaluation, parameters, scene, iteration);
             if (callbacks.measure) metrics = callbacks.measure(scene, iteration);
         } catch (const Interrupted&) {
             // Stopped between iterations or within one (its evaluation or the renders

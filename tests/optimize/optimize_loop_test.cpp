@@ -218,6 +218,21 @@ TEST(OptimizeLoop, StopsOnANonFiniteGradientNamingTheParameterAndIteration) {
     EXPECT_EQ(getParameter(scene, "media/fog/sigma_s"), valuesAfterIteration2);
 }
 
+// An emitting scene-wide medium whose sigmas reached (nearly) 0 gives every ray that
+// leaves the scene emission / (sigma_a + sigma_s): the error names that, not the renderer.
+TEST(OptimizeLoop, NamesAnExtremeSceneWideEmissionAsTheCauseOfANonFiniteGradient) {
+    Scene scene = sceneWithParameters();
+    scene.media[0].sigma_a = glm::vec3(1e-18f);
+    scene.media[0].sigma_s = glm::vec3(0.0f);
+    scene.media[0].emission = glm::vec3(1e-6f);
+    QuadraticLossGradient loss({{"media/fog/sigma_a", {0.1, 0.1, 0.1}}});
+    loss.failFrom(0, "media/fog/sigma_a");
+    expectErrorMentioning(
+        [&] { optimize(loss, scene, optionsFor({"media/fog/sigma_a"}, OptimizerKind::Adam, 0.01, 3)); },
+        {"iteration 0", "every ray that leaves the scene gathers emission / (sigma_a + sigma_s) = 1e+12 (channel R) "
+                        "from the scene-wide medium 'fog'"});
+}
+
 // Downwards too, where sigma_s's bound at 0 would otherwise clamp the step to 0.
 TEST(OptimizeLoop, StopsOnAStepBeyondFloatRangeBeforeItReachesTheScene) {
     for (double minimum : {1e30, -1e30}) {
