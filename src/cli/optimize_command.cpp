@@ -164,12 +164,19 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
 // What the run directory holds to resume from, for the message that ends a stopped run.
 // With --overwrite, until this run wrote its first file the directory holds the old run
 // whole: its checkpoint is that run's, which this command would not resume.
+// With --overwrite, before this run wrote its first file: that the run the directory held
+// is left as it was (empty where it held none).
+std::string oldRunKept(const OptimizeCommandOptions& options) {
+    const std::filesystem::path directory = options.out;
+    const bool heldARun = !presentRunFiles(directory, !options.experiment.empty()).empty();
+    return heldARun ? "the run " + directory.string() + " held is left as it was" : std::string();
+}
+
 std::string resumeHint(const OptimizeCommandOptions& options) {
     const std::filesystem::path directory = options.out;
     if (options.overwrite && !*options.oldRunRemoved) {
-        const bool heldARun = !presentRunFiles(directory, !options.experiment.empty()).empty();
-        return "this run had written nothing" +
-               (heldARun ? ", and the run " + directory.string() + " held is left as it was" : std::string());
+        const std::string kept = oldRunKept(options);
+        return "this run had written nothing" + (kept.empty() ? std::string() : ", and " + kept);
     }
     std::filesystem::path checkpoint = directory / kCheckpointFileName;
     std::error_code error;
@@ -178,7 +185,8 @@ std::string resumeHint(const OptimizeCommandOptions& options) {
 }
 
 // A lost device or a signal stops the run like any error; what it leaves to resume from
-// is worth saying.
+// is worth saying. Any other error of an --overwrite run that had written nothing says
+// that the old run is left whole.
 int withResumeHint(const OptimizeCommandOptions& options, const std::function<int()>& run) {
     try {
         return run();
@@ -186,6 +194,10 @@ int withResumeHint(const OptimizeCommandOptions& options, const std::function<in
         throw Error(std::string(error.what()) + "; " + resumeHint(options));
     } catch (const Interrupted& interrupted) {
         throw Interrupted(interrupted.signal(), std::string(interrupted.what()) + "; " + resumeHint(options));
+    } catch (const Error& error) {
+        const std::string kept = options.overwrite && !*options.oldRunRemoved ? oldRunKept(options) : std::string();
+        if (kept.empty()) throw;
+        throw Error(std::string(error.what()) + "; " + kept);
     }
 }
 

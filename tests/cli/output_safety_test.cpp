@@ -213,6 +213,8 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
     RunResult failed = run(optimizeCommand(black) + " --optimizer sgd --lr 1e300 --overwrite --out " + out.string());
     EXPECT_EQ(failed.exitCode, 2) << failed.err;
     EXPECT_NE(failed.err.find("iteration 0"), std::string::npos) << failed.err;
+    EXPECT_NE(failed.err.find("; the run " + out.string() + " held is left as it was\n"), std::string::npos)
+        << failed.err;
     EXPECT_EQ(slurp(out / "log.jsonl"), replacedLog);
     EXPECT_EQ(slurp(out / "params.json"), replacedParams);
 
