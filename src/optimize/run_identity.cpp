@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <map>
 
 #include "core/error.h"
 #include "image/regular_file.h"
@@ -34,11 +35,13 @@ std::string targetIdentity(const TargetFile& target) {
 }
 
 // A checkpoint's "set" entry, its assignments joined by spaces, with each written as
-// canonicalAssignment writes it: checkpoints written before the entry was canonical hold
-// the values as typed. A name may hold spaces, so words are joined until they make an
-// assignment; text that makes none is left as it is.
+// canonicalAssignment writes it (checkpoints written before the entry was canonical hold
+// the values as typed), the last of each name only (as --set takes them), in the order
+// of the names: assignments given in another order set the same values. A name may hold
+// spaces, so words are joined until they make an assignment; text that makes none is
+// left as it is.
 std::string canonicalAssignments(const std::string& joinedAssignments) {
-    std::vector<std::string> assignments;
+    std::map<std::string, std::string> assignments;  // by name
     std::string pending;
     size_t start = 0;
     while (start <= joinedAssignments.size()) {
@@ -46,14 +49,18 @@ std::string canonicalAssignments(const std::string& joinedAssignments) {
         if (space == std::string::npos) space = joinedAssignments.size();
         pending += (pending.empty() ? "" : " ") + joinedAssignments.substr(start, space - start);
         try {
-            assignments.push_back(canonicalAssignment(pending));
+            std::string assignment = canonicalAssignment(pending);
+            // The values are numbers: the name is what comes before the last '='.
+            assignments[assignment.substr(0, assignment.rfind('='))] = assignment;
             pending.clear();
         } catch (const Error&) {
             // Not an assignment yet: the next word may go on with the name.
         }
         start = space + 1;
     }
-    return pending.empty() ? joined(assignments, " ") : joinedAssignments;
+    std::vector<std::string> ordered;
+    for (const auto& [name, assignment] : assignments) ordered.push_back(assignment);
+    return pending.empty() ? joined(ordered, " ") : joinedAssignments;
 }
 
 }  // namespace

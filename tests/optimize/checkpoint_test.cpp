@@ -198,7 +198,17 @@ TEST(RunIdentity, NamesTheInputsOfACommandLineOrOfAnExperiment) {
     EXPECT_EQ(runIdentity(job.sceneFile, job.options, job.loss,
                           {{}, {{"side", target}}, {"media/fog/sigma_s=0.5,.5,5e-1", "media/fog/sigma_a=-0,0,0"}, 4, 6})
                   .at("set"),
-              "media/fog/sigma_s=0.5 media/fog/sigma_a=-0,0,0");
+              "media/fog/sigma_a=-0,0,0 media/fog/sigma_s=0.5");
+    // In the order of the names, whatever order they were given in; the last of a name,
+    // which is the one --set applies.
+    EXPECT_EQ(runIdentity(job.sceneFile, job.options, job.loss,
+                          {{}, {{"side", target}}, {"media/fog/sigma_s=1", "media/fog/g=0.2"}, 4, 6})
+                  .at("set"),
+              command.at("set"));
+    EXPECT_EQ(runIdentity(job.sceneFile, job.options, job.loss,
+                          {{}, {{"side", target}}, {"media/fog/g=0.7", "media/fog/sigma_s=1", "media/fog/g=0.2"}, 4, 6})
+                  .at("set"),
+              command.at("set"));
     EXPECT_EQ(command.at("spp"), "4");
     EXPECT_EQ(command.at("max_depth"), "6");
     EXPECT_EQ(command.at("scene"), "cornell_fog.gltf, " + fileDigest(kFogScene));
