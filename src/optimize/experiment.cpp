@@ -372,6 +372,10 @@ void prepareExperimentScene(const Experiment& experiment, Scene& scene) {
     }
     std::vector<std::string> heldOut;
     for (const std::string& view : experiment.heldOutViews) {
+        if (view.empty()) {
+            reader.fail("held_out_views", "\"\" names no camera here (only in \"views\" is it the first camera): "
+                                          "name the camera; cameras: " + cameraList(scene));
+        }
         if (!hasCamera(scene, view)) reader.fail("held_out_views", "no camera '" + view + "'; cameras: " + cameraList(scene));
         if (std::find(fitted.begin(), fitted.end(), view) != fitted.end()) {
             reader.fail("held_out_views", "'" + view + "' is also a fitted view (\"views\", whose default is the "

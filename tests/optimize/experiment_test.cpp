@@ -229,6 +229,9 @@ TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndGridSettingsWithoutAGrid) 
     expectPrepareError(scratch, experiment, {"held_out_views", "'camera' is also a fitted view"});
     experiment["views"] = {""};
     expectPrepareError(scratch, experiment, {"held_out_views", "'camera' is also a fitted view"});
+    // "" is the first camera only among the fitted views.
+    experiment["held_out_views"] = {""};
+    expectPrepareError(scratch, experiment, {"held_out_views", "\"\" names no camera here", "cameras: camera"});
 
     // A camera fitted twice would only weigh double; listed twice, it is a slip.
     experiment.erase("held_out_views");
