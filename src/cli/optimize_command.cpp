@@ -161,9 +161,6 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
     std::printf("wrote %s to %s\n", written.c_str(), directory.string().c_str());
 }
 
-// What the run directory holds to resume from, for the message that ends a stopped run.
-// With --overwrite, until this run wrote its first file the directory holds the old run
-// whole: its checkpoint is that run's, which this command would not resume.
 // With --overwrite, before this run wrote its first file: that the run the directory held
 // is left as it was (empty where it held none).
 std::string oldRunKept(const OptimizeCommandOptions& options) {
@@ -172,6 +169,9 @@ std::string oldRunKept(const OptimizeCommandOptions& options) {
     return heldARun ? "the run " + directory.string() + " held is left as it was" : std::string();
 }
 
+// What the run directory holds to resume from, for the message that ends a stopped run.
+// With --overwrite, until this run wrote its first file the directory holds the old run
+// whole: its checkpoint is that run's, which this command would not resume.
 std::string resumeHint(const OptimizeCommandOptions& options) {
     const std::filesystem::path directory = options.out;
     if (options.overwrite && !*options.oldRunRemoved) {

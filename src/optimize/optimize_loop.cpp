@@ -59,11 +59,6 @@ std::string valuesText(std::span<const double> values) {
 // float arithmetic (an optical depth, a squared difference) may overflow on it.
 constexpr double kExtremeMagnitude = 1e6;
 
-// Why a loss or gradient the render gave is not finite. Targets, parameters and
-// checkpoints are refused at load when they are not finite, and a step that leaves
-// float range is caught by requireFiniteSteps, so it is a render beyond float range
-// (values, fitted or not, that each lie in their range but together make too much
-// light), an extreme value the steps reached, or the renderer itself.
 // The radiance that every ray leaving the scene gathers from an emitting scene-wide
 // medium, emission / (sigma_a + sigma_s), where it is extreme in a channel (its sigmas
 // stepped to 0, or to the least that keepSceneWideEmissionBounded allows): that, named.
@@ -84,6 +79,12 @@ std::optional<std::string> extremeSceneWideEmission(const Scene& scene) {
     return std::nullopt;
 }
 
+// Why a loss or gradient the render gave is not finite. Targets, parameters and
+// checkpoints are refused at load when they are not finite, and a step that leaves
+// float range is caught by requireFiniteSteps, so it is a render beyond float range
+// (values, fitted or not, that each lie in their range but together make too much
+// light), an emitting scene-wide medium whose sigmas the steps took to (nearly) 0, an
+// extreme value the steps reached, or the renderer itself.
 std::string nonFiniteCause(const GradientResult& result, const ParameterVector& parameters, const Scene& scene) {
     if (std::optional<std::string> bad = unrepresentableRender(result)) {
         return *bad + ": the scene's values, fitted or not, make more light than a float holds";

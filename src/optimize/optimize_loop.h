@@ -114,10 +114,11 @@ struct OptimizeResult {
 // callbacks, and an Error naming the iteration when an evaluation fails (a step that
 // left a density grid too dense to track). After the last step it renders the values it
 // leaves once more (LossGradient::requireRenderable, with the seed a next iteration would
-// take) and throws Error if they do not render. On a SIGINT or SIGTERM (core/interrupt.h), noticed between iterations or
-// within one (by the LossGradient or by the renders of OptimizeCallbacks::measure), it
-// calls the checkpoint callback with the state after the last finished iteration (if one
-// finished since the start or the resume) and rethrows Interrupted.
+// take) and throws Error if they do not render. On a SIGINT or SIGTERM
+// (core/interrupt.h), noticed between iterations or within one (by the LossGradient or
+// by the renders of OptimizeCallbacks::measure), it calls the checkpoint callback with
+// the state after the last finished iteration (if one finished since the start or the
+// resume) and rethrows Interrupted; one during the last check stops only the check.
 // With `resume` (a LoopState from the checkpoint callback of a run with the same
 // options) it writes resume->values into `scene` and continues from resume->iteration;
 // its losses and times are part of the result.

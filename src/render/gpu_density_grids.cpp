@@ -58,7 +58,7 @@ gpu::GpuDensityGrid deviceGrid(const SceneDensityGrid& placed, const MajorantGri
     }
     grid.firstVoxel = glm::ivec4(placed.grid.firstVoxel - origin, int32_t(firstValue));
     grid.size = glm::ivec4(placed.grid.size, int32_t(firstMajorant));
-    grid.majorantOrigin = glm::ivec4(majorants.origin - origin, 0);
+    grid.majorantOrigin = glm::ivec4(placed.grid.channels == 1 ? majorants.origin - origin : glm::ivec3(0), 0);
     grid.majorantCells = glm::ivec4(majorants.cells, placed.grid.channels);
     // The trilinear density reaches one voxel beyond the box on every side.
     const glm::dvec3 diagonal(placed.indexToWorld * glm::dvec4(glm::dvec3(placed.grid.size + 1), 0.0));

@@ -291,9 +291,10 @@ TEST(DensityGridScene, BadAlbedoGridsNameTheFieldAndTheVoxel) {
     writeDensityGridVdb(directory / "above.vdb", justAbove);
     expectLoadError(write({{"uri", "above.vdb"}, {"grid", "density"}}, "albedoGrid"),
                     {field + ".albedoGrid", "holds 1.00000012; an albedo must be in [0, 1]"});
-    // A vector grid is no density.
+    // A vector grid is no emission strength, and the message says what grid it was read as.
     expectLoadError(write({{"uri", "colour.vdb"}, {"grid", "color"}}, "emissionGrid"),
-                    {field + ".emissionGrid", "vec3s", "not scalar densities"});
+                    {field + ".emissionGrid", "vec3s", "cannot read emission grid 'color'",
+                     "not scalar emission strengths"});
 }
 
 TEST(DensityGridScene, BadEmissionGridReferencesNameTheField) {
