@@ -1,6 +1,7 @@
 #include "render/gpu_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -27,13 +28,29 @@ uint32_t mediumIndex(int32_t medium) {
     return medium < 0 ? gpu::kNoMediumIndex : static_cast<uint32_t>(medium);
 }
 
+// A value below float's least normal number as 0, which the device is sent: devices may
+// flush such subnormal numbers to 0 in one operation and not in the next (lavapipe does),
+// which made a sigma_s or base colour of 1e-40 give NaN gradients. At 0 a factor's
+// gradient comes from the derivative mode (docs/gradients.md), as it should.
+float withoutSubnormal(float value) {
+    return std::fpclassify(value) == FP_SUBNORMAL ? 0.0f : value;
+}
+
+glm::vec3 withoutSubnormals(glm::vec3 value) {
+    return {withoutSubnormal(value.x), withoutSubnormal(value.y), withoutSubnormal(value.z)};
+}
+
+glm::vec4 withoutSubnormals(glm::vec4 value) {
+    return glm::vec4(withoutSubnormals(glm::vec3(value)), withoutSubnormal(value.w));
+}
+
 std::vector<gpu::GpuMaterial> deviceMaterials(const Scene& scene) {
     std::vector<gpu::GpuMaterial> out;
     for (const Material& m : scene.materials) {
         const TextureMapping& base = m.baseColorMapping;
         const TextureMapping& emission = m.emissionMapping;
-        out.push_back({glm::vec4(m.baseColor, 0.0f),
-                       glm::vec4(m.emission, 0.0f),
+        out.push_back({glm::vec4(withoutSubnormals(m.baseColor), 0.0f),
+                       glm::vec4(withoutSubnormals(m.emission), 0.0f),
                        m.baseColorTexture,
                        m.emissionTexture,
                        m.interiorMedium,
@@ -65,8 +82,9 @@ std::vector<gpu::GpuMedium> deviceMedia(const Scene& scene) {
     std::vector<gpu::GpuMedium> out;
     for (const Medium& m : scene.media) {
         if (m.isHeterogeneous()) requireExtinctionInFloatRange(m);
-        out.push_back({m.sigma_a, m.g, m.sigma_s, m.isHeterogeneous() ? uint32_t(m.densityGrid) : gpu::kNoDensityGrid,
-                       m.emission, m.hasEmissionGrid() ? uint32_t(m.emissionGrid) : gpu::kNoDensityGrid,
+        out.push_back({withoutSubnormals(m.sigma_a), withoutSubnormal(m.g), withoutSubnormals(m.sigma_s),
+                       m.isHeterogeneous() ? uint32_t(m.densityGrid) : gpu::kNoDensityGrid,
+                       withoutSubnormals(m.emission), m.hasEmissionGrid() ? uint32_t(m.emissionGrid) : gpu::kNoDensityGrid,
                        m.hasAlbedoGrid() ? uint32_t(m.albedoGrid) : gpu::kNoDensityGrid, {0u, 0u, 0u}});
     }
     return out;
@@ -81,7 +99,8 @@ std::vector<gpu::GpuPunctualLight> devicePunctualLights(const Scene& scene, std:
         const uint32_t type = light.type == PunctualLight::Type::Point  ? gpu::kLightPoint
                               : light.type == PunctualLight::Type::Spot ? gpu::kLightSpot
                                                                         : gpu::kLightDirectional;
-        out.push_back({placement.position, type, placement.direction, light.cosOuterCone, light.intensity,
+        out.push_back({placement.position, type, placement.direction, light.cosOuterCone,
+                       withoutSubnormals(light.intensity),
                        light.cosInnerCone, placement.light, placementPmf[i], 0u, 0u});
     }
     return out;
@@ -100,7 +119,7 @@ std::vector<glm::vec3> emitterPowers(const Scene& scene) {
 std::vector<glm::vec4> allTexels(const Scene& scene) {
     std::vector<glm::vec4> texels;
     for (const Texture& tex : scene.textures) {
-        texels.insert(texels.end(), tex.texels.begin(), tex.texels.end());
+        for (const glm::vec4& texel : tex.texels) texels.push_back(withoutSubnormals(texel));
     }
     return texels;
 }

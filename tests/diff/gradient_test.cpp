@@ -214,6 +214,27 @@ TEST_F(RenderTest, TinyFactorsHaveTheGradientsOfZeroOnes) {
     }
 }
 
+// A factor below float's least normal number (1e-40) is sent to the device as 0, which
+// some operations there would make it and others not: its image, loss and gradients have
+// the bits of 0's (where it gave NaN gradients).
+TEST_F(RenderTest, SubnormalFactorsRenderAndDifferentiateAsZeroOnes) {
+    Image grey{kSide, kSide, std::vector<float>(kSide * kSide * 3, 0.5f)};
+    auto evaluate = [&](const char* parameter, const std::string& green) {
+        Scene scene = loadScene(foggyRoom().write(tempDir(), "scene")).scene;
+        applyAssignment(scene, std::string(parameter) + "=0.3," + green + ",0.3");
+        RenderedLossGradient lg(testContext(), scene, {{"", grey}}, {parameter}, {.spp = 8, .maxDepth = 6},
+                                LossKind::L2);
+        return lg.evaluate(scene, 5);
+    };
+    for (const char* parameter : {"media/fog/sigma_s", "materials/walls/base_color"}) {
+        const GradientResult subnormal = evaluate(parameter, "1e-40");
+        const GradientResult zero = evaluate(parameter, "0");
+        EXPECT_EQ(subnormal.images.at(0).rgb, zero.images.at(0).rgb) << parameter;
+        EXPECT_EQ(subnormal.loss, zero.loss) << parameter;
+        EXPECT_EQ(subnormal.parameters.at(0).gradient, zero.parameters.at(0).gradient) << parameter;
+    }
+}
+
 // A fog that scatters in no channel is passed through, weighted by its transmittance,
 // unless the gradient of sigma_s is wanted: only sampled collisions find that gradient
 // (derivative mode), so then the fog is sampled as any other. Both estimate the same
