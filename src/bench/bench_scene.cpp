@@ -163,9 +163,9 @@ std::optional<std::string> whyTooLarge(const BenchSceneSource& source, uint64_t 
     return std::nullopt;
 }
 
-LoadedScene loadBenchScene(const BenchSceneSource& source) {
+LoadedScene loadBenchScene(const BenchSceneSource& source, const SceneFileAccess& access) {
     if (!source.file.empty()) {
-        LoadedScene loaded = loadScene(source.file);
+        LoadedScene loaded = loadScene(source.file, access);
         if (source.plumeResolution > 0) {
             replaceGridsWithPlume(loaded.scene, source);
         }

@@ -54,6 +54,6 @@ std::optional<std::string> whyTooLarge(const BenchSceneSource& source, uint64_t 
 // Loads (or generates) the scene; the room's .glb goes through a temporary file, the
 // plume stays in memory. The files read besides the scene's own are those of a glTF
 // source (LoadedScene::externalFiles); none for a generated one.
-LoadedScene loadBenchScene(const BenchSceneSource& source);
+LoadedScene loadBenchScene(const BenchSceneSource& source, const SceneFileAccess& access = {});
 
 }  // namespace vkdr

@@ -27,6 +27,7 @@ struct BenchOptions {
     std::string json;
     std::string scenesDirectory = shippedScenesDirectory();
     std::string device;
+    SceneFileAccess access;  // --allow-outside-files
 };
 
 int runBench(BenchOptions options) {
@@ -70,7 +71,7 @@ int runBench(BenchOptions options) {
         };
         progress(0.0);
         resetPeakHostResidentBytes();
-        LoadedScene loaded = loadBenchScene(source);
+        LoadedScene loaded = loadBenchScene(source, options.access);
         if (!options.json.empty()) {
             requireOutputsAreNotInputs({{"--json", options.json}}, loaded.externalFiles,
                                        "a file that scene " + source.name + " reads");
@@ -122,6 +123,8 @@ CommandAction addBenchCommand(CLI::App& app) {
         ->transform(integerIn(0, 1000));
     command->add_option("--json", options->json, "Also write the results as JSON (see " + docReference("Performance guide", "performance.md") + ")")
         ->check(nonEmpty("a file name"));
+    command->add_flag("--allow-outside-files", options->access.allowOutsideFiles,
+                      "Let the scenes read buffers and images outside their own directories (absolute paths, ../)");
     command->add_option("--scenes-dir", options->scenesDirectory, "Where the shipped scenes are")
         ->default_val(options->scenesDirectory)
         ->check(nonEmpty("a directory"));

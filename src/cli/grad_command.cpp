@@ -211,14 +211,16 @@ CommandAction addGradCommand(CLI::App& app) {
         ->transform(integerIn(1, kMaxImageSide));
     command->add_option("--height", options->settings.height, "Must match the target's height when given")
         ->transform(integerIn(1, kMaxImageSide));
-    command->add_flag("--json", options->json, "Print exactly one JSON object: {\"loss\": x, \"gradients\": {...}}");
-    command->add_flag("--check", options->check,
+    command->add_flag("--json", options->json,
+                      "Print exactly one JSON object: {\"loss\": x, \"gradients\": {...}}, with --check also "
+                      "\"check\": [...], a row per value (the Gradients guide)");
+    CLI::Option* checkFlag = command->add_flag("--check", options->check,
                       "Also compute central finite differences with common random numbers (the step is in " +
                           docReference("Gradients guide", "gradients.md") +
                           ") and print both with their standard errors over --check-seeds seeds from --seed on; "
                           "at most " + std::to_string(kMostValuesChecked) + " values a parameter");
     command->add_option("--check-seeds", options->checkSeeds, "Seeds the check averages over")
-        ->default_val(options->checkSeeds)->transform(integerIn(2, 1000));
+        ->default_val(options->checkSeeds)->transform(integerIn(2, 1000))->needs(checkFlag);
     command->add_option("--device", options->device, "Vulkan device index or part of its name (see `info`; default: the best available)")
         ->check(nonEmpty("an index or part of a name"));
     return [command, options]() { return command->parsed() ? runGrad(*options) : -1; };

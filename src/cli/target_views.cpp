@@ -116,7 +116,8 @@ std::vector<TargetView> readTargets(const std::vector<std::string>& arguments, c
         auto [earlier, first] = argumentOfCamera.emplace(camera, argument);
         if (!first) {
             printWarning("--target " + earlier->second + " and --target " + argument + " both view camera '" +
-                         camera + "': the loss compares its one render with both");
+                         camera + "': the camera is rendered for each, with random numbers of its own, and its "
+                                  "loss counts twice");
         }
     }
     return views;

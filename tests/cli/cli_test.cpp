@@ -213,6 +213,15 @@ TEST_F(CliTest, GradPrintsOneJsonObject) {
     EXPECT_EQ(out.size(), 2u);
 }
 
+// --check-seeds says how many seeds --check averages over: alone it would do nothing.
+TEST_F(CliTest, GradCheckSeedsWithoutCheckIsRefused) {
+    fs::path target = fogTarget(2);
+    RunResult r = run("grad " + scene("cornell_fog.gltf") + " --target " + target.string() +
+                      " --param media/fog/g --spp 2 --check-seeds 5");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("error: --check-seeds requires --check"), std::string::npos) << r.err;
+}
+
 // --check adds, per component, the adjoint and the finite difference with their
 // standard errors and the step: relative for sigma, so a thin fog gets a thin step. Its
 // seeds start at --seed.
