@@ -11,6 +11,7 @@
 #include "cli/warnings.h"
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "image/atomic_write.h"
 #include "image/finite_pixels.h"
 #include "image/image.h"
 #include "render/renderer.h"
@@ -51,11 +52,11 @@ ImageFileType requireOutputs(const RenderOptions& options) {
     return *type;
 }
 
-void writeImage(const std::string& file, ImageFileType type, const Image& image) {
+void writeImage(const std::string& file, ImageFileType type, const Image& image, PendingRenames& pending) {
     if (type == ImageFileType::Exr) {
-        writeExr(file, image);
+        writeExr(file, image, &pending);
     } else {
-        writePng(file, image);
+        writePng(file, image, &pending);
     }
 }
 
@@ -87,10 +88,13 @@ int runRender(const RenderOptions& options) {
     if (std::optional<std::string> bad = unrepresentablePixel(image)) {
         throw Error("the render's " + *bad + "; nothing was written");
     }
-    writeImage(options.output, outputType, image);
+    // The image and its preview are replaced together or not at all.
+    PendingRenames pending;
+    writeImage(options.output, outputType, image, pending);
     if (!options.png.empty()) {
-        writePng(options.png, image);
+        writePng(options.png, image, &pending);
     }
+    pending.commit();
     const RenderStats& stats = renderer.stats();
     warnOfCutPaths(stats.truncatedPaths, "the render");
     std::printf("wrote %s%s%s\n", options.output.c_str(), options.png.empty() ? "" : " and ", options.png.c_str());

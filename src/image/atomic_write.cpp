@@ -64,7 +64,23 @@ size_t removeStaleTemporaries(const std::filesystem::path& directory) {
     return removed;
 }
 
-void writeAtomically(const std::filesystem::path& file, const std::function<void(std::ofstream&)>& writeContents) {
+PendingRenames::~PendingRenames() {
+    std::error_code ignored;
+    for (const auto& [temporary, file] : renames_) std::filesystem::remove(temporary, ignored);
+}
+
+void PendingRenames::commit() {
+    while (!renames_.empty()) {
+        const auto [temporary, file] = renames_.front();
+        std::error_code error;
+        std::filesystem::rename(temporary, file, error);
+        if (error) fail(file, error.message());
+        renames_.erase(renames_.begin());
+    }
+}
+
+void writeAtomically(const std::filesystem::path& file, const std::function<void(std::ofstream&)>& writeContents,
+                     PendingRenames* pending) {
     if (file.filename().empty()) fail(file, "not a file name");
     // The rename would replace whatever has the name: a device node, a FIFO, a socket or
     // a symbolic link (itself, not what it points to) would be lost.
@@ -81,6 +97,10 @@ void writeAtomically(const std::filesystem::path& file, const std::function<void
         writeContents(out);
         out.close();
         if (!out) fail(file, std::string("write failed: ") + std::strerror(errno));
+        if (pending) {
+            pending->renames_.emplace_back(temporary, file);
+            return;
+        }
         std::error_code error;
         std::filesystem::rename(temporary, file, error);
         if (error) fail(file, error.message());

@@ -78,7 +78,7 @@ Image readExrFile(const std::filesystem::path& file) {
 
 }  // namespace
 
-void writeExr(const std::filesystem::path& file, const Image& image) {
+void writeExr(const std::filesystem::path& file, const Image& image, PendingRenames* pending) {
     if (image.width <= 0 || image.height <= 0 || image.rgb.size() != size_t(image.width) * image.height * 3)
         throw Error("cannot write EXR '" + file.string() + "': the image has no pixels or the wrong number of values");
     writeAtomically(file, [&](std::ofstream& out) {
@@ -95,7 +95,7 @@ void writeExr(const std::filesystem::path& file, const Image& image) {
         Imf::OutputFile output(stream, header);
         output.setFrameBuffer(frameBuffer);
         output.writePixels(image.height);
-    });
+    }, pending);
 }
 
 Image readExr(const std::filesystem::path& file) {

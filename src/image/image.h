@@ -14,11 +14,14 @@ struct Image {
     const float* pixel(int x, int y) const { return &rgb[(size_t(y) * width + x) * 3]; }
 };
 
+class PendingRenames;
+
 // Writers never leave a partial file behind: they write a temporary file beside the
-// destination and rename it over the destination only when complete.
-void writeExr(const std::filesystem::path& file, const Image& image);
+// destination and rename it over the destination only when complete (with `pending`,
+// when pending->commit() renames the files written together; image/atomic_write.h).
+void writeExr(const std::filesystem::path& file, const Image& image, PendingRenames* pending = nullptr);
 // Preview: sRGB-encoded, clamped to [0, 1], 8 bits per channel.
-void writePng(const std::filesystem::path& file, const Image& image);
+void writePng(const std::filesystem::path& file, const Image& image, PendingRenames* pending = nullptr);
 
 // Reads an EXR (R, G, B channels; Y alone is grey) or a PNG/JPEG (sRGB decoded to
 // linear). Throws vkdr::Error naming the file on anything it cannot read.

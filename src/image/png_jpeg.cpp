@@ -84,13 +84,13 @@ std::vector<unsigned char> encodePng(const Image& image) {
     return encodePngRgb8(image.width, image.height, encoded);
 }
 
-void writePng(const std::filesystem::path& file, const Image& image) {
+void writePng(const std::filesystem::path& file, const Image& image, PendingRenames* pending) {
     if (image.width <= 0 || image.height <= 0 || image.rgb.size() != size_t(image.width) * image.height * 3)
         throw Error("cannot write PNG '" + file.string() + "': the image has no pixels or the wrong number of values");
     std::vector<unsigned char> png = encodePng(image);
     writeAtomically(file, [&](std::ofstream& out) {
         out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-    });
+    }, pending);
 }
 
 Image readPngOrJpeg(const std::filesystem::path& file) {

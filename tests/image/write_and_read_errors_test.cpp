@@ -47,6 +47,34 @@ TEST(AtomicWrite, FailureLeavesThePreviousFileAndNoTemporary) {
     EXPECT_EQ(dir.fileCount(), 1u);
 }
 
+// Files written together are replaced together: where the second fails, the first is
+// left as it was too, and no temporary stays; committed, both are replaced.
+TEST(AtomicWrite, FilesWrittenTogetherAreReplacedTogether) {
+    test::ScratchDirectory dir;
+    test::writeBytes(dir / "out.exr", "previous image");
+    test::writeBytes(dir / "out.png", "previous preview");
+    expectErrorNaming(dir / "out.png", [&] {
+        PendingRenames pending;
+        writeExr(dir / "out.exr", smallImage(), &pending);
+        writeAtomically(dir / "out.png", [](std::ofstream&) { throw std::runtime_error("disk full"); }, &pending);
+        pending.commit();
+    });
+    EXPECT_EQ(test::readBytes(dir / "out.exr"), "previous image");
+    EXPECT_EQ(test::readBytes(dir / "out.png"), "previous preview");
+    EXPECT_EQ(dir.fileCount(), 2u);
+
+    {
+        PendingRenames pending;
+        writeExr(dir / "out.exr", smallImage(), &pending);
+        writePng(dir / "out.png", smallImage(), &pending);
+        EXPECT_EQ(test::readBytes(dir / "out.exr"), "previous image") << "replaced before the commit";
+        pending.commit();
+    }
+    EXPECT_EQ(readImage(dir / "out.exr").rgb, smallImage().rgb);
+    EXPECT_EQ(readImage(dir / "out.png").width, 2);
+    EXPECT_EQ(dir.fileCount(), 2u);
+}
+
 TEST(AtomicWrite, RemovesTheTemporariesOfKilledWritersOnly) {
     test::ScratchDirectory dir;
     // No process has an id above the kernel's pid_max (at most 2^22).
