@@ -76,23 +76,28 @@ float albedoOf(double value, const openvdb::Coord& voxel) {
 }
 
 // How a grid's values become the DensityGrid's: `channels` floats per value.
-struct DensityValues {
+// A scalar grid's values as `Quantity` (its `one` value, its `many`), each finite and >= 0.
+template <typename Quantity>
+struct NonNegativeValues {
     static constexpr int channels = 1;
-    static constexpr const char* expected = "scalar densities (float or double)";
+    static constexpr const char* expected = Quantity::many;
     template <typename ValueT>
     static void convert(ValueT value, const openvdb::Coord& voxel, float* out) {
-        out[0] = nonNegativeOf(value, voxel, "a density");
+        out[0] = nonNegativeOf(value, voxel, Quantity::one);
     }
 };
 
-struct EmissionValues {
-    static constexpr int channels = 1;
-    static constexpr const char* expected = "scalar emission strengths (float or double)";
-    template <typename ValueT>
-    static void convert(ValueT value, const openvdb::Coord& voxel, float* out) {
-        out[0] = nonNegativeOf(value, voxel, "an emission strength");
-    }
+struct Density {
+    static constexpr const char* one = "a density";
+    static constexpr const char* many = "scalar densities (float or double)";
 };
+using DensityValues = NonNegativeValues<Density>;
+
+struct EmissionStrength {
+    static constexpr const char* one = "an emission strength";
+    static constexpr const char* many = "scalar emission strengths (float or double)";
+};
+using EmissionValues = NonNegativeValues<EmissionStrength>;
 
 // An RGB albedo from a vector grid, or a grey one from a scalar grid.
 struct AlbedoValues {
