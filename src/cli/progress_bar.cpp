@@ -25,8 +25,16 @@ void ProgressBar::update(double fraction, const std::string& status) {
     double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     std::string bar(filled, '#');
     bar.resize(kBarWidth, '.');
-    std::fprintf(stderr, "\r%s [%s] %3d%% %6.1fs %s", label_.c_str(), bar.c_str(), int(fraction * 100.0 + 0.5),
-                 elapsed, status.c_str());
+    char figures[32];
+    std::snprintf(figures, sizeof figures, "%3d%% %6.1fs", int(fraction * 100.0 + 0.5), elapsed);
+    std::string line = label_ + " [" + bar + "] " + figures + " " + status;
+    if (line == drawn_) {
+        return;
+    }
+    // Spaces cover what is left of a longer line drawn before.
+    const size_t cover = drawn_.size() > line.size() ? drawn_.size() - line.size() : 0;
+    drawn_ = std::move(line);
+    std::fprintf(stderr, "\r%s%*s", drawn_.c_str(), int(cover), "");
     std::fflush(stderr);
 }
 

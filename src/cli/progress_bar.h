@@ -16,6 +16,7 @@ private:
     std::string label_;
     bool enabled_;
     bool finished_ = false;
+    std::string drawn_;  // the line on screen: an update that would draw it again does not
     std::chrono::steady_clock::time_point start_;
 };
 

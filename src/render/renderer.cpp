@@ -225,11 +225,20 @@ void Renderer::forEachPass(SampleRange samples, const std::function<void(const P
                                  ((samples.count + samplesPerPass - 1) / samplesPerPass);
     const uint32_t end = samples.first + samples.count;
     uint64_t passesDone = 0;
+    if (progress) {
+        pathsEnded_ = [&](double ended) { progress((double(passesDone) + ended) / double(totalPasses)); };
+    }
+    // Reset however the passes end: the callback refers to this frame.
+    struct ForgetPathsEnded {
+        ProgressCallback& callback;
+        ~ForgetPathsEnded() { callback = {}; }
+    } forget{pathsEnded_};
     for (uint32_t sample = samples.first; sample < end; sample += samplesPerPass) {
         for (uint32_t pixel = 0; pixel < pixels; pixel += pixelsPerPass) {
             pass({pixel, std::min(pixelsPerPass, pixels - pixel), sample, std::min(samplesPerPass, end - sample)});
+            ++passesDone;
             if (progress) {
-                progress(double(++passesDone) / double(totalPasses));
+                progress(double(passesDone) / double(totalPasses));
             }
         }
     }
@@ -338,8 +347,13 @@ gpu::QueueCountersData Renderer::recordSegmentsUntilNoRayIsLeft(CommandRecorder&
         recorder.submitAndWait();
         throwIfInterrupted();
         std::memcpy(&counters, paths_->countersReadback.mapped(), sizeof(counters));
-        if (counters.counts[currentRays] + counters.backCounts[currentRays] == 0) {
+        const uint32_t alive = counters.counts[currentRays] + counters.backCounts[currentRays];
+        if (alive == 0) {
             break;
+        }
+        if (pathsEnded_) {
+            const double paths = double(constants.pixelCount) * constants.samplesInPass;
+            pathsEnded_(std::clamp(1.0 - double(alive) / paths, 0.0, 1.0));
         }
     }
     return counters;

@@ -201,6 +201,8 @@ private:
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
                        uint32_t currentRays);
     // Segments, submitted in batches, until no path has a ray left; returns the counters.
+    // After each batch it reports the share of the pass's paths that have ended to
+    // pathsEnded_, where forEachPass() set one.
     gpu::QueueCountersData recordSegmentsUntilNoRayIsLeft(CommandRecorder& recorder, const PathStages& stages,
                                                           const gpu::PassConstants& constants);
     void uploadParams();
@@ -252,6 +254,9 @@ private:
     Buffer params_;
     RenderStats stats_;
     DispatchTimer* timer_ = nullptr;
+    // While forEachPass() runs with a progress callback: takes the share of the current
+    // pass's paths that have ended, so that a render of one long pass shows progress.
+    ProgressCallback pathsEnded_;
 };
 
 }  // namespace vkdr
