@@ -192,33 +192,37 @@ bool nestedIn(const Scene& scene, const Shell& shell, const Shell& other) {
     return boxWithin && insideShell(scene, other, centreOf(scene, shell.triangles.front()));
 }
 
-// Whether some of `shell`'s triangle centres (at most 16, spread over it) lie outside
-// `other`: the two intersect rather than nest.
-bool partlyOutside(const Scene& scene, const Shell& shell, const Shell& other) {
+// Whether of `shell`'s triangle centres (at most 16, spread over it) some lie inside
+// `other` and some outside.
+bool straddles(const Scene& scene, const Shell& shell, const Shell& other) {
     const size_t step = std::max<size_t>(1, shell.triangles.size() / 16);
-    for (size_t i = 0; i < shell.triangles.size(); i += step) {
-        if (!insideShell(scene, other, centreOf(scene, shell.triangles[i]))) return true;
+    bool anyInside = false, anyOutside = false;
+    for (size_t i = 0; i < shell.triangles.size() && !(anyInside && anyOutside); i += step) {
+        (insideShell(scene, other, centreOf(scene, shell.triangles[i])) ? anyInside : anyOutside) = true;
     }
-    return false;
+    return anyInside && anyOutside;
+}
+
+// Whether the surfaces of two shells cross, so that neither nests in the other.
+bool intersect(const Scene& scene, const Shell& a, const Shell& b) {
+    const bool boxesMeet = glm::all(glm::lessThanEqual(a.lower, b.upper)) &&
+                           glm::all(glm::lessThanEqual(b.lower, a.upper));
+    return boxesMeet && (straddles(scene, a, b) || straddles(scene, b, a));
 }
 
 // Whether `shell` should be wound outwards: unless it lies inside an odd number of the
 // boundary's other shells, so that it bounds a cavity in the medium. A shell wound as
 // the shell directly around it is refused: a cavity wound the wrong way, or a medium
-// inside itself, is a guess either way. Shells wound alike that intersect (spheres of a
-// cloud joined into one mesh) are not nested: they are warned of, as overlapping
-// boundaries are.
-bool windsOutwards(const Scene& scene, const Boundary& boundary, const std::vector<Shell>& shells,
-                   const Shell& shell, GltfDiagnostics& diagnostics) {
+// inside itself, is a guess either way. Shells that intersect (`crossing`; spheres of a
+// cloud joined into one mesh) do not nest.
+bool windsOutwards(const Scene& scene, const Boundary& boundary, const std::vector<Shell>& shells, size_t s,
+                   const std::vector<std::vector<bool>>& crossing, const GltfDiagnostics& diagnostics) {
+    const Shell& shell = shells[s];
     const Shell* around = nullptr;  // the smallest shell containing this one
     size_t containing = 0;
-    for (const Shell& other : shells) {
-        if (&other == &shell || !nestedIn(scene, shell, other)) continue;
-        if ((other.volume > 0.0) == (shell.volume > 0.0) && partlyOutside(scene, shell, other)) {
-            diagnostics.warn(boundary.description, "two closed surfaces of it intersect; overlapping media are not "
-                                                   "supported and render wrongly");
-            continue;
-        }
+    for (size_t o = 0; o < shells.size(); ++o) {
+        const Shell& other = shells[o];
+        if (o == s || crossing[s][o] || !nestedIn(scene, shell, other)) continue;
         ++containing;
         if (!around || std::abs(other.volume) < std::abs(around->volume)) around = &other;
     }
@@ -230,15 +234,36 @@ bool windsOutwards(const Scene& scene, const Boundary& boundary, const std::vect
     return containing % 2 == 0;
 }
 
+// Which pairs of the shells intersect; warns once if any do, as overlapping boundaries are.
+std::vector<std::vector<bool>> crossingShells(const Scene& scene, const Boundary& boundary,
+                                              const std::vector<Shell>& shells, GltfDiagnostics& diagnostics) {
+    std::vector<std::vector<bool>> crossing(shells.size(), std::vector<bool>(shells.size(), false));
+    bool any = false;
+    for (size_t a = 0; a < shells.size(); ++a) {
+        for (size_t b = a + 1; b < shells.size(); ++b) {
+            crossing[a][b] = crossing[b][a] = intersect(scene, shells[a], shells[b]);
+            any = any || crossing[a][b];
+        }
+    }
+    if (any) {
+        diagnostics.warn(boundary.description, "two closed surfaces of it intersect; overlapping media are not "
+                                               "supported and render wrongly");
+    }
+    return crossing;
+}
+
 // Winds every shell of `boundary` so that its normals point out of the medium; sets the
 // boundary's volume, the medium's net volume.
 void orientShells(Scene& scene, Boundary& boundary, const std::vector<Corners>& corners,
                   GltfDiagnostics& diagnostics) {
     const std::vector<Shell> shells = shellsOf(scene, boundary, corners);
-    std::vector<bool> outwards;
     for (const Shell& shell : shells) {
         if (shell.volume == 0.0) diagnostics.fail(boundary.description, "encloses no volume");
-        outwards.push_back(windsOutwards(scene, boundary, shells, shell, diagnostics));
+    }
+    const std::vector<std::vector<bool>> crossing = crossingShells(scene, boundary, shells, diagnostics);
+    std::vector<bool> outwards;
+    for (size_t s = 0; s < shells.size(); ++s) {
+        outwards.push_back(windsOutwards(scene, boundary, shells, s, crossing, diagnostics));
     }
     boundary.volume = 0.0;
     for (size_t s = 0; s < shells.size(); ++s) {

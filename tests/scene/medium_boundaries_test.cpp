@@ -136,12 +136,23 @@ MeshData octahedron(float radius) {
 }
 
 // Shells wound alike that intersect (a cloud of shapes joined into one mesh) are not
-// nested: the mesh loads, with a warning, whichever of them comes first.
+// nested: the mesh loads, with a warning, whichever of them comes first, whether or
+// not one's box lies within the other's, and whichever of their triangles lie inside
+// the other.
 TEST(MediumBoundaries, ShellsThatIntersectAreWarnedOfNotRefused) {
     TemporaryDirectory directory;
-    // The box's box lies within the octahedron's, and the box pokes out of its faces.
-    const MeshData diamond = octahedron(2.0f), cube = box({0.3f, 0.3f, 0.3f}, {1.2f, 1.2f, 1.2f});
-    for (const MeshData& mesh : {joined(diamond, cube), joined(cube, diamond)}) {
+    const MeshData diamond = octahedron(2.0f);
+    // Each box's box lies within the octahedron's. The first pokes out of its faces with
+    // some triangles' centres inside it; all of the second's triangles' centres lie
+    // outside it, and the centre of one of its triangles inside the box.
+    const MeshData pokingCube = box({0.3f, 0.3f, 0.3f}, {1.2f, 1.2f, 1.2f});
+    const MeshData coveringCube = box({0.3f, 0.3f, 0.3f}, {1.6f, 1.6f, 1.6f});
+    // Boxes side by side, overlapping: neither's box lies within the other's.
+    const MeshData left = box({-1.0f, -1.0f, -1.0f}, {0.5f, 1.0f, 1.0f});
+    const MeshData right = box({0.0f, -1.0f, -1.0f}, {1.5f, 1.0f, 1.0f});
+    for (const MeshData& mesh : {joined(diamond, pokingCube), joined(pokingCube, diamond),
+                                 joined(diamond, coveringCube), joined(coveringCube, diamond), joined(left, right),
+                                 joined(right, left)}) {
         GltfBuilder builder;
         int smoke = builder.addMaterial(mediumMaterial("smoke", 1.0f));
         builder.addNode({{"mesh", builder.addMesh("cloud", mesh, smoke)}});
