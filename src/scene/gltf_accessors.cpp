@@ -80,8 +80,16 @@ ElementRange checkedElements(const tinygltf::Model& model, int accessorIndex, in
                                         " bytes of " + indexed("buffers", size_t(view.buffer)));
     }
 
-    size_t elementSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType)) *
-                                tinygltf::GetNumComponentsInType(uint32_t(accessor.type)));
+    const size_t componentSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType)));
+    // glTF requires it: an offset between components reads bytes of two of them.
+    if (accessor.byteOffset % componentSize != 0 || view.byteOffset % componentSize != 0) {
+        const bool ownOffset = accessor.byteOffset % componentSize != 0;
+        diagnostics.fail(ownOffset ? accessorField + ".byteOffset" : viewField + ".byteOffset",
+                         std::to_string(ownOffset ? accessor.byteOffset : view.byteOffset) +
+                             " is not a multiple of the " + std::to_string(componentSize) +
+                             "-byte components of " + accessorField);
+    }
+    size_t elementSize = componentSize * size_t(tinygltf::GetNumComponentsInType(uint32_t(accessor.type)));
     size_t stride = view.byteStride == 0 ? elementSize : view.byteStride;
     if (stride < elementSize) {
         diagnostics.fail(viewField + ".byteStride",

@@ -506,6 +506,14 @@ TEST(LoadSceneErrors, IndicesThatAreNotWholeNumbersAreRefusedEverywhere) {
         expectLoadError(changed([&](json& d) { d["bufferViews"][0]["byteStride"] = stride; }),
                         {"bufferViews[0].byteStride", "must be a multiple of 4 from 4 to 252"});
     }
+    // Offsets between components: the floats would be read from the bytes of two.
+    expectLoadError(changed([](json& d) { d["accessors"][0]["byteOffset"] = 2; }),
+                    {"accessors[0].byteOffset", "2 is not a multiple of the 4-byte components of accessors[0]"});
+    expectLoadError(changed([](json& d) {
+                        d["bufferViews"][0]["byteOffset"] = 2;
+                        d["bufferViews"][0]["byteLength"] = d["bufferViews"][0]["byteLength"].get<int>() - 4;
+                    }),
+                    {"bufferViews[0].byteOffset", "2 is not a multiple of the 4-byte components of accessors["});
     // Valid glTF that the loader does not read: an accessor of zeros, without a buffer view.
     expectLoadError(changed([](json& d) { d["accessors"][0].erase("bufferView"); }), {"accessors[0]", "no bufferView"});
 }
