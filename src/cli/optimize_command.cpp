@@ -342,7 +342,7 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     requireRunWritesNoInput(options.out, true, filesTheSceneReads(loaded));
     OptimizationJob job =
         startExperiment(experiment, loaded.scene, options.out, !options.resume.empty(), oldRunRemover(options, true));
-    for (const std::string& warning : sceneWarnings(loaded.scene)) printWarning(warning);
+    for (const std::string& warning : sceneWarnings(loaded.scene, experiment.scene)) printWarning(warning);
 
     throwIfInterrupted();
     VulkanContext context(ContextOptions{options.device});

@@ -31,7 +31,7 @@ LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(loaded.scene)) {
         throw Error("--set: " + unbounded->problem);
     }
-    for (const std::string& warning : sceneWarnings(loaded.scene)) {
+    for (const std::string& warning : sceneWarnings(loaded.scene, options.file)) {
         printWarning(warning);
     }
     return loaded;

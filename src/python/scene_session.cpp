@@ -56,7 +56,7 @@ SceneSession::SceneSession(const std::filesystem::path& file, const std::string&
       loaded_(loadScene(file, SceneFileAccess{allowOutsideFiles})),
       process_(getpid()) {
     warnings_ = loaded_.warnings;
-    for (std::string& warning : sceneWarnings(loaded_.scene)) {
+    for (std::string& warning : sceneWarnings(loaded_.scene, file)) {
         warnings_.push_back(std::move(warning));
     }
     bvh_ = buildBvh(loaded_.scene.positions, loaded_.scene.triangles);

@@ -17,7 +17,7 @@ bool hasZeroArea(const Scene& scene, const glm::uvec3& triangle) {
 
 }  // namespace
 
-std::vector<std::string> sceneWarnings(const Scene& scene) {
+std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem::path& file) {
     std::vector<size_t> zeroAreaEmitters(scene.materials.size(), 0);
     size_t emittingTriangles = 0;
     for (size_t t = 0; t < scene.triangles.size(); ++t) {
@@ -58,6 +58,7 @@ std::vector<std::string> sceneWarnings(const Scene& scene) {
                            "black, so the image will be black");
     }
     for (std::string& warning : camerasOnMediumBoundaries(scene)) warnings.push_back(std::move(warning));
+    for (std::string& warning : warnings) warning = file.string() + ": " + warning;
     return warnings;
 }
 

@@ -187,7 +187,7 @@ TEST_F(NumberChecksTest, ASceneWithoutLightWarnsAfterTheOverrides) {
                          (dir_ / "dark.exr").string());
     EXPECT_EQ(dark.exitCode, 0) << dark.err;
     EXPECT_EQ(count(dark.err, "warning: "), 1u) << dark.err;
-    EXPECT_NE(dark.err.find("warning: the scene has no light"), std::string::npos) << dark.err;
+    EXPECT_NE(dark.err.find("warning: " + fog() + ": the scene has no light"), std::string::npos) << dark.err;
     RunResult lit = run("render " + fog() + " --width 8 --height 8 --spp 1 -o " + (dir_ / "lit.exr").string());
     EXPECT_EQ(lit.err.find("warning: "), std::string::npos) << lit.err;
 }

@@ -749,9 +749,10 @@ TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {
 
 TEST(LoadSceneErrors, PunctualLightWarnings) {
     TemporaryDirectory directory;
-    LoadedScene loaded =
-        loadScene(floorWithLights({{{"type", "point"}, {"range", 5.0}}, {{"type", "point"}, {"name", "unplaced"}}})
-                      .writeGltf(directory / "warnings.gltf"));
+    const std::filesystem::path file =
+        floorWithLights({{{"type", "point"}, {"range", 5.0}}, {{"type", "point"}, {"name", "unplaced"}}})
+            .writeGltf(directory / "warnings.gltf");
+    LoadedScene loaded = loadScene(file);
     ASSERT_EQ(loaded.scene.punctualLights.size(), 2u);
     EXPECT_EQ(loaded.scene.punctualLights[0].name, "lights[0]");  // unnamed
     ASSERT_EQ(loaded.scene.lightPlacements.size(), 1u);
@@ -760,9 +761,9 @@ TEST(LoadSceneErrors, PunctualLightWarnings) {
         all += warning + "\n";
     }
     EXPECT_NE(all.find("lights[0].range: ignored"), std::string::npos) << all;
-    const std::vector<std::string> sceneChecks = sceneWarnings(loaded.scene);
+    const std::vector<std::string> sceneChecks = sceneWarnings(loaded.scene, file);
     ASSERT_EQ(sceneChecks.size(), 1u);
-    EXPECT_EQ(sceneChecks[0], "light 'unplaced' is placed by no node and lights nothing");
+    EXPECT_EQ(sceneChecks[0], file.string() + ": light 'unplaced' is placed by no node and lights nothing");
     // glTF wants a range above 0; one at or below is no more used, 0 included (which
     // tinygltf reads for an absent range).
     for (double range : {-1.0, 0.0}) {

@@ -211,7 +211,7 @@ TEST(MediumBoundaries, WarnsOfACameraOnABoundary) {
     scene.cameras[2].cameraToWorld[3] = glm::vec4(0.5f, 1.5f, 2.001f, 1.0f);
     scene.cameras[3].cameraToWorld[3] = glm::vec4(1.0f, 1.0f, 1.0f, 1.0f);
     std::vector<std::string> warnings;
-    for (const std::string& warning : sceneWarnings(scene)) {
+    for (const std::string& warning : sceneWarnings(scene, "smoke.gltf")) {
         if (warning.find("lies on the boundary") != std::string::npos) warnings.push_back(warning);
     }
     ASSERT_EQ(warnings.size(), 2u);

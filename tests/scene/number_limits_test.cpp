@@ -142,20 +142,20 @@ TEST(NumberLimits, NodeTransformsBeyondFloatRangeAreNamed) {
 TEST(SceneWarnings, NoneForALitScene) {
     TemporaryDirectory directory;
     Scene scene = loadScene(litFloor(emissive("light", 5.0)).writeGltf(directory / "lit.gltf")).scene;
-    EXPECT_TRUE(sceneWarnings(scene).empty());
+    EXPECT_TRUE(sceneWarnings(scene, "scene.gltf").empty());
 }
 
 TEST(SceneWarnings, ASceneWithoutLightWillBeBlack) {
     TemporaryDirectory directory;
     Scene scene = loadScene(litFloor(emissive("light", 5.0)).writeGltf(directory / "lit.gltf")).scene;
     applyAssignment(scene, "lights/light/emission=0");
-    std::vector<std::string> warnings = sceneWarnings(scene);
+    std::vector<std::string> warnings = sceneWarnings(scene, "scene.gltf");
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_TRUE(mentions(warnings, "no light")) << warnings[0];
     EXPECT_TRUE(mentions(warnings, "black")) << warnings[0];
     // A background lights the scene.
     scene.background = glm::vec3(0.0f, 0.0f, 0.1f);
-    EXPECT_TRUE(sceneWarnings(scene).empty());
+    EXPECT_TRUE(sceneWarnings(scene, "scene.gltf").empty());
 }
 
 TEST(SceneWarnings, EmittersOfZeroAreaAreCountedPerMaterial) {
@@ -166,14 +166,14 @@ TEST(SceneWarnings, EmittersOfZeroAreaAreCountedPerMaterial) {
     MeshData degenerate{{{0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {0, 2, 0}, {0, 2, 0}, {1, 2, 0}}, {0, 1, 2, 2, 1, 0, 3, 4, 5}, {}};
     builder.addNode({{"mesh", builder.addMesh("sliver", degenerate, sliver)}});
     Scene scene = loadScene(builder.writeGltf(directory / "sliver.gltf")).scene;
-    std::vector<std::string> warnings = sceneWarnings(scene);
+    std::vector<std::string> warnings = sceneWarnings(scene, "scene.gltf");
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_TRUE(mentions(warnings, "3 emissive triangles of material 'sliver'")) << warnings[0];
     EXPECT_TRUE(mentions(warnings, "zero area")) << warnings[0];
 
     // With only degenerate emitters, the scene is dark as well.
     applyAssignment(scene, "lights/light/emission=0");
-    warnings = sceneWarnings(scene);
+    warnings = sceneWarnings(scene, "scene.gltf");
     EXPECT_EQ(warnings.size(), 2u);
     EXPECT_TRUE(mentions(warnings, "no light"));
 }
