@@ -1,5 +1,7 @@
 #include "scene/scene_warnings.h"
 
+#include <algorithm>
+
 #include <glm/glm.hpp>
 
 #include "scene/camera_on_boundary.h"
@@ -13,6 +15,21 @@ bool hasZeroArea(const Scene& scene, const glm::uvec3& triangle) {
     glm::dvec3 e1 = glm::dvec3(scene.positions[triangle[1]] - scene.positions[triangle[0]]);
     glm::dvec3 e2 = glm::dvec3(scene.positions[triangle[2]] - scene.positions[triangle[0]]);
     return glm::length(glm::cross(e1, e2)) == 0.0;
+}
+
+// Whether light from infinitely far (the background, a directional light) reaches the
+// scene: a homogeneous scene medium extinguishes it in every channel where it has
+// extinction, while a grid's density is 0 outside the grid.
+bool reachesFromInfinity(const Scene& scene, glm::vec3 radiance) {
+    glm::vec3 sigmaT(0.0f);
+    if (scene.sceneMedium != kNoMedium && !scene.media[size_t(scene.sceneMedium)].isHeterogeneous()) {
+        const Medium& medium = scene.media[size_t(scene.sceneMedium)];
+        sigmaT = medium.sigma_a + medium.sigma_s;
+    }
+    for (int c = 0; c < 3; ++c) {
+        if (radiance[c] > 0.0f && sigmaT[c] == 0.0f) return true;
+    }
+    return false;
 }
 
 }  // namespace
@@ -44,7 +61,11 @@ std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem
     size_t shiningLights = 0;
     for (const LightPlacement& placement : scene.lightPlacements) {
         placed[placement.light] = true;
-        shiningLights += scene.punctualLights[placement.light].intensity != glm::vec3(0.0f) ? 1 : 0;
+        const PunctualLight& light = scene.punctualLights[placement.light];
+        const bool reaches = light.type == PunctualLight::Type::Directional
+                                 ? reachesFromInfinity(scene, light.intensity)
+                                 : light.intensity != glm::vec3(0.0f);
+        shiningLights += reaches ? 1 : 0;
     }
     for (size_t i = 0; i < placed.size(); ++i) {
         if (!placed[i]) {
@@ -52,10 +73,20 @@ std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem
         }
     }
     if (emittingTriangles == 0 && shiningLights == 0 && !scene.anyMediumEmits() &&
-        scene.background == glm::vec3(0.0f)) {
-        warnings.push_back("the scene has no light: no triangle of non-zero area has an emissive material, no "
-                           "punctual light has an intensity above 0, no medium emits and the background is "
-                           "black, so the image will be black");
+        !reachesFromInfinity(scene, scene.background)) {
+        const std::string extinguishing =
+            scene.sceneMedium == kNoMedium ? "" : "the scene medium '" + scene.media[size_t(scene.sceneMedium)].name + "'";
+        const bool anySun = std::any_of(scene.punctualLights.begin(), scene.punctualLights.end(), [](const auto& l) {
+            return l.type == PunctualLight::Type::Directional && l.intensity != glm::vec3(0.0f);
+        });
+        warnings.push_back(
+            "the scene has no light: no triangle of non-zero area has an emissive material, " +
+            (anySun ? "every punctual light has intensity 0 or is a directional light that " + extinguishing +
+                          " extinguishes"
+                    : "no punctual light has an intensity above 0") +
+            ", no medium emits and the background is " +
+            (scene.background == glm::vec3(0.0f) ? "black" : "extinguished by " + extinguishing) +
+            ", so the image will be black");
     }
     for (std::string& warning : camerasOnMediumBoundaries(scene)) warnings.push_back(std::move(warning));
     for (std::string& warning : warnings) warning = file.string() + ": " + warning;

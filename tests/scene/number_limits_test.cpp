@@ -158,6 +158,42 @@ TEST(SceneWarnings, ASceneWithoutLightWillBeBlack) {
     EXPECT_TRUE(sceneWarnings(scene, "scene.gltf").empty());
 }
 
+// A homogeneous scene medium fills all space, so light from infinitely far (the
+// background, a directional light) reaches nothing through it, but in a channel where
+// it has no extinction; a grid medium's density is 0 outside its grid.
+TEST(SceneWarnings, ASceneWhoseOnlyLightsTheSceneMediumExtinguishesWillBeBlack) {
+    TemporaryDirectory directory;
+    Scene scene = loadScene(litFloor(emissive("light", 5.0)).writeGltf(directory / "lit.gltf")).scene;
+    applyAssignment(scene, "lights/light/emission=0");
+    scene.background = glm::vec3(0.2f, 0.3f, 0.4f);
+    EXPECT_TRUE(sceneWarnings(scene, "lit.gltf").empty());
+    Medium fog;
+    fog.name = "fog";
+    fog.sigma_a = glm::vec3(0.1f, 0.0f, 0.0f);
+    fog.sigma_s = glm::vec3(0.0f, 0.2f, 0.3f);
+    scene.media.push_back(fog);
+    scene.sceneMedium = int32_t(scene.media.size() - 1);
+    std::vector<std::string> warnings = sceneWarnings(scene, "lit.gltf");
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_TRUE(mentions(warnings, "lit.gltf: the scene has no light")) << warnings[0];
+    EXPECT_TRUE(mentions(warnings, "the background is extinguished by the scene medium 'fog'")) << warnings[0];
+    // A sun is extinguished as the background is.
+    scene.punctualLights.push_back(PunctualLight{.name = "sun", .type = PunctualLight::Type::Directional});
+    scene.lightPlacements.push_back(LightPlacement{.light = uint32_t(scene.punctualLights.size() - 1)});
+    warnings = sceneWarnings(scene, "lit.gltf");
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_TRUE(mentions(warnings, "is a directional light that the scene medium 'fog' extinguishes")) << warnings[0];
+    // Where a channel of the light meets no extinction, it passes.
+    scene.media.back().sigma_s.z = 0.0f;
+    EXPECT_TRUE(sceneWarnings(scene, "lit.gltf").empty());
+    scene.punctualLights.back().intensity = glm::vec3(1.0f, 1.0f, 0.0f);
+    scene.background = glm::vec3(0.2f, 0.3f, 0.0f);
+    EXPECT_EQ(sceneWarnings(scene, "lit.gltf").size(), 1u);
+    // A grid medium is empty outside its grid.
+    scene.media.back().densityGrid = 0;
+    EXPECT_TRUE(sceneWarnings(scene, "lit.gltf").empty());
+}
+
 TEST(SceneWarnings, EmittersOfZeroAreaAreCountedPerMaterial) {
     TemporaryDirectory directory;
     GltfBuilder builder = litFloor(emissive("light", 5.0));
