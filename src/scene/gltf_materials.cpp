@@ -107,6 +107,10 @@ void readMaterials(const tinygltf::Model& model, GltfDiagnostics& diagnostics, S
         material.doubleSided = source.doubleSided;
 
         if (std::optional<Medium> medium = readMaterialMedium(source, i, material.name, diagnostics)) {
+            if (hasEmissiveFactor(source) || source.emissiveTexture.index >= 0) {
+                diagnostics.warn(field, "a medium boundary does not emit: its emissiveFactor and emissiveTexture "
+                                        "are ignored (an emitting medium has an emission of its own)");
+            }
             scene.media.push_back(std::move(*medium));
             material.interiorMedium = int32_t(scene.media.size() - 1);
             scene.materials.push_back(std::move(material));

@@ -657,6 +657,20 @@ TEST(LoadSceneErrors, UnknownMediumMembersAreNamedInAWarning) {
     EXPECT_EQ(loaded.scene.media.at(0).sigma_s, glm::vec3(1.0f));
 }
 
+// A medium boundary passes rays through and emits nothing: an emissiveFactor on its
+// material, which a glTF viewer would show glowing, is ignored with a warning.
+TEST(LoadSceneErrors, EmissionOnAMediumBoundaryIsWarnedOf) {
+    TemporaryDirectory directory;
+    json material = mediumMaterial({{"sigma_s", 1.0}});
+    material["emissiveFactor"] = {1.0, 0.5, 0.0};
+    LoadedScene loaded = loadScene(boxWithMaterial(material).writeGltf(directory / "glow.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("materials[0]: a medium boundary does not emit"), std::string::npos)
+        << loaded.warnings[0];
+    material["emissiveFactor"] = {0.0, 0.0, 0.0};
+    EXPECT_TRUE(loadScene(boxWithMaterial(material).writeGltf(directory / "dark.gltf")).warnings.empty());
+}
+
 // COLOR_0 multiplies the base colour, which must stay in [0, 1]: a colour outside it
 // (here the box's positions, -1 to 1) is refused, naming the vertex and channel.
 TEST(LoadSceneErrors, VertexColoursOutsideZeroToOne) {
