@@ -38,7 +38,11 @@ std::filesystem::path absoluteSceneFile(const std::filesystem::path& file) {
 }  // namespace
 
 // How a renderer's adjoint state was last set up: for a caller's image adjoint (no loss)
-// or for a loss against a target, and for which derivative targets.
+// or for a loss against a target, and for which derivative targets. Another set of
+// targets sets it up again, a subset too: what a gradient pass samples depends on the
+// kinds it differentiates (RenderParams.sampleNonScatteringMedia), so a subset would
+// have other bits under a superset's set-up than alone. The renderer keeps the
+// pipelines of recent sets, so a change of set costs an allocation, not a compile.
 struct AdjointSetUp {
     std::optional<LossKind> loss;
     DerivativeTargets targets;
@@ -156,6 +160,10 @@ SceneSession::CachedRenderer& SceneSession::rendererFor(const RenderSettings& se
     return cached;
 }
 
+void SceneSession::requireRenderSize(const RenderSettings& settings, const Image& image, const std::string& what) {
+    rendererFor(settings).renderer->requireRenderSize(image, what);
+}
+
 template <typename Work>
 auto SceneSession::withRenderer(const RenderSettings& settings, Work work) {
     CachedRenderer& cached = rendererFor(settings);
@@ -196,18 +204,15 @@ SceneSession::Backpropagated SceneSession::backpropagate(const RenderSettings& s
         }
     }
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
+    // Before the work, whose failure would discard the view.
+    requireRenderSize(settings, imageAdjoint, "the image adjoint");
     if (slots.empty()) {
-        // Nothing to differentiate, but an adjoint of the wrong size is refused all the same.
-        withRenderer(settings, [&](CachedRenderer& cached) {
-            cached.renderer->requireRenderSize(imageAdjoint, "the image adjoint");
-            return 0;
-        });
         return {};
     }
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     uint64_t cutPaths = 0;
     const SceneGradients gradients = withRenderer(settings, [&](CachedRenderer& cached) {
-        if (!cached.adjoint || cached.adjoint->loss || !cached.adjoint->targets.covers(wanted)) {
+        if (!cached.adjoint || cached.adjoint->loss || cached.adjoint->targets.kinds != wanted.kinds) {
             cached.renderer->enableImageAdjoint(wanted);
             cached.adjoint = AdjointSetUp{std::nullopt, wanted};
         }
@@ -227,8 +232,9 @@ SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& sett
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     uint64_t cutPaths = 0;
+    requireRenderSize(settings, target, "the target");
     GradientEvaluation evaluation = withRenderer(settings, [&](CachedRenderer& cached) {
-        if (!cached.adjoint || cached.adjoint->loss != loss || !cached.adjoint->targets.covers(wanted)) {
+        if (!cached.adjoint || cached.adjoint->loss != loss || cached.adjoint->targets.kinds != wanted.kinds) {
             cached.renderer->enableGradients(target, loss, wanted);
             cached.adjoint = AdjointSetUp{loss, wanted};
         } else {

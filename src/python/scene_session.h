@@ -90,6 +90,9 @@ private:
     // The renderer for these settings, made (or moved to the front of renderers_) and
     // given the current parameters and the settings' seed.
     CachedRenderer& rendererFor(const RenderSettings& settings);
+    // Throws vkdr::Error naming `what` unless `image` has the size these settings render,
+    // before any work, so that the view is kept.
+    void requireRenderSize(const RenderSettings& settings, const Image& image, const std::string& what);
     // work(renderer) with that renderer; any exception discards it.
     template <typename Work>
     auto withRenderer(const RenderSettings& settings, Work work);

@@ -144,6 +144,7 @@ void Renderer::setParameters(const Scene& scene) {
     if (media != media_) {
         media_ = media;
         pipelines_.primal = PathStages(context_, false, 0, media_);
+        pipelines_.earlierGradients.clear();  // compiled for the media as they were
         if (pipelines_.gradient) {
             compileGradientPipelines(pipelines_.gradient->kinds);
         }

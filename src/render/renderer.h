@@ -67,8 +67,6 @@ struct DerivativeTargets {
     static DerivativeTargets of(std::initializer_list<ParameterKind> wanted);
     void want(ParameterKind kind) { kinds |= 1u << uint32_t(kind); }
     bool wants(ParameterKind kind) const { return ((kinds >> uint32_t(kind)) & 1u) != 0; }
-    // Whether every kind `other` wants is wanted here too.
-    bool covers(const DerivativeTargets& other) const { return (other.kinds & ~kinds) == 0; }
 };
 
 // One render with its loss and the loss's gradient (Renderer::renderWithGradients).

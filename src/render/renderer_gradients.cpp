@@ -2,6 +2,8 @@
 // of renderWithGradients() (docs/gradients.md, "The estimator").
 #include "render/renderer.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "core/fixed_point_value.h"
 #include "core/milliseconds_of.h"
@@ -11,6 +13,13 @@
 #include "vk/dispatch_timer.h"
 
 namespace vkdr {
+namespace {
+
+// Gradient pipelines kept for kinds not wanted now: a few alternating sets of
+// parameters, each a few seconds of compiling on lavapipe.
+constexpr size_t kEarlierGradientPipelines = 3;
+
+}  // namespace
 
 DerivativeTargets DerivativeTargets::of(std::initializer_list<ParameterKind> wanted) {
     DerivativeTargets targets{0};
@@ -70,9 +79,24 @@ void Renderer::compileGradientPipelines(uint32_t kinds) {
     // The emission's gradient is wanted even where no medium emits yet.
     MediaFeatures media = media_;
     media.emission = media.emission || DerivativeTargets{kinds}.wants(ParameterKind::MediumEmission);
-    if (!pipelines_.gradient || pipelines_.gradient->kinds != kinds || pipelines_.gradient->media != media) {
-        pipelines_.gradient = std::make_unique<GradientPipelines>(context_, kinds, media);
+    auto matches = [&](const std::unique_ptr<GradientPipelines>& p) { return p->kinds == kinds && p->media == media; };
+    if (pipelines_.gradient && matches(pipelines_.gradient)) {
+        return;
     }
+    std::vector<std::unique_ptr<GradientPipelines>>& earlier = pipelines_.earlierGradients;
+    auto found = std::find_if(earlier.begin(), earlier.end(), matches);
+    std::unique_ptr<GradientPipelines> next;
+    if (found != earlier.end()) {
+        next = std::move(*found);
+        earlier.erase(found);
+    } else {
+        next = std::make_unique<GradientPipelines>(context_, kinds, media);
+    }
+    if (pipelines_.gradient) {
+        earlier.insert(earlier.begin(), std::move(pipelines_.gradient));
+        if (earlier.size() > kEarlierGradientPipelines) earlier.pop_back();
+    }
+    pipelines_.gradient = std::move(next);
 }
 
 void Renderer::allocateAdjoint(const DerivativeTargets& derivativeTargets, uint64_t keptPaths) {

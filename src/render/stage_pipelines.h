@@ -1,6 +1,7 @@
 #pragma once
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "render/stages.h"
 #include "vk/pipeline.h"
@@ -70,6 +71,10 @@ struct StagePipelines {
     ComputePipeline queuePrepare;
     ComputePipeline film;
     std::unique_ptr<GradientPipelines> gradient;  // null until gradients are enabled
+    // Gradient pipelines compiled before `gradient` for other kinds, most recent first,
+    // so that a caller alternating between the parameters it differentiates compiles
+    // each set once (Renderer::compileGradientPipelines).
+    std::vector<std::unique_ptr<GradientPipelines>> earlierGradients;
 };
 
 }  // namespace vkdr

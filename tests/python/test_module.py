@@ -53,6 +53,24 @@ def test_backpropagate_repeats_bit_for_bit(fog_scene_file):
         assert np.array_equal(first[name], second[name])
 
 
+def test_a_gradient_does_not_depend_on_what_was_differentiated_before(fog_scene_file):
+    # A fog that scatters no light: differentiating sigma_s samples its collisions, so a
+    # set-up for sigma_s reused for sigma_a alone would give sigma_a other bits.
+    scene = vkdiffrender.Scene(fog_scene_file)
+    scene["media/fog/sigma_s"] = np.zeros(3, dtype=np.float32)
+    adjoint = np.random.default_rng(4).normal(size=(WIDTH, WIDTH, 3)).astype(np.float32)
+    settings = dict(spp=4, width=WIDTH, seed=5, max_depth=4)
+    alone = scene.backpropagate(adjoint, ["media/fog/sigma_a"], **settings)
+    scene.backpropagate(adjoint, ["media/fog/sigma_a", "media/fog/sigma_s"], **settings)
+    after_more = scene.backpropagate(adjoint, ["media/fog/sigma_a"], **settings)
+    assert np.array_equal(alone["media/fog/sigma_a"], after_more["media/fog/sigma_a"])
+    target = scene.render(spp=4, width=WIDTH, seed=9)
+    _, _, alone = scene.loss_gradient(target, ["media/fog/g"], **settings)
+    scene.loss_gradient(target, ["media/fog/g", "media/fog/sigma_s"], **settings)
+    _, _, after_more = scene.loss_gradient(target, ["media/fog/g"], **settings)
+    assert np.array_equal(alone["media/fog/g"], after_more["media/fog/g"])
+
+
 def test_l2_image_adjoint_gives_the_command_lines_gradient(cli, fog_scene_file, tmp_path):
     """grad's L2 loss is the mean over pixels and channels of (I - T)^2, so its dLoss/dI
     is 2 (I - T) / (3 pixels). Both estimators are unbiased for the gradient of the loss
