@@ -201,6 +201,16 @@ bool isBool(const py::object& value) {
     return py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_"));
 }
 
+// True or False (or numpy's): what Python would take as true (0.5, 2, a string) is a
+// TypeError naming the keyword, as a float is for an integer keyword.
+bool flag(const char* keyword, const py::object& value) {
+    if (!isBool(value)) {
+        throw py::type_error(std::string(keyword) + ": expected True or False, got " +
+                             std::string(py::str(value.get_type().attr("__name__"))));
+    }
+    return value.cast<bool>();
+}
+
 // The command line's check of an integer option (cli/number_options.h), with the
 // keyword's name where the command line names its option. An int, or what Python takes
 // as one (a numpy integer): a float or a bool is a TypeError, not truncated.
@@ -235,8 +245,7 @@ uint32_t integerIn(const char* keyword, const py::object& value, int64_t low, in
 
 // The keywords every device call takes, with the command line's defaults.
 struct RenderKeywords {
-    py::object spp, seed, width, height, maxDepth, camera, pathsPerPass;
-    bool equiangular;
+    py::object spp, seed, width, height, maxDepth, camera, pathsPerPass, equiangular;
 
     RenderSettings settings() const {
         RenderSettings settings;
@@ -253,7 +262,7 @@ struct RenderKeywords {
         }
         settings.camera = camera.cast<std::string>();
         settings.pathsPerPass = integerIn("paths_per_pass", pathsPerPass, 0, 1 << 21);
-        settings.equiangularSampling = equiangular;
+        settings.equiangularSampling = flag("equiangular", equiangular);
         return settings;
     }
 };
@@ -261,11 +270,12 @@ struct RenderKeywords {
 #define VKDR_RENDER_KEYWORDS                                                                                \
     py::kw_only(), py::arg("spp") = 16, py::arg("seed") = 0, py::arg("width") = 0, py::arg("height") = 0, \
         py::arg("max_depth") = 8, py::arg("camera") = "", py::arg("paths_per_pass") = 0,              \
-        py::arg("equiangular").none(false) = true
+        py::arg("equiangular") = true
 
 #define VKDR_RENDER_KEYWORD_PARAMETERS                                                                 \
     const py::object &spp, const py::object &seed, const py::object &width, const py::object &height, \
-        const py::object &maxDepth, const py::object &camera, const py::object &pathsPerPass, bool equiangular
+        const py::object &maxDepth, const py::object &camera, const py::object &pathsPerPass,          \
+        const py::object &equiangular
 
 #define VKDR_RENDER_KEYWORD_VALUES \
     RenderKeywords { spp, seed, width, height, maxDepth, camera, pathsPerPass, equiangular }
@@ -437,12 +447,14 @@ std::string deviceSelector(const py::object& device) {
 
 void bindScene(py::module_& m) {
     py::class_<SceneSession>(m, "Scene", "A glTF scene loaded onto a Vulkan device (docs/python.md).")
-        .def(py::init([](const std::filesystem::path& file, const py::object& device, bool allowOutsideFiles) {
+        .def(py::init([](const std::filesystem::path& file, const py::object& device,
+                         const py::object& allowOutsideFiles) {
                  const std::string selector = deviceSelector(device);
+                 const bool outside = flag("allow_outside_files", allowOutsideFiles);
                  ReleasedPythonLock released;
-                 return std::make_unique<SceneSession>(file, selector, allowOutsideFiles);
+                 return std::make_unique<SceneSession>(file, selector, outside);
              }),
-             py::arg("file"), py::kw_only(), py::arg("device") = "", py::arg("allow_outside_files").none(false) = false,
+             py::arg("file"), py::kw_only(), py::arg("device") = "", py::arg("allow_outside_files") = false,
              "Loads a .gltf or .glb. device: an index or part of a name (vkdiffrender.devices()); "
              "allow_outside_files: let the scene read files outside its own directory.")
         .def_property_readonly("file", &SceneSession::file, "The absolute path the scene was loaded from")

@@ -353,11 +353,14 @@ def test_integer_keywords_take_integers_only(scene):
         scene.render(width=WIDTH, spp=1, seed=2**64)
 
 
-def test_none_is_no_boolean(scene, fog_scene_file):
-    with pytest.raises(TypeError):
-        vkdiffrender.Scene(fog_scene_file, allow_outside_files=None)
-    with pytest.raises(TypeError):
-        scene.render(width=WIDTH, spp=1, equiangular=None)
+def test_only_true_and_false_are_booleans(scene, fog_scene_file):
+    for value, kind in ((None, "NoneType"), (0.5, "float"), (1, "int"), (np.float64(0.0), "float64"),
+                        (np.int64(0), "int64"), ("yes", "str")):
+        with pytest.raises(TypeError, match=rf"^allow_outside_files: expected True or False, got {kind}$"):
+            vkdiffrender.Scene(fog_scene_file, allow_outside_files=value)
+        with pytest.raises(TypeError, match=rf"^equiangular: expected True or False, got {kind}$"):
+            scene.render(width=WIDTH, spp=1, equiangular=value)
+    assert scene.render(width=WIDTH, spp=1, equiangular=np.bool_(False)).shape == (WIDTH, WIDTH, 3)
 
 
 def test_write_gives_a_scene_that_loads_with_the_values(scene, tmp_path):
