@@ -178,7 +178,11 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
     auto invalid = std::find_if(values.begin(), values.end(),
                                 [&](float value) { return !std::isfinite(value) || !range.contains(value); });
     if (invalid != values.end()) {
-        throw Error("parameter " + std::string(name) + ": " + valueProblem(*storage->description, *invalid));
+        // Which of many values: a grid's voxel among hundreds of thousands.
+        const std::string which = values.size() == 1 ? ""
+                                                     : "value " + std::to_string(invalid - values.begin()) + " of " +
+                                                           std::to_string(values.size()) + " (counted from 0): ";
+        throw Error("parameter " + std::string(name) + ": " + which + valueProblem(*storage->description, *invalid));
     }
     if (values.size() == storage->size && storage->isContiguous()) {
         std::copy(values.begin(), values.end(), storage->values);

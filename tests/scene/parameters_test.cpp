@@ -234,6 +234,9 @@ TEST(Parameters, RejectsOutOfRangeAndNonFiniteValues) {
     expectErrorMentioning(set("media/fog/sigma_a", {-0.1f}), {"media/fog/sigma_a", "must be >= 0, got -0.1"});
     expectErrorMentioning(set("media/fog/sigma_s", {0.1f, nan, 0.1f}), {"media/fog/sigma_s", "must be finite, got nan"});
     expectErrorMentioning(set("media/fog/sigma_s", {inf}), {"must be finite, got inf"});
+    // Of many values, the message says which.
+    expectErrorMentioning(set("media/fog/sigma_a", {0.1f, -2.0f, 0.3f}),
+                          {"parameter media/fog/sigma_a: value 1 of 3 (counted from 0): must be", "got -2"});
     expectErrorMentioning(set("media/fog/g", {1.0f}), {"media/fog/g", "must be in [-0.99, 0.99], got 1"});
     expectErrorMentioning(set("media/fog/g", {0.1f, 0.2f, 0.3f}), {"media/fog/g", "expected 1 value, got 3"});
     expectErrorMentioning(set("media/fog/sigma_a", {0.1f, 0.2f}), {"expected 1 or 3 values, got 2"});
