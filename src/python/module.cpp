@@ -21,6 +21,7 @@
 #include "python/scene_session.h"
 #include "python/stop_signal_scope.h"
 #include "render/cut_paths.h"
+#include "scene/parameters.h"
 
 namespace py = pybind11;
 
@@ -90,8 +91,10 @@ void requireWithinFloatRange(const py::array& numbers, const std::string& what) 
         numpy.attr("isfinite")(flat), numpy.attr("greater_equal")(numpy.attr("abs")(flat), overflow));
     if (py::cast<bool>(numpy.attr("any")(beyond))) {
         // numpy's text of the value: a long double's may lie beyond a double's range too.
-        const std::string first = py::str(flat[numpy.attr("argmax")(beyond)]);
-        throw Error(what + ": must be finite, got " + first + ": beyond float range (magnitude at most 3.4e+38)");
+        const py::object index = numpy.attr("argmax")(beyond);
+        const std::string first = py::str(flat[index]);
+        throw Error(what + ": " + whichValue(index.cast<size_t>(), size_t(numbers.size())) + "must be finite, got " +
+                    first + ": beyond float range (magnitude at most 3.4e+38)");
     }
 }
 
@@ -121,7 +124,9 @@ void requireObjectsWithinFloatRange(const py::array& objects, const std::string&
     const py::module_ math = py::module_::import("math");
     const py::float_ overflow(std::ldexp(1.0, 128) - std::ldexp(1.0, 103));
     const py::object abs = py::module_::import("builtins").attr("abs");
+    size_t index = 0;
     for (const py::handle item : objects.attr("flat")) {
+        const size_t position = index++;
         const bool finite = py::isinstance(item, numbers.attr("Rational"))
                                 ? true
                                 : py::hasattr(item, "is_finite") ? py::cast<bool>(item.attr("is_finite")())
@@ -135,7 +140,8 @@ void requireObjectsWithinFloatRange(const py::array& objects, const std::string&
         if (beyond == 1) {
             std::string text = py::str(item);
             if (text.size() > 40) text = text.substr(0, 20) + "... (" + std::to_string(text.size()) + " digits)";
-            throw Error(what + ": must be finite, got " + text + ": beyond float range (magnitude at most 3.4e+38)");
+            throw Error(what + ": " + whichValue(position, size_t(objects.size())) + "must be finite, got " + text +
+                        ": beyond float range (magnitude at most 3.4e+38)");
         }
     }
 }

@@ -178,11 +178,8 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
     auto invalid = std::find_if(values.begin(), values.end(),
                                 [&](float value) { return !std::isfinite(value) || !range.contains(value); });
     if (invalid != values.end()) {
-        // Which of many values: a grid's voxel among hundreds of thousands.
-        const std::string which = values.size() == 1 ? ""
-                                                     : "value " + std::to_string(invalid - values.begin()) + " of " +
-                                                           std::to_string(values.size()) + " (counted from 0): ";
-        throw Error("parameter " + std::string(name) + ": " + which + valueProblem(*storage->description, *invalid));
+        throw Error("parameter " + std::string(name) + ": " + whichValue(size_t(invalid - values.begin()), values.size()) +
+                    valueProblem(*storage->description, *invalid));
     }
     if (values.size() == storage->size && storage->isContiguous()) {
         std::copy(values.begin(), values.end(), storage->values);
@@ -191,6 +188,11 @@ void setParameter(Scene& scene, std::string_view name, std::span<const float> va
     for (size_t i = 0; i < storage->size; ++i) {
         (*storage)[i] = values.size() == 1 ? values[0] : values[i];
     }
+}
+
+std::string whichValue(size_t index, size_t count) {
+    if (count == 1) return "";
+    return "value " + std::to_string(index) + " of " + std::to_string(count) + " (counted from 0): ";
 }
 
 namespace {

@@ -33,6 +33,10 @@ std::vector<float> getParameter(const Scene& scene, std::string_view name);
 // emissive ones listed by parameterNames, so an emission driven to 0 can be raised again.
 void setParameter(Scene& scene, std::string_view name, std::span<const float> values);
 
+// Which of `count` values a message is about: "value 7 of 262144 (counted from 0): ", or
+// nothing for a single value.
+std::string whichValue(size_t index, size_t count);
+
 // Applies "NAME=v" or "NAME=v,v,v" (the CLI's --set syntax).
 void applyAssignment(Scene& scene, std::string_view assignment);
 

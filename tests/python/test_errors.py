@@ -74,9 +74,10 @@ def test_keyword_messages_are_the_command_lines_options(cli, fog_scene_file, tmp
     (np.array([0.1, 0.2], np.float32), "expected shape (3,)"),
     (np.zeros((1, 3), np.float32), "expected shape (3,)"),
     (1e300, "media/fog/sigma_a: must be finite, got 1e+300: beyond float range (magnitude at most 3.4e+38)"),
-    ([0.1, -1e39, 0.1], "must be finite, got -1e+39: beyond float range"),
+    ([0.1, -1e39, 0.1], "media/fog/sigma_a: value 1 of 3 (counted from 0): must be finite, got -1e+39: beyond float "
+                        "range"),
     (Decimal("NaN"), "media/fog/sigma_a: must be finite, got nan"),  # comparing it with a float raises
-    ([Decimal("-Infinity"), 1, 1], "media/fog/sigma_a: must be finite, got -inf"),
+    ([Decimal("-Infinity"), 1, 1], "media/fog/sigma_a: value 0 of 3 (counted from 0): must be finite, got -inf"),
 ])
 def test_bad_parameter_values_are_refused(scene, value, problem):
     before = scene["media/fog/sigma_a"].copy()
@@ -134,7 +135,8 @@ def test_objects_that_are_not_all_real_numbers_stay_refused(scene, value):
 
 @pytest.mark.parametrize("value", [10**40, 10**400, Fraction(10**400, 3), Decimal("1e400"), [Fraction(1, 2), -10**39]])
 def test_numbers_beyond_float_range_are_named_whatever_holds_them(scene, value):
-    with pytest.raises(vkdiffrender.Error, match="media/fog/sigma_a: must be finite, got .*: beyond float range"):
+    with pytest.raises(vkdiffrender.Error, match="media/fog/sigma_a: (value 1 of 2 \\(counted from 0\\): )?must be "
+                                                 "finite, got .*: beyond float range"):
         scene["media/fog/sigma_a"] = value
 
 
@@ -221,6 +223,36 @@ def test_init_is_refused_on_a_loaded_scene_and_retried_after_a_failed_one(fog_sc
     bare.__init__(fog_scene_file)
     assert "media/fog/g" in bare
     assert "file" in vkdiffrender.Scene.__init__.__doc__  # the signature help is kept
+
+
+def test_arguments_that_do_not_fit_are_named_in_one_line(scene, fog_scene_file):
+    adjoint = np.ones((WIDTH, WIDTH, 3), np.float32)
+    cases = [
+        (lambda: scene.render(spp=1, width=WIDTH, sed=3),
+         "render() got an unexpected keyword argument 'sed' (did you mean 'seed'?)"),
+        (lambda: scene.backpropagate(adjoint, ["media/fog/g"], spp=1, width=WIDTH, zzz=1),
+         "backpropagate() got an unexpected keyword argument 'zzz' (it takes image_adjoint, parameters, spp, "),
+        (lambda: vkdiffrender.Scene(fog_scene_file, devise=0),
+         "Scene() got an unexpected keyword argument 'devise' (did you mean 'device'?)"),
+        (lambda: scene.render(2), "render() takes 0 positional arguments but 1 were given (pass spp, "),
+        (lambda: scene.backpropagate(adjoint), "backpropagate() missing required argument 'parameters'"),
+        (lambda: scene.backpropagate(adjoint, [], image_adjoint=adjoint),
+         "backpropagate() got multiple values for argument 'image_adjoint'"),
+        (lambda: scene.loss_gradient(adjoint, ["media/fog/g"], loss=None),
+         "loss_gradient(): loss: expected a str, got NoneType"),
+        (lambda: scene.write(None), "write(): path: expected a path (a str or os.PathLike), got NoneType"),
+        (lambda: scene[0], "__getitem__(): name: expected a str, got int"),
+        (lambda: vkdiffrender.write_image("a.exr", adjoint, 3),
+         "write_image() takes 2 positional arguments but 3 were given"),
+    ]
+    for call, message in cases:
+        with pytest.raises(TypeError) as raised:
+            call()
+        assert str(raised.value).startswith(message), str(raised.value)
+        assert "\n" not in str(raised.value), str(raised.value)
+    with pytest.raises(TypeError, match="object is not iterable"):
+        list(scene)
+    assert "spp: object = 16" in vkdiffrender.Scene.render.__doc__  # the signature help is kept
 
 
 def test_none_is_a_type_error(scene):

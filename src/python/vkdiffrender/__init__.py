@@ -13,6 +13,7 @@ operation. The documentation is docs/python.md in the source tree.
 """
 import functools
 
+from ._arguments import named_argument_errors
 from ._vkdiffrender import (  # noqa: F401
     Error,
     Parameter,
@@ -40,4 +41,11 @@ def _refuse_reloading(init):
     return __init__
 
 
-Scene.__init__ = _refuse_reloading(Scene.__init__)
+Scene.__init__ = _refuse_reloading(named_argument_errors(Scene.__init__, "Scene"))
+for _method in ("render", "backpropagate", "loss_gradient", "write", "parameter", "__getitem__", "__setitem__",
+                "__contains__"):
+    setattr(Scene, _method, named_argument_errors(getattr(Scene, _method)))
+# __getitem__ takes names, not indices: without this, iter() would call it with 0, 1, ...
+Scene.__iter__ = None
+read_image = named_argument_errors(read_image)
+write_image = named_argument_errors(write_image)
