@@ -4,6 +4,7 @@
 #include <charconv>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 
 namespace vkdr {
 
@@ -20,7 +21,8 @@ void GltfDiagnostics::fail(std::string_view field, std::string_view text) const 
 }
 
 void GltfDiagnostics::warn(std::string_view field, std::string_view text) {
-    std::string warning = message(field, text);
+    // A name from the file may hold control characters, as an error's does (core/error.h).
+    std::string warning = printableText(message(field, text));
     if (std::find(warnings_.begin(), warnings_.end(), warning) == warnings_.end()) {
         warnings_.push_back(std::move(warning));
     }

@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/printable_text.h"
 #include "scene/camera_on_boundary.h"
 
 namespace vkdr {
@@ -89,7 +90,8 @@ std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem
             ", so the image will be black");
     }
     for (std::string& warning : camerasOnMediumBoundaries(scene)) warnings.push_back(std::move(warning));
-    for (std::string& warning : warnings) warning = file.string() + ": " + warning;
+    // Names from the file may hold control characters, as in the loader's warnings.
+    for (std::string& warning : warnings) warning = printableText(file.string() + ": " + warning);
     return warnings;
 }
 

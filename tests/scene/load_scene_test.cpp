@@ -7,6 +7,7 @@
 #include "gltf_test_files.h"
 #include "scene/load_scene.h"
 #include "scene/medium_at.h"
+#include "scene/scene_warnings.h"
 
 namespace vkdr::test {
 namespace {
@@ -306,6 +307,27 @@ TEST(LoadScene, NamesEveryMaterialApart) {
     EXPECT_NE(loaded.warnings[1].find("materials[2].name: '1' is used by an earlier material; this one is named '2'"),
               std::string::npos)
         << loaded.warnings[1];
+}
+
+// A name may hold control characters (an escape sequence would recolour a terminal):
+// warnings quote it escaped, as errors do.
+TEST(LoadScene, WarningsQuoteControlCharactersEscaped) {
+    TemporaryDirectory directory;
+    GltfBuilder builder;
+    builder.addMaterial({{"name", "red\x1b[31m"}});
+    builder.addMaterial({{"name", "red\x1b[31m"}});
+    for (int material = 0; material < 2; ++material) {
+        builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f), material)}});
+    }
+    const std::filesystem::path file = builder.writeGltf(directory / "names.gltf");
+    LoadedScene loaded = loadScene(file);
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("'red\\x1b[31m' is used by an earlier material"), std::string::npos)
+        << loaded.warnings[0];
+    loaded.scene.punctualLights.push_back(PunctualLight{.name = "sun\x07"});
+    const std::vector<std::string> sceneChecks = sceneWarnings(loaded.scene, file);
+    ASSERT_FALSE(sceneChecks.empty());
+    EXPECT_NE(sceneChecks[0].find("light 'sun\\x07' is placed by no node"), std::string::npos) << sceneChecks[0];
 }
 
 TEST(LoadScene, NamesEveryCameraApart) {
