@@ -107,6 +107,9 @@ std::optional<LightPlacement> placeNodeLight(const tinygltf::Model& model, size_
     if (!extension->second.IsObject()) {
         diagnostics.fail(field, "expected an object");
     }
+    if (!extension->second.Has("light")) {
+        diagnostics.fail(field, "has no \"light\": the index of the light the node places");
+    }
     double index = readNumber(diagnostics, extension->second, field, "light", -1.0);
     if (!(index >= 0.0 && index < double(model.lights.size()) && index == std::floor(index))) {
         diagnostics.fail(field + ".light", "expected the index of one of the " + std::to_string(model.lights.size()) +

@@ -56,7 +56,12 @@ SrgbTextureCache::MappedTexture SrgbTextureCache::textureFor(const tinygltf::Tex
     }
     const tinygltf::Texture& texture = model_.textures[size_t(info.index)];
     std::string textureField = indexed("textures", size_t(info.index));
-    if (texture.source < 0 || size_t(texture.source) >= model_.images.size()) {
+    if (texture.source < 0) {
+        // tinygltf reads an absent source as -1; glTF leaves it to extensions (WebP, KTX2).
+        diagnostics_.fail(textureField, "has no source image (images of extensions such as EXT_texture_webp are not "
+                                        "read); give it \"source\": the index of a PNG, JPEG or BMP image");
+    }
+    if (size_t(texture.source) >= model_.images.size()) {
         diagnostics_.fail(textureField + ".source",
                           "image " + std::to_string(texture.source) + " out of range (" +
                               std::to_string(model_.images.size()) + " images)");

@@ -761,6 +761,16 @@ TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {
                     {"nodes[1].extensions.KHR_lights_punctual.light", "expected an index", "without a decimal point"});
 }
 
+// Members tinygltf reads as -1 when absent are named as missing, not as "-1".
+TEST(LoadSceneErrors, AbsentIndicesAreNamedAsMissing) {
+    TemporaryDirectory directory;
+    GltfBuilder sourceless = quadWithTextureMapping(json::object(), json::object());
+    sourceless.document()["textures"][0].erase("source");
+    expectLoadError(sourceless.writeGltf(directory / "sourceless.gltf"), {"textures[0]: has no source image"});
+    expectLoadError(floorWithLights({{{"type", "point"}}}, json::object()).writeGltf(directory / "lightless.gltf"),
+                    {"nodes[1].extensions.KHR_lights_punctual: has no \"light\""});
+}
+
 TEST(LoadSceneErrors, PunctualLightWarnings) {
     TemporaryDirectory directory;
     const std::filesystem::path file =
