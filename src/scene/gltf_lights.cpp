@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <numbers>
+#include <set>
 #include <span>
 
 #include "scene/gltf_values.h"
 #include "scene/parameter_kinds.h"
+#include "scene/unique_name.h"
 
 namespace vkdr {
 namespace {
@@ -74,12 +76,24 @@ void readSpotCones(const tinygltf::Light& source, const std::string& field, cons
 }  // namespace
 
 std::vector<PunctualLight> readPunctualLights(const tinygltf::Model& model, GltfDiagnostics& diagnostics) {
+    // An unnamed light is named `lights[i]`, followed by '_' as often as it takes to
+    // differ from every light's own name (a light may be named "lights[1]").
+    std::set<std::string> taken;
+    for (const tinygltf::Light& source : model.lights) taken.insert(source.name);
     std::vector<PunctualLight> lights;
     for (size_t i = 0; i < model.lights.size(); ++i) {
         const tinygltf::Light& source = model.lights[i];
         const std::string field = lightField(i);
         PunctualLight light;
-        light.name = source.name.empty() ? indexed("lights", i) : source.name;
+        light.name = source.name;
+        if (light.name.empty()) {
+            light.name = firstFreeName(indexed("lights", i), [&](const std::string& n) { return taken.count(n) > 0; });
+            taken.insert(light.name);
+            if (light.name != indexed("lights", i)) {
+                diagnostics.warn(field, "unnamed, and '" + indexed("lights", i) +
+                                            "' is another light's name; this one is named '" + light.name + "'");
+            }
+        }
         light.type = lightType(source, field, diagnostics);
         light.intensity = lightIntensity(source, field, diagnostics);
         if (light.type == PunctualLight::Type::Spot) {

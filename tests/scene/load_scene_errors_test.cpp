@@ -771,6 +771,23 @@ TEST(LoadSceneErrors, AbsentIndicesAreNamedAsMissing) {
                     {"nodes[1].extensions.KHR_lights_punctual: has no \"light\""});
 }
 
+// An unnamed light whose index-name another light has as its own gets '_' appended, as
+// a material or camera does, with a warning.
+TEST(LoadSceneErrors, AnUnnamedLightTakesANameNoOtherLightHas) {
+    TemporaryDirectory directory;
+    LoadedScene loaded = loadScene(floorWithLights({{{"type", "point"}, {"name", "lights[1]"}}, {{"type", "point"}}})
+                                       .writeGltf(directory / "names.gltf"));
+    ASSERT_EQ(loaded.scene.punctualLights.size(), 2u);
+    EXPECT_EQ(loaded.scene.punctualLights[0].name, "lights[1]");
+    EXPECT_EQ(loaded.scene.punctualLights[1].name, "lights[1]_");
+    std::string all;
+    for (const std::string& warning : loaded.warnings) all += warning + "\n";
+    EXPECT_NE(all.find("KHR_lights_punctual.lights[1]: unnamed, and 'lights[1]' is another light's name; this one "
+                       "is named 'lights[1]_'"),
+              std::string::npos)
+        << all;
+}
+
 TEST(LoadSceneErrors, PunctualLightWarnings) {
     TemporaryDirectory directory;
     const std::filesystem::path file =
