@@ -15,6 +15,7 @@
 #include "image/encoded_image_checks.h"
 #include "image/regular_file.h"
 #include "scene/glb_layout.h"
+#include "scene/gltf_index_ranges.h"
 #include "scene/gltf_json_checks.h"
 #include "scene/parse_gltf_json.h"
 
@@ -184,6 +185,7 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
     // A document that is not a JSON object is left to tinygltf, which says what is wrong with it.
     if (document.is_object()) {
         requireWellFormedJson(document, diagnostics);
+        requireIndicesInRange(document, diagnostics);
         if (binary) requireUrisOfLaterGlbBuffers(document, diagnostics);
         requireReadableUris(document, files, diagnostics);
     }

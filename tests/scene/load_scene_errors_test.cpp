@@ -148,6 +148,35 @@ TEST(LoadSceneErrors, OutOfRangeIndices) {
     }
 }
 
+// glTF requires every index in range, in what the scene uses and what it does not: a file
+// other readers refuse is refused here too, though the loader would not read the entry.
+TEST(LoadSceneErrors, OutOfRangeIndicesAreRefusedWhereTheSceneDoesNotUseThem) {
+    TemporaryDirectory directory;
+    auto changed = [&](const std::function<void(json&)>& change) {
+        GltfBuilder builder;
+        builder.addNode({{"mesh", builder.addMesh("quad", floorQuad(1.0f))}});
+        change(builder.document());
+        return builder.writeGltf(directory / "unused.gltf");
+    };
+    expectLoadError(changed([](json& d) { d["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = 9; }),
+                    {"meshes[0].primitives[0].attributes.JOINTS_0", "accessor 9 out of range"});
+    expectLoadError(changed([](json& d) {
+                        d["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", 9}}}}}}});
+                    }),
+                    {"meshes[1].primitives[0].attributes.POSITION", "accessor 9 out of range"});
+    expectLoadError(changed([](json& d) { d["nodes"].push_back({{"mesh", 9}}); }),
+                    {"nodes[1].mesh", "mesh 9 out of range (1 meshes)"});
+    expectLoadError(changed([](json& d) { d["nodes"][0]["skin"] = 0; }),
+                    {"nodes[0].skin", "skin 0 out of range (0 skins)"});
+    expectLoadError(changed([](json& d) { d["materials"] = {{{"normalTexture", {{"index", 7}}}}}; }),
+                    {"materials[0].normalTexture.index", "texture 7 out of range (0 textures)"});
+    expectLoadError(changed([](json& d) { d["images"] = {{{"bufferView", 5}, {"mimeType", "image/png"}}}; }),
+                    {"images[0].bufferView", "buffer view 5 out of range"});
+    expectLoadError(changed([](json& d) { d["scenes"] = {{{"nodes", {0, 3}}}}; }),
+                    {"scenes[0].nodes[1]", "node 3 out of range"});
+    expectLoadError(changed([](json& d) { d["scene"] = 2; }), {"scene", "scene 2 out of range"});
+}
+
 TEST(LoadSceneErrors, BufferShorterThanItsAccessor) {
     TemporaryDirectory directory;
     GltfBuilder builder;
@@ -755,7 +784,7 @@ TEST(LoadSceneErrors, PunctualLightsAreCheckedFieldByField) {
                         .writeGltf(directory / "names.gltf"),
                     {"extensions.KHR_lights_punctual.lights[1].name", "'a' already names", "must be unique"});
     expectLoadError(floorWithLights({{{"type", "point"}}}, {{"light", 3}}).writeGltf(directory / "index.gltf"),
-                    {"nodes[1].extensions.KHR_lights_punctual.light", "one of the 1 lights, got 3"});
+                    {"nodes[1].extensions.KHR_lights_punctual.light", "light 3 out of range (1 lights)"});
     // An index is written without a decimal point, as every other index of the file.
     expectLoadError(floorWithLights({{{"type", "point"}}}, {{"light", 0.0}}).writeGltf(directory / "decimal.gltf"),
                     {"nodes[1].extensions.KHR_lights_punctual.light", "expected an index", "without a decimal point"});
