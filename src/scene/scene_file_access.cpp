@@ -97,8 +97,12 @@ std::string decodeUriPath(const std::string& uri, std::string& problem) {
         } else if (uri[i] == '%') {
             int high = i + 2 < uri.size() ? hexValue(uri[i + 1]) : -1;
             int low = i + 2 < uri.size() ? hexValue(uri[i + 2]) : -1;
-            if (high < 0 || low < 0 || (high == 0 && low == 0)) {
-                problem = "'%' must be followed by two hex digits, not 00";
+            if (high < 0 || low < 0) {
+                problem = "'%' must be followed by two hex digits, got '" + uri.substr(i + 1, 2) + "'";
+                return "";
+            }
+            if (high == 0 && low == 0) {
+                problem = "'%00' would put a NUL byte in the file name";
                 return "";
             }
             path += char(high * 16 + low);

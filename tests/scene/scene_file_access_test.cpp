@@ -110,8 +110,9 @@ TEST(SceneFileAccess, RefusesUrisWithASchemeAndBadEscapes) {
     std::string fileUri = "file://" + fs::absolute(s.buffer()).string();
     expectRefused(s.withBufferUri(fileUri), {"buffers[0].uri", fileUri, "file:"});
     expectRefused(s.withBufferUri(fileUri), {"buffers[0].uri", "file:"}, {true});
-    expectRefused(s.withBufferUri("box%2.bin"), {"buffers[0].uri", "two hex digits"});
-    expectRefused(s.withBufferUri("box.bin%00.txt"), {"buffers[0].uri", "two hex digits"});
+    expectRefused(s.withBufferUri("box%2.bin"), {"buffers[0].uri", "two hex digits, got '2.'"});
+    expectRefused(s.withBufferUri("box%zz.bin"), {"buffers[0].uri", "two hex digits, got 'zz'"});
+    expectRefused(s.withBufferUri("box.bin%00.txt"), {"buffers[0].uri", "'%00' would put a NUL byte in the file name"});
     expectRefused(s.withBufferUri(std::string("box.bin\0.txt", 12)), {"buffers[0].uri", "NUL character"});
 }
 
