@@ -1,6 +1,7 @@
 #include "scene/read_gltf_model.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstdint>
 #include <optional>
@@ -124,6 +125,22 @@ bool writeWholeFile(std::string* error, const std::string&, const std::vector<un
     return false;
 }
 
+// tinygltf reads a data URI of these media types, in base64, and takes any other for a
+// file's name ("File not found").
+constexpr std::array kReadDataUriPrefixes = {
+    "data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,", "data:image/png;base64,",
+    "data:image/jpeg;base64,", "data:image/bmp;base64,", "data:image/gif;base64,", "data:text/plain;base64,"};
+
+void requireReadableDataUri(const std::string& uri, const std::string& field, const GltfDiagnostics& diagnostics) {
+    for (std::string_view prefix : kReadDataUriPrefixes) {
+        if (uri.rfind(prefix, 0) == 0) return;
+    }
+    const std::string header = uri.substr(0, std::min<size_t>(uri.find(','), 60));
+    diagnostics.fail(field, "a data URI is read in base64, with the media type application/octet-stream or "
+                            "application/gltf-buffer for a buffer, image/png, image/jpeg or image/bmp for an image; "
+                            "this one starts '" + header + "'");
+}
+
 // Every external buffer and image is checked before tinygltf reads any, so that a
 // refusal names the field, and tinygltf's own messages (which give a file's size) are
 // only ever about files the scene may read.
@@ -135,7 +152,10 @@ void requireReadableUris(const nlohmann::json& document, const SceneFiles& files
             const nlohmann::json& entry = document[array][i];
             if (!entry.is_object() || !entry.contains("uri") || !entry["uri"].is_string()) continue;
             std::string uri = entry["uri"].get<std::string>();
-            if (isDataUri(uri)) continue;
+            if (isDataUri(uri)) {
+                requireReadableDataUri(uri, indexed(array, i) + ".uri", diagnostics);
+                continue;
+            }
             ResolvedFile resolved = files.resolveUri(uri);
             if (!resolved.problem.empty()) diagnostics.fail(indexed(array, i) + ".uri", resolved.problem);
         }
@@ -143,14 +163,17 @@ void requireReadableUris(const nlohmann::json& document, const SceneFiles& files
 }
 
 // In a GLB only buffers[0] stands for the BIN chunk by leaving out its uri; tinygltf
-// would give any buffer without one the chunk's bytes.
-void requireUrisOfLaterGlbBuffers(const nlohmann::json& document, const GltfDiagnostics& diagnostics) {
+// would give any buffer without one the chunk's bytes. A .gltf has no chunk.
+void requireBufferUris(const nlohmann::json& document, bool binary, const GltfDiagnostics& diagnostics) {
     if (!document.contains("buffers") || !document["buffers"].is_array()) return;
-    for (size_t i = 1; i < document["buffers"].size(); ++i) {
+    for (size_t i = binary ? 1 : 0; i < document["buffers"].size(); ++i) {
         const nlohmann::json& buffer = document["buffers"][i];
         if (buffer.is_object() && !buffer.contains("uri")) {
             diagnostics.fail(indexed("buffers", i) + ".uri",
-                             "missing: only buffers[0] may leave out its uri, to stand for the GLB's BIN chunk");
+                             binary ? "missing: only buffers[0] may leave out its uri, to stand for the GLB's BIN "
+                                      "chunk"
+                                    : "missing: a buffer of a .gltf file needs one (only a .glb's first buffer may "
+                                      "leave it out)");
         }
     }
 }
@@ -186,7 +209,7 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
     if (document.is_object()) {
         requireWellFormedJson(document, diagnostics);
         requireIndicesInRange(document, diagnostics);
-        if (binary) requireUrisOfLaterGlbBuffers(document, diagnostics);
+        requireBufferUris(document, binary, diagnostics);
         requireReadableUris(document, files, diagnostics);
     }
 

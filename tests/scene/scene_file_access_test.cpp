@@ -116,6 +116,24 @@ TEST(SceneFileAccess, RefusesUrisWithASchemeAndBadEscapes) {
     expectRefused(s.withBufferUri(std::string("box.bin\0.txt", 12)), {"buffers[0].uri", "NUL character"});
 }
 
+// tinygltf reads data URIs of a few media types in base64 only, and would take any other
+// for a file's name; a .gltf buffer without a uri would be read as a file of no name.
+TEST(SceneFileAccess, RefusesDataUrisItCannotReadAndBuffersWithoutUri) {
+    ExternalBufferScene s;
+    json document = readJson(s.gltf());
+    for (const std::string uri : {"data:;base64,AAAA", "data:application/octet-stream,AAAA",
+                                  "data:text/html;base64,AAAA"}) {
+        document["buffers"][0] = {{"uri", uri}, {"byteLength", 3}};
+        expectRefused(writeText(s.directory / "scene" / "data.gltf", document.dump()),
+                      {"buffers[0].uri", "a data URI is read in base64",
+                       "this one starts '" + uri.substr(0, uri.find(',')) + "'"});
+    }
+    document = readJson(s.gltf());
+    document["buffers"][0].erase("uri");
+    expectRefused(writeText(s.directory / "scene" / "no_uri.gltf", document.dump()),
+                  {"buffers[0].uri", "missing: a buffer of a .gltf file needs one"});
+}
+
 TEST(SceneFileAccess, RefusesWhatIsNotARegularFile) {
     ExternalBufferScene s;
     fs::create_directory(s.directory / "scene" / "folder.bin");
