@@ -135,6 +135,9 @@ void requireReadableDataUri(const std::string& uri, const std::string& field, co
     for (std::string_view prefix : kReadDataUriPrefixes) {
         if (uri.rfind(prefix, 0) == 0) return;
     }
+    if (uri.find(',') == std::string::npos) {
+        diagnostics.fail(field, "a data URI holds its data after a ',', and this one has none");
+    }
     const std::string header = uri.substr(0, std::min<size_t>(uri.find(','), 60));
     diagnostics.fail(field, "a data URI is read in base64, with the media type application/octet-stream or "
                             "application/gltf-buffer for a buffer, image/png, image/jpeg or image/bmp for an image; "
