@@ -216,13 +216,14 @@ bool intersect(const Scene& scene, const Shell& a, const Shell& b) {
 // inside itself, is a guess either way. Shells that intersect (`crossing`; spheres of a
 // cloud joined into one mesh) do not nest.
 bool windsOutwards(const Scene& scene, const Boundary& boundary, const std::vector<Shell>& shells, size_t s,
-                   const std::vector<std::vector<bool>>& crossing, const GltfDiagnostics& diagnostics) {
+                   const std::vector<std::vector<size_t>>& crossing, const GltfDiagnostics& diagnostics) {
     const Shell& shell = shells[s];
     const Shell* around = nullptr;  // the smallest shell containing this one
     size_t containing = 0;
     for (size_t o = 0; o < shells.size(); ++o) {
         const Shell& other = shells[o];
-        if (o == s || crossing[s][o] || !nestedIn(scene, shell, other)) continue;
+        const bool crosses = std::find(crossing[s].begin(), crossing[s].end(), o) != crossing[s].end();
+        if (o == s || crosses || !nestedIn(scene, shell, other)) continue;
         ++containing;
         if (!around || std::abs(other.volume) < std::abs(around->volume)) around = &other;
     }
@@ -234,15 +235,18 @@ bool windsOutwards(const Scene& scene, const Boundary& boundary, const std::vect
     return containing % 2 == 0;
 }
 
-// Which pairs of the shells intersect; warns once if any do, as overlapping boundaries are.
-std::vector<std::vector<bool>> crossingShells(const Scene& scene, const Boundary& boundary,
-                                              const std::vector<Shell>& shells, GltfDiagnostics& diagnostics) {
-    std::vector<std::vector<bool>> crossing(shells.size(), std::vector<bool>(shells.size(), false));
+// The shells each shell intersects; warns once if any do, as overlapping boundaries are.
+std::vector<std::vector<size_t>> crossingShells(const Scene& scene, const Boundary& boundary,
+                                                const std::vector<Shell>& shells, GltfDiagnostics& diagnostics) {
+    std::vector<std::vector<size_t>> crossing(shells.size());
     bool any = false;
     for (size_t a = 0; a < shells.size(); ++a) {
         for (size_t b = a + 1; b < shells.size(); ++b) {
-            crossing[a][b] = crossing[b][a] = intersect(scene, shells[a], shells[b]);
-            any = any || crossing[a][b];
+            if (intersect(scene, shells[a], shells[b])) {
+                crossing[a].push_back(b);
+                crossing[b].push_back(a);
+                any = true;
+            }
         }
     }
     if (any) {
@@ -260,7 +264,7 @@ void orientShells(Scene& scene, Boundary& boundary, const std::vector<Corners>& 
     for (const Shell& shell : shells) {
         if (shell.volume == 0.0) diagnostics.fail(boundary.description, "encloses no volume");
     }
-    const std::vector<std::vector<bool>> crossing = crossingShells(scene, boundary, shells, diagnostics);
+    const std::vector<std::vector<size_t>> crossing = crossingShells(scene, boundary, shells, diagnostics);
     std::vector<bool> outwards;
     for (size_t s = 0; s < shells.size(); ++s) {
         outwards.push_back(windsOutwards(scene, boundary, shells, s, crossing, diagnostics));
