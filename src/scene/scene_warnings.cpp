@@ -1,7 +1,5 @@
 #include "scene/scene_warnings.h"
 
-#include <algorithm>
-
 #include <glm/glm.hpp>
 
 #include "core/printable_text.h"
@@ -60,6 +58,7 @@ std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem
     }
     std::vector<bool> placed(scene.punctualLights.size(), false);
     size_t shiningLights = 0;
+    bool extinguishedSun = false;  // a placed directional light above 0 that the scene medium extinguishes
     for (const LightPlacement& placement : scene.lightPlacements) {
         placed[placement.light] = true;
         const PunctualLight& light = scene.punctualLights[placement.light];
@@ -67,6 +66,7 @@ std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem
                                  ? reachesFromInfinity(scene, light.intensity)
                                  : light.intensity != glm::vec3(0.0f);
         shiningLights += reaches ? 1 : 0;
+        extinguishedSun = extinguishedSun || (!reaches && light.intensity != glm::vec3(0.0f));
     }
     for (size_t i = 0; i < placed.size(); ++i) {
         if (!placed[i]) {
@@ -75,16 +75,16 @@ std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem
     }
     if (emittingTriangles == 0 && shiningLights == 0 && !scene.anyMediumEmits() &&
         !reachesFromInfinity(scene, scene.background)) {
+        // Set where anything is extinguished: only a scene medium extinguishes.
         const std::string extinguishing =
-            scene.sceneMedium == kNoMedium ? "" : "the scene medium '" + scene.media[size_t(scene.sceneMedium)].name + "'";
-        const bool anySun = std::any_of(scene.punctualLights.begin(), scene.punctualLights.end(), [](const auto& l) {
-            return l.type == PunctualLight::Type::Directional && l.intensity != glm::vec3(0.0f);
-        });
+            scene.sceneMedium == kNoMedium ? "" : "the scene medium '" + scene.media[size_t(scene.sceneMedium)].name +
+                                                      "'";
         warnings.push_back(
             "the scene has no light: no triangle of non-zero area has an emissive material, " +
-            (anySun ? "every punctual light has intensity 0 or is a directional light that " + extinguishing +
-                          " extinguishes"
-                    : "no punctual light has an intensity above 0") +
+            (extinguishedSun
+                 ? "every punctual light has intensity 0 or is a directional light that " + extinguishing +
+                       " extinguishes"
+                 : "no punctual light has an intensity above 0") +
             ", no medium emits and the background is " +
             (scene.background == glm::vec3(0.0f) ? "black" : "extinguished by " + extinguishing) +
             ", so the image will be black");

@@ -165,6 +165,13 @@ TEST(SceneWarnings, ASceneWhoseOnlyLightsTheSceneMediumExtinguishesWillBeBlack) 
     TemporaryDirectory directory;
     Scene scene = loadScene(litFloor(emissive("light", 5.0)).writeGltf(directory / "lit.gltf")).scene;
     applyAssignment(scene, "lights/light/emission=0");
+    // A sun that no node places lights nothing, and no scene medium is to blame.
+    scene.punctualLights.push_back(PunctualLight{.name = "unplaced", .type = PunctualLight::Type::Directional});
+    std::vector<std::string> warnings = sceneWarnings(scene, "lit.gltf");
+    ASSERT_EQ(warnings.size(), 2u);
+    EXPECT_TRUE(mentions(warnings, "no punctual light has an intensity above 0")) << warnings[1];
+    EXPECT_FALSE(mentions(warnings, "directional light that")) << warnings[1];
+    scene.punctualLights.pop_back();
     scene.background = glm::vec3(0.2f, 0.3f, 0.4f);
     EXPECT_TRUE(sceneWarnings(scene, "lit.gltf").empty());
     Medium fog;
@@ -173,7 +180,7 @@ TEST(SceneWarnings, ASceneWhoseOnlyLightsTheSceneMediumExtinguishesWillBeBlack) 
     fog.sigma_s = glm::vec3(0.0f, 0.2f, 0.3f);
     scene.media.push_back(fog);
     scene.sceneMedium = int32_t(scene.media.size() - 1);
-    std::vector<std::string> warnings = sceneWarnings(scene, "lit.gltf");
+    warnings = sceneWarnings(scene, "lit.gltf");
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_TRUE(mentions(warnings, "lit.gltf: the scene has no light")) << warnings[0];
     EXPECT_TRUE(mentions(warnings, "the background is extinguished by the scene medium 'fog'")) << warnings[0];
