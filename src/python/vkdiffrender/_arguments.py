@@ -32,7 +32,7 @@ def _split_top_level(text):
 
 class _Signature:
     def __init__(self, docstring, name):
-        match = _SIGNATURE.match((docstring or "").splitlines()[0] if docstring else "")
+        match = _SIGNATURE.match(docstring.partition("\n")[0] if docstring else "")
         if not match:
             raise ValueError("no pybind11 signature in the docstring")
         self.name = name or match["name"]
@@ -40,20 +40,20 @@ class _Signature:
         self.method = False
         self.positional, self.keyword_only, self.required, self.types = [], [], set(), {}
         keyword_only = False
-        for parameter in _split_top_level(match["parameters"]):
+        for parameter in _split_top_level(self.text):
             if parameter == "*":
                 keyword_only = True
                 continue
-            name, _, rest = parameter.partition(":")
+            parameter_name, _, rest = parameter.partition(":")
             annotation, has_default, _ = rest.partition("=")
-            name = name.strip()
-            if name == "self":
+            parameter_name = parameter_name.strip()
+            if parameter_name == "self":
                 self.method = True
                 continue
-            (self.keyword_only if keyword_only else self.positional).append(name)
-            self.types[name] = annotation.strip()
+            (self.keyword_only if keyword_only else self.positional).append(parameter_name)
+            self.types[parameter_name] = annotation.strip()
             if not has_default:
-                self.required.add(name)
+                self.required.add(parameter_name)
 
     def problem(self, args, kwargs):
         """What does not fit, in one line; None where the names fit and a value's type is at fault
@@ -95,7 +95,7 @@ def named_argument_errors(function, name=None):
         try:
             return function(*args, **kwargs)
         except TypeError as error:
-            if "incompatible" not in str(error).splitlines()[0]:
+            if "incompatible" not in str(error).partition("\n")[0]:
                 raise
             own = args[1:] if signature.method else args
             problem = signature.problem(own, kwargs)
