@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/gltf_lights.h"
+
 namespace vkdr {
 namespace {
 
@@ -58,10 +60,10 @@ public:
         });
         const json* lights = nullptr;
         if (document_.contains("extensions") && document_["extensions"].is_object() &&
-            document_["extensions"].contains("KHR_lights_punctual") &&
-            document_["extensions"]["KHR_lights_punctual"].is_object() &&
-            document_["extensions"]["KHR_lights_punctual"].contains("lights")) {
-            lights = &document_["extensions"]["KHR_lights_punctual"]["lights"];
+            document_["extensions"].contains(kPunctualLightsExtension) &&
+            document_["extensions"][kPunctualLightsExtension].is_object() &&
+            document_["extensions"][kPunctualLightsExtension].contains("lights")) {
+            lights = &document_["extensions"][kPunctualLightsExtension]["lights"];
         }
         forEach(document_, "", "nodes", [&](const json& node, const std::string& field) {
             require(node, field, "mesh", array("meshes"), "mesh", "meshes");
@@ -71,9 +73,10 @@ public:
                 requireEntry(child, f, nodes, "node", "nodes");
             });
             if (node.contains("extensions") && node["extensions"].is_object() &&
-                node["extensions"].contains("KHR_lights_punctual")) {
-                require(node["extensions"]["KHR_lights_punctual"], member(field, "extensions.KHR_lights_punctual"),
-                        "light", lights, "light", "lights");
+                node["extensions"].contains(kPunctualLightsExtension)) {
+                require(node["extensions"][kPunctualLightsExtension],
+                        member(member(field, "extensions"), kPunctualLightsExtension), "light", lights, "light",
+                        "lights");
             }
         });
         forEach(document_, "", "meshes", [&](const json& mesh, const std::string& field) {
