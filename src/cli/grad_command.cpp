@@ -170,11 +170,12 @@ int runGrad(const GradOptions& options) {
                                       parseLossKind(options.loss));
     ProgressBar bar("grad");
     bar.update(0.0, "gradient");
-    GradientResult result = lossGradient.evaluate(scene, options.settings.seed);
-    if (!options.check) bar.update(1.0, "gradient");
+    // With --check the evaluation is a small part of the work: the check's share shows.
+    const ProgressCallback evaluationProgress = [&](double fraction) { bar.update(fraction, "gradient"); };
+    GradientResult result =
+        lossGradient.evaluate(scene, options.settings.seed, options.check ? ProgressCallback{} : evaluationProgress);
     std::vector<GradientCheckRow> check;
     if (options.check) {
-        // The evaluation above is a small part of what --check renders.
         check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds, options.settings.seed,
                                [&](double fraction) { bar.update(fraction, "--check"); });
     }

@@ -107,6 +107,10 @@ void RenderedLossGradient::requireRenderable(const Scene& scene, uint32_t seed) 
 }
 
 GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
+    return evaluate(scene, seed, {});
+}
+
+GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed, const ProgressCallback& progress) {
     GradientResult result;
     result.images.resize(impl_->targets.size());
     std::vector<std::vector<double>> gradients(impl_->slots.size());
@@ -121,6 +125,14 @@ GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed)
         result.truncatedPaths += renderer.stats().truncatedPaths;
         return std::move(evaluation.gradients);
     };
+    // Each view is an equal share of the whole.
+    size_t viewsDone = 0;
+    auto viewProgress = [&]() -> ProgressCallback {
+        if (!progress) return {};
+        return [&progress, &viewsDone, views = double(impl_->targets.size())](double fraction) {
+            progress((double(viewsDone) + fraction) / views);
+        };
+    };
     for (ViewsOfOneSize& group : impl_->groups) {
         Renderer& renderer = *group.renderer;
         renderer.setParameters(scene);
@@ -128,12 +140,14 @@ GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed)
         if (group.views.size() == 1) {
             // One view renders, back-propagates and reads everything back in one go.
             impl_->prepareView(group, scene, group.views[0], seed);
-            sum = addView(group.views[0], renderer, renderer.renderWithGradients());
+            sum = addView(group.views[0], renderer, renderer.renderWithGradients(viewProgress()));
+            ++viewsDone;
         } else {
             renderer.clearGradientSum();
             for (size_t v : group.views) {
                 impl_->prepareView(group, scene, v, seed);
-                addView(v, renderer, renderer.renderAddingGradients());
+                addView(v, renderer, renderer.renderAddingGradients(viewProgress()));
+                ++viewsDone;
             }
             sum = renderer.downloadGradientSum();
         }

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "diff/loss_gradient.h"
+#include "render/path_progress.h"
 #include "render/render_settings.h"
 
 namespace vkdr {
@@ -29,6 +30,8 @@ public:
     ~RenderedLossGradient() override;
 
     GradientResult evaluate(const Scene& scene, uint32_t seed) override;
+    // The same, telling `progress` the share done as the views' paths end.
+    GradientResult evaluate(const Scene& scene, uint32_t seed, const ProgressCallback& progress);
     // Renders every view once, as loss() does.
     void requireRenderable(const Scene& scene, uint32_t seed) override;
     // The loss alone, rendered with the random numbers evaluate() uses for its image:

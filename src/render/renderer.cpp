@@ -215,32 +215,16 @@ void Renderer::uploadParams() {
     overwriteBuffer(context_, params_, std::as_bytes(std::span(&p, 1)), "render params");
 }
 
-void Renderer::forEachPass(SampleRange samples, const std::function<void(const PassRange&)>& pass,
-                           const ProgressCallback& progress) {
+void Renderer::forEachPass(SampleRange samples, const std::function<void(const PassRange&)>& pass) {
     // A pass covers whole samples of as many pixels as fit, or several samples of every pixel.
     const uint32_t pixels = camera_.width * camera_.height;
     const uint32_t capacity = paths_->capacity;
     const uint32_t pixelsPerPass = std::min(pixels, capacity);
     const uint32_t samplesPerPass = std::max(1u, std::min(samples.count, capacity / pixels));
-    const uint64_t totalPasses = uint64_t((pixels + pixelsPerPass - 1) / pixelsPerPass) *
-                                 ((samples.count + samplesPerPass - 1) / samplesPerPass);
     const uint32_t end = samples.first + samples.count;
-    uint64_t passesDone = 0;
-    if (progress) {
-        pathsEnded_ = [&](double ended) { progress((double(passesDone) + ended) / double(totalPasses)); };
-    }
-    // Reset however the passes end: the callback refers to this frame.
-    struct ForgetPathsEnded {
-        ProgressCallback& callback;
-        ~ForgetPathsEnded() { callback = {}; }
-    } forget{pathsEnded_};
     for (uint32_t sample = samples.first; sample < end; sample += samplesPerPass) {
         for (uint32_t pixel = 0; pixel < pixels; pixel += pixelsPerPass) {
             pass({pixel, std::min(pixelsPerPass, pixels - pixel), sample, std::min(samplesPerPass, end - sample)});
-            ++passesDone;
-            if (progress) {
-                progress(double(passesDone) / double(totalPasses));
-            }
         }
     }
 }
@@ -285,7 +269,10 @@ Image Renderer::render(const ProgressCallback& progress) {
         recordClearFilm(recorder);
         recorder.submitAndWait();
     }
-    forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, progress);
+    {
+        PathProgress::Job job(progress_, progress, uint64_t(camera_.width) * camera_.height * settings_.spp);
+        forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); });
+    }
     Image image = downloadFilm();
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
     stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -352,10 +339,8 @@ gpu::QueueCountersData Renderer::recordSegmentsUntilNoRayIsLeft(CommandRecorder&
         if (alive == 0) {
             break;
         }
-        if (pathsEnded_) {
-            const double paths = double(constants.pixelCount) * constants.samplesInPass;
-            pathsEnded_(std::clamp(1.0 - double(alive) / paths, 0.0, 1.0));
-        }
+        const uint64_t paths = uint64_t(constants.pixelCount) * constants.samplesInPass;
+        progress_.passUnderway(paths - std::min<uint64_t>(alive, paths));
     }
     return counters;
 }
@@ -382,6 +367,7 @@ void Renderer::runPass(const PassRange& range, PassMode mode) {
     recorder.fillRange(paths_->queueCounters, offsetof(gpu::QueueCountersData, truncatedPaths), 8, 0);
     recorder.submitAndWait();
     stats_.rays += counters.raysTraced;
+    progress_.passEnded(uint64_t(range.pixelCount) * range.samplesInPass);
     // Replays with the film's random numbers and adjoint passes trace the film's paths
     // again, which are counted once; an independent replay traces paths of its own.
     if (mode == PassMode::Film || (mode == PassMode::Replay && replayingIndependently_)) {

@@ -13,6 +13,7 @@
 #include "render/gpu_scene.h"
 #include "render/loss_kind.h"
 #include "render/path_buffers.h"
+#include "render/path_progress.h"
 #include "render/render_settings.h"
 #include "render/stage_pipelines.h"
 #include "scene/parameter_kinds.h"
@@ -30,9 +31,6 @@ struct RenderStats {
     uint64_t truncatedPaths = 0;  // paths cut by the segment limit (should be 0)
     double seconds = 0.0;         // wall time of render(), uploads excluded
 };
-
-// Progress in [0, 1], called after every pass.
-using ProgressCallback = std::function<void(double)>;
 
 // Parameter gradients as the adjoint pass accumulates them, one vector per accumulator
 // of VKDR_GRADIENT_ACCUMULATORS (device_types.h): `media` has gpu::kMediumGradientStride
@@ -111,7 +109,7 @@ public:
     // A new target for the enabled loss, of the render's size.
     void setTarget(const Image& target);
     double loss();
-    GradientEvaluation renderWithGradients();
+    GradientEvaluation renderWithGradients(const ProgressCallback& progress = {});
 
     // Renders through another of the scene's cameras at the same image size, so that
     // views of one size share a renderer: its scene, its paths and its gradient sums.
@@ -122,7 +120,7 @@ public:
     // and seed (each returns its image, loss and times, not its gradients), then
     // downloadGradientSum(). renderWithGradients() is the three for one view.
     void clearGradientSum();
-    GradientEvaluation renderAddingGradients();
+    GradientEvaluation renderAddingGradients(const ProgressCallback& progress = {});
     SceneGradients downloadGradientSum();
 
     // Gradients of a loss the caller computes from render()'s image. enableImageAdjoint()
@@ -154,8 +152,7 @@ private:
     struct PassRange {
         uint32_t firstPixel, pixelCount, firstSample, samplesInPass;
     };
-    void forEachPass(SampleRange samples, const std::function<void(const PassRange&)>& pass,
-                     const ProgressCallback& progress);
+    void forEachPass(SampleRange samples, const std::function<void(const PassRange&)>& pass);
     void runPass(const PassRange& range, PassMode mode);
     // Copies the radiance of a pass's paths to AdjointBuffers::keptRadiance (keep), or
     // back into their slots.
@@ -170,10 +167,10 @@ private:
     // The image of film sums read back from the device.
     Image imageOfFilm(std::span<const glm::vec4> film) const;
     // Each leaves the image in the film, dLoss/dparameters in the gradient buffers and
-    // the loss of the image in lossSum, and sets result's times.
-    void backpropagateWithReplay(GradientEvaluation& result);
-    void backpropagateSplitSamples(GradientEvaluation& result);
-    void backpropagateInOnePass(GradientEvaluation& result);
+    // the loss of the image in lossSum, sets result's times, and reports its progress.
+    void backpropagateWithReplay(GradientEvaluation& result, const ProgressCallback& progress);
+    void backpropagateSplitSamples(GradientEvaluation& result, const ProgressCallback& progress);
+    void backpropagateInOnePass(GradientEvaluation& result, const ProgressCallback& progress);
     // Compiles the adjoint stages for the gradients of `kinds` (bit 1 << ParameterKind) and
     // the media they meet, unless they are compiled already.
     void compileGradientPipelines(uint32_t kinds);
@@ -199,8 +196,7 @@ private:
     void recordSegment(CommandRecorder& recorder, const PathStages& stages, const gpu::PassConstants& constants,
                        uint32_t currentRays);
     // Segments, submitted in batches, until no path has a ray left; returns the counters.
-    // After each batch it reports the share of the pass's paths that have ended to
-    // pathsEnded_, where forEachPass() set one.
+    // After each batch it reports to progress_ how many of the pass's paths have ended.
     gpu::QueueCountersData recordSegmentsUntilNoRayIsLeft(CommandRecorder& recorder, const PathStages& stages,
                                                           const gpu::PassConstants& constants);
     void uploadParams();
@@ -208,7 +204,7 @@ private:
     // Renders, adds the loss's gradients to the sums, and reads back the image and the
     // loss. A view `alone` clears the sums first, in the same submission as the film, and
     // reads them back with the image.
-    GradientEvaluation renderAndBackpropagateLoss(bool alone);
+    GradientEvaluation renderAndBackpropagateLoss(bool alone, const ProgressCallback& progress);
     // Whether a gradient pass draws the two halves of each pixel's samples from
     // independent streams (RenderParams.secondStreamFrom), as the split estimator of
     // renderWithGradients() and loss() needs, or stratifies them together.
@@ -252,9 +248,7 @@ private:
     Buffer params_;
     RenderStats stats_;
     DispatchTimer* timer_ = nullptr;
-    // While forEachPass() runs with a progress callback: takes the share of the current
-    // pass's paths that have ended, so that a render of one long pass shows progress.
-    ProgressCallback pathsEnded_;
+    PathProgress progress_;  // of the render or gradient evaluation under way
 };
 
 }  // namespace vkdr

@@ -244,8 +244,8 @@ void Renderer::copyKeptRadiance(const PassRange& range, bool keep) {
     recorder.submitAndWait();
 }
 
-GradientEvaluation Renderer::renderWithGradients() {
-    return asGradientPass(SampleHalves::Independent, [&] { return renderAndBackpropagateLoss(true); });
+GradientEvaluation Renderer::renderWithGradients(const ProgressCallback& progress) {
+    return asGradientPass(SampleHalves::Independent, [&] { return renderAndBackpropagateLoss(true, progress); });
 }
 
 void Renderer::clearGradientSum() {
@@ -255,8 +255,8 @@ void Renderer::clearGradientSum() {
     recorder.submitAndWait();
 }
 
-GradientEvaluation Renderer::renderAddingGradients() {
-    return asGradientPass(SampleHalves::Independent, [&] { return renderAndBackpropagateLoss(false); });
+GradientEvaluation Renderer::renderAddingGradients(const ProgressCallback& progress) {
+    return asGradientPass(SampleHalves::Independent, [&] { return renderAndBackpropagateLoss(false, progress); });
 }
 
 SceneGradients Renderer::downloadGradientSum() {
@@ -264,7 +264,7 @@ SceneGradients Renderer::downloadGradientSum() {
     return downloadGradients({});
 }
 
-GradientEvaluation Renderer::renderAndBackpropagateLoss(bool alone) {
+GradientEvaluation Renderer::renderAndBackpropagateLoss(bool alone, const ProgressCallback& progress) {
     requireAdjointUse(AdjointUse::Loss, "renderWithGradients()");
     stats_ = {};
     {
@@ -280,11 +280,11 @@ GradientEvaluation Renderer::renderAndBackpropagateLoss(bool alone) {
     }
     GradientEvaluation result;
     if (splitSample_ > 0) {
-        backpropagateInOnePass(result);
+        backpropagateInOnePass(result, progress);
     } else if (settings_.spp >= 2) {
-        backpropagateSplitSamples(result);
+        backpropagateSplitSamples(result, progress);
     } else {
-        backpropagateWithReplay(result);
+        backpropagateWithReplay(result, progress);
     }
     stats_.paths = uint64_t(camera_.width) * camera_.height * settings_.spp;
 
@@ -307,17 +307,20 @@ GradientEvaluation Renderer::renderAndBackpropagateLoss(bool alone) {
 // B: A's paths are differentiated at the image of B and B's at the image of A, each
 // weighted by its share of the samples, which is unbiased and renders every path once.
 // The film then holds the whole render.
-void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
+void Renderer::backpropagateSplitSamples(GradientEvaluation& result, const ProgressCallback& progress) {
     const SampleRange a{0, settings_.spp / 2};
     const SampleRange b{a.count, settings_.spp - a.count};
     const bool keptFits = adjoint_->keptRadiance.size() > 0;
+    // Every sample rendered and back-propagated; A's replayed too unless kept.
+    const uint64_t pixels = uint64_t(camera_.width) * camera_.height;
+    PathProgress::Job job(progress_, progress, pixels * (2 * settings_.spp + (keptFits ? 0 : a.count)));
     result.forwardMs += millisecondsOf([&] {
         forEachPass(a, [&](const PassRange& range) {
             runPass(range, PassMode::Film);
             if (keptFits) {
                 copyKeptRadiance(range, true);
             }
-        }, {});
+        });
     });
     result.adjointMs += millisecondsOf([&] {
         CommandRecorder recorder(context_, timer_);
@@ -328,7 +331,7 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
     forEachPass(b, [&](const PassRange& range) {
         result.forwardMs += millisecondsOf([&] { runPass(range, PassMode::Film); });
         result.adjointMs += millisecondsOf([&] { runPass(range, PassMode::Adjoint); });
-    }, {});
+    });
     result.adjointMs += millisecondsOf([&] {
         submitLoss(b.count, gpu::kLossImageFilmMinusBaseline);
         forEachPass(a, [&](const PassRange& range) {
@@ -338,7 +341,7 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
                 runPass(range, PassMode::Replay);
             }
             runPass(range, PassMode::Adjoint);
-        }, {});
+        });
         submitLoss(settings_.spp, gpu::kLossImageFilm);
     });
 }
@@ -348,8 +351,9 @@ void Renderer::backpropagateSplitSamples(GradientEvaluation& result) {
 // takes each half's dLoss/dI at the other half's image, and one adjoint pass follows
 // every path. Two passes instead of backpropagateSplitSamples' four: a pass that does
 // not fill a GPU costs about as much as one that does (docs/performance.md).
-void Renderer::backpropagateInOnePass(GradientEvaluation& result) {
+void Renderer::backpropagateInOnePass(GradientEvaluation& result, const ProgressCallback& progress) {
     const PassRange all{0, camera_.width * camera_.height, 0, settings_.spp};
+    PathProgress::Job job(progress_, progress, 2 * uint64_t(all.pixelCount) * all.samplesInPass);
     result.forwardMs += millisecondsOf([&] { runPass(all, PassMode::Film); });
     result.adjointMs += millisecondsOf([&] {
         submitLoss(settings_.spp, gpu::kLossImageHalves);
@@ -359,9 +363,11 @@ void Renderer::backpropagateInOnePass(GradientEvaluation& result) {
 
 // One sample per pixel cannot be split: dLoss/dI comes from the image, and the adjoint
 // replays paths with independent random numbers.
-void Renderer::backpropagateWithReplay(GradientEvaluation& result) {
+void Renderer::backpropagateWithReplay(GradientEvaluation& result, const ProgressCallback& progress) {
+    // Each sample rendered, replayed and back-propagated.
+    PathProgress::Job job(progress_, progress, 3 * uint64_t(camera_.width) * camera_.height * settings_.spp);
     result.forwardMs += millisecondsOf([&] {
-        forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); }, {});
+        forEachPass({0, settings_.spp}, [this](const PassRange& range) { runPass(range, PassMode::Film); });
     });
     result.adjointMs += millisecondsOf([&] {
         submitLoss(settings_.spp, gpu::kLossImageFilm);
@@ -376,7 +382,7 @@ void Renderer::replayIndependentlyAndBackpropagate() {
         forEachPass({0, settings_.spp}, [this](const PassRange& range) {
             runPass(range, PassMode::Replay);
             runPass(range, PassMode::Adjoint);
-        }, {});
+        });
     } catch (...) {
         replayingIndependently_ = false;  // an interrupted replay leaves the renderer as it found it
         uploadParams();

@@ -1,10 +1,12 @@
-// render() reports its progress as it goes, within a pass as well as between passes: a
-// render that fits in one pass (most renders on a CPU device) would otherwise say
-// nothing until it ends.
+// render() and the gradient evaluations report their progress as they go, within a
+// pass as well as between passes: a job that fits in one pass (most on a CPU device)
+// would otherwise say nothing until it ends.
 #include <algorithm>
+#include <set>
 
 #include "render_test_support.h"
 #include "bvh/bvh.h"
+#include "diff/rendered_loss_gradient.h"
 #include "scene/load_scene.h"
 #include "test_gltf.h"
 
@@ -64,6 +66,62 @@ TEST_F(RenderProgressTest, ARenderOfManyPassesReportsEachPassAndWithinIt) {
         EXPECT_TRUE(std::find(reports.begin(), reports.end(), end) != reports.end()) << "pass " << pass;
     }
     EXPECT_GT(reports.size(), 2 * size_t(passes));
+}
+
+size_t distinctReportsInside(const std::vector<double>& reports) {
+    std::set<double> inside;
+    for (double fraction : reports) {
+        if (fraction > 0.0 && fraction < 1.0) inside.insert(fraction);
+    }
+    return inside.size();
+}
+
+// Each of the three estimators of renderWithGradients (docs/gradients.md) renders,
+// back-propagates and perhaps replays in several passes; between passes alone they
+// would report at most passes - 1 distinct fractions below 1.
+TEST_F(RenderProgressTest, AGradientEvaluationReportsProgressWithinItsPasses) {
+    Scene scene = loadScene(smokeInGlowingBox(tempDir())).scene;
+    Bvh bvh = buildBvh(scene.positions, scene.triangles);
+    const Image target{16, 12, std::vector<float>(16 * 12 * 3, 0.5f)};
+    struct Case {
+        const char* estimator;
+        RenderSettings settings;
+        size_t mostPasses;
+    };
+    const Case cases[] = {
+        {"both halves in one pass", {.width = 16, .height = 12, .spp = 4, .maxDepth = 6}, 2},
+        {"one sample, replayed", {.width = 16, .height = 12, .spp = 1, .maxDepth = 6}, 3},
+        // Halves of 2 samples in passes of one sample: rendered, back-propagated and
+        // perhaps replayed, a pass each.
+        {"halves in passes", {.width = 16, .height = 12, .spp = 4, .maxDepth = 6, .pathsPerPass = 16 * 12}, 10},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.estimator);
+        Renderer renderer(testContext(), scene, bvh, c.settings);
+        renderer.enableGradients(target, LossKind::L2, DerivativeTargets::of({ParameterKind::SigmaS}));
+        std::vector<double> reports;
+        renderer.renderWithGradients([&](double fraction) { reports.push_back(fraction); });
+        expectRisingToOne(reports);
+        EXPECT_GT(distinctReportsInside(reports), c.mostPasses - 1);
+    }
+}
+
+// Views are equal shares of an evaluation, whether a view has a renderer of its own or
+// shares one with views of its size.
+TEST_F(RenderProgressTest, AGradientOfSeveralViewsReportsEachViewsShare) {
+    Scene scene = loadScene(smokeInGlowingBox(tempDir())).scene;
+    const Image small{16, 12, std::vector<float>(16 * 12 * 3, 0.5f)};
+    const Image large{20, 15, std::vector<float>(20 * 15 * 3, 0.5f)};
+    const std::vector<TargetView> views = {{"", small}, {"", large}, {"", small}};
+    RenderedLossGradient lossGradient(testContext(), scene, views, {"media/smoke/sigma_s"},
+                                      {.spp = 4, .maxDepth = 6}, LossKind::L2);
+    std::vector<double> reports;
+    lossGradient.evaluate(scene, 7, [&](double fraction) { reports.push_back(fraction); });
+    expectRisingToOne(reports);
+    for (double viewEnd : {1.0 / 3.0, 2.0 / 3.0}) {
+        EXPECT_TRUE(std::find(reports.begin(), reports.end(), viewEnd) != reports.end()) << viewEnd;
+    }
+    EXPECT_TRUE(std::any_of(reports.begin(), reports.end(), [](double f) { return f > 0.0 && f < 1.0 / 3.0; }));
 }
 
 }  // namespace
