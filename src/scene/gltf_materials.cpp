@@ -62,9 +62,12 @@ void warnAboutIgnoredProperties(const tinygltf::Material& material, size_t index
         diagnostics.warn("", "normal, occlusion and metallic-roughness textures are ignored; "
                              "surfaces are Lambertian");
     }
-    if (material.alphaMode != "OPAQUE") {
-        diagnostics.warn(indexed("materials", index) + ".alphaMode",
-                         "alpha is ignored; the surface is opaque");
+    const std::string field = indexed("materials", index) + ".alphaMode";
+    if (material.alphaMode != "OPAQUE" && material.alphaMode != "MASK" && material.alphaMode != "BLEND") {
+        diagnostics.warn(field, "'" + material.alphaMode + "' is not one of glTF's alpha modes (OPAQUE, MASK, "
+                                "BLEND); the surface is opaque");
+    } else if (material.alphaMode != "OPAQUE") {
+        diagnostics.warn(field, "alpha is ignored; the surface is opaque");
     }
 }
 

@@ -18,6 +18,7 @@
 #include "scene/glb_layout.h"
 #include "scene/gltf_index_ranges.h"
 #include "scene/gltf_json_checks.h"
+#include "scene/gltf_unknown_members.h"
 #include "scene/parse_gltf_json.h"
 
 namespace vkdr {
@@ -214,6 +215,7 @@ tinygltf::Model readGltfModel(const std::filesystem::path& file, const SceneFile
         requireIndicesInRange(document, diagnostics);
         requireBufferUris(document, binary, diagnostics);
         requireReadableUris(document, files, diagnostics);
+        warnOfUnknownMembers(document, diagnostics);
     }
 
     std::string baseDirectory = files.directory().string();
