@@ -306,7 +306,10 @@ py::dict gradientDictionary(const SceneSession& session, std::vector<ParameterGr
     return result;
 }
 
-void setParameter(SceneSession& session, const std::string& name, const py::object& value) {
+// Names arrive as py::str, not std::string, which pybind11 would also fill from bytes:
+// a name is a str, as in the lists of names and the keys of the gradients' dicts.
+void setParameter(SceneSession& session, const py::str& nameText, const py::object& value) {
+    const std::string name(nameText);
     const FloatArray array = floatArrayOf(value, name);
     const ParameterInfo info = parameterInfo(session, name);
     if (array.size() != 1 && shapeOf(array) != info.shape) {
@@ -320,7 +323,8 @@ void setParameter(SceneSession& session, const std::string& name, const py::obje
     });
 }
 
-py::array_t<float> getParameter(const SceneSession& session, const std::string& name) {
+py::array_t<float> getParameter(const SceneSession& session, const py::str& nameText) {
+    const std::string name(nameText);
     const ParameterInfo info = parameterInfo(session, name);
     return arrayOf(runOnDevice([&] { return session.get(name); }), info.shape);
 }
@@ -469,13 +473,16 @@ void bindScene(py::module_& m) {
             "device", [](const SceneSession& s) { return s.context().description().name; },
             "The name of the Vulkan device the scene renders on")
         .def("parameters", &allParameters, "Every named parameter, as Parameter objects")
-        .def("parameter", &parameterInfo, py::arg("name"), "One named parameter, as a Parameter")
+        .def(
+            "parameter", [](const SceneSession& s, const py::str& name) { return parameterInfo(s, std::string(name)); },
+            py::arg("name"), "One named parameter, as a Parameter")
         .def("__getitem__", &getParameter, py::arg("name"), "A copy of the parameter's values, float32")
         .def("__setitem__", &setParameter, py::arg("name"), py::arg("value"),
              "Sets a parameter: one value sets every channel (and texel), else the parameter's exact shape")
         .def(
             "__contains__",
-            [](const SceneSession& s, const std::string& name) {
+            [](const SceneSession& s, const py::str& nameText) {
+                const std::string name(nameText);
                 const std::vector<ParameterInfo> all = allParameters(s);
                 return std::any_of(all.begin(), all.end(), [&](const ParameterInfo& p) { return p.name == name; });
             },

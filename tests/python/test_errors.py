@@ -242,6 +242,11 @@ def test_arguments_that_do_not_fit_are_named_in_one_line(scene, fog_scene_file):
          "loss_gradient(): loss: expected a str, got NoneType"),
         (lambda: scene.write(None), "write(): path: expected a path (a str or os.PathLike), got NoneType"),
         (lambda: scene[0], "__getitem__(): name: expected a str, got int"),
+        # A name is a str wherever it is taken, as in backpropagate's list and its dict's keys.
+        (lambda: scene[b"media/fog/g"], "__getitem__(): name: expected a str, got bytes"),
+        (lambda: scene.__setitem__(b"media/fog/g", 0.5), "__setitem__(): name: expected a str, got bytes"),
+        (lambda: scene.parameter(b"media/fog/g"), "parameter(): name: expected a str, got bytes"),
+        (lambda: b"media/fog/g" in scene, "__contains__(): name: expected a str, got bytes"),
         (lambda: vkdiffrender.write_image("a.exr", adjoint, 3),
          "write_image() takes 2 positional arguments but 3 were given"),
     ]
