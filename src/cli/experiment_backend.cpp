@@ -27,7 +27,7 @@ struct RenderersOfRepeatedViews {
 
 }  // namespace
 
-ExperimentBackend renderingBackend(const VulkanContext& context, const Bvh& bvh) {
+ExperimentBackend renderingBackend(const VulkanContext& context, const Bvh& bvh, ProgressCallback evaluationProgress) {
     auto renderers = std::make_shared<RenderersOfRepeatedViews>();
     ExperimentBackend backend;
     backend.render = [&context, &bvh, renderers](const Scene& scene, const RenderSettings& settings) {
@@ -43,11 +43,14 @@ ExperimentBackend renderingBackend(const VulkanContext& context, const Bvh& bvh)
         auto renderer = std::make_unique<Renderer>(context, scene, bvh, settings);
         return renderers->kept.emplace(key, std::move(renderer)).first->second->render();
     };
-    backend.makeLossGradient = [&context, &bvh](const Scene& scene, std::vector<TargetView> views,
-                                                std::vector<std::string> parameters, const RenderSettings& settings,
-                                                LossKind loss) -> std::unique_ptr<LossGradient> {
-        return std::make_unique<RenderedLossGradient>(context, scene, bvh, std::move(views), std::move(parameters),
-                                                      settings, loss);
+    backend.makeLossGradient = [&context, &bvh, evaluationProgress](
+                                   const Scene& scene, std::vector<TargetView> views,
+                                   std::vector<std::string> parameters, const RenderSettings& settings,
+                                   LossKind loss) -> std::unique_ptr<LossGradient> {
+        auto lossGradient = std::make_unique<RenderedLossGradient>(context, scene, bvh, std::move(views),
+                                                                   std::move(parameters), settings, loss);
+        lossGradient->reportProgress(evaluationProgress);
+        return lossGradient;
     };
     return backend;
 }

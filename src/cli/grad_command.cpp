@@ -171,9 +171,8 @@ int runGrad(const GradOptions& options) {
     ProgressBar bar("grad");
     bar.update(0.0, "gradient");
     // With --check the evaluation is a small part of the work: the check's share shows.
-    const ProgressCallback evaluationProgress = [&](double fraction) { bar.update(fraction, "gradient"); };
-    GradientResult result =
-        lossGradient.evaluate(scene, options.settings.seed, options.check ? ProgressCallback{} : evaluationProgress);
+    if (!options.check) lossGradient.reportProgress([&](double fraction) { bar.update(fraction, "gradient"); });
+    GradientResult result = lossGradient.evaluate(scene, options.settings.seed);
     std::vector<GradientCheckRow> check;
     if (options.check) {
         check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds, options.settings.seed,

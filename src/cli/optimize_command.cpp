@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/experiment_backend.h"
 #include "cli/install_layout.h"
+#include "cli/iteration_progress.h"
 #include "cli/number_options.h"
 #include "image/output_paths.h"
 #include "optimize/density_grid_options.h"
@@ -136,12 +137,6 @@ std::function<void()> oldRunRemover(const OptimizeCommandOptions& options, bool 
     };
 }
 
-std::string metricsText(const std::vector<Metric>& metrics) {
-    std::string text;
-    for (const Metric& metric : metrics) text += formatText(", %s %.4g", metric.name.c_str(), metric.value);
-    return text;
-}
-
 void printOutputs(const std::filesystem::path& directory, const OptimizationReport& report, bool experiment) {
     const OptimizeResult& result = report.result;
     warnOfCutPaths(result.truncatedPaths, "the renders of the iterations run");
@@ -201,14 +196,6 @@ int withResumeHint(const OptimizeCommandOptions& options, const std::function<in
     }
 }
 
-std::function<void(const IterationRecord&)> progressOn(ProgressBar& bar, uint32_t iterations) {
-    return [&bar, iterations](const IterationRecord& record) {
-        bar.update(double(record.iteration + 1) / iterations,
-                   formatText("iteration %u/%u loss %.4g", record.iteration + 1, iterations, record.loss) +
-                       metricsText(record.metrics));
-    };
-}
-
 int runOptimizeScene(OptimizeCommandOptions& options) {
     if (options.scene.file.empty()) throw Error("optimize: give a SCENE (or --experiment FILE)");
     if (options.targets.empty()) throw Error("optimize: give at least one --target");
@@ -256,7 +243,9 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     RenderedLossGradient lossGradient(context, scene, std::move(views), options.optimize.parameters,
                                       options.settings, loss);
     ProgressBar bar("optimize");
-    OptimizationReport report = runOptimization(lossGradient, scene, job, progressOn(bar, options.optimize.iterations));
+    IterationProgress progress(bar, options.optimize.iterations, job.resume);
+    lossGradient.reportProgress(progress.withinIteration());
+    OptimizationReport report = runOptimization(lossGradient, scene, job, progress.onIteration());
     bar.finish();
     requireNoValidationMessages(context);
     printOutputs(options.out, report, false);
@@ -348,17 +337,19 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
     VulkanContext context(ContextOptions{options.device});
     // Only parameter values change during an experiment, never the geometry.
     Bvh bvh = buildBvh(loaded.scene.positions, loaded.scene.triangles);
-    ExperimentBackend backend = withTargetProgress(renderingBackend(context, bvh), experiment);
+    ProgressBar bar("optimize");
+    IterationProgress progress(bar, experiment.optimize.iterations, !options.resume.empty());
+    ExperimentBackend backend =
+        withTargetProgress(renderingBackend(context, bvh, progress.withinIteration()), experiment);
     std::fprintf(stderr, "%s: %s, %zu triangles, %zu views, %u spp (targets %u), %u iterations of %s on %s\n",
                  options.experiment.c_str(), experiment.scene.string().c_str(), loaded.scene.triangles.size(),
                  experiment.views.size(), experiment.render.spp, experiment.targetSpp,
                  experiment.optimize.iterations, optimizerKindName(experiment.optimize.optimizer).c_str(),
                  context.description().name.c_str());
 
-    ProgressBar bar("optimize");
     job.description = {options.commandLine, context.description().name};
     OptimizationReport report =
-        runExperiment(experiment, loaded.scene, backend, std::move(job), progressOn(bar, experiment.optimize.iterations));
+        runExperiment(experiment, loaded.scene, backend, std::move(job), progress.onIteration());
     bar.finish();
     requireNoValidationMessages(context);
     printOutputs(options.out, report, true);

@@ -24,6 +24,7 @@ struct RenderedLossGradient::Impl {
     std::vector<TargetView> targets;
     std::vector<ViewsOfOneSize> groups;
     std::vector<GradientSlot> slots;
+    ProgressCallback progress;  // of each evaluation
 
     // Checks the views and the parameter names before anything is built.
     Impl(const Scene& scene, std::vector<TargetView> views, const std::vector<std::string>& parameters)
@@ -106,11 +107,12 @@ void RenderedLossGradient::requireRenderable(const Scene& scene, uint32_t seed) 
     loss(scene, seed);
 }
 
-GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
-    return evaluate(scene, seed, {});
+void RenderedLossGradient::reportProgress(ProgressCallback progress) {
+    impl_->progress = std::move(progress);
 }
 
-GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed, const ProgressCallback& progress) {
+GradientResult RenderedLossGradient::evaluate(const Scene& scene, uint32_t seed) {
+    const ProgressCallback& progress = impl_->progress;
     GradientResult result;
     result.images.resize(impl_->targets.size());
     std::vector<std::vector<double>> gradients(impl_->slots.size());

@@ -30,8 +30,9 @@ public:
     ~RenderedLossGradient() override;
 
     GradientResult evaluate(const Scene& scene, uint32_t seed) override;
-    // The same, telling `progress` the share done as the views' paths end.
-    GradientResult evaluate(const Scene& scene, uint32_t seed, const ProgressCallback& progress);
+    // Each later evaluate() tells `progress` the share of it done as the views' paths
+    // end; an empty callback, the default, reports nothing.
+    void reportProgress(ProgressCallback progress);
     // Renders every view once, as loss() does.
     void requireRenderable(const Scene& scene, uint32_t seed) override;
     // The loss alone, rendered with the random numbers evaluate() uses for its image:

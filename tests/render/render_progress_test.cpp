@@ -116,7 +116,8 @@ TEST_F(RenderProgressTest, AGradientOfSeveralViewsReportsEachViewsShare) {
     RenderedLossGradient lossGradient(testContext(), scene, views, {"media/smoke/sigma_s"},
                                       {.spp = 4, .maxDepth = 6}, LossKind::L2);
     std::vector<double> reports;
-    lossGradient.evaluate(scene, 7, [&](double fraction) { reports.push_back(fraction); });
+    lossGradient.reportProgress([&](double fraction) { reports.push_back(fraction); });
+    lossGradient.evaluate(scene, 7);
     expectRisingToOne(reports);
     for (double viewEnd : {1.0 / 3.0, 2.0 / 3.0}) {
         EXPECT_TRUE(std::find(reports.begin(), reports.end(), viewEnd) != reports.end()) << viewEnd;
