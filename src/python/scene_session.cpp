@@ -160,13 +160,8 @@ SceneSession::CachedRenderer& SceneSession::rendererFor(const RenderSettings& se
     return cached;
 }
 
-void SceneSession::requireRenderSize(const RenderSettings& settings, const Image& image, const std::string& what) {
-    rendererFor(settings).renderer->requireRenderSize(image, what);
-}
-
 template <typename Work>
-auto SceneSession::withRenderer(const RenderSettings& settings, Work work) {
-    CachedRenderer& cached = rendererFor(settings);
+auto SceneSession::withRenderer(CachedRenderer& cached, Work work) {
     try {
         auto result = work(cached);
         requireNoValidationMessages(*context_);
@@ -181,7 +176,7 @@ auto SceneSession::withRenderer(const RenderSettings& settings, Work work) {
 
 SceneSession::Rendered SceneSession::render(const RenderSettings& settings) {
     auto lock = lockInOwnProcess();
-    Rendered rendered = withRenderer(settings, [](CachedRenderer& cached) {
+    Rendered rendered = withRenderer(rendererFor(settings), [](CachedRenderer& cached) {
         Image image = cached.renderer->render();
         return Rendered{std::move(image), cached.renderer->stats().truncatedPaths};
     });
@@ -204,14 +199,14 @@ SceneSession::Backpropagated SceneSession::backpropagate(const RenderSettings& s
         }
     }
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
-    // Before the work, whose failure would discard the view.
-    requireRenderSize(settings, imageAdjoint, "the image adjoint");
+    CachedRenderer& view = rendererFor(settings);
+    view.renderer->requireRenderSize(imageAdjoint, "the image adjoint");
     if (slots.empty()) {
         return {};
     }
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     uint64_t cutPaths = 0;
-    const SceneGradients gradients = withRenderer(settings, [&](CachedRenderer& cached) {
+    const SceneGradients gradients = withRenderer(view, [&](CachedRenderer& cached) {
         if (!cached.adjoint || cached.adjoint->loss || cached.adjoint->targets.kinds != wanted.kinds) {
             cached.renderer->enableImageAdjoint(wanted);
             cached.adjoint = AdjointSetUp{std::nullopt, wanted};
@@ -232,8 +227,9 @@ SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& sett
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     uint64_t cutPaths = 0;
-    requireRenderSize(settings, target, "the target");
-    GradientEvaluation evaluation = withRenderer(settings, [&](CachedRenderer& cached) {
+    CachedRenderer& view = rendererFor(settings);
+    view.renderer->requireRenderSize(target, "the target");
+    GradientEvaluation evaluation = withRenderer(view, [&](CachedRenderer& cached) {
         if (!cached.adjoint || cached.adjoint->loss != loss || cached.adjoint->targets.kinds != wanted.kinds) {
             cached.renderer->enableGradients(target, loss, wanted);
             cached.adjoint = AdjointSetUp{loss, wanted};

@@ -90,12 +90,10 @@ private:
     // The renderer for these settings, made (or moved to the front of renderers_) and
     // given the current parameters and the settings' seed.
     CachedRenderer& rendererFor(const RenderSettings& settings);
-    // Throws vkdr::Error naming `what` unless `image` has the size these settings render,
-    // before any work, so that the view is kept.
-    void requireRenderSize(const RenderSettings& settings, const Image& image, const std::string& what);
-    // work(renderer) with that renderer; any exception discards it.
+    // work(cached) with the renderer rendererFor() returned last; any exception discards
+    // it. What is checked before the call (an input's size) keeps it.
     template <typename Work>
-    auto withRenderer(const RenderSettings& settings, Work work);
+    auto withRenderer(CachedRenderer& cached, Work work);
 
     std::vector<ParameterGradient> namedGradients(const std::vector<GradientSlot>& slots,
                                                   const SceneGradients& gradients) const;
