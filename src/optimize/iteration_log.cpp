@@ -167,9 +167,9 @@ IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>
     writeAtomically(file_, [&](std::ofstream& stream) { stream << text_; });
 }
 
-void IterationLog::append(const IterationRecord& record) {
+void IterationLog::append(const IterationRecord& record, PendingRenames* pending) {
     text_ += iterationJsonLine(record) + "\n";
-    writeAtomically(file_, [&](std::ofstream& stream) { stream << text_; });
+    writeAtomically(file_, [&](std::ofstream& stream) { stream << text_; }, pending);
 }
 
 }  // namespace vkdr

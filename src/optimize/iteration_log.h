@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "image/atomic_write.h"
 #include "optimize/optimize_loop.h"
 #include "optimize/value_summary.h"
 
@@ -60,7 +61,9 @@ public:
     // Continues the log of a run resumed with the checkpoint's `losses`: rewrites the file
     // with resumedLogLines, so that each iteration appears once.
     IterationLog(std::filesystem::path file, const std::vector<double>& losses);
-    void append(const IterationRecord& record);
+    // Adds the record's line; with `pending`, the rewritten file waits in its temporary
+    // for pending->commit() (image/atomic_write.h).
+    void append(const IterationRecord& record, PendingRenames* pending = nullptr);
 
 private:
     std::filesystem::path file_;

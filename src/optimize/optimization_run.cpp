@@ -143,6 +143,7 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
     removeStaleTemporaries(directory);  // a killed run's partial writes
+    if (resume) removeRunOutputs(directory, job.writeTarget);  // of a finished run, before its log is rewritten
     IterationLog log = resume ? IterationLog(directory / kLogFileName, resume->losses)
                               : IterationLog(directory / kLogFileName);
     std::function<void()> replaceOldRun = job.replaceOldRun;
@@ -152,8 +153,13 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     OptimizeCallbacks callbacks;
     callbacks.measure = job.measure;
     callbacks.iterationDone = [&](const IterationRecord& record) {
+        // The log is the run's first file (no checkpoint precedes iteration 0's line): it
+        // is complete in its temporary before the old run's files go, so that a write that
+        // fails leaves the old run whole.
+        PendingRenames pending;
+        log.append(record, &pending);
         writing();
-        log.append(record);
+        pending.commit();
         if (progress) progress(record);
     };
     callbacks.checkpoint = [&](const LoopState& state) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <regex>
+#include <span>
+#include <string_view>
 #include <vector>
 
 #include "core/error.h"
@@ -76,12 +78,27 @@ void requireRunDirectoryFor(const fs::path& directory, RunStart start, bool expe
     }
 }
 
-void removeRunFiles(const fs::path& directory, bool experiment) {
+namespace {
+
+void removeRunFilesBut(const fs::path& directory, bool experiment, std::span<const std::string_view> kept,
+                       const std::string& why) {
     for (const std::string& name : presentRunFiles(directory, experiment)) {
+        if (std::find(kept.begin(), kept.end(), name) != kept.end()) continue;
         std::error_code error;
         fs::remove(directory / name, error);
-        if (error) throw Error("--overwrite: cannot remove " + (directory / name).string() + ": " + error.message());
+        if (error) throw Error(why + ": cannot remove " + (directory / name).string() + ": " + error.message());
     }
+}
+
+}  // namespace
+
+void removeRunFiles(const fs::path& directory, bool experiment) {
+    removeRunFilesBut(directory, experiment, {}, "--overwrite");
+}
+
+void removeRunOutputs(const fs::path& directory, bool experiment) {
+    constexpr std::array<std::string_view, 2> kKept = {"log.jsonl", kCheckpointFileName};
+    removeRunFilesBut(directory, experiment, kKept, "--resume");
 }
 
 }  // namespace vkdr

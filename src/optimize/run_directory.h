@@ -34,4 +34,9 @@ void requireRunDirectoryFor(const std::filesystem::path& directory, RunStart sta
 // alone: what --overwrite does before the new run writes.
 void removeRunFiles(const std::filesystem::path& directory, bool experiment);
 
+// Removes the run files but the log and the checkpoint: the outputs of a finished run
+// that a resumed run writes again at its end. Removed before it rewrites the log, they
+// cannot outlive it stopped short of its end, describing a run its log no longer holds.
+void removeRunOutputs(const std::filesystem::path& directory, bool experiment);
+
 }  // namespace vkdr

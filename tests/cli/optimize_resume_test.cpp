@@ -97,6 +97,26 @@ TEST_F(OptimizeResume, ADeviceLostMidRunLeavesTheCheckpointAndResumeFinishesTheR
     EXPECT_EQ(expected, 8);
 }
 
+// --resume from a finished run does its last iterations again. Its log goes back to the
+// checkpoint at once; stopped before its end, it must not leave the finished run's
+// outputs beside that log, as if they were its own.
+TEST_F(OptimizeResume, AResumedFinishedRunStoppedShortLeavesNoOutputsOfTheRunBefore) {
+    fs::path run = scratch_ / "run";
+    ASSERT_EQ(runCli(command_ + " --out " + run.string(), scratch_).exitCode, 0);
+    const std::string finishedParams = slurp(run / "params.json");
+    // Lost in the start renders a resumed run makes for its report, after the log is rewritten.
+    RunResult lost = runCli(command_ + " --resume " + run.string(), scratch_, "VKDR_SIMULATE_DEVICE_LOST=40");
+    ASSERT_EQ(lost.exitCode, 2) << lost.err;
+    for (const char* file : {"params.json", "scene.gltf", "final.exr", "final.png", "diff.png", "loss.svg",
+                             "report.html"}) {
+        EXPECT_FALSE(fs::exists(run / file)) << file;
+    }
+    ASSERT_TRUE(fs::exists(run / "checkpoint.json"));
+    RunResult resumed = runCli(command_ + " --resume " + run.string(), scratch_);
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    expectSameValues(nlohmann::json::parse(slurp(run / "params.json")), nlohmann::json::parse(finishedParams));
+}
+
 TEST_F(OptimizeResume, RefusesAResumeWithOtherOptionsOrAnotherOut) {
     fs::path cut = scratch_ / "cut";
     ASSERT_EQ(runCli(command_ + " --out " + cut.string(), scratch_, kLoseDeviceMidRun).exitCode, 2);

@@ -218,6 +218,20 @@ TEST_F(OutputSafety, AnOptimizeDirectoryHoldsOneRun) {
     EXPECT_EQ(slurp(out / "log.jsonl"), replacedLog);
     EXPECT_EQ(slurp(out / "params.json"), replacedParams);
 
+    // A run whose first write fails (no room for its log) leaves the run it was to
+    // replace whole: the log is complete in its temporary before the old files go.
+    // sh's own redirections are outside the limit, so its messages are kept.
+    const std::string limited = "(trap '' XFSZ; ulimit -f 0; " + std::string(VKDR_CLI_PATH) + " " +
+                                optimizeCommand(target) + " --overwrite --out " + out.string() +
+                                " 2>&1; echo \"exit $?\") < /dev/null | cat > " + (dir_ / "limited").string();
+    ASSERT_EQ(std::system(limited.c_str()), 0);
+    const std::string limitedOutput = slurp(dir_ / "limited");
+    EXPECT_NE(limitedOutput.find("error: cannot write"), std::string::npos) << limitedOutput;
+    EXPECT_NE(limitedOutput.find("held is left as it was"), std::string::npos) << limitedOutput;
+    EXPECT_NE(limitedOutput.find("exit 2"), std::string::npos) << limitedOutput;
+    EXPECT_EQ(slurp(out / "log.jsonl"), replacedLog);
+    EXPECT_EQ(slurp(out / "params.json"), replacedParams);
+
     // --overwrite removes only the run's files: a scene.blend or notes are the user's.
     std::ofstream(out / "scene.bin") << "old run";
     std::ofstream(out / "scene.materials1.emission_grid.vdb") << "old run";
