@@ -200,7 +200,7 @@ CommandAction addGradCommand(CLI::App& app) {
     addSceneOptions(*command, options->scene);
     command->add_option("--target", options->targets,
                         "Target image (EXR, PNG or JPEG); CAMERA=FILE for another camera than the first (repeatable)")
-        ->required();
+        ->required()->check(nonEmpty("an image file"));
     command->add_option("--param", options->parameters, "Parameter to differentiate, e.g. media/fog/sigma_a "
                                                         "(repeatable)")
         ->required();

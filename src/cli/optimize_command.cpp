@@ -367,7 +367,8 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
     command->get_option("scene")->required(false);
     command->add_option("--target", options->targets,
                         "Target image (EXR, PNG or JPEG) of the first camera, or CAMERA=FILE (repeatable, one per "
-                        "view); each view renders at its target's size");
+                        "view); each view renders at its target's size")
+        ->check(nonEmpty("an image file"));
     command->add_option("--param", options->parameters, "Parameter to optimise, e.g. media/fog/sigma_a (repeatable)");
     command->add_option("--experiment", options->experiment,
                         "Run a self-contained experiment file (see " +
@@ -400,18 +401,18 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
         command->add_option("--smoothness", options->optimize.smoothness,
                             "Add this weight times the mean squared difference between face-neighbouring voxels of "
                             "every grid optimised (density or emission grid) to the loss (0: none)")
-            ->default_val(options->optimize.smoothness)->check(finiteNumberIn(0.0, 1e12));
+            ->default_val(options->optimize.smoothness)->check(finiteNumberIn(0.0, kMostGridPriorWeight));
     overrides.sparsity =
         command->add_option("--sparsity", options->optimize.sparsity,
                             "Add this weight times the mean value of every grid optimised (density or emission grid) to the "
                             "loss, emptying what the images do not ask to fill (0: none)")
-            ->default_val(options->optimize.sparsity)->check(finiteNumberIn(0.0, 1e12));
+            ->default_val(options->optimize.sparsity)->check(finiteNumberIn(0.0, kMostGridPriorWeight));
     overrides.totalVariation =
         command->add_option("--total-variation", options->optimize.totalVariation,
                             "Add this weight times the mean absolute difference between face-neighbouring voxels of "
                             "every grid optimised (density or emission grid) to the loss: smooths like --smoothness but "
                             "keeps edges sharp (0: none)")
-            ->default_val(options->optimize.totalVariation)->check(finiteNumberIn(0.0, 1e12));
+            ->default_val(options->optimize.totalVariation)->check(finiteNumberIn(0.0, kMostGridPriorWeight));
     overrides.gridLevels =
         command
             ->add_option("--grid-levels", options->optimize.gridLevels,

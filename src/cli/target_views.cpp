@@ -39,6 +39,9 @@ TargetFile parseTargetArgument(const std::string& argument, const Scene& scene) 
     const bool wholeIsFile = std::filesystem::is_regular_file(argument, error);
     if (named) {
         std::string file = argument.substr(named->name.size() + 1);
+        if (!wholeIsFile && file.empty()) {
+            throw Error("--target " + argument + ": no file after '" + named->name + "='; give CAMERA=FILE");
+        }
         if (!wholeIsFile) return {named->name, file};
         if (std::filesystem::is_regular_file(file, error)) {
             throw Error("--target " + argument + ": both the file '" + argument + "' and camera '" + named->name +

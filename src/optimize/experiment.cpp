@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/format_text.h"
+#include "image/image.h"
 #include "image/regular_file.h"
 #include "optimize/coarse_grid_gradient.h"
 #include "optimize/density_grid_options.h"
@@ -36,6 +37,13 @@ const std::set<std::string> kCameraKeys = {"name", "position", "look_at", "up", 
                                            "orthographic_half_height"};
 
 // Reads one experiment file, prefixing every error with the file and the key at fault.
+// ", got VALUE" for a message, VALUE as the file writes it (its first 40 characters).
+std::string got(const Json& value) {
+    std::string text = value.dump();
+    if (text.size() > 40) text = text.substr(0, 40) + "...";
+    return ", got " + text;
+}
+
 class ExperimentReader {
 public:
     explicit ExperimentReader(std::filesystem::path file) : file_(std::move(file)) {}
@@ -73,6 +81,7 @@ public:
     // The command line's bounds apply here too: they keep sizes and loops within range.
     // The JSON parser keeps an integer beyond 64 bits as a double, and one beyond int64's
     // range as unsigned: each is compared as what it is.
+    // A whole number written with a decimal point (16.0, as a script's floats print) counts.
     uint32_t count(const Json& value, const std::string& key, uint32_t minimum,
                    uint32_t maximum = UINT32_MAX) const {
         bool inRange = false;
@@ -80,17 +89,21 @@ public:
             inRange = value.get<uint64_t>() >= minimum && value.get<uint64_t>() <= maximum;
         } else if (value.is_number_integer()) {
             inRange = value.get<int64_t>() >= int64_t(minimum) && value.get<int64_t>() <= int64_t(maximum);
+        } else if (value.is_number_float()) {
+            const double number = value.get<double>();
+            inRange = number == std::floor(number) && number >= double(minimum) && number <= double(maximum);
+            if (inRange) return uint32_t(number);
         }
         if (!inRange) {
             fail(key, "expected an integer in [" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]" +
-                          (value.is_number() ? ", got " + value.dump() : ""));
+                          got(value));
         }
         return uint32_t(value.get<uint64_t>());
     }
 
     double positive(const Json& value, const std::string& key) const {
         if (!value.is_number() || !(value.get<double>() > 0.0) || !std::isfinite(value.get<double>())) {
-            fail(key, "expected a finite number > 0" + (value.is_number() ? ", got " + value.dump() : ""));
+            fail(key, "expected a finite number > 0" + got(value));
         }
         return value.get<double>();
     }
@@ -98,7 +111,8 @@ public:
     // A number in [minimum, maximum], as the command line's finiteNumberIn takes it.
     double numberIn(const Json& value, const std::string& key, double minimum, double maximum) const {
         if (!value.is_number() || !(value.get<double>() >= minimum && value.get<double>() <= maximum)) {
-            fail(key, "expected a number in [" + formatNumber(minimum) + ", " + formatNumber(maximum) + "]");
+            fail(key, "expected a number in [" + formatNumber(minimum) + ", " + formatNumber(maximum) + "]" +
+                          got(value));
         }
         return value.get<double>();
     }
@@ -123,9 +137,8 @@ public:
     }
 
     glm::vec3 vector3(const Json& value, const std::string& key) const {
-        std::vector<float> values = numbers(value, key);
-        if (values.size() != 3) fail(key, "expected an array of 3 numbers");
-        return {values[0], values[1], values[2]};
+        if (!value.is_array() || value.size() != 3) fail(key, "expected an array of 3 numbers" + got(value));
+        return {finiteFloat(value[0], key), finiteFloat(value[1], key), finiteFloat(value[2], key)};
     }
 
     std::vector<std::string> strings(const Json& value, const std::string& key) const {
@@ -198,7 +211,8 @@ private:
 
 void readRenderSettings(const ExperimentReader& reader, const Json& document, Experiment& experiment) {
     RenderSettings& render = experiment.render;
-    render.width = 128;
+    // Given alone, either side sets the other from the camera's aspect ratio, as render's do.
+    if (!document.contains("width") && !document.contains("height")) render.width = 128;
     const uint32_t maxSide = kMaxImageSide, maxSpp = kMaxSamplesPerPixel, maxDepth = 100000;
     if (document.contains("width")) render.width = int(reader.count(document["width"], "width", 1, maxSide));
     if (document.contains("height")) render.height = int(reader.count(document["height"], "height", 1, maxSide));
@@ -232,11 +246,7 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
     for (auto [key, weight] : {std::pair{"smoothness", &options.smoothness}, std::pair{"sparsity", &options.sparsity},
                                std::pair{"total_variation", &options.totalVariation}}) {
         if (!document.contains(key)) continue;
-        const Json& value = document[key];
-        if (!value.is_number() || !(value.get<double>() >= 0.0) || !std::isfinite(value.get<double>())) {
-            reader.fail(key, "expected a finite number >= 0");
-        }
-        *weight = value.get<double>();
+        *weight = reader.numberIn(document[key], key, 0.0, kMostGridPriorWeight);
     }
     if (document.contains("grid_levels")) {
         options.gridLevels = reader.count(document["grid_levels"], "grid_levels", 1, kMostGridLevels);
@@ -323,6 +333,9 @@ Experiment readExperiment(const std::filesystem::path& file) {
     experiment.scene = (file.parent_path() / scene).lexically_normal();
     std::string reason = notRegularFileReason(experiment.scene);
     if (!reason.empty()) reader.fail("scene", experiment.scene.string() + ": " + reason);
+    if (const std::string type = lowercaseExtension(experiment.scene); type != ".gltf" && type != ".glb") {
+        reader.fail("scene", experiment.scene.string() + ": expected a .gltf or .glb file");
+    }
     if (document.contains("views")) {
         experiment.views = reader.strings(document["views"], "views");
         if (experiment.views.empty()) {

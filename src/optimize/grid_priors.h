@@ -12,6 +12,9 @@ namespace vkdr {
 // their exact gradients (docs/density-grids.md, "Fitting a grid"). Per-voxel gradients
 // are noisy and a voxel is seen through few paths; without priors the voxels the views
 // see weakly wander while the image loss still falls.
+// The largest weight a prior takes, from the command line or an experiment file.
+inline constexpr double kMostGridPriorWeight = 1e12;
+
 struct GridPriorWeights {
     // w * (1 / voxels) * sum over pairs of face-neighbouring voxels (d_i - d_j)^2: ties
     // each voxel to its neighbours.

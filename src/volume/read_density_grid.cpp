@@ -19,6 +19,7 @@
 #include "image/regular_file.h"
 #include "volume/grid_file_type.h"
 #include "volume/index_transform.h"
+#include "volume/library_complaint.h"
 #include "volume/nanovdb_grid_extent.h"
 #include "volume/openvdb_support.h"
 
@@ -328,7 +329,7 @@ DensityGrid readGrid(const std::filesystem::path& file, const std::string& gridN
         throw Error(context + error.what());
     } catch (const std::exception& error) {
         // OpenVDB's and NanoVDB's own complaints about the file (not a VDB file, truncated, ...).
-        throw Error(context + error.what());
+        throw Error(context + boundedComplaint(error.what()));
     }
 }
 

@@ -345,6 +345,13 @@ TEST_F(CliTest, TargetPathsMayHoldEquals) {
     EXPECT_EQ(unknown.exitCode, 2);
     EXPECT_NE(unknown.err.find("no camera 'side' and no file"), std::string::npos) << unknown.err;
     EXPECT_NE(unknown.err.find("cameras: camera"), std::string::npos) << unknown.err;
+    RunResult noFile = run(grad + "camera=");
+    EXPECT_EQ(noFile.exitCode, 2);
+    EXPECT_NE(noFile.err.find("--target camera=: no file after 'camera='; give CAMERA=FILE"), std::string::npos)
+        << noFile.err;
+    RunResult empty = run(grad + "''");
+    EXPECT_EQ(empty.exitCode, 2);
+    EXPECT_NE(empty.err.find("--target: give an image file"), std::string::npos) << empty.err;
 
     // A file whose whole name starts with a camera's name and '=' is that file, unless
     // the part after '=' is a file too: then the argument is refused as ambiguous.

@@ -75,6 +75,27 @@ TEST(Experiment, ReadsEverySettingWithDefaultsForTheRest) {
     EXPECT_EQ(experiment.startValues[1].values, std::vector<float>{0.5f});
 }
 
+// A size written as a script's float prints (16.0) is a size; one side given alone
+// leaves the other to the camera's aspect ratio, as render's --width and --height do.
+TEST(Experiment, ReadsWholeNumbersWithAPointAndOneSideOfTheImage) {
+    ScratchDirectory scratch;
+    json experiment = fogExperiment(scratch.path());
+    experiment["width"] = 16.0;
+    experiment.erase("height");
+    Experiment read = readExperiment(writeExperiment(scratch, experiment));
+    EXPECT_EQ(read.render.width, 16);
+    EXPECT_EQ(read.render.height, 0);
+    experiment.erase("width");
+    experiment["height"] = 8;
+    read = readExperiment(writeExperiment(scratch, experiment));
+    EXPECT_EQ(read.render.width, 0);
+    EXPECT_EQ(read.render.height, 8);
+    experiment.erase("height");
+    read = readExperiment(writeExperiment(scratch, experiment));
+    EXPECT_EQ(read.render.width, 128);
+    EXPECT_EQ(read.render.height, 0);
+}
+
 TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
     ScratchDirectory scratch;
     json experiment = fogExperiment(scratch.path());
@@ -96,6 +117,10 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
     experiment = fogExperiment(scratch.path());
     experiment["scene"] = "nowhere.gltf";
     expectReadError(scratch, experiment, {"scene", "nowhere.gltf", "no such file"});
+
+    writeBytes(scratch / "target.exr", "not a scene");
+    experiment["scene"] = "target.exr";
+    expectReadError(scratch, experiment, {"experiment.json: scene: ", "target.exr: expected a .gltf or .glb file"});
 
     experiment["scene"] = "";
     expectReadError(scratch, experiment, {"scene", "empty: give a glTF path"});
@@ -158,7 +183,15 @@ TEST(Experiment, RejectsNumbersOutOfRangeNamingTheKeyAndTheRange) {
     expectRefused("learning_rate_decay", 1e-12, {"[1e-09, 1]"});
     expectRefused("learning_rate_decay", 2.0, {"[1e-09, 1]"});
     expectRefused("learning_rate_decay_start", 0.9999, {"[0, 0.999]"});
-    expectRefused("adam_epsilon", -1e-8, {"finite number > 0"});
+    expectRefused("adam_epsilon", -1e-8, {"finite number > 0", "got -1e-08"});
+    expectRefused("iterations", "3", {"[1, 1000000]", "got \"3\""});
+    expectRefused("height", nullptr, {"[1, 16384]", "got null"});
+    expectRefused("width", 16.5, {"[1, 16384]", "got 16.5"});
+    // The command line's range (--smoothness and the other priors' weights).
+    for (const char* prior : {"smoothness", "sparsity", "total_variation"}) {
+        expectRefused(prior, 1e13, {"[0, 1e+12]", "got 10000000000000.0"});
+        expectRefused(prior, -1.0, {"[0, 1e+12]", "got -1.0"});
+    }
     expectRefused("learning_rates", {{"media/fog/sigma_a", -2.0}}, {"learning_rates.media/fog/sigma_a", "> 0"});
     expectRefused("start", {{"media/fog/sigma_a", 1e39}}, {"start.media/fog/sigma_a", "float range"});
     // The field of view as the camera keeps it, in float radians: 1e-300 is 0 there, and
@@ -167,6 +200,11 @@ TEST(Experiment, RejectsNumbersOutOfRangeNamingTheKeyAndTheRange) {
         expectRefused("cameras",
                       {{{"name", "c"}, {"position", {0, 0, 0}}, {"look_at", {0, 0, -1}}, {"yfov_degrees", yfov}}},
                       {"cameras[0].yfov_degrees", "above 0 and below 180 once rounded to a float"});
+    }
+    // A camera's vectors are three numbers, whatever else is given.
+    for (json position : {json(5), json({5}), json({0, 1}), json("origin")}) {
+        expectRefused("cameras", {{{"name", "c"}, {"position", position}, {"look_at", {0, 0, -1}}}},
+                      {"cameras[0].position: expected an array of 3 numbers, got " + position.dump()});
     }
     // Each finite, but the view direction between them is not.
     expectRefused("cameras", {{{"name", "c"}, {"position", {3e38, 1, 5}}, {"look_at", {-3e38, 1, 0}}}},
@@ -242,19 +280,19 @@ TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndGridSettingsWithoutAGrid) 
 
     experiment = fogExperiment(scratch.path());
     experiment["smoothness"] = -1.0;
-    expectReadError(scratch, experiment, {"smoothness", "expected a finite number >= 0"});
+    expectReadError(scratch, experiment, {"smoothness", "expected a number in [0, 1e+12], got -1.0"});
     experiment["smoothness"] = 0.5;
     expectPrepareError(scratch, experiment, {"smoothness", "no grid (media/<medium>/density or"});
 
     experiment = fogExperiment(scratch.path());
     experiment["sparsity"] = "a lot";
-    expectReadError(scratch, experiment, {"sparsity", "expected a finite number >= 0"});
+    expectReadError(scratch, experiment, {"sparsity", "expected a number in [0, 1e+12], got \"a lot\""});
     experiment["sparsity"] = 2.0;
     expectPrepareError(scratch, experiment, {"sparsity", "no grid (media/<medium>/density or"});
 
     experiment = fogExperiment(scratch.path());
     experiment["total_variation"] = -0.5;
-    expectReadError(scratch, experiment, {"total_variation", "expected a finite number >= 0"});
+    expectReadError(scratch, experiment, {"total_variation", "expected a number in [0, 1e+12], got -0.5"});
     experiment["total_variation"] = 0.5;
     expectPrepareError(scratch, experiment, {"total_variation", "no grid (media/<medium>/density or"});
 
