@@ -93,12 +93,6 @@ RunStart runStart(const OptimizeCommandOptions& options) {
     return !options.resume.empty() ? RunStart::Resume : options.overwrite ? RunStart::Overwrite : RunStart::New;
 }
 
-// Before any work: the directory can be written, and holds no other run unless told.
-void requireRunDirectory(const OptimizeCommandOptions& options) {
-    requireOutputDirectory(options.resume.empty() ? "--out" : "--resume", options.out);
-    requireRunDirectoryFor(options.out, runStart(options), !options.experiment.empty());
-}
-
 // The files a run writes into its directory (and --overwrite removes) must not be ones
 // it reads: `optimize scene.gltf --out .` would replace the user's scene. An input is
 // checked as named and as the file its symbolic links lead to, which the run's writes
@@ -118,6 +112,17 @@ void requireRunWritesNoInput(const std::filesystem::path& directory, bool experi
             }
         }
     }
+}
+
+// Before any work: the directory can be written, and holds no other run unless told. A
+// run file there that is the run's own SCENE or experiment file is named as such first:
+// it is no other run, and --overwrite would not help.
+void requireRunDirectory(const OptimizeCommandOptions& options) {
+    requireOutputDirectory(options.resume.empty() ? "--out" : "--resume", options.out);
+    const bool experiment = !options.experiment.empty();
+    if (!options.scene.file.empty()) requireRunWritesNoInput(options.out, experiment, {{"SCENE", options.scene.file}});
+    if (experiment) requireRunWritesNoInput(options.out, true, {{"--experiment", options.experiment}});
+    requireRunDirectoryFor(options.out, runStart(options), experiment);
 }
 
 std::vector<NamedOutput> filesTheSceneReads(const LoadedScene& loaded) {

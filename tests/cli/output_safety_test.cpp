@@ -251,6 +251,11 @@ TEST_F(OutputSafety, ARunNeverWritesOverItsOwnInputs) {
     expectRefused("optimize " + (dir_ / "scene.gltf").string() + " --target " + target.string() +
                       " --param media/fog/sigma_a --iters 1 --spp 1 --overwrite --out " + dir_.string(),
                   "SCENE");
+    // Without --overwrite too, and said as such: the scene is no other run to overwrite.
+    const std::string plain = "optimize " + (dir_ / "scene.gltf").string() + " --target " + target.string() +
+                              " --param media/fog/sigma_a --iters 1 --spp 1 --out " + dir_.string();
+    expectRefused(plain, "the run writes scene.gltf there, which is SCENE");
+    EXPECT_EQ(run(plain).err.find("--overwrite"), std::string::npos);
     EXPECT_EQ(slurp(dir_ / "scene.gltf"), scene);
 
     fs::path out = dir_ / "out";
