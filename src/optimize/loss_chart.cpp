@@ -51,14 +51,11 @@ std::string lossChartSvg(std::span<const double> losses, std::string_view lossNa
     svg += formatText("<text transform=\"translate(14 %g) rotate(-90)\" text-anchor=\"middle\">%s loss (log scale)</text>\n",
                   kTop + plotHeight / 2, std::string(lossName).c_str());
 
-    svg += "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"";
+    std::vector<std::pair<double, double>> points;
     for (size_t i = 0; i < losses.size(); ++i) {
-        if (losses[i] > 0.0 && std::isfinite(losses[i])) {
-            svg += formatText("%s%.2f,%.2f", i == 0 ? "" : " ", x(double(i)), y(losses[i]));
-        }
+        if (losses[i] > 0.0 && std::isfinite(losses[i])) points.emplace_back(x(double(i)), y(losses[i]));
     }
-    svg += "\"/>\n</svg>\n";
-    return svg;
+    return svg + seriesSvg(points) + "</svg>\n";
 }
 
 }  // namespace vkdr

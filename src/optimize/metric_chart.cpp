@@ -39,11 +39,11 @@ std::string metricChartSvg(const MetricSeries& metric) {
                          y(0.0), kWidth - kRight, y(0.0));
     }
     svg += iterationAxisSvg(kLeft, kTop, kWidth - kRight, kHeight - kBottom, lastIteration, x);
-    svg += "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"";
+    std::vector<std::pair<double, double>> points;
     for (size_t i = 0; i < metric.values.size(); ++i) {
-        if (std::isfinite(metric.values[i])) svg += formatText("%.2f,%.2f ", x(double(i)), y(metric.values[i]));
+        if (std::isfinite(metric.values[i])) points.emplace_back(x(double(i)), y(metric.values[i]));
     }
-    return svg + "\"/>\n</svg>\n";
+    return svg + seriesSvg(points) + "</svg>\n";
 }
 
 }  // namespace vkdr

@@ -48,6 +48,19 @@ std::pair<double, double> paddedRange(double low, double high) {
     return {low - padding, high + padding};
 }
 
+std::string seriesSvg(const std::vector<std::pair<double, double>>& points) {
+    std::string svg = "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"";
+    for (size_t i = 0; i < points.size(); ++i) {
+        svg += formatText("%s%.2f,%.2f", i == 0 ? "" : " ", points[i].first, points[i].second);
+    }
+    svg += "\"/>\n";
+    if (points.size() == 1) {
+        svg += formatText("<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"#1f77b4\"/>\n", points[0].first,
+                          points[0].second);
+    }
+    return svg;
+}
+
 std::string svgHeader(double width, double height) {
     return formatText("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\" "
                      "font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%%\" height=\"100%%\" "

@@ -2,6 +2,7 @@
 #include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace vkdr {
 
@@ -24,6 +25,10 @@ std::string valueGridSvg(double left, double right, double low, double high, con
 // [low, high] padded so that no line runs along an edge; [0, 1] when low > high (no
 // finite value to show).
 std::pair<double, double> paddedRange(double low, double high);
+
+// A line of the charts' blue through `points` (x, y); a lone point, which a line does
+// not show, as a dot too.
+std::string seriesSvg(const std::vector<std::pair<double, double>>& points);
 
 // The start of an SVG document of this size, on white, in the charts' font.
 std::string svgHeader(double width, double height);

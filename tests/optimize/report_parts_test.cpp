@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "optimize/base64.h"
 #include "optimize/difference_colour_map.h"
+#include "optimize/loss_chart.h"
 #include "optimize/parameter_table.h"
 #include "optimize/metric_chart.h"
 #include "optimize/trajectory_chart.h"
@@ -272,6 +273,14 @@ TEST(MetricChart, DrawsEveryFiniteValueAndAZeroLineWhereTheRangeCrossesIt) {
     EXPECT_EQ(std::count(list.begin(), list.end(), ','), 3) << list;
     EXPECT_EQ(occurrences(svg, "class=\"zero\""), 1u);
     EXPECT_EQ(occurrences(metricChartSvg({"error", {0.5, 0.25}}), "class=\"zero\""), 0u);
+}
+
+// A run of one iteration has one value: a line through it alone would show nothing.
+TEST(MetricChart, ALoneValueIsADot) {
+    EXPECT_EQ(occurrences(metricChartSvg({"error", {0.5}}), "<circle"), 1u);
+    EXPECT_EQ(occurrences(metricChartSvg({"error", {0.5, std::nan("")}}), "<circle"), 1u);
+    EXPECT_EQ(occurrences(metricChartSvg({"error", {0.5, 0.25}}), "<circle"), 0u);
+    EXPECT_EQ(occurrences(lossChartSvg(std::vector<double>{0.1}, "l2"), "<circle"), 1u);
 }
 
 }  // namespace
