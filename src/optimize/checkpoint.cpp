@@ -73,7 +73,14 @@ public:
     explicit CheckpointReader(std::filesystem::path file) : file_(std::move(file)) {}
 
     [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
-        throw Error(file_.string() + ": " + (key.empty() ? "" : key + ": ") + problem);
+        throw Error(file_.string() + ": " + (key.empty() ? "" : within_ + key + ": ") + problem);
+    }
+
+    // A reader of the object `key` holds, whose messages name its keys as "key.name".
+    CheckpointReader inside(const std::string& key) const {
+        CheckpointReader reader = *this;
+        reader.within_ += key + ".";
+        return reader;
     }
 
     Json parse() const {
@@ -167,6 +174,7 @@ public:
 
 private:
     std::filesystem::path file_;
+    std::string within_;  // "optimizer." inside that object
 };
 
 }  // namespace
@@ -200,11 +208,12 @@ Checkpoint readCheckpoint(const std::filesystem::path& file) {
     state.iteration = uint32_t(iteration);
     state.values = reader.numbers(document, "values");
     const Json& optimizer = reader.member(document, "optimizer");
-    state.optimizer.steps = reader.count(optimizer, "steps");
+    const CheckpointReader inOptimizer = reader.inside("optimizer");
+    state.optimizer.steps = inOptimizer.count(optimizer, "steps");
     // Adam's moments and the losses are doubles: a gradient beyond 1.8e19 squares past
     // float range.
-    state.optimizer.mean = reader.numbers(optimizer, "mean", -kDoubleMax, kDoubleMax);
-    state.optimizer.meanSquare = reader.numbers(optimizer, "mean_square", 0.0, kDoubleMax);
+    state.optimizer.mean = inOptimizer.numbers(optimizer, "mean", -kDoubleMax, kDoubleMax);
+    state.optimizer.meanSquare = inOptimizer.numbers(optimizer, "mean_square", 0.0, kDoubleMax);
     state.losses = reader.numbers(document, "losses", 0.0, kDoubleMax);
     state.forwardMs = reader.duration(document, "forward_ms");
     state.adjointMs = reader.duration(document, "adjoint_ms");

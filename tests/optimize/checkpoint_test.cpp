@@ -304,9 +304,9 @@ TEST(Checkpoint, RefusesNumbersOutOfRangeNamingTheFileAndKey) {
         expectEditRefused(file, good, edit, parts);
     };
     expectRefused([](auto& d) { d["values"][0] = 1e300; }, {"values", "1e+300"});
-    expectRefused([](auto& d) { d["optimizer"]["mean_square"][0] = -1.0; }, {"mean_square", "[0, "});
+    expectRefused([](auto& d) { d["optimizer"]["mean_square"][0] = -1.0; }, {"optimizer.mean_square", "[0, "});
     expectRefused([](auto& d) { d["iteration"] = 4294967296u; }, {"iteration", "[0, 4294967295]"});
-    expectRefused([](auto& d) { d["optimizer"]["steps"] = -3; }, {"steps", "integer"});
+    expectRefused([](auto& d) { d["optimizer"]["steps"] = -3; }, {"optimizer.steps", "integer"});
     expectRefused([](auto& d) { d["forward_ms"] = -1e300; }, {"forward_ms", "from 0 to 1e12"});
     expectRefused([](auto& d) { d["forward_ms"] = 1.7e308; }, {"forward_ms", "from 0 to 1e12"});
     expectRefused([](auto& d) { d["adjoint_ms"] = -1.0; }, {"adjoint_ms", "from 0 to 1e12"});
@@ -378,7 +378,7 @@ TEST(Checkpoint, LongVectorsReadBackBitForBit) {
     expectRefused([](auto& d) { d["values"] = "AAAA"; }, {"values", "base64"});  // 3 bytes: no whole double
     expectRefused([](auto& d) { d["values"] = "AAAAAAAA!AA="; }, {"values", "base64"});
     expectRefused([](auto& d) { d["values"] = "AAAAAAAA8H8="; }, {"values", "got inf"});  // +infinity
-    expectRefused([](auto& d) { d["optimizer"]["mean_square"] = "AAAAAAAA8L8="; }, {"mean_square", "got -1"});
+    expectRefused([](auto& d) { d["optimizer"]["mean_square"] = "AAAAAAAA8L8="; }, {"optimizer.mean_square", "got -1"});
 }
 
 // A checkpoint of the first format (every vector an array) still resumes.
