@@ -202,7 +202,12 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     }
     // Last: it reads the scene file again, which may have changed during a long run
     // (scene/write_scene.h refuses that), and the other outputs stand without it.
-    writeSceneWithParameters(job.sceneFile, scene, directory / "scene.gltf");
+    try {
+        writeSceneWithParameters(job.sceneFile, scene, directory / "scene.gltf");
+    } catch (const Error& error) {
+        throw Error(std::string(error.what()) + "; scene.gltf is not written, and the run's other outputs are in " +
+                    directory.string() + " (params.json holds the fitted values)");
+    }
     return report;
 }
 

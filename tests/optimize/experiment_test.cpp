@@ -421,7 +421,7 @@ TEST(Experiment, WritesItsTargetWhenTheFittedSceneIsRefused) {
     };
     expectErrorMentioning(
         [&] { runExperiment(experiment, scene, backend, startExperiment(experiment, scene, scratch / "out")); },
-        {"fog.gltf"});
+        {"fog.gltf", "scene.gltf is not written, and the run's other outputs are in", "params.json holds"});
     for (const char* file : {"params.json", "report.html", "target.exr", "target.png"}) {
         EXPECT_TRUE(std::filesystem::is_regular_file(scratch / "out" / file)) << file;
     }
