@@ -90,6 +90,7 @@ int32_t readMediumGrid(const tinygltf::Model& model, const tinygltf::Value& dens
         diagnostics.fail(field + ".uri", "missing: the grid file (.vdb or .nvdb) is required");
     }
     const std::string uri = readString(diagnostics, density, field, "uri", "");
+    if (uri.empty()) diagnostics.fail(field + ".uri", "empty: give the grid file's path relative to the scene file");
     if (isDataUri(uri)) {
         diagnostics.fail(field + ".uri", "a grid must be a .vdb or .nvdb file, not a data: URI");
     }

@@ -136,6 +136,7 @@ TEST(DensityGridScene, BadReferencesNameTheField) {
     expectLoadError(write({{"uri", "smoke.vdb"}, {"grid", "temperature"}}), {field, "temperature", "density"});
     expectLoadError(write({{"grid", "density"}}), {field + ".uri", "missing"});
     expectLoadError(write("smoke.vdb"), {field, "expected an object"});
+    expectLoadError(write({{"uri", ""}}), {field + ".uri", "empty: give the grid file's path relative to the scene file"});
     expectLoadError(write({{"uri", "data:application/octet-stream;base64,AAAA"}}), {field + ".uri", "data: URI"});
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", 7}}), {field + ".node", "out of range"});
     expectLoadError(write({{"uri", "smoke.vdb"}, {"node", "one"}}), {field + ".node", "expected an index"});

@@ -77,6 +77,8 @@ TEST(MakePlume, RefusesBadArguments) {
     const std::string output = (directory / "plume.vdb").string();
     expectRefused(makePlume(directory, "--resolution 1 --seed 1 " + output), "--resolution");
     expectRefused(makePlume(directory, "--resolution many --seed 1 " + output), "--resolution");
+    expectRefused(makePlume(directory, "--resolution 8.5 --seed 1 " + output),
+                  "--resolution: expected an integer from 2 to 1290, got 8.5");
     expectRefused(makePlume(directory, "--resolution 8 --seed -1 " + output), "--seed");
     expectRefused(makePlume(directory, "--resolution 8 " + output), "--seed");
     expectRefused(makePlume(directory, "--resolution 8 --seed 1"), "OUTPUT");

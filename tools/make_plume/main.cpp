@@ -1,6 +1,7 @@
 // vkdr-make-plume: writes a procedural smoke plume density grid as .vdb or .nvdb.
 //   vkdr-make-plume --resolution N --seed S [--flame] [--grid NAME] [--overwrite] OUTPUT.vdb|OUTPUT.nvdb
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <new>
@@ -56,12 +57,20 @@ int main(int argc, char** argv) {
     CLI::App app(
         "vkdr-make-plume: writes a procedural smoke plume, a density grid rising along +y through the cube\n"
         "[-0.5, 0.5]^3, as OpenVDB (.vdb) or NanoVDB (.nvdb). Densities lie in [0, 1] and are 0 near the\n"
-        "cube's faces; the same resolution and seed give the same file. See docs/density-grids.md.",
+        "cube's faces; the same resolution and seed give the same grid. See docs/density-grids.md.",
         "vkdr-make-plume");
     PlumeOptions options;
     app.add_option("--resolution", options.resolution, "voxels along each axis, 2 to 1290")
         ->required()
-        ->check(CLI::Range(2, 1290));
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                int value = 0;
+                const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+                const bool whole = error == std::errc() && end == text.data() + text.size();
+                return whole && value >= 2 && value <= 1290 ? std::string()
+                                                            : "expected an integer from 2 to 1290, got " + text;
+            },
+            ""));
     app.add_option("--seed", options.seed, "seed of the plume's noise, 0 to 4294967295")->required();
     app.add_option("--grid", options.grid, "name of the grid in the file (default: density, or flame with --flame)")
         ->check(CLI::Validator([](std::string& name) { return name.empty() ? std::string("give a name") : ""; }, ""));
