@@ -8,6 +8,8 @@
 
 #include "core/error.h"
 #include "optimize/constraints.h"
+#include "scene/gltf_diagnostics.h"
+#include "scene/parameters.h"
 
 namespace vkdr {
 
@@ -30,8 +32,10 @@ LogSpace::LogSpace(const ParameterVector& parameters, const std::vector<std::str
         const size_t p = size_t(found - names.begin());
         for (size_t i = parameters.offset(p); i < parameters.offset(p) + parameters.count(p); ++i) {
             if (!(parameters.values()[i] > 0.0)) {
-                throw Error("'" + name + "' starts at " + std::to_string(parameters.values()[i]) +
-                            "; optimising it in log space needs a positive value");
+                const size_t count = parameters.count(p);
+                throw Error("'" + name + "': " + whichValue(i - parameters.offset(p), count) + "starts at " +
+                            formatNumber(parameters.values()[i]) +
+                            "; optimising it in log space needs every value positive");
             }
             logValue_[i] = true;
         }

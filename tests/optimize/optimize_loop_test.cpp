@@ -338,7 +338,8 @@ TEST(OptimizeLoop, RejectsLogSpaceForNegativeZeroMissingOrRepeatedParameters) {
     expectError("media/fog/sigma_s", "not being optimised");
     expectError("media/fog/sigma_a", "given twice", 2);  // as a repeated --param is refused
     setParameter(scene, "media/fog/sigma_a", std::vector<float>{0.1f, 0.0f, 0.1f});
-    expectError("media/fog/sigma_a", "positive value");
+    expectError("media/fog/sigma_a", "value 1 of 3 (counted from 0): starts at 0; optimising it in log space needs "
+                                     "every value positive");
 }
 
 TEST(Constraints, FollowTheLastComponentOfTheName) {
