@@ -16,11 +16,11 @@ bool isIndex(const std::string& request) {
 
 [[noreturn]] void throwNoSuchDevice(const std::string& request, const std::string& reason,
                                     const std::vector<DeviceDescription>& devices) {
-    std::string message = settingName(Setting::Device) + " " + request + ": " + reason + "; the devices are:";
+    std::string list;
     for (const DeviceDescription& d : devices) {
-        message += " [" + std::to_string(d.index) + "] " + d.name + ";";
+        list += (list.empty() ? " [" : "; [") + std::to_string(d.index) + "] " + d.name;
     }
-    throw Error(message);
+    throw Error(settingName(Setting::Device) + " " + request + ": " + reason + "; the devices are:" + list);
 }
 
 }  // namespace

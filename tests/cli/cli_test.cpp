@@ -519,6 +519,7 @@ TEST_F(CliTest, DeviceIndexOutOfRangeNamesTheDevices) {
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(r.err.rfind("error: --device 99: no device has that index; the devices are: [0] ", 0), 0u) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.find(";\n"), std::string::npos) << r.err;  // the list ends with its last device
 }
 
 }  // namespace
