@@ -123,6 +123,12 @@ std::optional<Medium> readMaterialMedium(const tinygltf::Material& material,
                                       mediumName, diagnostics);
     }
     if (transmissionFactor != 1.0) {
+        // glTF's volume lies behind a transmissive surface only: without one it is not seen.
+        if (findExtension(material.extensions, "KHR_materials_volume")) {
+            diagnostics.warn(extensionsField + ".KHR_materials_volume",
+                             "ignored: without KHR_materials_transmission (transmissionFactor 1) the surface is "
+                             "opaque and no medium lies inside it");
+        }
         return std::nullopt;
     }
     if (const tinygltf::Value* volume = findExtension(material.extensions, "KHR_materials_volume")) {

@@ -688,6 +688,22 @@ TEST(LoadSceneErrors, UnknownMediumMembersAreNamedInAWarning) {
     EXPECT_EQ(loaded.scene.media.at(0).sigma_s, glm::vec3(1.0f));
 }
 
+// glTF's volume lies behind a transmissive surface: without KHR_materials_transmission the
+// surface is opaque, and the volume a viewer would not show either is warned of.
+TEST(LoadSceneErrors, AVolumeWithoutTransmissionIsWarnedOf) {
+    TemporaryDirectory directory;
+    json material = {{"name", "smoke"},
+                     {"extensions",
+                      {{"KHR_materials_volume", {{"attenuationColor", {0.5, 0.5, 0.5}}, {"attenuationDistance", 1.0}}}}}};
+    LoadedScene loaded = loadScene(boxWithMaterial(material).writeGltf(directory / "volume.gltf"));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("materials[0].extensions.KHR_materials_volume: ignored: without "
+                                      "KHR_materials_transmission"),
+              std::string::npos)
+        << loaded.warnings[0];
+    EXPECT_TRUE(loaded.scene.media.empty());
+}
+
 // A medium boundary passes rays through and emits nothing: an emissiveFactor on its
 // material, which a glTF viewer would show glowing, is ignored with a warning.
 TEST(LoadSceneErrors, EmissionOnAMediumBoundaryIsWarnedOf) {
