@@ -250,7 +250,9 @@ TEST(Experiment, RejectsUnknownParametersValuesAndViewsAgainstTheScene) {
     experiment = fogExperiment(scratch.path());
     experiment["start"]["media/fog/sigma_a"] = {0.3, 0.0, 0.3};
     experiment["log_parameters"] = {"media/fog/sigma_a"};
-    expectPrepareError(scratch, experiment, {"log_parameters", "media/fog/sigma_a", "positive value"});
+    expectPrepareError(scratch, experiment,
+                       {"log_parameters", "media/fog/sigma_a", "value 1 of 3 (counted from 0): starts at 0",
+                        "every value positive"});
 }
 
 TEST(Experiment, RefusesHeldOutViewsItCannotHoldOutAndGridSettingsWithoutAGrid) {
