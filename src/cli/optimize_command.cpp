@@ -120,8 +120,11 @@ void requireRunWritesNoInput(const std::filesystem::path& directory, bool experi
 void requireRunDirectory(const OptimizeCommandOptions& options) {
     requireOutputDirectory(options.resume.empty() ? "--out" : "--resume", options.out);
     const bool experiment = !options.experiment.empty();
-    if (!options.scene.file.empty()) requireRunWritesNoInput(options.out, experiment, {{"SCENE", options.scene.file}});
-    if (experiment) requireRunWritesNoInput(options.out, true, {{"--experiment", options.experiment}});
+    if (experiment) {
+        requireRunWritesNoInput(options.out, true, {{"--experiment", options.experiment}});
+    } else if (!options.scene.file.empty()) {
+        requireRunWritesNoInput(options.out, false, {{"SCENE", options.scene.file}});
+    }
     requireRunDirectoryFor(options.out, runStart(options), experiment);
 }
 
@@ -208,7 +211,6 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     options.optimize.parameters = options.parameters;
     options.optimize.optimizer = parseOptimizerKind(options.optimizer);
     LossKind loss = parseLossKind(options.loss);
-    requireRunWritesNoInput(options.out, false, {{"SCENE", options.scene.file}});
 
     LoadedScene loaded = loadSceneWithOverrides(options.scene);
     Scene& scene = loaded.scene;
@@ -324,7 +326,6 @@ int runOptimizeExperiment(const OptimizeCommandOptions& options, const Experimen
         throw Error("--experiment: the experiment file gives the scene, targets and parameters; "
                     "drop SCENE, --target, --param and --set");
     }
-    requireRunWritesNoInput(options.out, true, {{"--experiment", options.experiment}});
     Experiment experiment = readExperiment(options.experiment);
     requireRunWritesNoInput(options.out, true, {{"the experiment's scene", experiment.scene}});
     applyOverrides(options, overrides, experiment);
