@@ -65,6 +65,11 @@ GradientSlot resolveGradientSlot(const Scene& scene, const std::string& name) {
         // A grid's parameter is every voxel of it (its channels one after another), after
         // the values of the grids before it.
         const size_t grid = size_t(mediumGridOf(scene.media[owner], description.kind));
+        if (scene.densityGrids[grid].grid.voxelCount() == 0) {
+            throw Error("parameter " + name + ": the grid '" + scene.densityGrids[grid].grid.name + "' in " +
+                        scene.densityGrids[grid].file.filename().string() +
+                        " has no active voxels, so there are no values to differentiate or fit");
+        }
         for (size_t i = 0; i < grid; ++i) {
             slot.first += scene.densityGrids[i].grid.values.size() * sumsPerItem;
         }

@@ -31,6 +31,31 @@ bool reachesFromInfinity(const Scene& scene, glm::vec3 radiance) {
     return false;
 }
 
+// A grid of no active voxels is 0 everywhere: likely the wrong grid or an unfinished
+// simulation's cache, and not a parameter (it has no values).
+std::vector<std::string> emptyGridWarnings(const Scene& scene) {
+    struct Role {
+        int32_t Medium::*grid;
+        const char* kind;
+        const char* consequence;
+    };
+    constexpr Role kRoles[] = {{&Medium::densityGrid, "density", "the medium is empty"},
+                               {&Medium::emissionGrid, "emission", "the medium emits nothing"},
+                               {&Medium::albedoGrid, "albedo", "the medium's albedo is 0 (it scatters nothing)"}};
+    std::vector<std::string> warnings;
+    for (const Medium& medium : scene.media) {
+        for (const Role& role : kRoles) {
+            const int32_t grid = medium.*role.grid;
+            if (grid < 0 || scene.densityGrids[size_t(grid)].grid.voxelCount() > 0) continue;
+            const SceneDensityGrid& placed = scene.densityGrids[size_t(grid)];
+            warnings.push_back("medium '" + medium.name + "': its " + role.kind + " grid '" + placed.grid.name +
+                               "' in " + placed.file.filename().string() + " has no active voxels, so " +
+                               role.consequence);
+        }
+    }
+    return warnings;
+}
+
 }  // namespace
 
 std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem::path& file) {
@@ -89,6 +114,7 @@ std::vector<std::string> sceneWarnings(const Scene& scene, const std::filesystem
             (scene.background == glm::vec3(0.0f) ? "black" : "extinguished by " + extinguishing) +
             ", so the image will be black");
     }
+    for (std::string& warning : emptyGridWarnings(scene)) warnings.push_back(std::move(warning));
     for (std::string& warning : camerasOnMediumBoundaries(scene)) warnings.push_back(std::move(warning));
     // Names from the file may hold control characters, as in the loader's warnings.
     for (std::string& warning : warnings) warning = printableText(file.string() + ": " + warning);

@@ -89,5 +89,25 @@ TEST(GradientSlot, RefusesTwoNamesOfTheSameValues) {
     EXPECT_EQ(resolveGradientSlots(scene, {"media/fog/sigma_a", "media/fog/sigma_s", "media/fog/g"}).size(), 3u);
 }
 
+
+// A grid of no active voxels holds no values: naming it would give an empty gradient and
+// a fit of nothing.
+TEST(GradientSlot, RefusesAGridOfNoActiveVoxels) {
+    Scene scene = sceneWithTwoOfEverything();
+    SceneDensityGrid empty;
+    empty.file = "/scenes/unfinished.vdb";
+    empty.grid.name = "density";
+    SceneDensityGrid smoke = empty;
+    smoke.file = "/scenes/smoke.vdb";
+    smoke.grid.size = glm::ivec3(2, 1, 1);
+    smoke.grid.values = {0.5f, 1.0f};
+    scene.densityGrids = {smoke, empty};
+    scene.media[0].densityGrid = 0;
+    scene.media[1].densityGrid = 1;
+    EXPECT_EQ(resolveGradientSlots(scene, {"media/fog/density"}).at(0).valueCount(), 2u);
+    expectErrorMentioning([&] { resolveGradientSlots(scene, {"media/smoke/density"}); },
+                          {"parameter media/smoke/density", "'density' in unfinished.vdb has no active voxels"});
+}
+
 }  // namespace
 }  // namespace vkdr::test

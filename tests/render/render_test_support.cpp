@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "bvh/bvh.h"
@@ -12,11 +13,13 @@ namespace vkdr::test {
 namespace {
 
 // The running test's directory for its files, in one of this process: two test runs on
-// one machine keep apart.
+// one machine keep apart. A parameterised test's names hold '/', which would nest
+// directories that TearDown does not remove; one level keeps the cleanup whole.
 std::filesystem::path testDirectory() {
     const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    return std::filesystem::temp_directory_path() / ("vkdr_render_tests_" + std::to_string(getpid())) /
-           (std::string(info->test_suite_name()) + "." + info->name());
+    std::string name = std::string(info->test_suite_name()) + "." + info->name();
+    std::replace(name.begin(), name.end(), '/', '-');
+    return std::filesystem::temp_directory_path() / ("vkdr_render_tests_" + std::to_string(getpid())) / name;
 }
 
 }  // namespace

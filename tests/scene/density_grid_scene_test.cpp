@@ -12,6 +12,7 @@
 #include "gltf_test_files.h"
 #include "scene/load_scene.h"
 #include "scene/parameters.h"
+#include "scene/scene_warnings.h"
 #include "scene/write_scene.h"
 #include "volume/write_density_grid.h"
 
@@ -223,6 +224,30 @@ TEST(DensityGridScene, ASceneMediumClearInAChannelMayEmitThroughAnEmissionGrid) 
     EXPECT_EQ(air.emissionGrid, 0);
     builder.document()["extensions"]["VKDR_participating_media"].erase("emissionGrid");
     expectLoadError(builder.writeGltf(directory / "air.gltf"), {"emission[0]", "infinitely bright"});
+}
+
+// A grid of no active voxels loads (it is 0 everywhere), with a warning that names the
+// medium, the grid's role and its file; grids with voxels give none.
+TEST(DensityGridScene, AGridOfNoActiveVoxelsIsWarnedOf) {
+    TemporaryDirectory directory;
+    writeDensityGridVdb(directory / "smoke.vdb", smallGrid());
+    DensityGrid empty;
+    empty.name = "flame";
+    writeDensityGridVdb(directory / "unfinished.vdb", empty);
+    const std::filesystem::path withVoxels =
+        boxScene(smokeMediumWith("emissionGrid", {{"uri", "smoke.vdb"}, {"grid", "density"}})).writeGltf(directory / "full.gltf");
+    EXPECT_TRUE(sceneWarnings(loadScene(withVoxels).scene, withVoxels).empty());
+    const std::filesystem::path file =
+        boxScene(smokeMediumWith("emissionGrid", {{"uri", "unfinished.vdb"}, {"grid", "flame"}}))
+            .writeGltf(directory / "s.gltf");
+    LoadedScene loaded = loadScene(file);
+    EXPECT_EQ(loaded.scene.densityGrids.at(size_t(loaded.scene.media[0].emissionGrid)).grid.voxelCount(), 0u);
+    const std::vector<std::string> warnings = sceneWarnings(loaded.scene, file);
+    ASSERT_EQ(warnings.size(), 1u);
+    for (const char* part : {"s.gltf: medium 'smoke'", "emission grid 'flame' in unfinished.vdb",
+                             "no active voxels", "emits nothing"}) {
+        EXPECT_NE(warnings[0].find(part), std::string::npos) << warnings[0] << " lacks " << part;
+    }
 }
 
 DensityGrid colourGrid() {
