@@ -219,6 +219,9 @@ int runOptimizeScene(OptimizeCommandOptions& options) {
     std::vector<NamedOutput> inputs = filesTheSceneReads(loaded);
     for (const std::string& target : options.targets) {
         targetFiles.push_back(parseTargetArgument(target, scene));
+        // A target without a camera is the first camera's: one spelling in the run's
+        // identity, so that --resume accepts either.
+        if (targetFiles.back().camera == scene.cameras.front().name) targetFiles.back().camera.clear();
         inputs.push_back({"--target", targetFiles.back().file});
     }
     requireRunWritesNoInput(options.out, false, inputs);

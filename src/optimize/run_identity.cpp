@@ -1,6 +1,7 @@
 #include "optimize/run_identity.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cinttypes>
 #include <cstdio>
 #include <map>
@@ -13,10 +14,36 @@
 namespace vkdr {
 namespace {
 
+// The shortest text that reads back as `value`: 0.01 as typed, not its 17 digits.
 std::string numberText(double value) {
     char text[32];
-    std::snprintf(text, sizeof(text), "%.17g", value);
-    return text;
+    const auto [end, ignored] = std::to_chars(text, text + sizeof(text), value);
+    return std::string(text, end);
+}
+
+// `text` if it is not wholly a number, else numberText of it.
+std::string shortestIfNumber(const std::string& text) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return error == std::errc() && end == text.data() + text.size() ? numberText(value) : text;
+}
+
+// Checkpoints written before numberText wrote the shortest text hold 17 digits: the
+// entries of numbers compare, and are printed, as the numbers they hold.
+void shortenNumbers(RunIdentity& identity) {
+    for (const char* name : {"learning_rate", "learning_rate_decay", "learning_rate_decay_start", "adam_epsilon",
+                             "smoothness", "sparsity", "total_variation"}) {
+        if (auto entry = identity.find(name); entry != identity.end()) entry->second = shortestIfNumber(entry->second);
+    }
+    // NAME=RATE NAME=RATE ...: a name may hold spaces, a rate none.
+    if (auto rates = identity.find("learning_rates"); rates != identity.end()) {
+        std::string& text = rates->second;
+        for (size_t equals = text.find('='); equals != std::string::npos; equals = text.find('=', equals + 1)) {
+            const size_t end = std::min(text.find(' ', equals), text.size());
+            const std::string number = shortestIfNumber(text.substr(equals + 1, end - equals - 1));
+            text.replace(equals + 1, end - equals - 1, number);
+        }
+    }
 }
 
 std::string joined(const std::vector<std::string>& items, const std::string& separator) {
@@ -141,6 +168,7 @@ void requireSameRun(const std::filesystem::path& checkpoint, const RunIdentity& 
     };
     RunIdentity written = writtenAsStored;
     if (auto set = written.find("set"); set != written.end()) set->second = canonicalAssignments(set->second);
+    shortenNumbers(written);
     RunIdentity names = written;
     names.insert(current.begin(), current.end());
     for (const auto& [name, ignored] : names) {

@@ -117,6 +117,18 @@ TEST_F(OptimizeResume, AResumedFinishedRunStoppedShortLeavesNoOutputsOfTheRunBef
     expectSameValues(nlohmann::json::parse(slurp(run / "params.json")), nlohmann::json::parse(finishedParams));
 }
 
+// A target without a camera is the scene's first camera's: naming that camera is the
+// same run, so --resume accepts either spelling.
+TEST_F(OptimizeResume, AResumeMayNameTheFirstCameraOfATargetOrLeaveItOut) {
+    fs::path cut = scratch_ / "cut";
+    ASSERT_EQ(runCli(command_ + " --out " + cut.string(), scratch_, kLoseDeviceMidRun).exitCode, 2);
+    const std::string target = (scratch_ / "target.exr").string();
+    std::string named = command_;
+    named.replace(named.find(target), target.size(), "camera=" + target);
+    RunResult resumed = runCli(named + " --resume " + cut.string(), scratch_);
+    EXPECT_EQ(resumed.exitCode, 0) << resumed.err;
+}
+
 TEST_F(OptimizeResume, RefusesAResumeWithOtherOptionsOrAnotherOut) {
     fs::path cut = scratch_ / "cut";
     ASSERT_EQ(runCli(command_ + " --out " + cut.string(), scratch_, kLoseDeviceMidRun).exitCode, 2);

@@ -258,6 +258,27 @@ TEST(RunIdentity, ComparesAnOlderCheckpointsSetValuesAsFloats) {
     requireSameRun("checkpoint.json", older, named);
 }
 
+// Options are numbers in their shortest text (0.01, as typed). A checkpoint that holds
+// them with 17 digits resumes with the same numbers, and a refusal prints them short.
+TEST(RunIdentity, WritesOptionsAsTheShortestNumbersAndReadsOlderLongOnes) {
+    ScratchDirectory scratch;
+    const std::filesystem::path target = scratch.path() / "target.exr";
+    std::ofstream(target) << "pixels";
+    OptimizationJob job = fogJob(scratch.path(), 40);
+    job.options.learningRate = 0.01;
+    job.options.learningRates = {{"media/fog/g", 0.1}};
+    const RunIdentity current = runIdentity(job.sceneFile, job.options, job.loss, {target, {}, {}, 4, 6});
+    EXPECT_EQ(current.at("learning_rate"), "0.01");
+    EXPECT_EQ(current.at("learning_rates"), "media/fog/g=0.1");
+    RunIdentity older = current;
+    older["learning_rate"] = "0.01000000000000000021";
+    older["learning_rates"] = "media/fog/g=0.10000000000000001";
+    requireSameRun("checkpoint.json", older, current);
+    older["learning_rate"] = "0.02000000000000000042";
+    expectErrorMentioning([&] { requireSameRun("checkpoint.json", older, current); },
+                          {"learning_rate '0.02', but this run has '0.01'"});
+}
+
 TEST(Checkpoint, ResumeNamesAMissingOrDamagedCheckpoint) {
     ScratchDirectory scratch;
     OptimizationJob job = fogJob(scratch.path(), 40);
