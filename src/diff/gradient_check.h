@@ -46,8 +46,9 @@ struct GradientCheckRow {
 // Where neither fits, the step shrinks to fit (finiteDifferenceSteps). The adjoint is
 // taken at seeds firstSeed, firstSeed + 1, ..., the finite differences at seeds 2^20
 // further on (modulo 2^32), so that the two share no samples. Parameter names must be
-// valid for the scene. `progress` is told the fraction done after each evaluation of the
-// adjoint and each seed's finite difference.
+// valid for the scene. `progress` is told the fraction done within and after each
+// evaluation of the adjoint (through lossGradient.reportProgress, which it leaves unset)
+// and after each seed's finite difference.
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lossGradient, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds,
                                              uint32_t firstSeed = 0,

@@ -1,5 +1,7 @@
 #include "optimize/run_report.h"
 
+#include <algorithm>
+
 #include "core/format_text.h"
 #include "optimize/iteration_log.h"
 #include "optimize/loss_kind_text.h"
@@ -61,9 +63,14 @@ std::vector<std::pair<std::string, std::string>> settings(const OptimizationJob&
                                                      double(options.iterations) / options.gridLevels)});
     }
     if (!job.description.device.empty()) rows.push_back({"device", job.description.device});
-    rows.push_back({"render time", formatText("%.1f s forward, %.1f s adjoint over all %zu iterations",
+    // Per iteration in milliseconds as well, as `optimize` prints it: a short run's totals
+    // round to 0.0 s.
+    const double iterations = double(std::max<size_t>(result.losses.size(), 1));
+    rows.push_back({"render time", formatText("%.1f s forward, %.1f s adjoint over all %zu iterations (%.1f ms and "
+                                             "%.1f ms per iteration)",
                                              result.forwardMs / 1000.0, result.adjointMs / 1000.0,
-                                             result.losses.size())});
+                                             result.losses.size(), result.forwardMs / iterations,
+                                             result.adjointMs / iterations)});
     rows.push_back({"time taken", formatText(job.resume ? "%.1f s (this resumed part of the run)" : "%.1f s",
                                             seconds)});
     return rows;

@@ -6,6 +6,7 @@
 
 #include "render_test_support.h"
 #include "bvh/bvh.h"
+#include "diff/gradient_check.h"
 #include "diff/rendered_loss_gradient.h"
 #include "scene/load_scene.h"
 #include "test_gltf.h"
@@ -123,6 +124,23 @@ TEST_F(RenderProgressTest, AGradientOfSeveralViewsReportsEachViewsShare) {
         EXPECT_TRUE(std::find(reports.begin(), reports.end(), viewEnd) != reports.end()) << viewEnd;
     }
     EXPECT_TRUE(std::any_of(reports.begin(), reports.end(), [](double f) { return f > 0.0 && f < 1.0 / 3.0; }));
+}
+
+// A gradient check's adjoint evaluations are its longest steps: it reports within them,
+// and leaves the evaluation's own reports unset after it.
+TEST_F(RenderProgressTest, AGradientCheckReportsWithinItsAdjointEvaluations) {
+    Scene scene = loadScene(smokeInGlowingBox(tempDir())).scene;
+    const std::vector<TargetView> views = {{"", Image{8, 6, std::vector<float>(8 * 6 * 3, 0.5f)}}};
+    RenderedLossGradient lossGradient(testContext(), scene, views, {"media/smoke/g"}, {.spp = 4, .maxDepth = 4},
+                                      LossKind::L2);
+    std::vector<double> reports;
+    checkGradients(lossGradient, scene, {"media/smoke/g"}, 2, 1, [&](double fraction) { reports.push_back(fraction); });
+    expectRisingToOne(reports);
+    // Two seeds of one value: four steps, the first the first seed's adjoint evaluation.
+    EXPECT_TRUE(std::any_of(reports.begin(), reports.end(), [](double f) { return f > 0.0 && f < 0.25; }));
+    size_t before = reports.size();
+    lossGradient.evaluate(scene, 3);
+    EXPECT_EQ(reports.size(), before);
 }
 
 }  // namespace
