@@ -103,8 +103,8 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
         done += 1.0;
         if (progress) progress(done / total);
     };
-    // Within each of the adjoint's evaluations too, the longest steps; unset after them,
-    // since the callback refers to this call's count.
+    // Within each of the adjoint's evaluations too, the longest steps; unset when this
+    // call ends, since the callback refers to its count.
     struct ProgressUnset {
         RenderedLossGradient& lg;
         ~ProgressUnset() { lg.reportProgress({}); }
@@ -112,7 +112,6 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
     if (progress) lg.reportProgress([&](double fraction) { progress((done + fraction) / total); });
     const std::vector<std::vector<MeanAndError>> adjoint =
         gradientOverSeeds(lg, scene, uint32_t(seeds), firstSeed, stepDone);
-    lg.reportProgress({});
     std::vector<GradientCheckRow> rows;
     for (size_t p = 0; p < parameters.size(); ++p) {
         const std::vector<float> value = getParameter(scene, parameters[p]);
