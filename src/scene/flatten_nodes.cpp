@@ -12,6 +12,7 @@
 
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_lights.h"
+#include "scene/mesh_placement.h"
 #include "scene/orthographic_view.h"
 #include "scene/texture_coordinate_set.h"
 #include "scene/unique_name.h"
@@ -29,15 +30,6 @@ constexpr size_t kMaxSceneVertices = size_t(1) << 26;
 constexpr size_t kMaxNodeDepth = 1000;
 constexpr size_t kMaxNodeVisits = size_t(1) << 20;
 
-
-// A usable unit normal, or (0, 0, 0) (the triangle's own normal) for a zero or
-// non-finite one, which some exporters write for degenerate vertices.
-glm::vec3 shadingNormal(glm::vec3 n) {
-    float length = glm::length(n);
-    glm::vec3 unit = n / length;
-    bool usable = length > 0.0f && std::isfinite(unit.x) && std::isfinite(unit.y) && std::isfinite(unit.z);
-    return usable ? unit : glm::vec3(0.0f);
-}
 
 const char* modeName(int mode) {
     switch (mode) {
@@ -244,7 +236,7 @@ private:
         requireRoomFor(primitive.positions.size(), primitive.triangles.size(), primitive.field);
         // A mirroring transform turns counter-clockwise triangles clockwise (glTF spec,
         // "Meshes": the determinant decides the winding), so swap two corners back.
-        bool mirrored = glm::determinant(glm::mat3(meshToWorld)) < 0.0f;
+        const MeshPlacement placement(meshToWorld);
 
         uint32_t base = uint32_t(scene_.positions.size());
         for (size_t v = 0; v < primitive.positions.size(); ++v) {
@@ -267,14 +259,13 @@ private:
         }
         // Normals transform by the inverse transpose, which keeps them perpendicular to
         // the surface under non-uniform scales and turns them with a mirroring transform.
-        glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(meshToWorld)));
         for (size_t v = 0; v < primitive.positions.size(); ++v) {
             scene_.normals.push_back(primitive.normals.empty() ? glm::vec3(0.0f)
-                                                               : shadingNormal(normalToWorld * primitive.normals[v]));
+                                                               : placement.worldNormal(primitive.normals[v]));
         }
         for (size_t t = 0; t < primitive.triangles.size(); ++t) {
             glm::uvec3 triangle = primitive.triangles[t] + glm::uvec3(base);
-            if (mirrored) {
+            if (placement.mirrored) {
                 std::swap(triangle.y, triangle.z);
             }
             requireFiniteArea(triangle, primitive.field, "triangle " + std::to_string(t) + " at " + node);

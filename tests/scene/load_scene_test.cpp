@@ -57,9 +57,15 @@ TEST(LoadScene, KeepsFrontFacesUnderMirroringTransforms) {
     GltfBuilder builder;
     int mesh = builder.addMesh("triangle", kTriangle);
     builder.addNode({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
+    // The same triangle 1e16 times as large, mirrored by a scale of 1e-16: a determinant
+    // of -1e-48, below float's range.
+    MeshData vast = kTriangle;
+    for (glm::vec3& corner : vast.positions) corner *= 1e16f;
+    builder.addNode({{"mesh", builder.addMesh("vast", vast)}, {"scale", {-1e-16, 1e-16, 1e-16}}});
     Scene scene = loadScene(builder.writeGltf(directory / "mirror.gltf")).scene;
     // The triangle faces +z before mirroring; a mirror in x must not turn it around.
     expectNear(normalOf(scene, 0), {0, 0, 1});
+    expectNear(normalOf(scene, 1), {0, 0, 1});
 }
 
 TEST(LoadScene, ReadsIndexedAndNonIndexedPrimitives) {
@@ -531,16 +537,22 @@ TEST(LoadScene, VertexNormalsTransformByTheInverseTransposeAndAreUnit) {
     int flat = builder.addMesh("flat", floorQuad(1.0f));
     builder.addNode({{"mesh", withNormals}, {"scale", {2.0, 1.0, 1.0}}});
     builder.addNode({{"mesh", flat}});
+    // The same stretch at scales whose inverse leaves float's range (1e-39), or whose
+    // determinant does (1e-45), turns the normals alike.
+    builder.addNode({{"mesh", withNormals}, {"scale", {2e13, 1e13, 1e13}}});
+    builder.addNode({{"mesh", withNormals}, {"scale", {2e-15, 1e-15, 1e-15}}});
     LoadedScene loaded = loadScene(builder.writeGltf(directory / "normals.gltf"));
     const Scene& scene = loaded.scene;
     EXPECT_TRUE(loaded.warnings.empty());
     ASSERT_EQ(scene.normals.size(), scene.positions.size());
-    const size_t perMesh = scene.positions.size() / 2;
+    const size_t perMesh = scene.positions.size() / 4;
     for (size_t v = 0; v < perMesh; ++v) {
         // Position (2x, y, z) came from (x, y, z); its normal is (x / 2, y, z), normalised.
         glm::vec3 source = scene.positions[v] / glm::vec3(2.0f, 1.0f, 1.0f);
         expectNear(scene.normals[v], glm::normalize(source / glm::vec3(2.0f, 1.0f, 1.0f)));
         EXPECT_EQ(scene.normals[perMesh + v], glm::vec3(0.0f));  // no NORMAL: the triangle's own
+        expectNear(scene.normals[2 * perMesh + v], scene.normals[v]);
+        expectNear(scene.normals[3 * perMesh + v], scene.normals[v]);
     }
 }
 
