@@ -454,6 +454,10 @@ void checkPunctualLights(const json& extension, GltfDiagnostics& diagnostics) {
         requireMemberKinds(light, field, kLightMembers, diagnostics);
         requireNumbers(light, field, "color", 3, diagnostics);
         if (light.contains("spot")) requireMemberKinds(light["spot"], member(field, "spot"), kSpotMembers, diagnostics);
+        if (light.value("type", json()) == "spot" && !light.contains("spot")) {
+            diagnostics.fail(field, "a light of type \"spot\" needs a \"spot\" object, as KHR_lights_punctual asks "
+                                    "(its cone angles; {} for the defaults)");
+        }
         // Here, where a range written as 0 (not allowed by glTF, and ignored too) differs
         // from none: tinygltf reads an absent one as 0.
         if (light.contains("range")) {

@@ -594,6 +594,7 @@ TEST(LoadSceneErrors, MembersOfTheWrongJsonTypeAreRefusedNamingTheField) {
     expectLoadError(withLight({{"type", "spot"}, {"spot", {{"outerConeAngle", "0.3"}}}}),
                     {light + ".spot.outerConeAngle", "expected a number"});
     expectLoadError(withLight({{"type", "spot"}, {"spot", "wide"}}), {light + ".spot", "expected an object"});
+    expectLoadError(withLight({{"type", "spot"}}), {light + ":", "type \"spot\" needs a \"spot\" object"});
 }
 
 TEST(LoadSceneErrors, NodesOutsideTheGltfSchema) {
