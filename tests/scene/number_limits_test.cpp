@@ -197,6 +197,10 @@ TEST(SceneWarnings, ASceneWhoseOnlyLightsTheSceneMediumExtinguishesWillBeBlack) 
     scene.background = glm::vec3(0.2f, 0.3f, 0.0f);
     EXPECT_EQ(sceneWarnings(scene, "lit.gltf").size(), 1u);
     // A grid medium is empty outside its grid.
+    SceneDensityGrid puff;
+    puff.grid.size = glm::ivec3(1);
+    puff.grid.values = {1.0f};
+    scene.densityGrids.push_back(puff);
     scene.media.back().densityGrid = 0;
     EXPECT_TRUE(sceneWarnings(scene, "lit.gltf").empty());
 }
