@@ -1,4 +1,6 @@
 // Input that loadScene must reject with a message naming the file and the field.
+#include <sys/resource.h>
+
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -59,6 +61,11 @@ TEST(LoadSceneErrors, JsonNestedDeeperThanTheParserReads) {
     expectLoadError(nestedExtras(100000), {"100000 levels deep", "at most 512"});
     expectLoadError(nestedExtras(513), {"513 levels deep", "at most 512"});
     EXPECT_NO_THROW(loadScene(nestedExtras(512)));
+    // Read in memory linear in the depth: the path of every level held whole took
+    // 15 GB for the 200 KB file nested 100,000 deep.
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    EXPECT_LT(usage.ru_maxrss, 1024L * 1024L) << "peak resident KiB";
 }
 
 // glTF requires each key once in an object; a JSON parser would keep one of the two.
