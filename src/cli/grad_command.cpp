@@ -149,14 +149,6 @@ void printJson(const GradientResult& result, const std::vector<GradientCheckRow>
 // --check renders twice per value and seed: a texture or a grid would take hours.
 constexpr size_t kMostValuesChecked = 64;
 
-// The steps checkGradients reports: an adjoint evaluation per seed, and a finite
-// difference per value and seed.
-size_t checkSteps(const Scene& scene, const GradOptions& options) {
-    size_t values = 0;
-    for (const std::string& name : options.parameters) values += getParameter(scene, name).size();
-    return size_t(options.checkSeeds) * (1 + values);
-}
-
 void requireCheckable(const Scene& scene, const GradOptions& options) {
     for (const std::string& name : options.parameters) {
         const size_t values = getParameter(scene, name).size();
@@ -180,7 +172,8 @@ int runGrad(const GradOptions& options) {
     bar.update(0.0, "gradient");
     // With --check the evaluation is one step of many: the check's adjoint evaluations
     // and each value's finite differences, seed by seed.
-    const double evaluationShare = options.check ? 1.0 / (1.0 + double(checkSteps(scene, options))) : 1.0;
+    const double evaluationShare =
+        options.check ? 1.0 / (1.0 + double(gradientCheckSteps(scene, options.parameters, options.checkSeeds))) : 1.0;
     lossGradient.reportProgress([&](double fraction) { bar.update(evaluationShare * fraction, "gradient"); });
     GradientResult result = lossGradient.evaluate(scene, options.settings.seed);
     std::vector<GradientCheckRow> check;

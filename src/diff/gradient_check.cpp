@@ -91,13 +91,17 @@ std::vector<std::vector<FiniteDifferenceStep>> finiteDifferenceSteps(const Scene
     return steps;
 }
 
+size_t gradientCheckSteps(const Scene& scene, const std::vector<std::string>& parameters, int seeds) {
+    size_t values = 0;
+    for (const std::string& name : parameters) values += getParameter(scene, name).size();
+    return size_t(seeds) * (1 + values);
+}
+
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds,
                                              uint32_t firstSeed, const std::function<void(double)>& progress) {
     const std::vector<std::vector<FiniteDifferenceStep>> steps = finiteDifferenceSteps(scene, parameters);
-    size_t components = 0;
-    for (const std::vector<FiniteDifferenceStep>& parameter : steps) components += parameter.size();
-    const double total = double(seeds) * double(1 + components);
+    const double total = double(gradientCheckSteps(scene, parameters, seeds));
     double done = 0.0;
     auto stepDone = [&] {
         done += 1.0;

@@ -38,6 +38,10 @@ struct GradientCheckRow {
     bool finiteDifferenceResolved = true;
 };
 
+// The steps checkGradients tells `progress` of: an adjoint evaluation per seed, and a
+// finite difference per value and seed.
+size_t gradientCheckSteps(const Scene& scene, const std::vector<std::string>& parameters, int seeds);
+
 // Each component's step is its kind's (scene/parameter_kinds.h). Where value - h would
 // leave the kind's range (sigma = 0, base colour 0) or value + h would (g at 0.99), the
 // second-order one-sided difference (-3 L(x) + 4 L(x + h) - L(x + 2h)) / 2h, or its
