@@ -1,9 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Stage 3: free-flight sampling in the medium the ray travels through. The segment
-// first gathers the medium's emission along it (medium_emission.glsl) and, in a
-// scattering homogeneous medium, the next event from a point sampled towards a light
-// (equiangular_next_event.glsl). A distance
+// Stage 3: free-flight sampling in the medium the ray travels through, as the segment's
+// end tells it (mediumAtSegmentEnd). The segment first gathers the medium's emission
+// along it (medium_emission.glsl) and, in a scattering homogeneous medium, the next
+// event from a point sampled towards a light (equiangular_next_event.glsl). A distance
 // before the surface hit becomes a medium vertex; otherwise the surface is the next
 // vertex. Rays that leave the scene collect the background and end here. The adjoint
 // pass adds delta * L_rem * d log(segment weight) to the medium's sigma gradients.
@@ -179,6 +179,12 @@ void sampleSegment() {
     float tHit = escaped ? kFar : hit.x;
     uvec2 vertex = P.vertexInfo.v[slot].xy;  // the medium, and the kind of the vertex the ray left
     uint medium = vertex.x;
+    if (kMedia) {
+        medium = mediumAtSegmentEnd(floatBitsToUint(hit.w), P.rayDirection.v[slot].xyz, medium);
+        if (medium != vertex.x) {
+            P.vertexInfo.v[slot].x = medium;
+        }
+    }
     vec3 beta = P.beta.v[slot].rgb;
     beginReplay(slot);
     holdMediumGradients(medium);

@@ -406,6 +406,8 @@ struct RenderParams {
                                                     // halves of a split gradient estimate must
     uint firstStream;                               // the stream of the samples below secondStreamFrom:
                                                     // kReplayStream for paths independent of any image
+    uint sceneMedium;                               // the medium outside every boundary, kNoMediumIndex:
+                                                    // vacuum
     // Fixed-point sums from one copy of each gradient accumulator to the next (0: one copy).
 #define VKDR_DECLARE_COPY_STRIDE(name, field, floats, copies, items) uint name##CopyStride;
     VKDR_GRADIENT_ACCUMULATORS(VKDR_DECLARE_COPY_STRIDE)

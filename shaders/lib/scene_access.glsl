@@ -28,21 +28,31 @@ vec3 vertexColor(uint triangle, float b1, float b2) {
            b2 * P.triangleColors.v[3u * triangle + 2u].rgb;
 }
 
+// The triangle's front (counter-clockwise) normal, of length twice its area: as
+// `largest` times `scaled`, whose largest component is 1, since the squares of a
+// triangle's cross product leave float range once its edges pass about 4e9.
+struct ScaledNormal {
+    vec3 scaled;
+    float largest;
+};
+
+ScaledNormal scaledNormal(vec3 v0, vec3 v1, vec3 v2) {
+    vec3 n = cross(v1 - v0, v2 - v0);
+    float largest = maxComponent(abs(n));
+    return ScaledNormal(n / largest, largest);
+}
+
 SurfacePoint surfacePoint(uint triangle, float b1, float b2) {
     vec3 v0 = P.triangleVertices.v[3u * triangle].xyz;
     vec3 v1 = P.triangleVertices.v[3u * triangle + 1u].xyz;
     vec3 v2 = P.triangleVertices.v[3u * triangle + 2u].xyz;
-    vec3 n = cross(v1 - v0, v2 - v0);
-    // Scaled by its largest component first: the squares of a triangle's cross product
-    // leave float range once its edges pass about 4e9.
-    float largest = maxComponent(abs(n));
-    vec3 scaled = n / largest;
-    float scaledLength = length(scaled);
-    float doubleArea = largest * scaledLength;
+    ScaledNormal n = scaledNormal(v0, v1, v2);
+    float scaledLength = length(n.scaled);
+    float doubleArea = n.largest * scaledLength;
     GpuTriangleInfo info = P.triangleInfo.v[triangle];
     SurfacePoint sp;
     sp.position = v0 + b1 * (v1 - v0) + b2 * (v2 - v0);
-    sp.normal = scaled / scaledLength;
+    sp.normal = n.scaled / scaledLength;
     sp.uv = surfaceUv(triangle, b1, b2);
     sp.area = 0.5f * doubleArea;
     sp.material = info.material;
@@ -66,6 +76,28 @@ vec3 shadingNormal(uint triangle, float b1, float b2, vec3 facing) {
 // Whether the triangle blocks light: anything but a pass-through medium boundary.
 bool isOpaque(uint triangle) {
     return P.materials.v[P.triangleInfo.v[triangle].material].interiorMedium < 0;
+}
+
+// The medium a ray is in as it meets `triangle` (kNoHit: as it leaves the scene), as that
+// end of its segment tells: a medium boundary met from inside is in its medium, one met
+// from outside in the medium around it, and a ray that leaves the scene is in the scene
+// medium. At an opaque surface (or one the ray runs along) it is `carried`, the medium
+// the ray set out in. Boundaries are closed and wound outwards (medium_boundaries.h), so
+// this is the carried medium wherever that is right; it differs where a crossing at a
+// boundary's edge took the wrong side (docs/design.md, "Rays leaving a surface").
+uint mediumAtSegmentEnd(uint triangle, vec3 direction, uint carried) {
+    if (triangle == kNoHit) {
+        return P.sceneMedium;
+    }
+    GpuTriangleInfo info = P.triangleInfo.v[triangle];
+    int interior = P.materials.v[info.material].interiorMedium;
+    if (interior < 0) {
+        return carried;
+    }
+    vec3 normal = scaledNormal(P.triangleVertices.v[3u * triangle].xyz, P.triangleVertices.v[3u * triangle + 1u].xyz,
+                               P.triangleVertices.v[3u * triangle + 2u].xyz).scaled;
+    float facing = dot(direction, normal);
+    return facing > 0.0f ? uint(interior) : facing < 0.0f ? info.outsideMedium : carried;
 }
 
 // How a material looks up one of its textures: the uv transform's rows and the wrap

@@ -101,8 +101,12 @@ vec3 shadowTransmittance(vec3 start, vec3 direction, float distance, uvec2 skipp
         if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
             return vec3(0.0f);
         }
-        // The segment in the medium: from its start to the hit, or to the light.
+        // The segment in the medium: from its start to the hit, or to the light, whose
+        // medium is the one the ray set out in.
         float segment = hit.triangle == kNoHit ? distance : hit.t;
+        if (kMedia && (hit.triangle != kNoHit || toInfinity)) {
+            medium = mediumAtSegmentEnd(hit.triangle, direction, medium);
+        }
         if (kMedia && medium != kNoMediumIndex) {
             GpuMedium m = P.media.v[medium];
             // d log T / d sigma_t = -(the optical length per unit sigma_t): the segment's

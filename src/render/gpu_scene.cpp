@@ -166,6 +166,7 @@ GpuScene uploadScene(const VulkanContext& context, const Scene& scene, const Bvh
     gpu.bvhNodes = uploadVector<BvhNode>(context, bvh.nodes, "bvh nodes");
     gpu.textures = uploadVector<gpu::GpuTexture>(context, textures, "textures");
     gpu.extent = sceneExtent(scene);
+    gpu.sceneMedium = mediumIndex(scene.sceneMedium);
     uploadSceneParameters(context, scene, bvh.triangleOrder, gpu);
     return gpu;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "device_types.h"
 #include "render/gpu_density_grids.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
@@ -32,6 +33,7 @@ struct GpuScene {
     Buffer punctualLights;
     GpuDensityGrids densityGrids;
     uint32_t lightCount = 0;
+    uint32_t sceneMedium = gpu::kNoMediumIndex;  // the medium outside every boundary
     float extent = 0.0f;  // the diagonal of the scene's bounding box (at least 1e-3), scene units
     // Each material's mean emitted radiance, then each punctual light's intensity, when
     // the emitter distribution was built.

@@ -194,6 +194,7 @@ void Renderer::uploadParams() {
     p.gridMajorants = scene_.densityGrids.majorants.address();
     paths_->setAddresses(p);
     p.lightCount = scene_.lightCount;
+    p.sceneMedium = scene_.sceneMedium;
     p.maxDepth = settings_.maxDepth;
     p.seed = settings_.seed;
     // The halves of a split gradient estimate must be independent (docs/gradients.md);
