@@ -164,7 +164,8 @@ struct HeldMediumGradients {
 
 HeldMediumGradients heldMediumGradients = HeldMediumGradients(kNoMediumIndex, vec3(0.0f), vec4(0.0f), vec3(0.0f));
 
-// The stage holds the terms of `medium` (the medium its segment or shadow ray starts in).
+// The stage holds the terms of `medium` (the medium of its segment, or the one its shadow
+// ray starts in).
 void holdMediumGradients(uint medium) {
     heldMediumGradients.medium = medium;
 }

@@ -170,18 +170,17 @@ int runGrad(const GradOptions& options) {
                                       parseLossKind(options.loss));
     ProgressBar bar("grad");
     bar.update(0.0, "gradient");
-    // With --check the evaluation is one step of many: the check's adjoint evaluations
-    // and each value's finite differences, seed by seed.
+    // With --check the evaluation is the first of the check's steps: its adjoint
+    // evaluations, seed by seed from --seed, and each value's finite differences.
     const double evaluationShare =
-        options.check ? 1.0 / (1.0 + double(gradientCheckSteps(scene, options.parameters, options.checkSeeds))) : 1.0;
+        options.check ? 1.0 / double(gradientCheckSteps(scene, options.parameters, options.checkSeeds)) : 1.0;
     lossGradient.reportProgress([&](double fraction) { bar.update(evaluationShare * fraction, "gradient"); });
     GradientResult result = lossGradient.evaluate(scene, options.settings.seed);
     std::vector<GradientCheckRow> check;
     if (options.check) {
-        check = checkGradients(lossGradient, scene, options.parameters, options.checkSeeds, options.settings.seed,
-                               [&](double fraction) {
-                                   bar.update(evaluationShare + (1.0 - evaluationShare) * fraction, "--check");
-                               });
+        check = checkGradients(
+            lossGradient, scene, options.parameters, options.checkSeeds, options.settings.seed,
+            [&](double fraction) { bar.update(fraction, "--check"); }, &result);
     }
     bar.finish();
     requireNoValidationMessages(context);

@@ -99,10 +99,11 @@ size_t gradientCheckSteps(const Scene& scene, const std::vector<std::string>& pa
 
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds,
-                                             uint32_t firstSeed, const std::function<void(double)>& progress) {
+                                             uint32_t firstSeed, const std::function<void(double)>& progress,
+                                             const GradientResult* atFirstSeed) {
     const std::vector<std::vector<FiniteDifferenceStep>> steps = finiteDifferenceSteps(scene, parameters);
     const double total = double(gradientCheckSteps(scene, parameters, seeds));
-    double done = 0.0;
+    double done = atFirstSeed ? 1.0 : 0.0;
     auto stepDone = [&] {
         done += 1.0;
         if (progress) progress(done / total);
@@ -115,7 +116,7 @@ std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lg, const Sce
     } unset{lg};
     if (progress) lg.reportProgress([&](double fraction) { progress((done + fraction) / total); });
     const std::vector<std::vector<MeanAndError>> adjoint =
-        gradientOverSeeds(lg, scene, uint32_t(seeds), firstSeed, stepDone);
+        gradientOverSeeds(lg, scene, uint32_t(seeds), firstSeed, stepDone, atFirstSeed);
     std::vector<GradientCheckRow> rows;
     for (size_t p = 0; p < parameters.size(); ++p) {
         const std::vector<float> value = getParameter(scene, parameters[p]);

@@ -50,12 +50,15 @@ size_t gradientCheckSteps(const Scene& scene, const std::vector<std::string>& pa
 // Where neither fits, the step shrinks to fit (finiteDifferenceSteps). The adjoint is
 // taken at seeds firstSeed, firstSeed + 1, ..., the finite differences at seeds 2^20
 // further on (modulo 2^32), so that the two share no samples. Parameter names must be
-// valid for the scene. `progress` is told the fraction done within and after each
+// valid for the scene. `atFirstSeed`, where given, is the adjoint evaluation at
+// firstSeed already made (grad's own), taken instead of evaluating it again, and counted
+// as its step done. `progress` is told the fraction done within and after each
 // evaluation of the adjoint (through lossGradient.reportProgress, which it leaves unset)
 // and after each seed's finite difference.
 std::vector<GradientCheckRow> checkGradients(RenderedLossGradient& lossGradient, const Scene& scene,
                                              const std::vector<std::string>& parameters, int seeds,
                                              uint32_t firstSeed = 0,
-                                             const std::function<void(double)>& progress = {});
+                                             const std::function<void(double)>& progress = {},
+                                             const GradientResult* atFirstSeed = nullptr);
 
 }  // namespace vkdr

@@ -143,5 +143,25 @@ TEST_F(RenderProgressTest, AGradientCheckReportsWithinItsAdjointEvaluations) {
     EXPECT_EQ(reports.size(), before);
 }
 
+// grad --check hands the check its own evaluation at the first seed: the check takes
+// it in place of evaluating that seed again, and counts it as its first step done.
+TEST_F(RenderProgressTest, AGradientCheckTakesTheEvaluationItIsGivenAtItsFirstSeed) {
+    Scene scene = loadScene(smokeInGlowingBox(tempDir())).scene;
+    const std::vector<TargetView> views = {{"", Image{8, 6, std::vector<float>(8 * 6 * 3, 0.5f)}}};
+    RenderedLossGradient lossGradient(testContext(), scene, views, {"media/smoke/g"}, {.spp = 4, .maxDepth = 4},
+                                      LossKind::L2);
+    GradientResult given = lossGradient.evaluate(scene, 1);
+    const double atSecondSeed = lossGradient.evaluate(scene, 2).parameters[0].gradient[0];
+    given.parameters[0].gradient[0] = 1000.0;
+    std::vector<double> reports;
+    const std::vector<GradientCheckRow> rows = checkGradients(
+        lossGradient, scene, {"media/smoke/g"}, 2, 1, [&](double fraction) { reports.push_back(fraction); }, &given);
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_DOUBLE_EQ(rows[0].adjoint, (1000.0 + atSecondSeed) / 2.0);
+    expectRisingToOne(reports);
+    // Two seeds of one value: four steps, the first done before the check began.
+    EXPECT_GE(reports.front(), 0.25);
+}
+
 }  // namespace
 }  // namespace vkdr::test
