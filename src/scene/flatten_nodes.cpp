@@ -463,6 +463,43 @@ void warnOfNodesPlacedTwice(const tinygltf::Model& model, const std::vector<int>
     }
 }
 
+// glTF's nodes form disjoint trees. A cycle among nodes the scene reaches is refused as
+// it is met (NodeFlattener::visit); one among nodes it does not reach would render, but the
+// file is not glTF and other readers refuse it or loop. Depth-first over every node, with an
+// explicit stack: a chain of a million nodes is valid.
+void requireAcyclicNodeHierarchy(const tinygltf::Model& model, const GltfDiagnostics& diagnostics) {
+    enum class State : uint8_t { unseen, onPath, done };
+    std::vector<State> state(model.nodes.size(), State::unseen);
+    struct Frame {
+        size_t node;
+        size_t nextChild;
+    };
+    std::vector<Frame> path;
+    for (size_t start = 0; start < model.nodes.size(); ++start) {
+        if (state[start] != State::unseen) continue;
+        state[start] = State::onPath;
+        path.push_back({start, 0});
+        while (!path.empty()) {
+            Frame& frame = path.back();
+            const std::vector<int>& children = model.nodes[frame.node].children;
+            if (frame.nextChild == children.size()) {
+                state[frame.node] = State::done;
+                path.pop_back();
+                continue;
+            }
+            const size_t slot = frame.nextChild++;
+            const int child = children[slot];
+            if (child < 0 || size_t(child) >= model.nodes.size() || state[size_t(child)] == State::done) continue;
+            if (state[size_t(child)] == State::onPath) {
+                diagnostics.fail(indexed(indexed("nodes", frame.node) + ".children", slot),
+                                 "node " + std::to_string(child) + " is its own ancestor (cycle in the node hierarchy)");
+            }
+            state[size_t(child)] = State::onPath;
+            path.push_back({size_t(child), 0});
+        }
+    }
+}
+
 }  // namespace
 
 std::vector<uint32_t> placesOfNodes(const tinygltf::Model& model, const std::vector<int>& roots) {
@@ -532,6 +569,7 @@ std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnos
     for (size_t r = 0; r < roots.size(); ++r) {
         flattener.visit(roots[r], glm::mat4(1.0f), {-1, r});
     }
+    requireAcyclicNodeHierarchy(model, diagnostics);
     return flattener.takeInstances();
 }
 

@@ -204,6 +204,8 @@ def main():
         return changed(edit)
     case("node_cycle.gltf", hierarchy([{"mesh": 0, "children": [1]}, {"children": [0]}], [0]), "render",
          "cycle in the node hierarchy")
+    case("node_cycle_unreachable.gltf", hierarchy([{"mesh": 0}, {"children": [2]}, {"children": [1]}], [0]), "render",
+         "nodes[2].children[0]", "cycle in the node hierarchy")
     chain = [{"children": [i + 1]} for i in range(1100)] + [{"mesh": 0}]
     case("nodes_nested_too_deep.gltf", hierarchy(chain, [0]), "render", "nested more than 1000")
     doubling = [{"children": [i + 1, i + 1]} for i in range(40)] + [{"mesh": 0}]
