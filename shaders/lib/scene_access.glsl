@@ -78,6 +78,13 @@ bool isOpaque(uint triangle) {
     return P.materials.v[P.triangleInfo.v[triangle].material].interiorMedium < 0;
 }
 
+// The medium on the near side of a medium boundary with medium `interior` inside and
+// `outside` around it, met at `facing` (the ray's direction dotted with the triangle's
+// outward normal, at any scale): `carried` where the ray runs along it.
+uint mediumBeforeBoundary(uint interior, uint outside, float facing, uint carried) {
+    return facing > 0.0f ? interior : facing < 0.0f ? outside : carried;
+}
+
 // The medium a ray is in as it meets `triangle` (kNoHit: as it leaves the scene), as that
 // end of its segment tells: a medium boundary met from inside is in its medium, one met
 // from outside in the medium around it, and a ray that leaves the scene is in the scene
@@ -96,8 +103,7 @@ uint mediumAtSegmentEnd(uint triangle, vec3 direction, uint carried) {
     }
     vec3 normal = scaledNormal(P.triangleVertices.v[3u * triangle].xyz, P.triangleVertices.v[3u * triangle + 1u].xyz,
                                P.triangleVertices.v[3u * triangle + 2u].xyz).scaled;
-    float facing = dot(direction, normal);
-    return facing > 0.0f ? uint(interior) : facing < 0.0f ? info.outsideMedium : carried;
+    return mediumBeforeBoundary(uint(interior), info.outsideMedium, dot(direction, normal), carried);
 }
 
 // How a material looks up one of its textures: the uv transform's rows and the wrap

@@ -101,11 +101,23 @@ vec3 shadowTransmittance(vec3 start, vec3 direction, float distance, uvec2 skipp
         if (hit.triangle != kNoHit && isOpaque(hit.triangle)) {
             return vec3(0.0f);
         }
-        // The segment in the medium: from its start to the hit, or to the light, whose
-        // medium is the one the ray set out in.
+        // The segment in the medium: from its start to the hit, or to the light. One that
+        // ends on a boundary is in the medium its far end tells (as mediumAtSegmentEnd,
+        // from the boundary's surface point, where the ray goes on); one that ends at a
+        // light is in the medium the ray carries.
         float segment = hit.triangle == kNoHit ? distance : hit.t;
-        if (kMedia && (hit.triangle != kNoHit || toInfinity)) {
-            medium = mediumAtSegmentEnd(hit.triangle, direction, medium);
+        SurfacePoint sp;
+        float facing = 0.0f;
+        int interior = -1;
+        if (hit.triangle != kNoHit) {
+            sp = surfacePoint(hit.triangle, hit.b1, hit.b2);
+            facing = dot(direction, sp.normal);
+            interior = P.materials.v[sp.material].interiorMedium;
+            if (kMedia) {
+                medium = mediumBeforeBoundary(uint(interior), sp.outsideMedium, facing, medium);
+            }
+        } else if (kMedia && toInfinity) {
+            medium = mediumAtSegmentEnd(kNoHit, direction, medium);
         }
         if (kMedia && medium != kNoMediumIndex) {
             GpuMedium m = P.media.v[medium];
@@ -150,10 +162,7 @@ vec3 shadowTransmittance(vec3 start, vec3 direction, float distance, uvec2 skipp
         if (hit.triangle == kNoHit) {
             return tr;
         }
-        SurfacePoint sp = surfacePoint(hit.triangle, hit.b1, hit.b2);
-        GpuMaterial material = P.materials.v[sp.material];
-        bool entering = dot(direction, sp.normal) < 0.0f;
-        medium = entering ? uint(material.interiorMedium) : sp.outsideMedium;
+        medium = facing < 0.0f ? uint(interior) : sp.outsideMedium;
         // On from the boundary, aimed again at the light.
         start = sp.position;
         skipped.x = hit.triangle;
