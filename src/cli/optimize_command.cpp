@@ -150,9 +150,17 @@ void printOutputs(const std::filesystem::path& directory, const OptimizationRepo
     warnOfCutPaths(result.truncatedPaths, "the renders of the iterations run");
     std::printf("%s", parameterTable(report.parameters).c_str());
     double iterations = double(result.losses.size());
-    std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint, %.1f ms in all\n",
+    // A resumed run's forward and adjoint times include the checkpoint's iterations; its
+    // wall clock only those this process ran.
+    const std::string ranHere = result.iterationsRun == result.losses.size()
+                                    ? ""
+                                    : formatText(" over the %u iterations run since the checkpoint",
+                                                 result.iterationsRun);
+    std::printf("final loss %.6g after %zu iterations; per iteration %.1f ms forward, %.1f ms adjoint, "
+                "%.1f ms in all%s\n",
                 result.losses.back(), result.losses.size(), result.forwardMs / iterations,
-                result.adjointMs / iterations, result.iterationMs / std::max(1u, result.iterationsRun));
+                result.adjointMs / iterations, result.iterationMs / std::max(1u, result.iterationsRun),
+                ranHere.c_str());
     if (!result.lastMetrics.empty()) std::printf("last iteration%s\n", metricsText(result.lastMetrics).c_str());
     std::printf("diff.png: white is an absolute difference of %.4g\n", double(report.largestDifference));
     // The directory holds this run's files alone (a new run's held none; --overwrite

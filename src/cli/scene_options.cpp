@@ -1,5 +1,8 @@
 #include "cli/scene_options.h"
 
+#include <set>
+#include <string_view>
+
 #include "cli/warnings.h"
 #include "scene/load_scene.h"
 #include "core/error.h"
@@ -13,8 +16,8 @@ namespace vkdr {
 void addSceneOptions(CLI::App& command, SceneOptions& options) {
     command.add_option("scene", options.file, "Scene file (.gltf or .glb)")->required();
     command.add_option("--set", options.assignments,
-                       "Override a parameter, e.g. --set media/fog/sigma_a=0.05,0.05,0.05 (repeatable; "
-                       "one value sets all three channels)");
+                       "Override a parameter, e.g. --set media/fog/sigma_a=0.05,0.05,0.05 (repeatable, once per "
+                       "parameter; one value sets all three channels)");
     command.add_flag("--allow-outside-files", options.access.allowOutsideFiles,
                      "Let the scene read buffers and images outside its own directory (absolute paths, ../)");
 }
@@ -25,8 +28,13 @@ LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     for (const std::string& warning : loaded.warnings) {
         printWarning(warning);
     }
+    std::set<std::string_view> assigned;
     for (const std::string& assignment : options.assignments) {
         applyAssignment(loaded.scene, assignment);
+        // A second value would silently win over the first, as in no other option.
+        if (!assigned.insert(assignedName(assignment)).second) {
+            throw Error("--set " + std::string(assignedName(assignment)) + ": given twice; set each parameter once");
+        }
     }
     if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(loaded.scene)) {
         throw Error("--set: " + unbounded->problem);

@@ -90,11 +90,7 @@ public:
         try {
             parsed = parseJsonText<Json>(text);
         } catch (const Json::exception& error) {  // parse_error, or out_of_range for 1e999
-            // nlohmann's message starts with its own error id: "[json.exception.parse_error.101] ".
-            const std::string message = error.what();
-            const size_t idEnd = message.find("] ");
-            fail("", "not valid JSON (damaged or cut short): " +
-                         (idEnd == std::string::npos ? message : message.substr(idEnd + 2)));
+            fail("", "not valid JSON (damaged or cut short): " + jsonErrorText(error));
         }
         // A checkpoint is written once per key; a repeated one was edited by hand.
         if (parsed.repeatedKey) fail(*parsed.repeatedKey, kRepeatedKeyProblem);

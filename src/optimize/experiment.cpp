@@ -59,7 +59,7 @@ public:
             if (!parsed.document.is_object()) fail("", "expected a JSON object");
             return std::move(parsed.document);
         } catch (const Json::exception& e) {
-            fail("", std::string("not valid JSON: ") + e.what());
+            fail("", "not valid JSON: " + jsonErrorText(e));
         }
     }
 
@@ -168,6 +168,11 @@ public:
         camera.name = string(value["name"], where + ".name");
         // In "views", "" stands for the scene's first camera.
         if (camera.name.empty()) fail(where + ".name", "must not be empty");
+        // The name labels the view's figures wherever they are printed, one line each.
+        auto control = [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; };
+        if (std::any_of(camera.name.begin(), camera.name.end(), control)) {
+            fail(where + ".name", "must not hold control characters, got '" + camera.name + "'");
+        }
         camera.position = vector3(value["position"], where + ".position");
         camera.lookAt = vector3(value["look_at"], where + ".look_at");
         if (value.contains("up")) camera.up = vector3(value["up"], where + ".up");

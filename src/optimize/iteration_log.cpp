@@ -163,9 +163,7 @@ std::string resumedLogLines(const std::filesystem::path& file, const std::vector
 }
 
 IterationLog::IterationLog(std::filesystem::path file, const std::vector<double>& losses)
-    : file_(std::move(file)), text_(resumedLogLines(file_, losses)) {
-    writeAtomically(file_, [&](std::ofstream& stream) { stream << text_; });
-}
+    : file_(std::move(file)), text_(resumedLogLines(file_, losses)) {}
 
 void IterationLog::append(const IterationRecord& record, PendingRenames* pending) {
     text_ += iterationJsonLine(record) + "\n";

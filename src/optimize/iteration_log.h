@@ -58,8 +58,9 @@ class IterationLog {
 public:
     // Starts a new log; the file is written at the first append.
     explicit IterationLog(std::filesystem::path file) : file_(std::move(file)) {}
-    // Continues the log of a run resumed with the checkpoint's `losses`: rewrites the file
-    // with resumedLogLines, so that each iteration appears once.
+    // Continues the log of a run resumed with the checkpoint's `losses`: the first append
+    // rewrites the file as resumedLogLines and the new line, so that each iteration
+    // appears once and the file stays as it was until then.
     IterationLog(std::filesystem::path file, const std::vector<double>& losses);
     // Adds the record's line; with `pending`, the rewritten file waits in its temporary
     // for pending->commit() (image/atomic_write.h).

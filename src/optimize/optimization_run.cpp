@@ -1,5 +1,6 @@
 #include "optimize/optimization_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -24,6 +25,7 @@
 #include "optimize/run_directory.h"
 #include "optimize/run_report.h"
 #include "optimize/value_summary.h"
+#include "scene/gltf_diagnostics.h"
 #include "scene/parameter_kinds.h"
 #include "scene/parameters.h"
 #include "scene/write_scene.h"
@@ -81,15 +83,21 @@ void requireFits(const std::filesystem::path& file, const LoopState& state, cons
         fail("optimizer: expected " + std::to_string(moments) + " moments of each kind");
     }
     // A hand-edited value outside its parameter's range is refused here, naming the file,
-    // not later by the scene: projecting it into the range would change it.
+    // not later by the scene: projecting it into the range would change it. So is one
+    // that log space cannot start from (LogSpace::leave keeps a run's values above 0).
     std::copy(state.values.begin(), state.values.end(), parameters.values().begin());
     parameters.project();
     for (size_t i = 0; i < parameters.names().size(); ++i) {
+        const std::string& name = parameters.names()[i];
+        const bool inLogSpace =
+            std::find(options.logParameters.begin(), options.logParameters.end(), name) != options.logParameters.end();
         for (size_t c = 0; c < parameters.count(i); ++c) {
             const size_t at = parameters.offset(i) + c;
-            if (parameters.values()[at] != state.values[at]) {
-                fail("values: " + parameters.names()[i] + "[" + std::to_string(c) + "] = " +
-                     std::to_string(state.values[at]) + " is outside the parameter's range");
+            const std::string value = "values: " + name + "[" + std::to_string(c) + "] = " +
+                                      formatNumber(state.values[at]);
+            if (parameters.values()[at] != state.values[at]) fail(value + " is outside the parameter's range");
+            if (inLogSpace && !(state.values[at] > 0.0)) {
+                fail(value + ", where the run steps the parameter in log space, which needs every value positive");
             }
         }
     }
@@ -143,10 +151,14 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     createDirectory(directory);
     removeStaleTemporaries(directory);  // a killed run's partial writes
-    if (resume) removeRunOutputs(directory, job.writeTarget);  // of a finished run, before its log is rewritten
     IterationLog log = resume ? IterationLog(directory / kLogFileName, resume->losses)
                               : IterationLog(directory / kLogFileName);
+    // What goes when this run writes its first file, so that a run that fails or is
+    // stopped before then leaves the directory as it was: another run's files (with
+    // --overwrite), or a resumed run's outputs, which the iterations it takes again
+    // replace (its log and checkpoint are rewritten in place).
     std::function<void()> replaceOldRun = job.replaceOldRun;
+    if (resume) replaceOldRun = [&] { removeRunOutputs(directory, job.writeTarget); };
     auto writing = [&] {
         if (replaceOldRun) std::exchange(replaceOldRun, {})();
     };

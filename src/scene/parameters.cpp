@@ -206,13 +206,12 @@ ParsedAssignment parseAssignment(std::string_view assignment) {
     auto fail = [&](const std::string& problem) -> void {
         throw Error("assignment '" + std::string(assignment) + "': " + problem);
     };
-    // The last '=': values hold none, while a material's or medium's name may.
-    size_t equals = assignment.rfind('=');
-    if (equals == std::string_view::npos || equals == 0) {
+    const std::string_view name = assignedName(assignment);
+    if (name.empty()) {
         fail("expected NAME=VALUE or NAME=VALUE,VALUE,VALUE");
     }
-    ParsedAssignment parsed{assignment.substr(0, equals), {}};
-    std::string_view list = assignment.substr(equals + 1);
+    ParsedAssignment parsed{name, {}};
+    std::string_view list = assignment.substr(name.size() + 1);
     while (true) {
         size_t comma = list.find(',');
         std::string_view text = list.substr(0, comma);
@@ -236,6 +235,12 @@ ParsedAssignment parseAssignment(std::string_view assignment) {
 }
 
 }  // namespace
+
+std::string_view assignedName(std::string_view assignment) {
+    // The last '=': values hold none, while a material's or medium's name may.
+    const size_t equals = assignment.rfind('=');
+    return equals == std::string_view::npos ? std::string_view() : assignment.substr(0, equals);
+}
 
 void applyAssignment(Scene& scene, std::string_view assignment) {
     ParsedAssignment parsed = parseAssignment(assignment);

@@ -40,6 +40,9 @@ std::string whichValue(size_t index, size_t count);
 // Applies "NAME=v" or "NAME=v,v,v" (the CLI's --set syntax).
 void applyAssignment(Scene& scene, std::string_view assignment);
 
+// The NAME of such an assignment; empty where it has none.
+std::string_view assignedName(std::string_view assignment);
+
 // The assignment with each value written as the shortest text that reads back as the
 // same float ("x=0.10" and "x=1e-1" both give "x=0.1"), and a list of one value repeated
 // as that value ("x=0.5,0.5,0.5" gives "x=0.5"): two assignments that set the same values

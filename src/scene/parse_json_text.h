@@ -29,6 +29,14 @@ inline constexpr const char* kRepeatedKeyProblem = "given twice in one object; g
 template <typename Json>
 ParsedJsonText<Json> parseJsonText(std::string_view text, bool allowExceptions = true);
 
+// A parse error's message for a person: nlohmann's without the error id it starts with
+// ("[json.exception.parse_error.101] ").
+inline std::string jsonErrorText(const nlohmann::json::exception& error) {
+    const std::string message = error.what();
+    const size_t idEnd = message.find("] ");
+    return idEnd == std::string::npos ? message : message.substr(idEnd + 2);
+}
+
 extern template ParsedJsonText<nlohmann::json> parseJsonText(std::string_view, bool);
 extern template ParsedJsonText<nlohmann::ordered_json> parseJsonText(std::string_view, bool);
 

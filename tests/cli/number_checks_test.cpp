@@ -212,6 +212,9 @@ TEST_F(NumberChecksTest, NumericOptionsSayWhatTheyMustBe) {
         expectError(r, {std::string("'") + value + "' is out of float range"});
         EXPECT_EQ(r.err.find("not a number"), std::string::npos) << r.err;
     }
+    // Set twice, a parameter would take the last value without a word.
+    expectError(run(render + " --set media/fog/sigma_a=0.1 --set media/fog/sigma_a=0.2"),
+                {"--set media/fog/sigma_a: given twice; set each parameter once"});
     EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
     EXPECT_FALSE(fs::exists(dir_ / "run"));
 }

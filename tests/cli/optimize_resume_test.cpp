@@ -1,9 +1,11 @@
 // optimize as a user meets a crash: the device is lost mid-run (simulated, see
 // vk/simulated_device_loss.h), the run stops with one message and leaves its last
 // checkpoint, and --resume finishes with the values of a run that never stopped.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -97,24 +99,61 @@ TEST_F(OptimizeResume, ADeviceLostMidRunLeavesTheCheckpointAndResumeFinishesTheR
     EXPECT_EQ(expected, 8);
 }
 
-// --resume from a finished run does its last iterations again. Its log goes back to the
-// checkpoint at once; stopped before its end, it must not leave the finished run's
-// outputs beside that log, as if they were its own.
-TEST_F(OptimizeResume, AResumedFinishedRunStoppedShortLeavesNoOutputsOfTheRunBefore) {
+// The files of a run, as they stand.
+std::map<std::string, std::string> runFiles(const fs::path& run) {
+    std::map<std::string, std::string> files;
+    for (const fs::directory_entry& entry : fs::directory_iterator(run)) {
+        files[entry.path().filename().string()] = slurp(entry.path());
+    }
+    return files;
+}
+
+const std::vector<std::string> kOutputs = {"params.json", "scene.gltf", "final.exr", "final.png",
+                                           "diff.png",    "loss.svg",   "report.html"};
+
+// --resume from a finished run does its last iterations again. Stopped before it writes
+// anything, it leaves the finished run as it was; stopped once it has rewritten the log
+// back to the checkpoint, it must not leave the finished run's outputs beside that log,
+// as if they were its own. Either way --resume then finishes the run.
+TEST_F(OptimizeResume, AResumedFinishedRunStoppedShortLeavesTheRunBeforeWholeOrNoneOfItsOutputs) {
     fs::path run = scratch_ / "run";
     ASSERT_EQ(runCli(command_ + " --out " + run.string(), scratch_).exitCode, 0);
-    const std::string finishedParams = slurp(run / "params.json");
-    // Lost in the start renders a resumed run makes for its report, after the log is rewritten.
-    RunResult lost = runCli(command_ + " --resume " + run.string(), scratch_, "VKDR_SIMULATE_DEVICE_LOST=40");
-    ASSERT_EQ(lost.exitCode, 2) << lost.err;
-    for (const char* file : {"params.json", "scene.gltf", "final.exr", "final.png", "diff.png", "loss.svg",
-                             "report.html"}) {
-        EXPECT_FALSE(fs::exists(run / file)) << file;
-    }
+    const std::map<std::string, std::string> finished = runFiles(run);
+    // Lost in the start renders a resumed run makes for its report, before its first iteration.
+    RunResult early = runCli(command_ + " --resume " + run.string(), scratch_, "VKDR_SIMULATE_DEVICE_LOST=40");
+    ASSERT_EQ(early.exitCode, 2) << early.err;
+    EXPECT_EQ(runFiles(run), finished);
+    // Lost in the last iteration, after the one before it was logged.
+    RunResult late = runCli(command_ + " --resume " + run.string(), scratch_, "VKDR_SIMULATE_DEVICE_LOST=90");
+    ASSERT_EQ(late.exitCode, 2) << late.err;
+    const std::string log = slurp(run / "log.jsonl");
+    EXPECT_LT(std::count(log.begin(), log.end(), '\n'), 8) << "the log goes back to the checkpoint";
+    for (const std::string& file : kOutputs) EXPECT_FALSE(fs::exists(run / file)) << file;
     ASSERT_TRUE(fs::exists(run / "checkpoint.json"));
     RunResult resumed = runCli(command_ + " --resume " + run.string(), scratch_);
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
-    expectSameValues(nlohmann::json::parse(slurp(run / "params.json")), nlohmann::json::parse(finishedParams));
+    expectSameValues(nlohmann::json::parse(slurp(run / "params.json")),
+                     nlohmann::json::parse(finished.at("params.json")));
+}
+
+// A checkpoint edited to values the run cannot go on from (0, where the run steps in log
+// space) is refused naming the file, and the finished run it belongs to stays whole.
+TEST_F(OptimizeResume, ACheckpointThatLogSpaceCannotStartFromIsRefusedAndTheRunStaysWhole) {
+    const std::string command = command_ + " --log-param media/fog/sigma_a";
+    fs::path run = scratch_ / "run";
+    ASSERT_EQ(runCli(command + " --out " + run.string(), scratch_).exitCode, 0);
+    nlohmann::json checkpoint = nlohmann::json::parse(slurp(run / "checkpoint.json"));
+    checkpoint["values"][1] = 0.0;
+    std::ofstream(run / "checkpoint.json", std::ios::trunc) << checkpoint.dump();
+    const std::map<std::string, std::string> before = runFiles(run);
+    RunResult r = runCli(command + " --resume " + run.string(), scratch_);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("error: " + (run / "checkpoint.json").string() + ": values: media/fog/sigma_a[1] = 0, "),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("log space"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("error: "), r.err.rfind("error: ")) << r.err;
+    EXPECT_EQ(runFiles(run), before);
 }
 
 // A target without a camera is the scene's first camera's: naming that camera is the

@@ -151,7 +151,8 @@ TEST(Experiment, RejectsUnknownKeysWrongTypesAndAMissingScene) {
     expectReadError(scratch, experiment, {"start.media/fog/g", "1 or 3 numbers"});
 
     writeBytes(scratch / "broken.json", "{\"scene\": ");
-    expectErrorMentioning([&] { readExperiment(scratch / "broken.json"); }, {"broken.json", "not valid JSON"});
+    expectErrorMentioning([&] { readExperiment(scratch / "broken.json"); },
+                          {"broken.json: not valid JSON: parse error at line 1, column"});
 
     // A key given twice, at the top or inside an object, is refused rather than the last one kept.
     std::string text = fogExperiment(scratch.path()).dump();
@@ -350,6 +351,11 @@ TEST(Experiment, AddsItsCamerasToTheScene) {
     expectReadError(scratch, experiment, {"cameras[0]", "look_at must differ"});
     experiment["cameras"][0]["name"] = "";
     expectReadError(scratch, experiment, {"cameras[0].name", "must not be empty"});
+    // A name labels printed figures, one line each: a newline or a NUL would break or cut them.
+    experiment["cameras"][0]["name"] = "line\nbreak";
+    expectReadError(scratch, experiment, {"cameras[0].name", "must not hold control characters", "line\\x0abreak"});
+    experiment["cameras"][0]["name"] = std::string("cut\0short", 9);
+    expectReadError(scratch, experiment, {"cameras[0].name", "must not hold control characters", "cut\\x00short"});
 }
 
 TEST(Experiment, RecoversTheTrueValuesWithAnAnalyticBackend) {
