@@ -212,12 +212,18 @@ int withResumeHint(const OptimizeCommandOptions& options, const std::function<in
     }
 }
 
-int runOptimizeScene(OptimizeCommandOptions& options) {
+// An epsilon given for SGD, which has none, would be dropped without a word.
+void requireAdamForEpsilon(OptimizerKind optimizer) {
+    if (optimizer != OptimizerKind::Adam) throw Error("--adam-epsilon: only Adam has an epsilon; the optimizer is sgd");
+}
+
+int runOptimizeScene(OptimizeCommandOptions& options, bool adamEpsilonGiven) {
     if (options.scene.file.empty()) throw Error("optimize: give a SCENE (or --experiment FILE)");
     if (options.targets.empty()) throw Error("optimize: give at least one --target");
     if (options.parameters.empty()) throw Error("optimize: give at least one --param");
     options.optimize.parameters = options.parameters;
     options.optimize.optimizer = parseOptimizerKind(options.optimizer);
+    if (adamEpsilonGiven) requireAdamForEpsilon(options.optimize.optimizer);
     LossKind loss = parseLossKind(options.loss);
 
     LoadedScene loaded = loadSceneWithOverrides(options.scene);
@@ -285,6 +291,7 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     }
     if (given.adamEpsilon->count()) experiment.optimize.adamEpsilon = options.optimize.adamEpsilon;
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
+    if (given.adamEpsilon->count()) requireAdamForEpsilon(experiment.optimize.optimizer);
     if (given.smoothness->count()) {
         experiment.optimize.smoothness = options.optimize.smoothness;
         experiment.givenOnCommandLine["smoothness"] = "--smoothness";
@@ -412,7 +419,7 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
                             "steps are relative changes and --lr is in log units (repeatable)");
     overrides.adamEpsilon =
         command->add_option("--adam-epsilon", options->optimize.adamEpsilon,
-                            "Adam's epsilon, in the gradient's units: make it smaller than the gradients")
+                            "Adam's epsilon, in the gradient's units: make it smaller than the gradients (Adam only)")
             ->default_val(options->optimize.adamEpsilon)->check(finitePositiveNumber());
     overrides.smoothness =
         command->add_option("--smoothness", options->optimize.smoothness,
@@ -474,7 +481,7 @@ CommandAction addOptimizeCommand(CLI::App& app, std::string commandLine) {
         applyResume(*options, out);
         requireRunDirectory(*options);
         return withResumeHint(*options, [&] {
-            return options->experiment.empty() ? runOptimizeScene(*options)
+            return options->experiment.empty() ? runOptimizeScene(*options, overrides.adamEpsilon->count() > 0)
                                                : runOptimizeExperiment(*options, overrides);
         });
     };

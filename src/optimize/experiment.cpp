@@ -276,6 +276,9 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
         }
     };
     if (document.contains("optimizer")) options.optimizer = parsedName("optimizer", parseOptimizerKind);
+    if (document.contains("adam_epsilon") && options.optimizer != OptimizerKind::Adam) {
+        reader.fail("adam_epsilon", "only Adam has an epsilon; the experiment's optimizer is sgd");
+    }
     if (document.contains("loss")) experiment.loss = parsedName("loss", parseLossKind);
     if (document.contains("parameters")) {
         options.parameters = reader.strings(document["parameters"], "parameters");

@@ -207,6 +207,8 @@ TEST_F(NumberChecksTest, NumericOptionsSayWhatTheyMustBe) {
     expectError(run(optimize + " --checkpoint-every -1"),
                 {"--checkpoint-every", "must be an integer from 0 to 1000000, got -1"});
     expectError(run("bench cornell_fog --iters 0"), {"--iters", "must be an integer from 1 to 1000, got 0"});
+    expectError(run(optimize + " --optimizer sgd --adam-epsilon 1e-6"),
+                {"--adam-epsilon: only Adam has an epsilon; the optimizer is sgd"});
     for (const char* value : {"1e-50", "1e50"}) {
         RunResult r = run(render + " --set media/fog/sigma_a=" + value);
         expectError(r, {std::string("'") + value + "' is out of float range"});

@@ -241,6 +241,8 @@ def main():
         ("experiment_learning_rate_zero.json", {"learning_rate": 0}, ["learning_rate", "finite number > 0"]),
         ("experiment_learning_rate_negative.json", {"learning_rate": -0.5}, ["learning_rate", "finite number > 0"]),
         ("experiment_adam_epsilon_zero.json", {"adam_epsilon": 0.0}, ["adam_epsilon", "finite number > 0"]),
+        ("experiment_adam_epsilon_with_sgd.json", {"adam_epsilon": 1e-6, "optimizer": "sgd"},
+         ["adam_epsilon", "only Adam has an epsilon"]),
         ("experiment_learning_rates_negative.json", {"learning_rates": {"media/fog/g": -1}},
          ["learning_rates.media/fog/g", "finite number > 0"]),
         ("experiment_true_beyond_float.json", {"true": {"media/fog/g": 1e39}}, ["true.media/fog/g", "float range"]),
