@@ -492,7 +492,8 @@ void requireAcyclicNodeHierarchy(const tinygltf::Model& model, const GltfDiagnos
             if (child < 0 || size_t(child) >= model.nodes.size() || state[size_t(child)] == State::done) continue;
             if (state[size_t(child)] == State::onPath) {
                 diagnostics.fail(indexed(indexed("nodes", frame.node) + ".children", slot),
-                                 "node " + std::to_string(child) + " is its own ancestor (cycle in the node hierarchy)");
+                                 "node " + std::to_string(child) +
+                                     " is its own ancestor (cycle in the node hierarchy)");
             }
             state[size_t(child)] = State::onPath;
             path.push_back({size_t(child), 0});
