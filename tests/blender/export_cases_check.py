@@ -760,6 +760,42 @@ def split_volume_cube(scene):
     add_light("POINT", "Bulb", (0.0, 0.0, 2.0), 100.0, scene.collection)
 
 
+def backface_culled_emitter(scene):
+    """An emissive panel whose material has Backface Culling on, its back to the camera:
+    Cycles emits from both sides all the same."""
+    mesh = bpy.data.meshes.new("Panel")
+    mesh.from_pydata([(-1.0, 0.0, 0.0), (-1.0, 0.0, 2.0), (1.0, 0.0, 2.0), (1.0, 0.0, 0.0)], [], [(0, 1, 2, 3)])
+    panel = bpy.data.objects.new("Panel", mesh)
+    scene.collection.objects.link(panel)
+    material = bpy.data.materials.new("CulledGlow")
+    material.use_nodes = True
+    material.use_backface_culling = True
+    emission = material.node_tree.nodes.new("ShaderNodeEmission")
+    material.node_tree.links.new(emission.outputs[0], material.node_tree.nodes["Material Output"].inputs["Surface"])
+    mesh.materials.append(material)
+    if mesh.polygons[0].normal.y < 0.0:  # its front away from the camera, at -y
+        mesh.flip_normals()
+
+
+def film_and_pixels(scene):
+    """Film settings and pixels that make Cycles' image differ from vkdiffrender's."""
+    scene.render.engine = "CYCLES"
+    scene.cycles.film_exposure = 4.0
+    scene.render.film_transparent = True
+    scene.render.resolution_x, scene.render.resolution_y = 160, 80
+    scene.render.pixel_aspect_x = 2.0
+
+
+def clipped_objects(scene):
+    """A cube in view before the camera's Clip Start, one beyond its Clip End, one between
+    them and one behind the camera."""
+    scene.camera.data.clip_start, scene.camera.data.clip_end = 1.0, 6.0
+    for name, location, size in (("Near", (0.0, -4.5, 1.0), 0.2), ("Far", (1.5, 10.0, 1.0), 2.0),
+                                 ("Between", (0.0, 0.0, 1.0), 0.5), ("Behind", (0.0, -7.0, 1.0), 0.5)):
+        bpy.ops.mesh.primitive_cube_add(size=size, location=location)
+        bpy.context.object.name = name
+
+
 CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex_instanced_lights,
          "render_modifiers": render_modifiers, "vertex_colours": vertex_colours,
          "read_colour_attributes": read_colour_attributes, "bright_colour_attribute": bright_colour_attribute,
@@ -781,7 +817,9 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "negative_lamp": negative_lamp, "negative_emission": negative_emission, "negative_world": negative_world,
          "unexported_geometry": unexported_geometry, "unused_slot": unused_slot,
          "split_volume_cube": split_volume_cube, "see_through": see_through,
-         "negative_principled_emission": negative_principled_emission}
+         "negative_principled_emission": negative_principled_emission,
+         "backface_culled_emitter": backface_culled_emitter, "film_and_pixels": film_and_pixels,
+         "clipped_objects": clipped_objects}
 
 
 def failing_export(scene, directory):

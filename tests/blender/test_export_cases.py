@@ -429,6 +429,29 @@ def test_an_export_that_fails_leaves_the_previous_one(exported):
     assert sorted(p.name for p in failing.iterdir()) == ["scene.bin", "scene.gltf"], "no staging folder left"
 
 
+def test_an_emitter_cycles_shows_from_behind_is_double_sided_whatever_its_backface_culling(exported, cli):
+    material = next(m for m in document(exported, "backface_culled_emitter")["materials"] if m["name"] == "CulledGlow")
+    assert material["doubleSided"] is True
+    assert render_mean(cli, exported, "backface_culled_emitter") > 0.0, "the camera sees the panel's back glow"
+
+
+def test_film_settings_and_pixels_that_change_cycles_image_are_warned_of(exported):
+    warnings = own_warnings(exported, "film_and_pixels")
+    assert any(w.startswith("Cycles' film Exposure 4 scales its render by 4") for w in warnings), warnings
+    assert any(w.startswith("Cycles' film Transparent renders the background") for w in warnings), warnings
+    assert any(w.startswith("the render's pixels are not square (Pixel Aspect 2 x 1)") and
+               w.endswith("render 320 x 80 for Cycles' view") for w in warnings), warnings
+
+
+def test_objects_cycles_clips_are_named(exported):
+    warnings = own_warnings(exported, "clipped_objects")
+    assert [w for w in warnings if "Clip" in w] == [
+        "camera 'camera': object 'Near' in view nearer than its Clip Start (1), where Cycles renders nothing and "
+        "vkdiffrender renders them: lower Clip Start for Cycles renders that vkdiffrender should match",
+        "camera 'camera': objects 'Far', 'Plane' in view beyond its Clip End (6), where Cycles renders nothing and "
+        "vkdiffrender renders them: raise Clip End for Cycles renders that vkdiffrender should match"]
+
+
 def test_an_orthographic_camera_is_exported_with_the_view_cycles_renders(exported, cli):
     camera = document(exported, "orthographic_camera")["cameras"][0]
     assert camera["type"] == "orthographic"

@@ -17,6 +17,7 @@ import urllib.parse
 
 import bpy
 import mathutils
+import numpy
 from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper
 
@@ -270,9 +271,13 @@ def quote_file_uris(doc):
 def set_surfaces(doc, warnings):
     """Surfaces as Cycles shades them where the exporter reads only Principled BSDF: a
     Diffuse BSDF is Lambertian with its Color; an Emission shader emits Color x Strength
-    and reflects nothing."""
+    and reflects nothing. Every surface is double-sided: Cycles shades and emits on both
+    sides whatever a material's Backface Culling (a setting of the viewport and Eevee),
+    which the exporter writes as glTF's doubleSided, one-sided emission for vkdiffrender."""
     for material in doc.get("materials", []):
         blender_material = bpy.data.materials.get(material.get("name", ""))
+        if blender_material is not None:
+            material["doubleSided"] = True
         node = node_graph.surface_node(blender_material)
         if node is None:
             continue
@@ -517,6 +522,107 @@ def add_area_lights(doc, view_layer, warnings):
         gltf_json.use_extension(doc, "KHR_materials_emissive_strength")
 
 
+def warn_film_settings(scene, warnings):
+    """What Cycles' film does to its image that vkdiffrender's does not."""
+    cycles = getattr(scene, "cycles", None)
+    exposure = getattr(cycles, "film_exposure", 1.0)
+    if exposure != 1.0:
+        warnings.append(f"Cycles' film Exposure {exposure:g} scales its render by {exposure:g}, and vkdiffrender's "
+                        f"is not scaled: set it to 1 for Cycles renders that vkdiffrender should match")
+    if scene.render.film_transparent:
+        warnings.append("Cycles' film Transparent renders the background as transparent black, and vkdiffrender "
+                        "renders the World there: turn it off for Cycles renders that vkdiffrender should match")
+
+
+def object_vertices(obj, depsgraph):
+    """The vertices of `obj` as the render has them (modifiers applied), in its own space:
+    an n x 3 array."""
+    evaluated = obj.evaluated_get(depsgraph)
+    try:
+        mesh = evaluated.to_mesh()
+    except RuntimeError:
+        return numpy.zeros((0, 3))
+    try:
+        vertices = numpy.empty(3 * len(mesh.vertices), dtype=numpy.float32)
+        mesh.vertices.foreach_get("co", vertices)
+    finally:
+        evaluated.to_mesh_clear()
+    return vertices.reshape(-1, 3).astype(numpy.float64)
+
+
+# Camera rays cast across the view per side to find what it shows nearer than Clip Start
+# or beyond Clip End where no vertex lies in view (the middle of a large floor).
+CLIP_PROBES = 48
+
+
+def clipped_objects(scene, view_layer):
+    """The rendered objects in the scene camera's view nearer than its Clip Start or
+    farther than its Clip End, which Cycles' camera rays do not reach, as their vertices
+    in view and the first hits of a grid of camera rays tell: ([names nearer], [names
+    farther])."""
+    camera = scene.camera
+    data = camera.data
+    to_camera = camera.matrix_world.inverted()
+    frame = [mathutils.Vector(corner) for corner in data.view_frame(scene=scene)]
+    half_x, half_y = max(abs(c.x) for c in frame), max(abs(c.y) for c in frame)
+    perspective = data.type == "PERSP"
+    depth_of_frame = abs(frame[0].z) if perspective else 1.0
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    vertices_of = {}  # each object's vertices once, however often it is instanced
+    nearer, farther = {}, {}
+    for rendered in rendered_objects(view_layer):
+        if rendered.object.type not in EXPORTED_GEOMETRY:
+            continue
+        if rendered.object not in vertices_of:
+            vertices_of[rendered.object] = object_vertices(rendered.object, depsgraph)
+        placement = numpy.array(to_camera @ rendered.matrix_world)
+        p = vertices_of[rendered.object] @ placement[:3, :3].T + placement[:3, 3]
+        depth = -p[:, 2]
+        reach = depth / depth_of_frame if perspective else 1.0
+        in_view = (depth > 0.0) & (numpy.abs(p[:, 0]) <= half_x * reach) & (numpy.abs(p[:, 1]) <= half_y * reach)
+        if numpy.any(in_view & (depth < data.clip_start)):
+            nearer[rendered.name] = None
+        if numpy.any(in_view & (depth > data.clip_end)):
+            farther[rendered.name] = None
+    rotation = camera.matrix_world.to_3x3().normalized()
+    origin = camera.matrix_world.translation
+    for i, j in itertools.product(range(CLIP_PROBES), repeat=2):
+        x = half_x * (2.0 * (i + 0.5) / CLIP_PROBES - 1.0)
+        y = half_y * (2.0 * (j + 0.5) / CLIP_PROBES - 1.0)
+        if perspective:
+            start, direction = origin, rotation @ mathutils.Vector((x, y, -depth_of_frame))
+        else:
+            start, direction = origin + rotation @ mathutils.Vector((x, y, 0.0)), rotation @ mathutils.Vector((0, 0, -1))
+        hit, location, _, _, obj, _ = scene.ray_cast(depsgraph, start, direction.normalized())
+        if not hit:
+            continue
+        depth = -(to_camera @ location).z
+        if depth < data.clip_start:
+            nearer[obj.original.name] = None
+        elif depth > data.clip_end:
+            farther[obj.original.name] = None
+    return sorted(nearer), sorted(farther)
+
+
+def warn_camera_clipping_of_objects(scene, view_layer, warnings):
+    """Cycles starts and ends camera rays at Clip Start and Clip End; vkdiffrender's start
+    at the camera and do not end."""
+    nearer, farther = clipped_objects(scene, view_layer)
+    data = scene.camera.data
+
+    def objects(names):
+        return ("object " if len(names) == 1 else "objects ") + ", ".join(f"'{name}'" for name in names)
+
+    if nearer:
+        warnings.append(f"camera '{scene.camera.name}': {objects(nearer)} in view nearer than its Clip Start "
+                        f"({data.clip_start:g}), where Cycles renders nothing and vkdiffrender renders them: "
+                        f"lower Clip Start for Cycles renders that vkdiffrender should match")
+    if farther:
+        warnings.append(f"camera '{scene.camera.name}': {objects(farther)} in view beyond its Clip End "
+                        f"({data.clip_end:g}), where Cycles renders nothing and vkdiffrender renders them: "
+                        f"raise Clip End for Cycles renders that vkdiffrender should match")
+
+
 def warn_bounce_limits(scene, warnings):
     """vkdiffrender has one limit on scattering vertices (--max-depth, which the Fit sets
     to Max Bounces + 1); Cycles also stops a path at its per-kind limits, and its default
@@ -580,6 +686,12 @@ def check_cameras(scene, view_layer, warnings):
             warnings.append(f"camera '{camera.name}': depth of field is exported as a pinhole (all in focus)")
         if camera.data.shift_x != 0.0 or camera.data.shift_y != 0.0:
             warnings.append(f"camera '{camera.name}': lens shift is not exported (the view is centred)")
+    render = scene.render
+    if render.pixel_aspect_x != render.pixel_aspect_y:
+        width = round(render.resolution_x * render.pixel_aspect_x / render.pixel_aspect_y)
+        warnings.append(f"the render's pixels are not square (Pixel Aspect {render.pixel_aspect_x:g} x "
+                        f"{render.pixel_aspect_y:g}); vkdiffrender's are, and it frames the view to --width and "
+                        f"--height: render {width} x {render.resolution_y} for Cycles' view")
     exported = exported_cameras(scene, view_layer)
     if len(exported) > 1:
         warnings.append(f"the scene has {len(exported)} cameras; vkdiffrender renders the first in the file unless "
@@ -665,6 +777,8 @@ def export_scene(context, filepath):
             add_default_surface(doc)
             quote_file_uris(doc)
             warn_bounce_limits(scene, warnings)
+            warn_film_settings(scene, warnings)
+            warn_camera_clipping_of_objects(scene, view_layer, warnings)
             warn_render_differences(view_layer, warnings)
             warn_added_volumes(scene, view_layer, warnings)
         if EXTENSION in json.dumps(doc):
