@@ -173,8 +173,36 @@ def test_a_gradient_beyond_a_half_precision_tensors_range_is_an_error_not_infini
 
 
 def test_a_float64_value_beyond_float_range_is_named_as_such(scene):
-    with pytest.raises(vkdiffrender.Error, match=r"media/fog/sigma_a: must be finite, got 1e\+300: beyond float range"):
-        vt.render(scene, {"media/fog/sigma_a": torch.tensor(1e300, dtype=torch.float64)}, width=WIDTH)
+    for value in (torch.tensor(1e300, dtype=torch.float64), 1e300, [1e300, 0.1, 0.1]):
+        with pytest.raises(vkdiffrender.Error, match=r"media/fog/sigma_a: (value 0 of 3 \(counted from 0\): )?must be "
+                                                     r"finite, got 1e\+300: beyond float range"):
+            vt.render(scene, {"media/fog/sigma_a": value}, width=WIDTH)
+
+
+def test_tensors_torch_keeps_lazily_negated_or_quantized_are_taken_by_their_values(scene):
+    before = scene["media/fog/sigma_a"].copy()
+    negated = torch.tensor([1 - 0.05j] * 3).conj().imag  # 0.05, as a view with the negative bit set
+    quantized = torch.quantize_per_tensor(torch.tensor([0.05, 0.05, 0.05]), 0.01, 0, torch.quint8)
+    for value in (negated, quantized):
+        image = vt.render(scene, {"media/fog/sigma_a": value}, spp=1, width=8)
+        assert torch.isfinite(image).all()
+        assert scene["media/fog/sigma_a"] == pytest.approx([0.05] * 3)
+    scene["media/fog/sigma_a"] = before
+
+
+@pytest.mark.parametrize("upstream,error", [(float("nan"), vkdiffrender.Error), (1e6, OverflowError)])
+def test_a_failing_backward_pass_leaves_the_scene_as_it_was(scene, upstream, error):
+    """The backward pass sets the forward pass's values; one that raises (an upstream
+    gradient that is not finite, a gradient beyond a float16 tensor's range) puts back
+    what was set in between."""
+    before = scene["media/fog/sigma_a"].copy()
+    sigma_a = torch.tensor(0.05, dtype=torch.float16, requires_grad=True)
+    image = vt.render(scene, {"media/fog/sigma_a": sigma_a}, spp=2, width=WIDTH)
+    scene["media/fog/sigma_a"] = 0.2
+    with pytest.raises(error):
+        (image.sum() * upstream).backward()
+    assert np.all(scene["media/fog/sigma_a"] == np.float32(0.2))
+    scene["media/fog/sigma_a"] = before
 
 
 def test_two_names_of_one_texture_are_refused(tmp_path):

@@ -6,18 +6,18 @@
     loss = ((image - target) ** 2).mean()
     loss.backward()  # sigma_a.grad
 
-The forward pass sets the scene's parameters to the tensors' values and renders (a forward
-pass that fails puts them back as they were). The
+The forward pass sets the scene's parameters to the tensors' values and renders. The
 backward pass sets every parameter back to the values the forward pass rendered with and
 hands the upstream gradient dLoss/dI to Scene.backpropagate, which
 replays the paths with random numbers independent of the forward image's: the gradient
 is then free of the covariance between the image and its own derivative, the bias a
 nonlinear loss would otherwise get (docs/python.md, "Why the backward pass renders
-again").
+again"). A pass that fails puts every parameter back as it found it.
 
 Each pass holds the scene's lock from setting the parameters to rendering with them, so
 that threads sharing a scene never render or differentiate each other's values.
 """
+import contextlib
 import threading
 import weakref
 from collections.abc import Mapping
@@ -38,6 +38,19 @@ def _lock_of(scene):
         if lock is None:
             lock = _scene_locks[scene] = threading.Lock()
         return lock
+
+
+@contextlib.contextmanager
+def _restored_on_failure(scene):
+    """Puts every parameter of `scene` back as it was where the block raises (an unknown
+    name, a value out of range, a bad keyword, a gradient the tensor cannot hold)."""
+    before = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
+    try:
+        yield
+    except BaseException:
+        for name, value in before.items():
+            scene[name] = value
+        raise
 
 
 def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8, camera="", paths_per_pass=0,
@@ -85,7 +98,9 @@ def _tensor_of(name, value):
         raise TypeError(f"{name}: a list of tensors that require grad loses their gradients; "
                         "pass torch.stack(...) of them instead")
     try:
-        tensor = torch.as_tensor(value)
+        # Python's floats as the doubles they are: 1e300 is beyond float range, not infinite.
+        tensor = value if isinstance(value, torch.Tensor) else torch.as_tensor(
+            value, dtype=torch.float64 if _holds_float(value) else None)
     except (TypeError, ValueError, RuntimeError) as error:
         raise TypeError(f"{name}: expected a tensor or numbers, got {type(value).__name__} ({error})") from error
     # Converting to float32 would drop an imaginary part with a mere warning.
@@ -103,7 +118,14 @@ def _values_of(tensor):
     beyond float's range is named as such rather than as an infinity; every other dtype
     (bfloat16, which numpy lacks, included) as float32."""
     values = tensor.detach().to("cpu")
+    if values.is_quantized:
+        values = values.dequantize()
+    values = values.resolve_conj().resolve_neg()  # numpy() refuses a lazily negated view
     return (values if values.dtype == torch.float64 else values.to(torch.float32)).numpy()
+
+
+def _holds_float(value):
+    return isinstance(value, float) or isinstance(value, (list, tuple)) and any(_holds_float(v) for v in value)
 
 
 def _holds_tensor_requiring_grad(items):
@@ -114,18 +136,10 @@ def _holds_tensor_requiring_grad(items):
 class _Render(torch.autograd.Function):
     @staticmethod
     def forward(ctx, scene, names, settings, *tensors):
-        with _lock_of(scene):
-            # A pass that fails (an unknown name, a value out of range, a bad keyword)
-            # leaves the scene as it found it.
-            before = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
-            try:
-                for name, tensor in zip(names, tensors):
-                    scene[name] = _values_of(tensor)
-                image = scene.render(**settings)
-            except BaseException:
-                for name, value in before.items():
-                    scene[name] = value
-                raise
+        with _lock_of(scene), _restored_on_failure(scene):
+            for name, tensor in zip(names, tensors):
+                scene[name] = _values_of(tensor)
+            image = scene.render(**settings)
             # Every parameter, not only the tensors': the backward pass must differentiate
             # the scene this pass rendered, whatever is set in between (another view, say).
             ctx.values = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
@@ -141,23 +155,25 @@ class _Render(torch.autograd.Function):
         if not wanted:
             return (None, None, None) + (None,) * len(ctx.names)
         adjoint = image_gradient.detach().to("cpu", torch.float32).contiguous().numpy()
-        with _lock_of(ctx.scene):
+        with _lock_of(ctx.scene), _restored_on_failure(ctx.scene):
             for name, value in ctx.values.items():
                 ctx.scene[name] = value
             gradients = ctx.scene.backpropagate(adjoint, wanted, **ctx.settings)
-        results = []
-        for name, (shape, dtype, device) in zip(ctx.names, ctx.tensor_shapes):
-            if name not in gradients:
-                results.append(None)
-                continue
-            gradient = torch.from_numpy(gradients[name])
-            if shape.numel() == 1 and gradient.numel() != 1:
-                gradient = gradient.sum()
-            cast = gradient.reshape(shape).to(dtype=dtype)
-            # The renderer's gradients are finite floats: only a narrower dtype overflows.
-            if not torch.isfinite(cast).all():
-                raise OverflowError(f"{name}: its gradient (up to {gradient.abs().max().item():g} in magnitude) "
-                                    f"exceeds the range of the tensor's {dtype}; pass it in a wider dtype "
-                                    f"(torch.float32 or torch.float64)")
-            results.append(cast.to(device=device))
+            results = [_gradient_tensor(name, gradients[name], *place) if name in gradients else None
+                       for name, place in zip(ctx.names, ctx.tensor_shapes)]
         return (None, None, None) + tuple(results)
+
+
+def _gradient_tensor(name, gradient, shape, dtype, device):
+    """A parameter's gradient as its tensor holds it: summed where the tensor has one
+    element for many values, in its dtype, on its device."""
+    gradient = torch.from_numpy(gradient)
+    if shape.numel() == 1 and gradient.numel() != 1:
+        gradient = gradient.sum()
+    cast = gradient.reshape(shape).to(dtype=dtype)
+    # The renderer's gradients are finite floats: only a narrower dtype overflows.
+    if not torch.isfinite(cast).all():
+        raise OverflowError(f"{name}: its gradient (up to {gradient.abs().max().item():g} in magnitude) "
+                            f"exceeds the range of the tensor's {dtype}; pass it in a wider dtype "
+                            f"(torch.float32 or torch.float64)")
+    return cast.to(device=device)
