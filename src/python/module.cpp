@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -151,7 +152,10 @@ void requireObjectsWithinFloatRange(const py::array& objects, const std::string&
 // would drop their imaginary part), and what numpy cannot make an array of numbers of,
 // with numpy's or PyTorch's reason (a tensor that requires grad, say); with a
 // vkdiffrender.Error, values beyond float's range.
-FloatArray floatArrayOf(const py::object& value, const std::string& what) {
+// `requireShape` checks the array's shape before its values are read or converted, so
+// that a wrong shape is refused however large the array (a broadcast view of terabytes).
+FloatArray floatArrayOf(const py::object& value, const std::string& what,
+                        const std::function<void(const std::vector<size_t>&)>& requireShape) {
     auto refuse = [&](const std::string& got) { throw py::type_error(what + ": expected numbers, got " + got); };
     if (value.is_none()) refuse("None");
     if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::isinstance<py::bytearray>(value)) {
@@ -176,20 +180,22 @@ FloatArray floatArrayOf(const py::object& value, const std::string& what) {
     if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
         refuse("an array of dtype " + std::string(py::str(numbers.dtype())));
     }
+    requireShape(std::vector<size_t>(numbers.shape(), numbers.shape() + numbers.ndim()));
     requireWithinFloatRange(numbers, what);
     return FloatArray(numbers);
 }
 
-std::vector<size_t> shapeOf(const FloatArray& array) {
-    return std::vector<size_t>(array.shape(), array.shape() + array.ndim());
-}
-
 // An (H, W, 3) array as an Image; `what` names it in errors.
 Image imageOfArray(const py::object& value, const std::string& what) {
-    const FloatArray array = floatArrayOf(value, what);
-    if (array.ndim() != 3 || array.shape(2) != 3 || array.shape(0) < 1 || array.shape(1) < 1) {
-        throw Error(what + " must have shape (height, width, 3), got " + shapeText(shapeOf(array)));
-    }
+    const FloatArray array = floatArrayOf(value, what, [&](const std::vector<size_t>& shape) {
+        if (shape.size() != 3 || shape[2] != 3 || shape[0] < 1 || shape[1] < 1) {
+            throw Error(what + " must have shape (height, width, 3), got " + shapeText(shape));
+        }
+        if (shape[0] > size_t(kMaxImageSide) || shape[1] > size_t(kMaxImageSide)) {
+            throw Error(what + " of shape " + shapeText(shape) + " is larger than any image rendered (" +
+                        std::to_string(kMaxImageSide) + " pixels a side)");
+        }
+    });
     Image image;
     image.height = int(array.shape(0));
     image.width = int(array.shape(1));
@@ -310,12 +316,14 @@ py::dict gradientDictionary(const SceneSession& session, std::vector<ParameterGr
 // a name is a str, as in the lists of names and the keys of the gradients' dicts.
 void setParameter(SceneSession& session, const py::str& nameText, const py::object& value) {
     const std::string name(nameText);
-    const FloatArray array = floatArrayOf(value, name);
     const ParameterInfo info = parameterInfo(session, name);
-    if (array.size() != 1 && shapeOf(array) != info.shape) {
-        throw Error(name + ": expected shape " + shapeText(info.shape) + " or one value, got " +
-                    shapeText(shapeOf(array)));
-    }
+    const FloatArray array = floatArrayOf(value, name, [&](const std::vector<size_t>& shape) {
+        const bool oneValue = std::all_of(shape.begin(), shape.end(), [](size_t side) { return side == 1; });
+        if (!oneValue && shape != info.shape) {
+            throw Error(name + ": expected shape " + shapeText(info.shape) + " or one value, got " +
+                        shapeText(shape));
+        }
+    });
     std::vector<float> values(array.data(), array.data() + array.size());
     runOnDevice([&] {
         session.set(name, values);
@@ -377,7 +385,8 @@ py::dict backpropagate(SceneSession& session, const py::object& imageAdjoint, co
 }
 
 py::tuple lossGradient(SceneSession& session, const py::object& targetArray, const py::object& parameters,
-                       const std::string& lossName, const RenderKeywords& keywords) {
+                       const py::str& lossText, const RenderKeywords& keywords) {
+    const std::string lossName(lossText);
     const std::vector<std::string> names = parameterNamesOf(parameters);
     const RenderSettings settings = keywords.settings();
     const Image target = imageOfArray(targetArray, "the target");
@@ -503,7 +512,7 @@ void bindScene(py::module_& m) {
             "paths are replayed with random numbers independent of that image's (docs/python.md).")
         .def(
             "loss_gradient",
-            [](SceneSession& s, const py::object& target, const py::object& names, const std::string& loss,
+            [](SceneSession& s, const py::object& target, const py::object& names, const py::str& loss,
                VKDR_RENDER_KEYWORD_PARAMETERS) {
                 return lossGradient(s, target, names, loss, VKDR_RENDER_KEYWORD_VALUES);
             },

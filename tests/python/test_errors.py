@@ -165,6 +165,13 @@ def test_what_numpy_cannot_convert_is_refused_with_its_reason(scene):
      "image adjoint"),
     (lambda s: s.backpropagate(np.full((WIDTH, WIDTH, 3), np.inf, np.float32), ["media/fog/g"], width=WIDTH,
                                spp=1), "not finite"),
+    # Arrays of terabytes as views, refused by their shape before a copy is made.
+    (lambda s: s.backpropagate(np.broadcast_to(np.float32(0), (1 << 20, 1 << 20, 3)), ["media/fog/g"], width=WIDTH,
+                               spp=1), r"the image adjoint of shape \(1048576, 1048576, 3\) is larger than any image"),
+    (lambda s: s.loss_gradient(np.broadcast_to(np.float32(0), (1 << 20, 1 << 20, 3)), ["media/fog/g"], width=WIDTH,
+                               spp=1), r"the target of shape \(1048576, 1048576, 3\) is larger than any image"),
+    (lambda s: s.__setitem__("media/fog/g", np.broadcast_to(np.float32(0), (1 << 40,))),
+     r"media/fog/g: expected shape \(1,\) or one value, got \(1099511627776,\)"),
 ])
 def test_bad_calls_raise(scene, call, problem):
     with pytest.raises(vkdiffrender.Error, match=problem):
@@ -182,6 +189,8 @@ def test_bad_calls_raise(scene, call, problem):
     (lambda s: s.render(width=WIDTH, camera=None), 'camera: expected a camera\'s name ("" for the scene\'s first), '
                                                    "got NoneType"),
     (lambda s: s.render(width=WIDTH, camera=0), 'camera: expected a camera\'s name ("" for the scene\'s first), got int'),
+    (lambda s: s.loss_gradient(np.zeros((WIDTH, WIDTH, 3), np.float32), ["media/fog/g"], loss=b"l2", width=WIDTH),
+     "loss_gradient(): loss: expected a str, got bytes"),
 ])
 def test_names_that_are_not_text_are_type_errors_naming_the_argument(scene, call, problem):
     """pybind11's own message would list the signatures and print the arrays passed."""
@@ -315,6 +324,20 @@ def test_read_image_refuses_what_a_target_may_not_hold(tmp_path, value, problem)
     (tmp_path / "bad.exr").write_bytes(data)
     with pytest.raises(vkdiffrender.Error, match=f"bad.exr: pixel \\(3, 3\\) channel R .*{re.escape(problem)}"):
         vkdiffrender.read_image(tmp_path / "bad.exr")
+
+
+@pytest.mark.parametrize("call,problem", [
+    (lambda s, d: vkdiffrender.Scene(str(d / "a\0.gltf")), "Scene(): file: embedded null byte"),
+    (lambda s, d: vkdiffrender.read_image(str(d / "a\0.exr")), "read_image(): path: embedded null byte"),
+    (lambda s, d: vkdiffrender.write_image(str(d / "a\0.exr"), np.zeros((2, 2, 3), np.float32)),
+     "write_image(): path: embedded null byte"),
+    (lambda s, d: s.write(str(d / "a\0.gltf")), "write(): path: embedded null byte"),
+])
+def test_a_path_with_a_null_byte_is_a_value_error_naming_the_argument(scene, tmp_path, call, problem):
+    """As Python's open() says: no file's name holds one."""
+    with pytest.raises(ValueError, match="^" + re.escape(problem) + "$"):
+        call(scene, tmp_path)
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_files_are_checked(scene, fog_scene_file, tmp_path):

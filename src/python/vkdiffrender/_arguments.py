@@ -84,6 +84,16 @@ class _Signature:
                 return f"{self.name}(): {name}: expected a path (a str or os.PathLike), got {type(value).__name__}"
         return None
 
+    def null_in_path(self, args, kwargs):
+        """The problem of a path given with a NUL byte, which no file's name holds (Python's
+        open() raises ValueError for it); None where there is none."""
+        given = dict(zip(self.positional, args)) | kwargs
+        for name, value in given.items():
+            if self.types.get(name) == "os.PathLike" and isinstance(value, (str, os.PathLike)) and \
+                    "\0" in os.fsdecode(value):
+                return f"{self.name}(): {name}: embedded null byte"
+        return None
+
 
 def named_argument_errors(function, name=None):
     """`function` (bound by pybind11) raising one-line TypeErrors for arguments that do not fit,
@@ -98,6 +108,9 @@ def named_argument_errors(function, name=None):
             if "incompatible" not in str(error).partition("\n")[0]:
                 raise
             own = args[1:] if signature.method else args
+            null = signature.null_in_path(own, kwargs)
+            if null is not None:
+                raise ValueError(null) from None
             problem = signature.problem(own, kwargs)
             if problem is None:
                 given = [type(a).__name__ for a in own] + [f"{k}={type(v).__name__}" for k, v in kwargs.items()]
