@@ -292,6 +292,11 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.adamEpsilon->count()) experiment.optimize.adamEpsilon = options.optimize.adamEpsilon;
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
     if (given.adamEpsilon->count()) requireAdamForEpsilon(experiment.optimize.optimizer);
+    if (given.optimizer->count() && experiment.optimize.optimizer != OptimizerKind::Adam &&
+        experiment.optimize.adamEpsilon != OptimizeOptions().adamEpsilon) {
+        throw Error(experiment.file.string() + ": adam_epsilon: only Adam has an epsilon, and --optimizer sgd is "
+                    "given");
+    }
     if (given.smoothness->count()) {
         experiment.optimize.smoothness = options.optimize.smoothness;
         experiment.givenOnCommandLine["smoothness"] = "--smoothness";

@@ -185,13 +185,14 @@ FloatArray floatArrayOf(const py::object& value, const std::string& what,
     return FloatArray(numbers);
 }
 
-// An (H, W, 3) array as an Image; `what` names it in errors.
-Image imageOfArray(const py::object& value, const std::string& what) {
+// An (H, W, 3) array as an Image; `what` names it in errors. One that stands for a
+// render (an image adjoint, a target) is no larger than a render.
+Image imageOfArray(const py::object& value, const std::string& what, bool ofARender) {
     const FloatArray array = floatArrayOf(value, what, [&](const std::vector<size_t>& shape) {
         if (shape.size() != 3 || shape[2] != 3 || shape[0] < 1 || shape[1] < 1) {
             throw Error(what + " must have shape (height, width, 3), got " + shapeText(shape));
         }
-        if (shape[0] > size_t(kMaxImageSide) || shape[1] > size_t(kMaxImageSide)) {
+        if (ofARender && (shape[0] > size_t(kMaxImageSide) || shape[1] > size_t(kMaxImageSide))) {
             throw Error(what + " of shape " + shapeText(shape) + " is larger than any image rendered (" +
                         std::to_string(kMaxImageSide) + " pixels a side)");
         }
@@ -378,7 +379,7 @@ py::dict backpropagate(SceneSession& session, const py::object& imageAdjoint, co
                        const RenderKeywords& keywords) {
     const std::vector<std::string> names = parameterNamesOf(parameters);
     const RenderSettings settings = keywords.settings();
-    const Image adjoint = imageOfArray(imageAdjoint, "the image adjoint");
+    const Image adjoint = imageOfArray(imageAdjoint, "the image adjoint", true);
     SceneSession::Backpropagated result = runOnDevice([&] { return session.backpropagate(settings, adjoint, names); });
     warnOfCutPaths(result.cutPaths);
     return gradientDictionary(session, result.gradients);
@@ -389,7 +390,7 @@ py::tuple lossGradient(SceneSession& session, const py::object& targetArray, con
     const std::string lossName(lossText);
     const std::vector<std::string> names = parameterNamesOf(parameters);
     const RenderSettings settings = keywords.settings();
-    const Image target = imageOfArray(targetArray, "the target");
+    const Image target = imageOfArray(targetArray, "the target", true);
     if (lossName != "l2" && lossName != "l1") {
         throw Error("loss: " + lossName + " not in {l2,l1}");
     }
@@ -402,7 +403,7 @@ py::tuple lossGradient(SceneSession& session, const py::object& targetArray, con
 }
 
 void writeImage(const std::filesystem::path& file, const py::object& array) {
-    const Image image = imageOfArray(array, "the image");
+    const Image image = imageOfArray(array, "the image", false);
     requireOutputFile("write_image", file);
     const std::optional<ImageFileType> type = imageFileTypeOf(file);
     if (!type) {

@@ -788,8 +788,10 @@ def film_and_pixels(scene):
 
 def clipped_objects(scene):
     """A cube in view before the camera's Clip Start, one beyond its Clip End, one between
-    them and one behind the camera."""
+    them and one behind the camera, seen by a scaled camera (Cycles' clipping distances are
+    in the world's units whatever the camera's scale)."""
     scene.camera.data.clip_start, scene.camera.data.clip_end = 1.0, 6.0
+    scene.camera.scale = (3.0, 3.0, 3.0)
     for name, location, size in (("Near", (0.0, -4.5, 1.0), 0.2), ("Far", (1.5, 10.0, 1.0), 2.0),
                                  ("Between", (0.0, 0.0, 1.0), 0.5), ("Behind", (0.0, -7.0, 1.0), 0.5)):
         bpy.ops.mesh.primitive_cube_add(size=size, location=location)

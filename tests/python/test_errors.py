@@ -340,6 +340,14 @@ def test_a_path_with_a_null_byte_is_a_value_error_naming_the_argument(scene, tmp
     assert list(tmp_path.iterdir()) == []
 
 
+def test_write_image_takes_an_image_wider_than_a_render(tmp_path):
+    """Renders placed side by side: the limit on a render's size is not an image's."""
+    wide = np.zeros((2, 20000, 3), np.float32)
+    wide[1, 19999] = 0.5
+    vkdiffrender.write_image(tmp_path / "wide.exr", wide)
+    assert np.array_equal(vkdiffrender.read_image(tmp_path / "wide.exr"), wide)
+
+
 def test_files_are_checked(scene, fog_scene_file, tmp_path):
     with pytest.raises(vkdiffrender.Error, match="expected a .gltf or .glb file"):
         vkdiffrender.Scene(tmp_path)

@@ -550,57 +550,59 @@ def object_vertices(obj, depsgraph):
     return vertices.reshape(-1, 3).astype(numpy.float64)
 
 
-# Camera rays cast across the view per side to find what it shows nearer than Clip Start
-# or beyond Clip End where no vertex lies in view (the middle of a large floor).
+# Camera rays cast across the view per side to find what it shows beyond Clip End.
 CLIP_PROBES = 48
 
 
 def clipped_objects(scene, view_layer):
     """The rendered objects in the scene camera's view nearer than its Clip Start or
-    farther than its Clip End, which Cycles' camera rays do not reach, as their vertices
-    in view and the first hits of a grid of camera rays tell: ([names nearer], [names
-    farther])."""
+    farther than its Clip End, which Cycles' camera rays do not reach: ([names nearer],
+    [names farther]). Nearer: any vertex in view (nothing nearer can hide it). Farther:
+    the first hits of a grid of camera rays from Clip Start on (a wall hides what lies
+    behind it)."""
     camera = scene.camera
     data = camera.data
-    to_camera = camera.matrix_world.inverted()
+    # Cycles' camera rays take the camera object's place and orientation, not its scale.
+    location, orientation, _ = camera.matrix_world.decompose()
+    to_world = mathutils.Matrix.Translation(location) @ orientation.to_matrix().to_4x4()
+    to_camera = to_world.inverted()
     frame = [mathutils.Vector(corner) for corner in data.view_frame(scene=scene)]
     half_x, half_y = max(abs(c.x) for c in frame), max(abs(c.y) for c in frame)
     perspective = data.type == "PERSP"
     depth_of_frame = abs(frame[0].z) if perspective else 1.0
     depsgraph = bpy.context.evaluated_depsgraph_get()
-    vertices_of = {}  # each object's vertices once, however often it is instanced
-    nearer, farther = {}, {}
+    names = {}  # each rendered object's name, as the warnings give it
+    nearer = {}
     for rendered in rendered_objects(view_layer):
-        if rendered.object.type not in EXPORTED_GEOMETRY:
+        obj = rendered.object
+        if obj.type not in EXPORTED_GEOMETRY:
             continue
-        if rendered.object not in vertices_of:
-            vertices_of[rendered.object] = object_vertices(rendered.object, depsgraph)
+        names.setdefault(obj, rendered.name)
         placement = numpy.array(to_camera @ rendered.matrix_world)
-        p = vertices_of[rendered.object] @ placement[:3, :3].T + placement[:3, 3]
+        box_depth = -(numpy.array([tuple(corner) for corner in obj.bound_box]) @ placement[2, :3] + placement[2, 3])
+        if box_depth.min() >= data.clip_start or box_depth.max() <= 0.0:
+            continue  # wholly beyond Clip Start, or behind the camera
+        p = object_vertices(obj, depsgraph) @ placement[:3, :3].T + placement[:3, 3]
         depth = -p[:, 2]
         reach = depth / depth_of_frame if perspective else 1.0
         in_view = (depth > 0.0) & (numpy.abs(p[:, 0]) <= half_x * reach) & (numpy.abs(p[:, 1]) <= half_y * reach)
         if numpy.any(in_view & (depth < data.clip_start)):
             nearer[rendered.name] = None
-        if numpy.any(in_view & (depth > data.clip_end)):
-            farther[rendered.name] = None
-    rotation = camera.matrix_world.to_3x3().normalized()
-    origin = camera.matrix_world.translation
+    farther = {}
     for i, j in itertools.product(range(CLIP_PROBES), repeat=2):
         x = half_x * (2.0 * (i + 0.5) / CLIP_PROBES - 1.0)
         y = half_y * (2.0 * (j + 0.5) / CLIP_PROBES - 1.0)
+        # From Clip Start on, as Cycles' rays: what lies nearer does not hide what they meet.
         if perspective:
-            start, direction = origin, rotation @ mathutils.Vector((x, y, -depth_of_frame))
+            start = to_world @ (mathutils.Vector((x, y, -depth_of_frame)) * (data.clip_start / depth_of_frame))
+            direction = to_world.to_3x3() @ mathutils.Vector((x, y, -depth_of_frame))
         else:
-            start, direction = origin + rotation @ mathutils.Vector((x, y, 0.0)), rotation @ mathutils.Vector((0, 0, -1))
-        hit, location, _, _, obj, _ = scene.ray_cast(depsgraph, start, direction.normalized())
-        if not hit:
-            continue
-        depth = -(to_camera @ location).z
-        if depth < data.clip_start:
-            nearer[obj.original.name] = None
-        elif depth > data.clip_end:
-            farther[obj.original.name] = None
+            start = to_world @ mathutils.Vector((x, y, -data.clip_start))
+            direction = to_world.to_3x3() @ mathutils.Vector((0.0, 0.0, -1.0))
+        hit, point, _, _, obj, _ = scene.ray_cast(depsgraph, start, direction.normalized())
+        # The viewport's objects, which the ray meets, may differ from the render's.
+        if hit and obj.original in names and -(to_camera @ point).z > data.clip_end:
+            farther[names[obj.original]] = None
     return sorted(nearer), sorted(farther)
 
 

@@ -249,6 +249,8 @@ def main():
         ("experiment_scene_is_a_directory.json", {"scene": "."}, ["scene", "is a directory"]),
     ]:
         case(name, experiment(**changes), "experiment", *fields)
+    case("experiment_adam_epsilon_then_sgd.json", experiment(adam_epsilon=1e-6), "experiment", "adam_epsilon",
+         "only Adam has an epsilon, and --optimizer sgd is given", extra="--optimizer sgd")
 
     # Targets for grad (the scene is scenes/cornell_fog.gltf).
     case("target_wrong_size.exr", exr(4, 4), "grad", "4x4", extra="--width 8 --height 8")
