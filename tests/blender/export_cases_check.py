@@ -783,6 +783,7 @@ def film_and_pixels(scene):
     scene.cycles.film_exposure = 4.0
     scene.render.film_transparent = True
     scene.render.resolution_x, scene.render.resolution_y = 160, 80
+    scene.render.resolution_percentage = 50
     scene.render.pixel_aspect_x = 2.0
 
 

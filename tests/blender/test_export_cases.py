@@ -440,7 +440,7 @@ def test_film_settings_and_pixels_that_change_cycles_image_are_warned_of(exporte
     assert any(w.startswith("Cycles' film Exposure 4 scales its render by 4") for w in warnings), warnings
     assert any(w.startswith("Cycles' film Transparent renders the background") for w in warnings), warnings
     assert any(w.startswith("the render's pixels are not square (Pixel Aspect 2 x 1)") and
-               w.endswith("render 320 x 80 for Cycles' view") for w in warnings), warnings
+               w.endswith("render 160 x 40 for Cycles' view") for w in warnings), warnings
 
 
 def test_objects_cycles_clips_are_named(exported):

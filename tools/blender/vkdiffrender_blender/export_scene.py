@@ -690,10 +690,11 @@ def check_cameras(scene, view_layer, warnings):
             warnings.append(f"camera '{camera.name}': lens shift is not exported (the view is centred)")
     render = scene.render
     if render.pixel_aspect_x != render.pixel_aspect_y:
-        width = round(render.resolution_x * render.pixel_aspect_x / render.pixel_aspect_y)
+        scale = render.resolution_percentage / 100.0
+        width = round(render.resolution_x * scale * render.pixel_aspect_x / render.pixel_aspect_y)
         warnings.append(f"the render's pixels are not square (Pixel Aspect {render.pixel_aspect_x:g} x "
                         f"{render.pixel_aspect_y:g}); vkdiffrender's are, and it frames the view to --width and "
-                        f"--height: render {width} x {render.resolution_y} for Cycles' view")
+                        f"--height: render {width} x {round(render.resolution_y * scale)} for Cycles' view")
     exported = exported_cameras(scene, view_layer)
     if len(exported) > 1:
         warnings.append(f"the scene has {len(exported)} cameras; vkdiffrender renders the first in the file unless "
