@@ -32,8 +32,9 @@ LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     for (const std::string& assignment : options.assignments) {
         applyAssignment(loaded.scene, assignment);
         // A second value would silently win over the first, as in no other option.
-        if (!assigned.insert(assignedName(assignment)).second) {
-            throw Error("--set " + std::string(assignedName(assignment)) + ": given twice; set each parameter once");
+        const std::string_view name = assignedName(assignment);
+        if (!assigned.insert(name).second) {
+            throw Error("--set " + std::string(name) + ": given twice; set each parameter once");
         }
     }
     if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(loaded.scene)) {

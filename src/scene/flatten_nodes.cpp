@@ -81,8 +81,7 @@ struct NodeSlot {
 class NodeFlattener {
 public:
     NodeFlattener(const tinygltf::Model& model, GltfDiagnostics& diagnostics, Scene& scene, std::string rootsField)
-        : model_(model), diagnostics_(diagnostics), scene_(scene), rootsField_(std::move(rootsField)),
-          visiting_(model.nodes.size(), false) {}
+        : model_(model), diagnostics_(diagnostics), scene_(scene), rootsField_(std::move(rootsField)) {}
 
     void visit(int nodeIndex, const glm::mat4& parentToWorld, NodeSlot where, size_t depth = 0) {
         if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size()) {
@@ -98,11 +97,6 @@ public:
                                                   std::to_string(kMaxNodeVisits) +
                                                   " nodes (nodes listed as children of several parents multiply)");
         }
-        if (visiting_[size_t(nodeIndex)]) {
-            diagnostics_.fail(fieldOf(where), "node " + std::to_string(nodeIndex) +
-                                                  " is its own ancestor (cycle in the node hierarchy)");
-        }
-        visiting_[size_t(nodeIndex)] = true;
         const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
         glm::mat4 nodeToWorld = parentToWorld * localTransform(node);
         if (node.skin >= 0) {
@@ -121,7 +115,6 @@ public:
         for (size_t c = 0; c < node.children.size(); ++c) {
             visit(node.children[c], nodeToWorld, {nodeIndex, c}, depth + 1);
         }
-        visiting_[size_t(nodeIndex)] = false;
     }
 
     std::vector<MeshInstance> takeInstances() { return std::move(instances_); }
@@ -439,7 +432,6 @@ private:
     GltfDiagnostics& diagnostics_;
     Scene& scene_;
     std::string rootsField_;      // the JSON path of the root list
-    std::vector<bool> visiting_;  // nodes on the current root-to-node path
     size_t visits_ = 0;           // nodes visited, counting each instance
     std::map<size_t, std::vector<DecodedPrimitive>> decodedMeshes_;  // by mesh index
     std::optional<uint32_t> defaultMaterial_;
@@ -463,9 +455,9 @@ void warnOfNodesPlacedTwice(const tinygltf::Model& model, const std::vector<int>
     }
 }
 
-// glTF's nodes form disjoint trees. A cycle among nodes the scene reaches is refused as
-// it is met (NodeFlattener::visit); one among nodes it does not reach would render, but the
-// file is not glTF and other readers refuse it or loop. Depth-first over every node, with an
+// glTF's nodes form disjoint trees. A cycle is refused among every node, those the scene
+// does not reach too (they would not render, but the file is not glTF and other readers
+// refuse it or loop), before NodeFlattener walks from the roots. Depth-first, with an
 // explicit stack: a chain of a million nodes is valid.
 void requireAcyclicNodeHierarchy(const tinygltf::Model& model, const GltfDiagnostics& diagnostics) {
     enum class State : uint8_t { unseen, onPath, done };
@@ -565,12 +557,12 @@ glm::mat4 localTransform(const tinygltf::Node& node) {
 std::vector<MeshInstance> flattenNodes(const tinygltf::Model& model, GltfDiagnostics& diagnostics,
                                        Scene& scene) {
     auto [roots, field] = rootNodes(model, diagnostics);
+    requireAcyclicNodeHierarchy(model, diagnostics);
     warnOfNodesPlacedTwice(model, roots, field, diagnostics);
     NodeFlattener flattener(model, diagnostics, scene, field);
     for (size_t r = 0; r < roots.size(); ++r) {
         flattener.visit(roots[r], glm::mat4(1.0f), {-1, r});
     }
-    requireAcyclicNodeHierarchy(model, diagnostics);
     return flattener.takeInstances();
 }
 
