@@ -1,5 +1,6 @@
 #include "cli/scene_options.h"
 
+#include <map>
 #include <set>
 #include <string_view>
 
@@ -28,13 +29,23 @@ LoadedScene loadSceneWithOverrides(const SceneOptions& options) {
     for (const std::string& warning : loaded.warnings) {
         printWarning(warning);
     }
-    std::set<std::string_view> assigned;
+    // A second value would silently win over the first, as in no other option, whether
+    // given under the same name or under another name of the same values.
+    std::set<std::string_view> names;
+    std::map<const float*, std::string_view> nameOfValues;
     for (const std::string& assignment : options.assignments) {
         applyAssignment(loaded.scene, assignment);
-        // A second value would silently win over the first, as in no other option.
         const std::string_view name = assignedName(assignment);
-        if (!assigned.insert(name).second) {
+        if (!names.insert(name).second) {
             throw Error("--set " + std::string(name) + ": given twice; set each parameter once");
+        }
+        const float* values = parameterStorageAddress(loaded.scene, name);
+        if (values == nullptr) {
+            continue;  // no values to share (a grid without active voxels)
+        }
+        if (const auto [first, isNew] = nameOfValues.emplace(values, name); !isNew) {
+            throw Error("--set " + std::string(name) + ": names the same values as --set " +
+                        std::string(first->second) + " (a texture both materials use); set them once");
         }
     }
     if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(loaded.scene)) {

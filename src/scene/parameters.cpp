@@ -164,6 +164,14 @@ std::vector<float> getParameter(const Scene& scene, std::string_view name) {
     return values;
 }
 
+const float* parameterStorageAddress(const Scene& scene, std::string_view name) {
+    auto storage = findStorage(scene, name);
+    if (!storage) {
+        failUnknown(scene, name);
+    }
+    return storage->values;
+}
+
 void setParameter(Scene& scene, std::string_view name, std::span<const float> values) {
     auto storage = findStorage(scene, name);
     if (!storage) {

@@ -43,6 +43,12 @@ void applyAssignment(Scene& scene, std::string_view assignment);
 // The NAME of such an assignment; empty where it has none.
 std::string_view assignedName(std::string_view assignment);
 
+// Where a parameter's values are stored: two names give the same address exactly when
+// they name the same values (the base colour textures of materials that share one
+// texture); null for a parameter without values (a grid without active voxels). Throws
+// vkdr::Error for an unknown name, as getParameter does.
+const float* parameterStorageAddress(const Scene& scene, std::string_view name);
+
 // The assignment with each value written as the shortest text that reads back as the
 // same float ("x=0.10" and "x=1e-1" both give "x=0.1"), and a list of one value repeated
 // as that value ("x=0.5,0.5,0.5" gives "x=0.5"): two assignments that set the same values

@@ -221,6 +221,34 @@ TEST_F(NumberChecksTest, NumericOptionsSayWhatTheyMustBe) {
     EXPECT_FALSE(fs::exists(dir_ / "run"));
 }
 
+// Two materials that share a texture give two names of its texels: setting both would
+// let the second silently win, as setting one name twice would.
+TEST_F(NumberChecksTest, SettingTwoNamesOfOneTextureIsRefused) {
+    writePng(dir_ / "checker.png", Image{2, 1, {0.2f, 0.4f, 0.6f, 0.8f, 0.6f, 0.4f}});
+    const fs::path quad = fs::path(VKDR_TEST_DATA_DIR) / "malformed" / "valid_quad.gltf";
+    nlohmann::json scene = nlohmann::json::parse(std::ifstream(quad));
+    nlohmann::json textured = {{"baseColorTexture", {{"index", 0}}}};
+    scene["materials"] = {{{"name", "lamp"}, {"emissiveFactor", {1, 1, 1}}, {"pbrMetallicRoughness", textured}},
+                          {{"name", "poster"}, {"pbrMetallicRoughness", textured}}};
+    scene["meshes"].push_back(scene["meshes"][0]);
+    scene["meshes"][1]["primitives"][0]["material"] = 1;
+    scene["nodes"].push_back({{"mesh", 1}, {"translation", {0, 0, -1}}});
+    scene["scenes"][0]["nodes"].push_back(2);
+    scene["textures"] = {{{"source", 0}}};
+    scene["images"] = {{{"uri", "checker.png"}}};
+    std::ofstream(dir_ / "shared.gltf") << scene.dump();
+    const std::string render = "render " + (dir_ / "shared.gltf").string() + " --width 8 --height 8 --spp 1 -o " +
+                               (dir_ / "out.exr").string();
+    const std::string both =
+        " --set materials/lamp/base_color_texture=0.1 --set materials/poster/base_color_texture=0.9";
+    expectError(run(render + both),
+                {"--set materials/poster/base_color_texture: names the same values as --set "
+                 "materials/lamp/base_color_texture"});
+    EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+    RunResult one = run(render + " --set materials/poster/base_color_texture=0.9");
+    EXPECT_EQ(one.exitCode, 0) << one.err;
+}
+
 TEST_F(NumberChecksTest, IntegersAreDecimal) {
     // CLI11 alone reads a leading 0 as octal: --seed 010 would be seed 8.
     Image leadingZero = render("--spp 1 --seed 010", "a.exr");

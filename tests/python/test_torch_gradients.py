@@ -10,6 +10,9 @@ whose expectation is the loss of the expected image exactly, at theta +- h with 
 random numbers on both sides. Both are averaged over seeds and compared within their
 standard errors (sample_means.py); the step h leaves a bias of O(h^2) in the
 differences, far below their standard error at these steps."""
+from decimal import Decimal
+from fractions import Fraction
+
 import numpy as np
 import pytest
 import vkdiffrender
@@ -144,8 +147,8 @@ def test_a_failing_forward_pass_leaves_the_scene_as_it_was(scene, parameters, se
 @pytest.mark.parametrize("call,message", [
     (lambda scene: vt.render(None, {"media/fog/sigma_a": torch.tensor(0.3)}), "scene: expected a vkdiffrender.Scene"),
     (lambda scene: vt.render(scene, [("media/fog/sigma_a", torch.tensor(0.3))]), "parameters: expected a dict"),
-    (lambda scene: vt.render(scene, {"media/fog/sigma_a": None}), "media/fog/sigma_a: expected a tensor or numbers"),
-    (lambda scene: vt.render(scene, {"media/fog/sigma_a": "0.3"}), "media/fog/sigma_a: expected a tensor or numbers"),
+    (lambda scene: vt.render(scene, {"media/fog/sigma_a": None}), "media/fog/sigma_a: expected numbers, got None"),
+    (lambda scene: vt.render(scene, {"media/fog/sigma_a": "0.3"}), "media/fog/sigma_a: expected numbers, got text"),
     (lambda scene: vt.render(scene, {"media/fog/sigma_a": torch.zeros(3, device="meta")}),
      "media/fog/sigma_a: a tensor on the meta device"),
     # A bytes name would render, and its gradient would be lost under the str name.
@@ -177,6 +180,32 @@ def test_a_float64_value_beyond_float_range_is_named_as_such(scene):
         with pytest.raises(vkdiffrender.Error, match=r"media/fog/sigma_a: (value 0 of 3 \(counted from 0\): )?must be "
                                                      r"finite, got 1e\+300: beyond float range"):
             vt.render(scene, {"media/fog/sigma_a": value}, width=WIDTH)
+
+
+@pytest.mark.parametrize("value", [Fraction(1, 20), Decimal("0.05"), [Fraction(1, 20), Decimal("0.05"), 0.05],
+                                   np.array([0.05] * 3, np.float16), [torch.tensor(0.05), 0.05, 0.05]])
+def test_values_that_are_not_tensors_are_taken_as_scene_item_assignment_takes_them(scene, value):
+    before = scene["media/fog/sigma_a"].copy()
+    scene["media/fog/sigma_a"] = value
+    expected = scene.render(width=WIDTH, spp=2)
+    scene["media/fog/sigma_a"] = before
+    assert np.array_equal(vt.render(scene, {"media/fog/sigma_a": value}, width=WIDTH, spp=2).numpy(), expected)
+
+
+def test_an_integer_beyond_64_bits_is_a_number(scene):
+    """torch.as_tensor would refuse it (it holds 64 bits at most)."""
+    vt.render(scene, {"media/fog/sigma_a": 2**70}, width=WIDTH, spp=1)
+    assert np.array_equal(scene["media/fog/sigma_a"], np.full(3, np.float32(2.0**70)))
+
+
+@pytest.mark.parametrize("value", [10**400, Fraction(10**400, 3)], ids=["integer", "fraction"])
+def test_numbers_too_large_for_a_double_are_named_as_beyond_float_range(scene, value):
+    """Converted to doubles first, they would overflow with Python's own OverflowError."""
+    before = scene["media/fog/sigma_a"].copy()
+    with pytest.raises(vkdiffrender.Error, match=r"^media/fog/sigma_a: must be finite, got \d{20}\.\.\. \(40\d "
+                                                 r"digits\): beyond float range"):
+        vt.render(scene, {"media/fog/sigma_a": value}, width=WIDTH, spp=1)
+    assert np.array_equal(scene["media/fog/sigma_a"], before)
 
 
 def test_tensors_torch_keeps_lazily_negated_or_quantized_are_taken_by_their_values(scene):

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -213,6 +214,22 @@ TEST(Parameters, BaseColorTextureIsTheRgbOfEveryTexel) {
                           {"materials/white/base_color_texture", "expected 1 or 6 values, got 3"});
     expectErrorMentioning([&] { getParameter(scene, "materials/light/base_color_texture"); },
                           {"unknown parameter 'materials/light/base_color_texture'"});
+}
+
+// Two materials that share a texture give two names of its texels; every other pair of
+// names holds values of its own.
+TEST(Parameters, NamesOfTheSameValuesShareTheirStorage) {
+    Scene scene = sceneWithEveryKind();
+    std::map<const float*, std::string> nameOf;
+    for (const std::string& name : parameterNames(scene)) {
+        const auto [first, isNew] = nameOf.emplace(parameterStorageAddress(scene, name), name);
+        EXPECT_TRUE(isNew) << name << " and " << first->second;
+    }
+    scene.materials[1].baseColorTexture = 0;
+    EXPECT_EQ(parameterStorageAddress(scene, "materials/white/base_color_texture"),
+              parameterStorageAddress(scene, "materials/light/base_color_texture"));
+    expectErrorMentioning([&] { parameterStorageAddress(scene, "media/haze/g"); },
+                          {"unknown parameter 'media/haze/g'"});
 }
 
 TEST(Parameters, LightEmissionCanReturnFromZero) {

@@ -60,7 +60,8 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
     gradient flows back to every tensor that requires it.
 
     A tensor may have the parameter's shape (scene.parameter(name).shape) or a single
-    element, which sets every channel (and texel); its gradient then sums theirs.
+    element, which sets every channel (and texel); its gradient then sums theirs. A value
+    that is not a tensor is set as `scene[name] = value` sets it, and gets no gradient.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene: expected a vkdiffrender.Scene, got {type(scene).__name__}")
@@ -72,9 +73,9 @@ def render(scene, parameters, *, spp=16, seed=0, width=0, height=0, max_depth=8,
     for name in names:
         if not isinstance(name, str):
             raise TypeError(f"parameters: a name must be a str, got {type(name).__name__} ({name!r})")
-    tensors = [_tensor_of(name, parameters[name]) for name in names]
+    values = [_checked_value(name, parameters[name]) for name in names]
     _refuse_aliases(scene, names)
-    return _Render.apply(scene, names, settings, *tensors)
+    return _Render.apply(scene, names, settings, *values)
 
 
 def _refuse_aliases(scene, names):
@@ -90,27 +91,24 @@ def _refuse_aliases(scene, names):
                                  f"materials use); give one of them")
 
 
-def _tensor_of(name, value):
-    """`value` as a tensor of real numbers with values, or a TypeError naming the parameter."""
-    # torch.as_tensor copies a list's values and drops the graph of tensors in it, at any
-    # depth of nesting.
+def _checked_value(name, value):
+    """`value` if it is a dense tensor of real numbers with values, or not a tensor at all (a
+    number, a list, an array), which the forward pass sets as `scene[name] = value` does, with
+    the same checks; otherwise a TypeError naming the parameter."""
+    # A list's tensors would be taken by their values alone, losing their gradients.
     if isinstance(value, (list, tuple)) and _holds_tensor_requiring_grad(value):
         raise TypeError(f"{name}: a list of tensors that require grad loses their gradients; "
                         "pass torch.stack(...) of them instead")
-    try:
-        # Python's floats as the doubles they are: 1e300 is beyond float range, not infinite.
-        tensor = value if isinstance(value, torch.Tensor) else torch.as_tensor(
-            value, dtype=torch.float64 if _holds_float(value) else None)
-    except (TypeError, ValueError, RuntimeError) as error:
-        raise TypeError(f"{name}: expected a tensor or numbers, got {type(value).__name__} ({error})") from error
+    if not isinstance(value, torch.Tensor):
+        return value
     # Converting to float32 would drop an imaginary part with a mere warning.
-    if tensor.is_complex():
-        raise TypeError(f"{name}: expected real numbers, got a tensor of {tensor.dtype}")
-    if tensor.device.type == "meta":
+    if value.is_complex():
+        raise TypeError(f"{name}: expected real numbers, got a tensor of {value.dtype}")
+    if value.device.type == "meta":
         raise TypeError(f"{name}: a tensor on the meta device holds no values")
-    if tensor.layout != torch.strided:
-        raise TypeError(f"{name}: expected a dense tensor, got one of layout {tensor.layout}; pass tensor.to_dense()")
-    return tensor
+    if value.layout != torch.strided:
+        raise TypeError(f"{name}: expected a dense tensor, got one of layout {value.layout}; pass value.to_dense()")
+    return value
 
 
 def _values_of(tensor):
@@ -124,10 +122,6 @@ def _values_of(tensor):
     return (values if values.dtype == torch.float64 else values.to(torch.float32)).numpy()
 
 
-def _holds_float(value):
-    return isinstance(value, float) or isinstance(value, (list, tuple)) and any(_holds_float(v) for v in value)
-
-
 def _holds_tensor_requiring_grad(items):
     return any(_holds_tensor_requiring_grad(item) if isinstance(item, (list, tuple))
                else isinstance(item, torch.Tensor) and item.requires_grad for item in items)
@@ -135,16 +129,18 @@ def _holds_tensor_requiring_grad(items):
 
 class _Render(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, scene, names, settings, *tensors):
+    def forward(ctx, scene, names, settings, *values):
         with _lock_of(scene), _restored_on_failure(scene):
-            for name, tensor in zip(names, tensors):
-                scene[name] = _values_of(tensor)
+            for name, value in zip(names, values):
+                scene[name] = _values_of(value) if isinstance(value, torch.Tensor) else value
             image = scene.render(**settings)
             # Every parameter, not only the tensors': the backward pass must differentiate
             # the scene this pass rendered, whatever is set in between (another view, say).
             ctx.values = {parameter.name: scene[parameter.name] for parameter in scene.parameters()}
         ctx.scene, ctx.names, ctx.settings = scene, names, settings
-        ctx.tensor_shapes = [(tensor.shape, tensor.dtype, tensor.device) for tensor in tensors]
+        ctx.tensor_shapes = [(value.shape, value.dtype, value.device) if isinstance(value, torch.Tensor) else None
+                             for value in values]
+        tensors = [value for value in values if isinstance(value, torch.Tensor)]
         device = tensors[0].device if tensors else torch.device("cpu")
         return torch.from_numpy(image).to(device)
 
