@@ -11,7 +11,4 @@ void resetPeakHostResidentBytes();
 // /proc/self/status, or getrusage's ru_maxrss where that cannot be read.
 uint64_t peakHostResidentBytes();
 
-// Memory the system could still give the process without swapping (MemAvailable).
-uint64_t availableHostBytes();
-
 }  // namespace vkdr

@@ -11,6 +11,7 @@
 #include "cli/number_options.h"
 #include "cli/sampling_options.h"
 #include "core/interrupt.h"
+#include "core/proc_memory.h"
 #include "image/atomic_write.h"
 #include "vk/context.h"
 

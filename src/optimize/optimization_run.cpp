@@ -53,6 +53,20 @@ std::string parametersJson(const Scene& scene, const std::vector<std::string>& n
     return values.dump(2) + "\n";
 }
 
+// Which fitted values params.json holds, for a run whose scene.gltf could not be written:
+// the summarised ones (a texture's, a grid's) were to be in its files.
+std::string heldByParametersJson(const Scene& scene, const std::vector<std::string>& names) {
+    std::string summarised;
+    size_t count = 0;
+    for (const std::string& name : names) {
+        if (isSummarised(getParameter(scene, name).size())) summarised += (count++ ? ", " : "") + name;
+    }
+    if (count == 0) return " (params.json holds the fitted values)";
+    if (count == names.size()) return " (params.json only summarises the fitted values; they are not written)";
+    return " (params.json holds the fitted values but for " + summarised +
+           ", which it only summarises; their fitted values are not written)";
+}
+
 void createDirectory(const std::filesystem::path& directory) {
     std::error_code error;
     std::filesystem::create_directories(directory, error);
@@ -132,6 +146,7 @@ RunIdentity identityOf(const OptimizationJob& job, const Scene& scene) {
 }  // namespace
 
 RunIdentity requireRunCanStart(const OptimizationJob& job, const Scene& scene) {
+    requireWritableDensityGrids(scene);  // the run ends by writing them
     const RunIdentity identity = identityOf(job, scene);
     std::optional<LoopState> resume = resumeState(job, scene, identity);
     if (resume) resumedLogLines(job.outputDirectory / kLogFileName, resume->losses);
@@ -149,6 +164,7 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
     const std::vector<std::string>& names = job.options.parameters;
     const RunIdentity identity = job.identity ? *job.identity : identityOf(job, scene);
     std::optional<LoopState> resume = resumeState(job, scene, identity);
+    requireWritableDensityGrids(scene);
     createDirectory(directory);
     removeStaleTemporaries(directory);  // a killed run's partial writes
     IterationLog log = resume ? IterationLog(directory / kLogFileName, resume->losses)
@@ -218,7 +234,7 @@ OptimizationReport runOptimization(LossGradient& imageLossGradient, Scene& scene
         writeSceneWithParameters(job.sceneFile, scene, directory / "scene.gltf");
     } catch (const Error& error) {
         throw Error(std::string(error.what()) + "; scene.gltf is not written, and the run's other outputs are in " +
-                    directory.string() + " (params.json holds the fitted values)");
+                    directory.string() + heldByParametersJson(scene, names));
     }
     return report;
 }

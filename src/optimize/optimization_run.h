@@ -56,7 +56,8 @@ struct OptimizationReport {
 // The checks runOptimization makes of job.outputDirectory before it writes anything: a
 // new run's directory holds no other run's files (with job.replaceOldRun given, none of
 // them is a directory); a resumed run's checkpoint is this run's and fits the scene, and
-// log.jsonl holds that run's lines up to it. Throws vkdr::Error as runOptimization
+// log.jsonl holds that run's lines up to it; every density grid of the scene can be
+// written back beside scene.gltf. Throws vkdr::Error as runOptimization
 // would, and writes nothing: for a caller to make before its device work
 // (runOptimization makes them again). Returns the run's identity, for job.identity.
 RunIdentity requireRunCanStart(const OptimizationJob& job, const Scene& scene);

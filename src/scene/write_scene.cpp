@@ -443,8 +443,20 @@ void writeBaseColorTextures(json& document, const Scene& scene, const std::vecto
 
 }  // namespace
 
+void requireWritableDensityGrids(const Scene& scene) {
+    for (const SceneDensityGrid& grid : scene.densityGrids) {
+        const std::string problem = gridTransformWriteProblem(grid.grid.indexToLocal);
+        if (!problem.empty()) {
+            throw Error(grid.file.string() + ": grid '" + grid.grid.name + "': " + problem +
+                        ", so the grid cannot be written beside a fitted scene.gltf; scale the grid's voxels up in "
+                        "its file and down with the grid reference's \"node\"");
+        }
+    }
+}
+
 void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
                               const std::filesystem::path& out) {
+    requireWritableDensityGrids(scene);
     // Parameters set one at a time can make a scene the loader refuses as a whole.
     if (std::optional<UnboundedSceneEmission> unbounded = unboundedSceneEmission(scene)) {
         throw Error(out.string() + ": the scene would not load again: " + unbounded->problem);

@@ -27,4 +27,9 @@ namespace vkdr {
 void writeSceneWithParameters(const std::filesystem::path& original, const Scene& scene,
                               const std::filesystem::path& out);
 
+// Throws vkdr::Error naming the grid file whose grid writeSceneWithParameters could not
+// write back for its transform (a NanoVDB grid's voxels smaller than OpenVDB holds,
+// gridTransformWriteProblem): a run that will write the scene checks before it starts.
+void requireWritableDensityGrids(const Scene& scene);
+
 }  // namespace vkdr

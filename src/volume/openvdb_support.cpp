@@ -1,6 +1,9 @@
 #include "volume/openvdb_support.h"
 
+#include <cmath>
 #include <sstream>
+
+#include "core/format_text.h"
 
 namespace vkdr {
 
@@ -35,6 +38,17 @@ openvdb::math::Transform::Ptr exactTransform(const glm::dmat4& indexToLocal) {
     auto transform = std::make_shared<openvdb::math::Transform>();
     transform->read(bytes);
     return transform;
+}
+
+std::string openVdbMapProblem(const glm::dmat4& indexToLocal) {
+    try {
+        openvdb::math::AffineMap map(toOpenVdb(indexToLocal));
+    } catch (const openvdb::ArithmeticError&) {
+        return formatText("its voxels are too small for OpenVDB (a voxel's volume is %g; OpenVDB's transforms "
+                          "need at least 3e-15, voxels about 1.44e-5 across)",
+                          std::abs(glm::determinant(glm::dmat3(indexToLocal))));
+    }
+    return "";
 }
 
 }  // namespace vkdr

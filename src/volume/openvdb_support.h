@@ -1,6 +1,8 @@
 #pragma once
 // For vkdr_volume's own .cpp files only: it brings in OpenVDB, which the library's
 // public headers keep out.
+#include <string>
+
 #include <openvdb/openvdb.h>
 
 #include <glm/glm.hpp>
@@ -19,5 +21,10 @@ openvdb::math::Mat4d toOpenVdb(const glm::dmat4& matrix);
 // would "simplify" a scale-and-translate matrix, recomputing the scale from differences
 // of mapped points, which loses bits, and merging scales within 1e-7 of each other.)
 openvdb::math::Transform::Ptr exactTransform(const glm::dmat4& indexToLocal);
+
+// Why OpenVDB cannot hold `indexToLocal` (finite and affine) as a map: "" when it can.
+// Its maps refuse voxels of a volume (determinant) under 3e-15, about 1.44e-5 a side,
+// however well shaped.
+std::string openVdbMapProblem(const glm::dmat4& indexToLocal);
 
 }  // namespace vkdr

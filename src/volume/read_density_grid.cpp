@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>  // GridValidator.h uses std::cerr without including it
 #include <new>
+#include <stdexcept>
 #include <vector>
 
 #include <nanovdb/util/GridValidator.h>
@@ -16,10 +17,12 @@
 
 #include "core/error.h"
 #include "core/format_text.h"
+#include "core/proc_memory.h"
 #include "image/regular_file.h"
 #include "volume/grid_file_type.h"
 #include "volume/index_transform.h"
 #include "volume/library_complaint.h"
+#include "volume/nanovdb_file_layout.h"
 #include "volume/nanovdb_grid_extent.h"
 #include "volume/openvdb_support.h"
 
@@ -140,6 +143,15 @@ DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dm
     }
     dense.firstVoxel = glm::ivec3(box.min().x(), box.min().y(), box.min().z());
     dense.size = glm::ivec3(extent);
+    // Linux grants far more than it has, and would end the process when the box is filled.
+    const uint64_t bytes = count * Values::channels * sizeof(float);
+    if (const uint64_t available = availableHostBytes(); bytes > available) {
+        throw Error(formatText("its active voxels span a box of %lld x %lld x %lld = %llu voxels, %.1f GiB held "
+                               "densely, more than the %.1f GiB of memory this machine has available",
+                               (long long)extent.x, (long long)extent.y, (long long)extent.z,
+                               (unsigned long long)count, double(bytes) / double(1ull << 30),
+                               double(available) / double(1ull << 30)));
+    }
     try {
         dense.values.assign(count * size_t(Values::channels), 0.0f);
     } catch (const std::bad_alloc&) {
@@ -189,6 +201,29 @@ void requireWholeVdb(const std::filesystem::path& file) {
     }
 }
 
+// A linear map's matrix. OpenVDB gives it as an AffineMap, whose constructor refuses a
+// matrix that is not finite or whose voxels are smaller than it holds; the map's images of
+// the origin and the unit axes then say which, in the project's words.
+glm::dmat4 indexToLocalOf(const openvdb::math::MapBase& map) {
+    try {
+        return toGlm(map.getAffineMap()->getMat4());
+    } catch (const openvdb::ArithmeticError&) {
+        const openvdb::Vec3d origin = map.applyMap(openvdb::Vec3d(0.0));
+        glm::dmat4 approximate(1.0);
+        for (int axis = 0; axis < 3; ++axis) {
+            openvdb::Vec3d unit(0.0);
+            unit[axis] = 1.0;
+            const openvdb::Vec3d image = map.applyMap(unit) - origin;
+            approximate[axis] = glm::dvec4(image.x(), image.y(), image.z(), 0.0);
+        }
+        approximate[3] = glm::dvec4(origin.x(), origin.y(), origin.z(), 1.0);
+        std::string problem = indexTransformProblem(approximate);
+        if (problem.empty()) problem = openVdbMapProblem(approximate);
+        if (problem.empty()) problem = "OpenVDB cannot invert the transform";
+        throw Error(problem);
+    }
+}
+
 template <typename Values>
 DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridName) {
     initializeOpenVdb();
@@ -207,7 +242,14 @@ DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridNa
         throw Error(severalGridsNamed(gridName, named.size(),
                                       "name one as OpenVDB does: '" + named[0] + "', '" + named[1] + "'..."));
     }
-    const openvdb::GridBase::Ptr grid = vdb.readGrid(gridName);
+    openvdb::GridBase::Ptr grid;
+    try {
+        grid = vdb.readGrid(gridName);
+    } catch (const openvdb::ArithmeticError&) {
+        // An affine map is checked as it is read, with the refusal indexToLocalOf gives.
+        throw Error("the transform is singular or not finite, or its voxels are too small for OpenVDB (OpenVDB's "
+                    "transforms need a voxel's volume of at least 3e-15, voxels about 1.44e-5 across)");
+    }
     vdb.close();
     const bool isFloat = grid->isType<openvdb::FloatGrid>(), isDouble = grid->isType<openvdb::DoubleGrid>();
     const bool isVector =
@@ -217,7 +259,7 @@ DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridNa
     }
     const openvdb::math::Transform& transform = grid->transform();
     if (!transform.isLinear()) throw Error("the transform is not affine (it is a " + transform.mapType() + ")");
-    const glm::dmat4 indexToLocal = toGlm(transform.baseMap()->getAffineMap()->getMat4());
+    const glm::dmat4 indexToLocal = indexToLocalOf(*transform.baseMap());
     requireUsableTransform(indexToLocal);
     if (isFloat) {
         return denseBoxOf<Values>(*openvdb::gridConstPtrCast<openvdb::FloatGrid>(grid), gridName, indexToLocal);
@@ -264,6 +306,7 @@ DensityGrid denseBoxOfNanoGrid(nanovdb::NanoGrid<ValueT>* grid, const std::strin
 template <typename Values>
 DensityGrid readNanoVdb(const std::filesystem::path& file, const std::string& gridName) {
     initializeOpenVdb();
+    requireSoundNanoVdbLayout(file);
     const std::vector<nanovdb::io::GridMetaData> grids = nanovdb::io::readGridMetaData(file.string());
     std::vector<std::string> names;
     const nanovdb::io::GridMetaData* found = nullptr;
@@ -316,15 +359,21 @@ DensityGrid readGrid(const std::filesystem::path& file, const std::string& gridN
     if (!type) {
         throw Error(context + "unknown extension '" + file.extension().string() + "' (expected .vdb or .nvdb)");
     }
+    // A damaged file can make OpenVDB's or NanoVDB's reader ask for any amount of memory,
+    // or for more than a vector can hold.
+    auto askedForTooMuch = [&] {
+        std::error_code ignored;
+        return Error(context + formatText("reading it asked for more memory than this machine has; the file (%llu "
+                                          "bytes) may be truncated or damaged",
+                                          (unsigned long long)std::filesystem::file_size(file, ignored)));
+    };
     try {
         requireReadableFile(file);
         return *type == GridFileType::Vdb ? readVdb<Values>(file, gridName) : readNanoVdb<Values>(file, gridName);
     } catch (const std::bad_alloc&) {
-        // A damaged file can make OpenVDB's or NanoVDB's reader ask for any amount.
-        std::error_code ignored;
-        throw Error(context + formatText("reading it asked for more memory than this machine has; the file (%llu "
-                                         "bytes) may be truncated or damaged",
-                                         (unsigned long long)std::filesystem::file_size(file, ignored)));
+        throw askedForTooMuch();
+    } catch (const std::length_error&) {
+        throw askedForTooMuch();
     } catch (const Error& error) {
         throw Error(context + error.what());
     } catch (const std::exception& error) {

@@ -30,7 +30,7 @@ void requireWritable(const DensityGrid& grid) {
                                    double(grid.values[i])));
         }
     }
-    const std::string problem = indexTransformProblem(grid.indexToLocal);
+    const std::string problem = gridTransformWriteProblem(grid.indexToLocal);
     if (!problem.empty()) throw Error(problem);
 }
 
@@ -82,6 +82,11 @@ void write(const std::filesystem::path& file, const DensityGrid& grid, const std
 }
 
 }  // namespace
+
+std::string gridTransformWriteProblem(const glm::dmat4& indexToLocal) {
+    const std::string problem = indexTransformProblem(indexToLocal);
+    return problem.empty() ? openVdbMapProblem(indexToLocal) : problem;
+}
 
 void writeDensityGridVdb(const std::filesystem::path& file, const DensityGrid& grid) {
     write(file, grid, "VDB", [](std::ofstream& out, const openvdb::GridBase::Ptr& vdb) {

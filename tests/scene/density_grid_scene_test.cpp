@@ -6,6 +6,9 @@
 
 #include <cmath>
 
+#include <nanovdb/util/GridChecksum.h>
+#include <nanovdb/util/IO.h>
+
 #include "../image/scratch_directory.h"
 #include "core/error.h"
 #include "expect_error.h"
@@ -106,6 +109,28 @@ TEST(DensityGridScene, WrittenSceneHasTheGridsCurrentVoxels) {
     EXPECT_EQ(again.scene.densityGrids[0].grid.values, fitted);
     EXPECT_EQ(again.scene.densityGrids[0].grid.firstVoxel, smallGrid().firstVoxel);
     EXPECT_EQ(again.scene.densityGrids[0].indexToWorld, loaded.scene.densityGrids[0].indexToWorld);
+}
+
+// A NanoVDB grid may have voxels too small for OpenVDB's transforms; it renders, but a
+// fitted scene could not write it back as .vdb: a run is refused before it starts, and
+// writing the scene before any file is written.
+TEST(DensityGridScene, AGridTheWrittenSceneCouldNotHoldIsRefusedBeforeAnyWork) {
+    TemporaryDirectory directory;
+    const std::filesystem::path grid = directory / "smoke.nvdb";
+    writeDensityGridNanoVdb(grid, smallGrid());
+    nanovdb::GridHandle<> handle = nanovdb::io::readGrid(grid.string());
+    handle.grid<float>()->data()->mMap.set(1e-6, nanovdb::Vec3d(0.0), 1.0);
+    nanovdb::updateChecksum(*handle.grid<float>());
+    nanovdb::io::writeGrid(grid.string(), handle);
+    std::filesystem::path original =
+        boxScene(gridMedium({{"uri", "smoke.nvdb"}, {"node", 1}})).writeGltf(directory / "s.gltf");
+    LoadedScene loaded = loadScene(original);
+    const std::vector<std::string> expected = {"smoke.nvdb: grid 'density'", "voxels are too small for OpenVDB",
+                                               "cannot be written beside a fitted scene.gltf"};
+    expectErrorMentioning([&] { requireWritableDensityGrids(loaded.scene); }, expected);
+    expectErrorMentioning([&] { writeSceneWithParameters(original, loaded.scene, directory / "out.gltf"); }, expected);
+    EXPECT_FALSE(std::filesystem::exists(directory / "out.gltf"));
+    EXPECT_FALSE(std::filesystem::exists(directory / "out.materials0.density.vdb"));
 }
 
 // A grid the written scene would put where the scene reads one is refused before any
