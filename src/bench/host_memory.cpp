@@ -1,5 +1,6 @@
 #include "bench/host_memory.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <fstream>
@@ -9,6 +10,7 @@
 namespace vkdr {
 
 void resetPeakHostResidentBytes() {
+    malloc_trim(0);
     // "5" resets the peak resident set size to the current one (Linux 4.0 and later).
     std::ofstream("/proc/self/clear_refs") << "5";
 }

@@ -4,7 +4,9 @@
 namespace vkdr {
 
 // Starts a new measurement of the peak resident set (Linux: /proc/self/clear_refs);
-// where the kernel does not allow it, the peak stays the process's lifetime peak.
+// where the kernel does not allow it, the peak stays the process's lifetime peak. Memory
+// freed before is first returned to the system (malloc_trim), so that what malloc kept
+// of it does not count as resident in the new measurement.
 void resetPeakHostResidentBytes();
 
 // The most host memory the process has held resident since the last reset: VmHWM of

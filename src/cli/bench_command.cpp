@@ -71,6 +71,8 @@ int runBench(BenchOptions options) {
             bar.update((double(i) + fraction) / double(sources.size()), source.name);
         };
         progress(0.0);
+        // Each scene's memory figures count what its own renderers hold.
+        context.releaseKeptStagingBuffers();
         resetPeakHostResidentBytes();
         LoadedScene loaded = loadBenchScene(source, options.access);
         if (!options.json.empty()) {

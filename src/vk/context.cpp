@@ -273,6 +273,11 @@ const Buffer& VulkanContext::keptStagingBuffer(MemoryUse use, VkDeviceSize bytes
     return *staging;
 }
 
+void VulkanContext::releaseKeptStagingBuffers() const {
+    uploadStaging_.reset();
+    readbackStaging_.reset();
+}
+
 uint32_t VulkanContext::memoryTypeIndex(uint32_t allowedTypes, VkMemoryPropertyFlags required,
                                         VkMemoryPropertyFlags preferred) const {
     for (VkMemoryPropertyFlags wanted : {required | preferred, required}) {

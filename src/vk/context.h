@@ -67,6 +67,9 @@ public:
     // one costs more than a small transfer itself. Valid until the next call with the
     // same use.
     const Buffer& keptStagingBuffer(MemoryUse use, VkDeviceSize bytes) const;
+    // Frees the kept staging buffers, so that a measurement of the memory one renderer
+    // holds (bench) does not count those that renderers before it left.
+    void releaseKeptStagingBuffers() const;
 
     // Features vkdiffrender needs, in the words `info` prints.
     static std::vector<std::string> requiredFeatures();

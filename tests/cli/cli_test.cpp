@@ -484,6 +484,19 @@ TEST_F(CliTest, BenchWritesATableAndJsonWithEveryField) {
     EXPECT_EQ(out["scenes"][0]["name"], "cornell_fog");
 }
 
+// A scene's memory figures are its own renderers': the same scene measured before and
+// after a larger one (whose staging buffers the device context would keep) gives the same.
+TEST_F(CliTest, BenchMemoryOfASceneDoesNotDependOnTheScenesBeforeIt) {
+    fs::path json = dir_ / "bench.json";
+    RunResult r = run("bench room_10 plume_16 room_10 --width 4 --spp 1 --max-depth 2 --iters 1 --gradient-seeds 0 "
+                      "--json " + json.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    nlohmann::json out = nlohmann::json::parse(slurp(json));
+    ASSERT_EQ(out["scenes"].size(), 3u);
+    EXPECT_EQ(out["scenes"][2]["peak_allocated_device_bytes"], out["scenes"][0]["peak_allocated_device_bytes"]);
+    EXPECT_EQ(out["scenes"][2]["peak_device_bytes"], out["scenes"][0]["peak_device_bytes"]);
+}
+
 TEST_F(CliTest, BenchRejectsUnknownScenesBeforeRunning) {
     fs::path json = dir_ / "bench.json";
     std::ofstream(json) << "previous result";
