@@ -10,6 +10,21 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 
+namespace {
+
+// A repeatable option takes one value each time it is given (CLI11 lets a vector option
+// take every word up to the next option): `grad --target t.exr scene.gltf` would take the
+// scene for a second target, and `--set a=1 b=2` set both.
+void takeOneValuePerOccurrence(CLI::App& app) {
+    for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+        for (CLI::Option* option : command->get_options()) {
+            if (option->nonpositional()) option->allow_extra_args(false);
+        }
+    }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     CLI::App app("vkdiffrender: a differentiable volumetric path tracer on Vulkan", "vkdiffrender");
     app.require_subcommand(1);
@@ -18,6 +33,7 @@ int main(int argc, char** argv) {
     std::vector<vkdr::CommandAction> actions = {vkdr::addRenderCommand(app), vkdr::addGradCommand(app),
                                                 vkdr::addOptimizeCommand(app, vkdr::commandLineText(argc, argv)), vkdr::addBenchCommand(app),
                                                 vkdr::addInfoCommand(app), vkdr::addHelpCommand(app)};
+    takeOneValuePerOccurrence(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -98,9 +98,32 @@ TEST_F(CliTest, UsageErrorsAreOneLineNamingTheHelpToRead) {
     expectOneLine("", "A subcommand is required: one of render, grad, optimize, bench, info, help "
                       "(see 'vkdiffrender --help')");
     expectOneLine("render", "scene is required; see 'vkdiffrender render --help'");
-    expectOneLine("info --frob", "The following argument was not expected: --frob; see 'vkdiffrender info --help'");
+    expectOneLine("info --frob", "unexpected argument --frob; see 'vkdiffrender info --help'");
+    expectOneLine("help grad bench", "unexpected argument bench; see 'vkdiffrender help --help'");
     expectOneLine("render scene.gltf --spp 2 --spp 3", "--spp: given 2 times; give it once; see 'vkdiffrender render "
                                                        "--help'");
+    expectOneLine("bench --spp", "--spp: no value given (expected an integer from 1 to 1048576); see 'vkdiffrender "
+                                 "bench --help'");
+    expectOneLine("render scene.gltf -o", "--output: no value given; see 'vkdiffrender render --help'");
+}
+
+// CLI11 would let a repeatable option take every word up to the next option: the scene
+// after a --target would be a second target, and --set a=1 b=2 set both.
+TEST_F(CliTest, ARepeatableOptionTakesOneValueEachTimeItIsGiven) {
+    const fs::path target = dir_ / "target.exr";
+    ASSERT_EQ(run("render " + scene("cornell_fog.gltf") + " --width 8 --height 8 --spp 1 -o " + target.string())
+                  .exitCode,
+              0);
+    RunResult grad = run("grad --target " + target.string() + " " + scene("cornell_fog.gltf") +
+                         " --param media/fog/g --spp 1");
+    EXPECT_EQ(grad.exitCode, 0) << grad.err;
+    EXPECT_NE(grad.out.find("d loss / d media/fog/g"), std::string::npos) << grad.out;
+    RunResult set = run("render " + scene("cornell_fog.gltf") + " -o " + (dir_ / "x.exr").string() +
+                        " --set media/fog/g=0.1 media/fog/sigma_a=0.2");
+    EXPECT_EQ(set.exitCode, 2);
+    EXPECT_EQ(set.err, "error: unexpected argument media/fog/sigma_a=0.2; an option takes one value each time it "
+                       "is given (give it again for another); see 'vkdiffrender render --help'\n");
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
 }
 
 TEST_F(CliTest, MissingSceneFile) {
