@@ -79,7 +79,11 @@ int runBench(BenchOptions options) {
             requireOutputsAreNotInputs({{"--json", options.json}}, loaded.externalFiles,
                                        "a file that scene " + source.name + " reads");
         }
-        report.scenes.push_back(benchmarkScene(context, source.name, loaded.scene, options.settings, progress));
+        try {
+            report.scenes.push_back(benchmarkScene(context, source.name, loaded.scene, options.settings, progress));
+        } catch (const Error& error) {
+            throw Error("scene " + source.name + ": " + error.what());
+        }
     }
     bar.finish();
     requireNoValidationMessages(context);

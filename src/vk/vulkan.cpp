@@ -33,7 +33,8 @@ void checkVk(VkResult result, const char* what) {
                               "fewer " + settingName(Setting::PathsPerPass) + " or a smaller image)");
     }
     if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
-        message += " (the scene or the image does not fit: try a smaller " + imageSizeSettingNames() + ")";
+        message += " (the scene or the image does not fit in the device's memory: try a smaller image, by " +
+                   imageSizeSettingNames() + " or a target of fewer pixels)";
     }
     throw Error(message);
 }

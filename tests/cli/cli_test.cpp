@@ -520,6 +520,13 @@ TEST_F(CliTest, BenchMemoryOfASceneDoesNotDependOnTheScenesBeforeIt) {
     EXPECT_EQ(out["scenes"][2]["peak_device_bytes"], out["scenes"][0]["peak_device_bytes"]);
 }
 
+// A failure in one of several scenes names it.
+TEST_F(CliTest, BenchNamesTheSceneAFailureIsIn) {
+    RunResult r = run("bench room_10 --height 12000 --iters 1 --gradient-seeds 0");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err.rfind("error: scene room_10: camera camera: its aspect ratio 1.5", 0), 0u) << r.err;
+}
+
 TEST_F(CliTest, BenchRejectsUnknownScenesBeforeRunning) {
     fs::path json = dir_ / "bench.json";
     std::ofstream(json) << "previous result";
