@@ -34,9 +34,11 @@ std::optional<UnboundedSceneEmission> unboundedSceneEmission(const Scene& scene)
                               "bright",
                               (prefix + "emission").c_str(), c, emission, prefix.c_str())};
         }
+        // As many digits as a float's value needs: values a user gave as 6e10 and 0.06
+        // are the floats 6.0000002e10 and 0.0599999987, over the bound by their rounding.
         return UnboundedSceneEmission{
             c, formatText("the scene-wide medium gives every ray that leaves the scene %semission / (sigma_a + "
-                          "sigma_s) = %g / %g = %g in channel %d, beyond the %g a radiance may have",
+                          "sigma_s) = %.9g / %.9g = %.9g in channel %d, beyond the %g a radiance may have",
                           prefix.c_str(), emission, sigmaT, emission / sigmaT, c, kMaxRadiance)};
     }
     return std::nullopt;

@@ -34,6 +34,17 @@ TEST(SceneMediumEmission, CouplesTheSceneWideHomogeneousMediumsSigmasAndEmission
     EXPECT_FALSE(sceneWideEmissionMember(scene, "media/fog/sigma_a"));
 }
 
+// A ratio over the bound by its floats' rounding alone says so in its digits: 6e10 and
+// 0.06 are stored as 6.0000002e10 and 0.0599999987.
+TEST(SceneMediumEmission, ARefusalShowsTheFloatsItCompared) {
+    std::optional<UnboundedSceneEmission> unbounded =
+        unboundedSceneEmission(sceneWideFog(glm::vec3(0.06f), glm::vec3(0.0f), glm::vec3(6e10f)));
+    ASSERT_TRUE(unbounded);
+    EXPECT_NE(unbounded->problem.find("= 6.0000002e+10 / 0.0599999987 = 1.00000006e+12 in channel 0, beyond the 1e+12"),
+              std::string::npos)
+        << unbounded->problem;
+}
+
 // Each member set to its range's end, from values far outside the bound, leaves the
 // scene within it as floats: emissions from ordinary down to below float's normal range.
 TEST(SceneMediumEmission, TheEndsOfTheRangesKeepTheBoundAsFloats) {
