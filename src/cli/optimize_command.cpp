@@ -293,7 +293,7 @@ void applyOverrides(const OptimizeCommandOptions& options, const ExperimentOverr
     if (given.optimizer->count()) experiment.optimize.optimizer = parseOptimizerKind(options.optimizer);
     if (given.adamEpsilon->count()) requireAdamForEpsilon(experiment.optimize.optimizer);
     if (given.optimizer->count() && experiment.optimize.optimizer != OptimizerKind::Adam &&
-        experiment.optimize.adamEpsilon != OptimizeOptions().adamEpsilon) {
+        experiment.adamEpsilonInFile) {
         throw Error(experiment.file.string() + ": adam_epsilon: only Adam has an epsilon, and --optimizer sgd is "
                     "given");
     }

@@ -258,6 +258,7 @@ void readOptimizeOptions(const ExperimentReader& reader, const Json& document, E
     }
     if (document.contains("adam_epsilon")) {
         options.adamEpsilon = reader.positive(document["adam_epsilon"], "adam_epsilon");
+        experiment.adamEpsilonInFile = true;
     }
     if (document.contains("learning_rates")) {
         const Json& rates = document["learning_rates"];

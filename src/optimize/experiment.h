@@ -48,6 +48,9 @@ struct Experiment {
     // The keys whose values a command line gave in place of the file's, with the option
     // that gave each ("smoothness": "--smoothness"): a problem with one names the option.
     std::map<std::string, std::string> givenOnCommandLine;
+    // Whether the file gives adam_epsilon (its value may be the default's): only Adam has
+    // one, whichever optimizer a command line names.
+    bool adamEpsilonInFile = false;
 };
 
 // Reads and checks an experiment file's structure: unknown keys, wrong types, a

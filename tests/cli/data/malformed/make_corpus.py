@@ -251,6 +251,9 @@ def main():
         case(name, experiment(**changes), "experiment", *fields)
     case("experiment_adam_epsilon_then_sgd.json", experiment(adam_epsilon=1e-6), "experiment", "adam_epsilon",
          "only Adam has an epsilon, and --optimizer sgd is given", extra="--optimizer sgd")
+    # Adam's own default, stated in the file, is still an epsilon SGD does not have.
+    case("experiment_default_adam_epsilon_then_sgd.json", experiment(adam_epsilon=1e-8), "experiment",
+         "adam_epsilon", "only Adam has an epsilon, and --optimizer sgd is given", extra="--optimizer sgd")
 
     # Targets for grad (the scene is scenes/cornell_fog.gltf).
     case("target_wrong_size.exr", exr(4, 4), "grad", "4x4", extra="--width 8 --height 8")
