@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include <zlib.h>
+
 #include "image/image_formats.h"
 
 namespace vkdr {
@@ -99,10 +101,18 @@ std::string pngChunkProblem(const unsigned char* bytes, size_t size) {
             return "the PNG chunk '" + type + "' at byte " + std::to_string(offset) + " declares " +
                    std::to_string(length) + " bytes, but " + std::to_string(left) + " follow";
         }
-        if (type == "IEND") return {};
         if (type == "IHDR") {
             if (std::string problem = pngHeaderProblem(bytes + offset + 8, length); !problem.empty()) return problem;
         }
+        // stb_image checks no CRC: damaged pixel data would decode to wrong pixels without a
+        // word. A critical chunk's CRC must match, as libpng requires by default.
+        const bool critical = type[0] >= 'A' && type[0] <= 'Z';
+        if (critical && left - length >= 4 &&
+            crc32(0, bytes + offset + 4, uInt(4 + length)) != bigEndian32(bytes + offset + 8 + length)) {
+            return "the PNG chunk '" + type + "' at byte " + std::to_string(offset) +
+                   " is damaged (its CRC does not match its bytes)";
+        }
+        if (type == "IEND") return {};
         offset += 8 + size_t(length) + std::min<size_t>(4, left - length);  // a cut-off CRC ends the walk
     }
     return {};

@@ -19,7 +19,8 @@ bool isPngOrJpeg(const unsigned char* bytes, size_t size);
 std::string imageSizeProblem(uint64_t width, uint64_t height);
 
 // For bytes that start with the PNG signature: what is wrong when a chunk declares more
-// bytes than follow it, or the header gives no pixels, more than kMaxImagePixels, or a
+// bytes than follow it, a critical chunk's CRC does not match its bytes, or the header
+// gives no pixels, more than kMaxImagePixels, or a
 // colour type and bit depth PNG does not allow (empty when none, or the bytes are not a
 // PNG).
 // stb_image sizes its buffer for the compressed data by the declared lengths before

@@ -159,6 +159,36 @@ TEST(Jpeg, ReadsAndDecodesSrgb) {
 
 // The decoder refuses images of no pixels or too many for it, and its callers lose its
 // reason: the header's size is named instead of "unknown image type".
+// stb_image checks no CRC: a byte of the pixel data changed would decode to other pixels.
+// A critical chunk whose CRC does not match is refused, as libpng does; an ancillary one,
+// which libpng only warns of and stb_image does not read, is not.
+TEST(Png, ACriticalChunkWhoseCrcDoesNotMatchIsRefused) {
+    test::ScratchDirectory dir;
+    const std::string png = Png16Encoder::encode(2, 2, 3, std::vector<uint16_t>(12, 30000));
+    const size_t idat = png.find("IDAT");
+    ASSERT_NE(idat, std::string::npos);
+    std::string damaged = png;
+    damaged[idat + 4 + 7] ^= 0x01;  // a sample byte of the first row
+    test::writeBytes(dir / "damaged.png", damaged);
+    try {
+        readImage(dir / "damaged.png");
+        ADD_FAILURE() << "damaged.png was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("the PNG chunk 'IDAT' at byte " + std::to_string(idat - 4) +
+                                             " is damaged (its CRC does not match its bytes)"),
+                  std::string::npos)
+            << e.what();
+    }
+    // An ancillary text chunk with a wrong CRC before the image data.
+    const std::string text = "Comment";
+    const std::string ancillary = std::string("\0\0\0\x07", 4) + "tEXt" + text + "\xde\xad\xbe\xef";
+    std::string withText = png;
+    withText.insert(idat - 4, ancillary);
+    test::writeBytes(dir / "text.png", withText);
+    test::writeBytes(dir / "good.png", png);
+    EXPECT_EQ(readImage(dir / "text.png").rgb, readImage(dir / "good.png").rgb);
+}
+
 TEST(EncodedImages, SizesTheHeaderGivesAreNamed) {
     test::ScratchDirectory dir;
     auto expectRefused = [&](const std::string& file, const std::string& part) {

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include "core/error.h"
 #include "core/printable_text.h"
@@ -198,6 +199,24 @@ TEST(ReadImage, GarbageBytes) {
 // sides, no more pixels than the readers allow, three values per pixel, and for PNG
 // (8-bit data) values in [0, 1]. A flipped byte in pixel data may still decode, and one
 // in an EXR's float data may decode to any float, so EXR values are not checked.
+// A PNG chunk's CRC catches a changed byte; every other damaged PNG gets CRCs that match
+// its bytes again, as a file made to get past that check would, so that the decoder sees
+// the damage.
+std::string withMatchingPngCrcs(std::string bytes) {
+    auto bigEndian = [&](size_t at) {
+        return uint32_t(uint8_t(bytes[at])) << 24 | uint32_t(uint8_t(bytes[at + 1])) << 16 |
+               uint32_t(uint8_t(bytes[at + 2])) << 8 | uint32_t(uint8_t(bytes[at + 3]));
+    };
+    for (size_t offset = 8; offset + 12 <= bytes.size();) {
+        const uint32_t length = bigEndian(offset);
+        if (length > bytes.size() - offset - 12) break;
+        const uint32_t crc = uint32_t(crc32(0, reinterpret_cast<const Bytef*>(bytes.data() + offset + 4), 4 + length));
+        for (int i = 0; i < 4; ++i) bytes[offset + 8 + length + i] = char(crc >> (24 - 8 * i));
+        offset += 12 + length;
+    }
+    return bytes;
+}
+
 TEST(ReadImage, RandomlyCorruptedFilesThrowOrReadConsistently) {
     test::ScratchDirectory dir;
     Image image{40, 30, std::vector<float>(40 * 30 * 3)};
@@ -213,6 +232,7 @@ TEST(ReadImage, RandomlyCorruptedFilesThrowOrReadConsistently) {
             std::string bytes = good;
             for (int k = 0; k <= trial % 8; ++k) bytes[rng() % bytes.size()] = char(rng());
             if (trial % 5 == 0) bytes.resize(rng() % bytes.size());
+            if (std::string(extension) == ".png" && trial % 2 == 1) bytes = withMatchingPngCrcs(bytes);
             test::writeBytes(bad, bytes);
             Image decoded;
             try {

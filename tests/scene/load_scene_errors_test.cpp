@@ -258,7 +258,7 @@ TEST(LoadSceneErrors, SceneWideEmissionWithoutAttenuation) {
     builder.document()["extensions"]["VKDR_participating_media"]["emission"] = {1.0, 1e12, 0.0};
     expectLoadError(builder.writeGltf(directory / "fog.gltf"),
                     {"extensions.VKDR_participating_media.emission[1]", "media/fog/emission / (sigma_a + sigma_s)",
-                     "1e+42", "beyond the 1e+12"});
+                     "= 9.99999993e+41 in channel 1", "beyond the 1e+12"});
     Scene enclosed = loadScene(boxWithMaterial(mediumMaterial({{"emission", 2.0}})).writeGltf(directory / "box.gltf")).scene;
     EXPECT_EQ(enclosed.media.at(0).emission, glm::vec3(2.0f));
 }
