@@ -12,7 +12,7 @@ packages=(
   cmake g++ make pkg-config
   libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools spirv-tools
   libtinygltf-dev nlohmann-json3-dev libstb-dev
-  libopenexr-dev libglm-dev libtbb-dev libcli11-dev
+  libopenexr-dev libglm-dev libtbb-dev libcli11-dev zlib1g-dev
   libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev libboost-dev
   libgtest-dev
   pybind11-dev python3-dev python3-numpy python3-torch python3-pytest
