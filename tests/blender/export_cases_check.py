@@ -595,6 +595,14 @@ def blinding_light(scene):
     add_light("POINT", "Blinding", (0.0, 0.0, 2.0), 1e30, scene.collection)
 
 
+def blinding_volume(scene):
+    """A volume cube emitting 1e13: the medium's emission, not a surface's."""
+    bpy.ops.mesh.primitive_cube_add(size=0.5)
+    material = volume_material("BlindingFog", 1.0)
+    material.node_tree.nodes["Principled Volume"].inputs["Emission Strength"].default_value = 1e13
+    bpy.context.object.data.materials.append(material)
+
+
 def open_volume(scene):
     """A plane, which encloses nothing, with a volume material."""
     bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, 1.0))
@@ -813,6 +821,7 @@ CASES = {"instanced_lights": instanced_lights, "vertex_instanced_lights": vertex
          "panoramic_camera": panoramic_camera,
          "textured_materials": textured_materials, "nan_density": nan_density, "open_volume": open_volume, "missing_image": missing_image,
          "muted_volume": muted_volume, "rerouted_volumes": rerouted_volumes, "blinding_light": blinding_light,
+         "blinding_volume": blinding_volume,
          "nan_light_power": nan_light_power,
          "area_light_of_no_size": area_light_of_no_size,
          "area_emitter_named_like_a_material": area_emitter_named_like_a_material,

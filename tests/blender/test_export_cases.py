@@ -467,6 +467,8 @@ def test_an_orthographic_camera_is_exported_with_the_view_cycles_renders(exporte
     ("nan_density", "material 'NanFog': input 'Density' of node 'Principled Volume' is not a finite number"),
     ("open_volume", "object 'Sheet': its faces of material 'OpenFog', a volume, do not close (4 edges"),
     ("nan_light_power", "light 'Bulb': its energy is not a finite number"),
+    ("blinding_volume", "materials[0].extensions.VKDR_participating_media.emission ('BlindingFog'): emits 1e+13 in "
+                        "its brightest channel, more than the 1e+12 vkdiffrender takes"),
     ("blinding_light", "extensions.KHR_lights_punctual.lights[0] ('Blinding'): emits 7.95775e+28 in its brightest "
                        "channel, more than the 1e+12 vkdiffrender takes"),
     ("glb_path", "scene.glb: the export writes a .gltf with a .bin beside it; give a path ending in .gltf"),

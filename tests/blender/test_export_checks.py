@@ -37,7 +37,7 @@ def test_the_first_number_that_is_not_finite_is_found_with_its_path_and_owner():
     assert export_checks.owner_of(DOC, "extensions.KHR_lights_punctual") == ""
 
 
-def test_emission_beyond_the_limit_is_found_in_lights_materials_and_the_background():
+def test_emission_beyond_the_limit_is_found_in_lights_materials_media_and_the_background():
     assert export_checks.first_beyond_emission_limit(DOC) is None
     limit = export_checks.MAX_EMISSION
     doc = with_value(["extensions", "KHR_lights_punctual", "lights", 0, "intensity"], 2.0 * limit)
@@ -46,6 +46,12 @@ def test_emission_beyond_the_limit_is_found_in_lights_materials_and_the_backgrou
     assert export_checks.first_beyond_emission_limit(doc) == ("materials[1]", 3.0 * limit)
     doc = with_value(["extensions", "VKDR_background"], {"radiance": [0.0, limit * 1.5, 0.0]})
     assert export_checks.first_beyond_emission_limit(doc) == ("extensions.VKDR_background", 1.5 * limit)
+    doc = with_value(["materials", 1, "extensions", "VKDR_participating_media", "emission"], [0.0, 0.0, 4.0 * limit])
+    assert export_checks.first_beyond_emission_limit(doc) == (
+        "materials[1].extensions.VKDR_participating_media.emission", 4.0 * limit)
+    doc = with_value(["extensions", "VKDR_participating_media"], {"emission": 5.0 * limit})
+    assert export_checks.first_beyond_emission_limit(doc) == ("extensions.VKDR_participating_media.emission",
+                                                              5.0 * limit)
     # At the limit itself, as vkdiffrender takes it.
     doc = with_value(["extensions", "KHR_lights_punctual", "lights", 0, "intensity"], limit)
     assert export_checks.first_beyond_emission_limit(doc) is None

@@ -25,8 +25,12 @@ def exported(blender, tmp_path_factory):
     return out
 
 
+def grid_media(doc):
+    return [m for m in doc["materials"] if "density" in m.get("extensions", {}).get("VKDR_participating_media", {})]
+
+
 def plume_medium(doc):
-    media = [m for m in doc["materials"] if "density" in m.get("extensions", {}).get("VKDR_participating_media", {})]
+    media = grid_media(doc)
     assert len(media) == 1, "one medium with a density grid"
     return media[0]["extensions"]["VKDR_participating_media"]
 
@@ -105,6 +109,23 @@ def test_grid_attributes_become_albedo_and_emission_grids(fire, cli):
     assert vector["emission"] == pytest.approx([2.0, 1.0, 0.2], rel=1e-6)
     vector_warnings = json.loads((fire / "vector_emission" / "warnings.json").read_text())
     assert any("vector grid 'grad_density'" in w for w in vector_warnings), vector_warnings
+    # A vector grid as the density: the Volume object is skipped, saying why.
+    assert grid_media(json.loads((fire / "vector_density" / "scene.gltf").read_text())) == []
+    density_warnings = json.loads((fire / "vector_density" / "warnings.json").read_text())
+    assert any("its density reads the vector grid 'grad_density', and a density grid must be scalar; skipped" in w
+               for w in density_warnings), density_warnings
+    # Modifiers Cycles applies and the export does not: each named.
+    modified_warnings = json.loads((fire / "modified" / "warnings.json").read_text())
+    for name, kind in (("Displace", "VOLUME_DISPLACE"), ("Shift", "NODES")):
+        assert any(f"its modifier '{name}' ({kind}) is not applied" in w for w in modified_warnings), modified_warnings
+    # A Volume object scaled flat has no volume: skipped (its placement would be singular).
+    assert grid_media(json.loads((fire / "flattened" / "scene.gltf").read_text())) == []
+    flat_warnings = json.loads((fire / "flattened" / "warnings.json").read_text())
+    assert any("its transform flattens it" in w for w in flat_warnings), flat_warnings
+    render = subprocess.run([cli, "render", str(fire / "flattened" / "scene.gltf"), "-o", str(fire / "flat.exr"),
+                             "--spp", "1", "--width", "8", "--height", "8", "--max-depth", "1"],
+                            capture_output=True, text=True)
+    assert render.returncode == 0, render.stderr
     # Which is a constant strength: Cycles emits it evenly, vkdiffrender times the density.
     assert any("a constant Emission Strength, which Cycles emits evenly" in w for w in vector_warnings), vector_warnings
     render = subprocess.run([cli, "render", str(fire / "scene.gltf"), "-o", str(fire / "fire.exr"), "--spp", "2",

@@ -8,7 +8,9 @@ file's density and flame grids as colour and emission strength), exported again 
 OUT/<case>/scene.gltf (warnings in OUT/<case>/warnings.json) with one change each:
 "swapped", Density Attribute "flame"; "absorbing", a grey Absorption Color beside the
 Color Attribute; "vector_emission", Emission Strength reading the vector grid
-`grad_density` (its unlinked value 2).
+`grad_density` (its unlinked value 2); "vector_density", Density Attribute
+`grad_density`; "modified", a Volume Displace and a Geometry Nodes modifier on the
+object; "flattened", the object scaled by 0 along z.
 
   blender -b --factory-startup --python volume_export_check.py -- --out DIR [--fire]"""
 import argparse
@@ -58,6 +60,17 @@ def main():
             attribute.attribute_name = "grad_density"
             node.inputs["Emission Strength"].default_value = 2.0
 
+        export_case("vector_density", lambda: setattr(node.inputs["Density Attribute"], "default_value", "grad_density"),
+                    lambda: setattr(node.inputs["Density Attribute"], "default_value", "density"))
+
+        def add_modifiers():
+            plume.modifiers.new("Displace", "VOLUME_DISPLACE")
+            plume.modifiers.new("Shift", "NODES").node_group = bpy.data.node_groups.new("Shift", "GeometryNodeTree")
+
+        export_case("modified", add_modifiers, plume.modifiers.clear)
+        scale = plume.scale.copy()
+        export_case("flattened", lambda: setattr(plume, "scale", (scale.x, scale.y, 0.0)),
+                    lambda: setattr(plume, "scale", scale))
         export_case("vector_emission", read_vector_grid, lambda: None)
 
 

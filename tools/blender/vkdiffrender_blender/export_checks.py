@@ -40,9 +40,15 @@ def first_non_finite(value, path=""):
 MAX_EMISSION = 1e12
 
 
+def _largest_channel(value):
+    """The largest channel of an RGB list or a single number (a medium's emission)."""
+    return max(value) if isinstance(value, list) and value else value if isinstance(value, (int, float)) else 0.0
+
+
 def first_beyond_emission_limit(doc):
-    """(JSON path, value) of the first light intensity, emission or background radiance of
-    the document beyond MAX_EMISSION in some channel, or None."""
+    """(JSON path, value) of the first light intensity, emission (of a surface or a
+    medium) or background radiance of the document beyond MAX_EMISSION in some channel,
+    or None."""
     lights = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
     for i, light in enumerate(lights):
         value = light.get("intensity", 1.0) * max(light.get("color", [1.0, 1.0, 1.0]))
@@ -54,6 +60,13 @@ def first_beyond_emission_limit(doc):
         value = strength * max(material.get("emissiveFactor", [0.0, 0.0, 0.0]))
         if value > MAX_EMISSION:
             return f"materials[{i}]", value
+        medium = material.get("extensions", {}).get("VKDR_participating_media", {})
+        if _largest_channel(medium.get("emission", 0.0)) > MAX_EMISSION:
+            return (f"materials[{i}].extensions.VKDR_participating_media.emission",
+                    _largest_channel(medium["emission"]))
+    scene_medium = doc.get("extensions", {}).get("VKDR_participating_media", {})
+    if _largest_channel(scene_medium.get("emission", 0.0)) > MAX_EMISSION:
+        return "extensions.VKDR_participating_media.emission", _largest_channel(scene_medium["emission"])
     background = doc.get("extensions", {}).get("VKDR_background", {}).get("radiance", [0.0])
     if max(background) > MAX_EMISSION:
         return "extensions.VKDR_background", max(background)

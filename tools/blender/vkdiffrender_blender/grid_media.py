@@ -123,6 +123,10 @@ def grid_medium(doc, material, volume, placement, name, copies, what, warnings):
         warnings.append(f"{what}: no grid '{grid}' in a file on disk (a volume generated in memory, or a "
                         f"Density Attribute the file lacks); skipped")
         return None
+    if volume.grids[grid].channels != 1:
+        warnings.append(f"{what}: its density reads the vector grid '{grid}', and a density grid must be scalar; "
+                        f"skipped (name a scalar grid in the Principled Volume's Density Attribute)")
+        return None
     copy = copies.copy(source, name)
     matrix = Z_UP_TO_Y_UP @ placement
     nodes = doc.setdefault("nodes", [])
@@ -141,6 +145,16 @@ def grid_medium(doc, material, volume, placement, name, copies, what, warnings):
     return entry
 
 
+def is_flattening(matrix):
+    """Whether MATRIX maps a voxel to nothing or to nearly a plane, by vkdiffrender's rule
+    for a grid's placement (docs/density-grids.md): its unit axes span less than 1e-6."""
+    axes = [matrix.col[i].xyz for i in range(3)]
+    if any(axis.length == 0.0 for axis in axes):
+        return True
+    units = [axis.normalized() for axis in axes]
+    return abs(units[0].dot(units[1].cross(units[2]))) < 1e-6
+
+
 def add_volume_objects(doc, view_layer, copies, warnings):
     """Volume objects become media: a box around their grids as the boundary, the grids
     their material reads (grid_medium), placed by the object's transform (the file's own
@@ -154,8 +168,15 @@ def add_volume_objects(doc, view_layer, copies, warnings):
         if not volume.grids.load():
             warnings.append(f"{what}: its grids do not load ({volume.grids.error_message}); skipped")
             continue
-        if any(m.type == "VOLUME_DISPLACE" for m in obj.modifiers):
-            warnings.append(f"{what}: its Volume Displace modifier is not applied; the file is exported as it is")
+        for modifier in obj.modifiers:
+            if modifier.show_render:
+                warnings.append(f"{what}: its modifier '{modifier.name}' ({modifier.type}) is not applied, which "
+                                f"Cycles renders; the grids are exported as the file holds them, where the object "
+                                f"places them")
+        if is_flattening(rendered.matrix_world):
+            warnings.append(f"{what}: its transform flattens it (a scale of 0, or axes nearly in one plane), so "
+                            f"that it has no volume, and Cycles renders nothing of it; skipped")
+            continue
         material = obj.active_material
         entry = grid_medium(doc, material, volume, rendered.matrix_world, rendered.name, copies, what, warnings)
         if entry is None:
