@@ -149,7 +149,8 @@ void requireObjectsWithinFloatRange(const py::array& objects, const std::string&
 
 // Numbers as numpy makes float32 of them. Refused, with a TypeError naming `what`: None
 // (numpy would make it NaN), text (numpy would parse "0.1"), complex numbers (numpy
-// would drop their imaginary part), and what numpy cannot make an array of numbers of,
+// would drop their imaginary part), a masked array (numpy would take its masked values),
+// and what numpy cannot make an array of numbers of,
 // with numpy's or PyTorch's reason (a tensor that requires grad, say); with a
 // vkdiffrender.Error, values beyond float's range.
 // `requireShape` checks the array's shape before its values are read or converted, so
@@ -163,6 +164,10 @@ FloatArray floatArrayOf(const py::object& value, const std::string& what,
     }
     py::array numbers;
     const py::object numpy = py::module_::import("numpy");
+    // numpy.asarray takes a masked array's hidden values as they are.
+    if (py::isinstance(value, numpy.attr("ma").attr("MaskedArray"))) {
+        refuse("a masked array (its masked values would be taken; pass numpy.ma.filled(value, fill) or its data)");
+    }
     try {
         numbers = numpy.attr("asarray")(value);
         // Integers beyond 64 bits, Fractions and Decimals make arrays of objects, which
@@ -437,7 +442,8 @@ void bindParameter(py::module_& m) {
             "the other names of the same values: the base colour textures of materials that share this one's "
             "texture")
         .def("__repr__", [](const ParameterInfo& p) {
-            return "Parameter('" + p.name + "', shape=" + shapeText(p.shape) + ", range=[" +
+            return "Parameter(" + py::repr(py::str(p.name)).cast<std::string>() + ", shape=" + shapeText(p.shape) +
+                   ", range=[" +
                    py::str(py::float_(p.range.lower)).cast<std::string>() + ", " +
                    py::str(py::float_(p.range.upper)).cast<std::string>() + "])";
         });
@@ -496,7 +502,7 @@ void bindScene(py::module_& m) {
                 const std::vector<ParameterInfo> all = allParameters(s);
                 return std::any_of(all.begin(), all.end(), [&](const ParameterInfo& p) { return p.name == name; });
             },
-            py::arg("name"))
+            py::arg("name"), "Whether the scene has a parameter of that name")
         .def(
             "render", [](SceneSession& s, VKDR_RENDER_KEYWORD_PARAMETERS) { return render(s, VKDR_RENDER_KEYWORD_VALUES); },
             VKDR_RENDER_KEYWORDS,
@@ -575,6 +581,8 @@ PYBIND11_MODULE(_vkdiffrender, m) {
     settingSpelling() = SettingSpelling::PythonKeywords;  // errors name the keywords, not the options
     finishModuleWorkAtExit();
     static py::exception<Error> error(m, "Error");
+    error.doc() = "What vkdiffrender refuses or cannot do: a file it cannot read, a value out of range, an "
+                  "unknown name; the message names what is at fault";
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);

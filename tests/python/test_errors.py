@@ -95,9 +95,12 @@ def test_bad_parameter_values_are_refused(scene, value, problem):
     (1 + 2j, "got an array of dtype complex128"),
     (np.array(["1", "2", "3"]), "got an array of dtype <U1"),
     ([0.1, "x", 0.2], "got an array of dtype <U32"),
+    (np.ma.masked_array([0.1, 5.0, 0.1], mask=[0, 1, 0]),
+     "got a masked array (its masked values would be taken; pass numpy.ma.filled(value, fill) or its data)"),
 ])
 def test_values_that_are_not_numbers_are_type_errors_naming_the_parameter(scene, value, problem):
-    """numpy would parse text, make None NaN and drop an imaginary part: each is refused."""
+    """numpy would parse text, make None NaN, drop an imaginary part and take a masked
+    array's hidden values: each is refused."""
     before = scene["media/fog/sigma_a"].copy()
     with pytest.raises(TypeError, match="^media/fog/sigma_a: expected numbers, " + re.escape(problem) + "$"):
         scene["media/fog/sigma_a"] = value
@@ -338,6 +341,40 @@ def test_a_path_with_a_null_byte_is_a_value_error_naming_the_argument(scene, tmp
     with pytest.raises(ValueError, match="^" + re.escape(problem) + "$"):
         call(scene, tmp_path)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_error_and_every_scene_method_say_what_they_are():
+    assert "refuses" in vkdiffrender.Error.__doc__
+    for name in ("render", "backpropagate", "loss_gradient", "write", "parameter", "parameters", "__getitem__",
+                 "__setitem__", "__contains__"):
+        assert len(getattr(vkdiffrender.Scene, name).__doc__.splitlines()) > 1, name  # more than the signature
+
+
+def test_a_parameters_repr_quotes_its_name_as_python_does(tmp_path):
+    """A material's name may hold quotes and newlines."""
+    gltf = json.loads((SCENES / "cornell_fog.gltf").read_text())
+    gltf["materials"][0]["name"] = "it's\nwhite"
+    (tmp_path / "named.gltf").write_text(json.dumps(gltf))
+    parameter = vkdiffrender.Scene(str(tmp_path / "named.gltf")).parameter("materials/it's\nwhite/base_color")
+    assert repr(parameter) == "Parameter(\"materials/it's\\nwhite/base_color\", shape=(3,), range=[0.0, 1.0])"
+
+
+LONE_SURROGATE = "\udcff"  # what Python makes of a byte it cannot decode
+
+
+@pytest.mark.parametrize("call,problem", [
+    (lambda s: s.render(spp=1, width=WIDTH, camera=LONE_SURROGATE), "render(): camera"),
+    (lambda s: vkdiffrender.Scene(s.file, device=LONE_SURROGATE), "Scene(): device"),
+    (lambda s: s.backpropagate(np.ones((WIDTH, WIDTH, 3), np.float32), ["media/fog/" + LONE_SURROGATE], spp=1,
+                               width=WIDTH), "backpropagate(): parameters"),
+    (lambda s: s["media/fog/" + LONE_SURROGATE], "__getitem__(): name"),
+    (lambda s: s.__setitem__("media/fog/" + LONE_SURROGATE, 0.1), "__setitem__(): name"),
+])
+def test_a_str_that_is_not_unicode_is_a_value_error_naming_the_argument(scene, call, problem):
+    """pybind11 cannot pass it on as UTF-8, and says so without naming it."""
+    with pytest.raises(ValueError, match="^" + re.escape(problem + ": holds a character that is not valid Unicode")):
+        call(scene)
+    assert scene.render(spp=1, width=WIDTH).shape == (WIDTH, WIDTH, 3)
 
 
 def test_write_image_takes_an_image_wider_than_a_render(tmp_path):

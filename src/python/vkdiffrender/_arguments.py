@@ -84,6 +84,16 @@ class _Signature:
                 return f"{self.name}(): {name}: expected a path (a str or os.PathLike), got {type(value).__name__}"
         return None
 
+    def not_unicode(self, args, kwargs):
+        """The problem of a str argument (but a path, which may name any file) holding a
+        character UTF-8 cannot encode, which no name in a scene holds; None where none
+        does."""
+        given = dict(zip(self.positional, args)) | kwargs
+        for name, value in given.items():
+            if self.types.get(name) != "os.PathLike" and _not_unicode(value):
+                return f"{self.name}(): {name}: holds a character that is not valid Unicode (a lone surrogate)"
+        return None
+
     def null_in_path(self, args, kwargs):
         """The problem of a path given with a NUL byte, which no file's name holds (Python's
         open() raises ValueError for it); None where there is none."""
@@ -95,6 +105,20 @@ class _Signature:
         return None
 
 
+def _not_unicode(value):
+    """Whether VALUE is a str (or a list or tuple holding one) that UTF-8 cannot encode: one
+    with a lone surrogate, as Python decodes bytes it cannot read."""
+    if isinstance(value, (list, tuple)):
+        return any(_not_unicode(item) for item in value)
+    if not isinstance(value, str):
+        return False
+    try:
+        value.encode("utf-8")
+    except UnicodeEncodeError:
+        return True
+    return False
+
+
 def named_argument_errors(function, name=None):
     """`function` (bound by pybind11) raising one-line TypeErrors for arguments that do not fit,
     which name it as `name` (by default its own name)."""
@@ -104,6 +128,12 @@ def named_argument_errors(function, name=None):
     def checked(*args, **kwargs):
         try:
             return function(*args, **kwargs)
+        except (RuntimeError, UnicodeEncodeError):
+            # pybind11 cannot cast such a str to a C++ string, and says so without naming it.
+            problem = signature.not_unicode(args[1:] if signature.method else args, kwargs)
+            if problem is None:
+                raise
+            raise ValueError(problem) from None
         except TypeError as error:
             if "incompatible" not in str(error).partition("\n")[0]:
                 raise
