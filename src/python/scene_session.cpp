@@ -8,6 +8,7 @@
 #include "diff/gradient_slots.h"
 #include "image/finite_pixels.h"
 #include "image/output_paths.h"
+#include "render/camera_setup.h"
 #include "scene/parameters.h"
 #include "scene/scene_warnings.h"
 #include "scene/write_scene.h"
@@ -139,10 +140,15 @@ void SceneSession::set(const std::string& name, const std::vector<float>& values
     ++parameterVersion_;
 }
 
-SceneSession::CachedRenderer& SceneSession::rendererFor(const RenderSettings& settings) {
+SceneSession::CachedRenderer& SceneSession::rendererFor(const RenderSettings& settings, const Image* input,
+                                                       const std::string& what) {
     auto found = renderers_.begin();
     while (found != renderers_.end() && !sameView(found->settings, settings)) ++found;
     if (found == renderers_.end()) {
+        // A call refused for its camera or its input's size leaves the cached views as
+        // they were: it is refused before one is evicted or a renderer built.
+        const gpu::GpuCamera camera = setUpCamera(loaded_.scene, settings);
+        if (input != nullptr) requireImageSize(*input, int(camera.width), int(camera.height), what);
         if (renderers_.size() == kCachedRenderers) {
             renderers_.pop_back();  // its memory is free before the new renderer takes its own
         }
@@ -152,6 +158,7 @@ SceneSession::CachedRenderer& SceneSession::rendererFor(const RenderSettings& se
         renderers_.splice(renderers_.begin(), renderers_, found);
     }
     CachedRenderer& cached = renderers_.front();
+    if (input != nullptr) cached.renderer->requireRenderSize(*input, what);
     if (cached.parameterVersion != parameterVersion_) {
         cached.renderer->setParameters(loaded_.scene);
         cached.parameterVersion = parameterVersion_;
@@ -199,8 +206,7 @@ SceneSession::Backpropagated SceneSession::backpropagate(const RenderSettings& s
         }
     }
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
-    CachedRenderer& view = rendererFor(settings);
-    view.renderer->requireRenderSize(imageAdjoint, "the image adjoint");
+    CachedRenderer& view = rendererFor(settings, &imageAdjoint, "the image adjoint");
     if (slots.empty()) {
         return {};
     }
@@ -227,8 +233,7 @@ SceneSession::LossGradient SceneSession::lossGradient(const RenderSettings& sett
     const std::vector<GradientSlot> slots = resolveGradientSlots(loaded_.scene, names);
     const DerivativeTargets wanted = derivativeTargetsOf(slots);
     uint64_t cutPaths = 0;
-    CachedRenderer& view = rendererFor(settings);
-    view.renderer->requireRenderSize(target, "the target");
+    CachedRenderer& view = rendererFor(settings, &target, "the target");
     GradientEvaluation evaluation = withRenderer(view, [&](CachedRenderer& cached) {
         if (!cached.adjoint || cached.adjoint->loss != loss || cached.adjoint->targets.kinds != wanted.kinds) {
             cached.renderer->enableGradients(target, loss, wanted);

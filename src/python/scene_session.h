@@ -88,8 +88,12 @@ public:
 private:
     struct CachedRenderer;
     // The renderer for these settings, made (or moved to the front of renderers_) and
-    // given the current parameters and the settings' seed.
-    CachedRenderer& rendererFor(const RenderSettings& settings);
+    // given the current parameters and the settings' seed. `input` (an image adjoint or a
+    // target, named `what` in errors), where given, must have the render's size; an
+    // unknown camera or an input of another size is refused before any cached renderer
+    // is evicted.
+    CachedRenderer& rendererFor(const RenderSettings& settings, const Image* input = nullptr,
+                                const std::string& what = "");
     // work(cached) with the renderer rendererFor() returned last; any exception discards
     // it. What is checked before the call (an input's size) keeps it.
     template <typename Work>

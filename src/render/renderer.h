@@ -76,6 +76,10 @@ struct GradientEvaluation {
     double adjointMs = 0.0;  // wall time of the rest: replays, adjoint passes and losses
 };
 
+// Throws vkdr::Error naming `what` (an image adjoint, a target) unless `image` is
+// width x height pixels, the render's size.
+void requireImageSize(const Image& image, int width, int height, const std::string& what);
+
 // The wavefront path tracer: uploads a scene once, then renders it pass by pass; with
 // gradients enabled it also evaluates a loss against a target and back-propagates it.
 class Renderer {

@@ -53,11 +53,15 @@ void Renderer::requireAdjointUse(AdjointUse use, const char* call) const {
     }
 }
 
-void Renderer::requireRenderSize(const Image& image, const std::string& what) const {
-    if (image.width != width() || image.height != height()) {
+void requireImageSize(const Image& image, int width, int height, const std::string& what) {
+    if (image.width != width || image.height != height) {
         throw Error(what + " is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                    " but the render is " + std::to_string(width()) + "x" + std::to_string(height()));
+                    " but the render is " + std::to_string(width) + "x" + std::to_string(height));
     }
+}
+
+void Renderer::requireRenderSize(const Image& image, const std::string& what) const {
+    requireImageSize(image, width(), height(), what);
 }
 
 void Renderer::setTarget(const Image& target) {
