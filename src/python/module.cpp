@@ -484,6 +484,11 @@ void bindScene(py::module_& m) {
              "Loads a .gltf or .glb. device: an index or part of a name (vkdiffrender.devices()); "
              "allow_outside_files: let the scene read files outside its own directory.")
         .def_property_readonly("file", &SceneSession::file, "The absolute path the scene was loaded from")
+        .def("__repr__",
+             [](const SceneSession& s) {
+                 return "<vkdiffrender.Scene " + py::repr(py::str(s.file().string())).cast<std::string>() + " on " +
+                        s.context().description().name + ">";
+             })
         .def_property_readonly("warnings", &SceneSession::warnings, "What the loader ignored or approximated")
         .def_property_readonly(
             "device", [](const SceneSession& s) { return s.context().description().name; },

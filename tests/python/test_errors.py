@@ -343,8 +343,9 @@ def test_a_path_with_a_null_byte_is_a_value_error_naming_the_argument(scene, tmp
     assert list(tmp_path.iterdir()) == []
 
 
-def test_the_error_and_every_scene_method_say_what_they_are():
+def test_the_error_and_every_scene_method_say_what_they_are(scene):
     assert "refuses" in vkdiffrender.Error.__doc__
+    assert repr(scene) == f"<vkdiffrender.Scene {str(scene.file)!r} on {scene.device}>"
     for name in ("render", "backpropagate", "loss_gradient", "write", "parameter", "parameters", "__getitem__",
                  "__setitem__", "__contains__"):
         assert len(getattr(vkdiffrender.Scene, name).__doc__.splitlines()) > 1, name  # more than the signature
