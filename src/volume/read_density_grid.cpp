@@ -184,6 +184,14 @@ DensityGrid denseBoxOf(const GridT& grid, const std::string& name, const glm::dm
     return dense;
 }
 
+// OpenVDB checks an affine map as it reads it, refusing (with an ArithmeticError) one that
+// is not finite or whose voxels are smaller than its transforms hold: said in the
+// project's words. (Other maps are checked by indexToLocalOf, which can tell which.)
+Error unmappableTransform() {
+    return Error("the transform is singular or not finite, or its voxels are too small for OpenVDB (OpenVDB's "
+                 "transforms need a voxel's volume of at least 3e-15, voxels about 1.44e-5 across)");
+}
+
 // OpenVDB's File reads on past a file's end, using sizes and values the failed reads left
 // unset: a cut file can ask for a string of gigabytes or give voxels of garbage. Reading
 // the file whole through a stream that throws at its end first refuses such a file.
@@ -192,6 +200,8 @@ void requireWholeVdb(const std::filesystem::path& file) {
     in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
     try {
         openvdb::io::Stream whole(in, /*delayLoad=*/false);
+    } catch (const openvdb::ArithmeticError&) {
+        throw unmappableTransform();
     } catch (const std::ios_base::failure&) {
         const uintmax_t bytes = std::filesystem::file_size(file);
         // OpenVDB's magic number is 8 bytes: a shorter file is none.
@@ -242,14 +252,7 @@ DensityGrid readVdb(const std::filesystem::path& file, const std::string& gridNa
         throw Error(severalGridsNamed(gridName, named.size(),
                                       "name one as OpenVDB does: '" + named[0] + "', '" + named[1] + "'..."));
     }
-    openvdb::GridBase::Ptr grid;
-    try {
-        grid = vdb.readGrid(gridName);
-    } catch (const openvdb::ArithmeticError&) {
-        // An affine map is checked as it is read, with the refusal indexToLocalOf gives.
-        throw Error("the transform is singular or not finite, or its voxels are too small for OpenVDB (OpenVDB's "
-                    "transforms need a voxel's volume of at least 3e-15, voxels about 1.44e-5 across)");
-    }
+    const openvdb::GridBase::Ptr grid = vdb.readGrid(gridName);
     vdb.close();
     const bool isFloat = grid->isType<openvdb::FloatGrid>(), isDouble = grid->isType<openvdb::DoubleGrid>();
     const bool isVector =

@@ -242,7 +242,8 @@ TEST(DensityGridErrors, SingularTransform) {
     ASSERT_NE(at, std::string::npos);
     bytes.replace(at, sizeof(double), std::string(reinterpret_cast<const char*>(&zero), sizeof(double)));
     writeBytes(directory / "singular.vdb", bytes);
-    expectReadError(directory / "singular.vdb", "density", {"singular"});
+    // OpenVDB refuses the affine map as it reads it, in its own words, which are not passed on.
+    expectReadError(directory / "singular.vdb", "density", {"the transform is singular or not finite"});
 
     nanovdb::GridHandle<> handle = nanovdb::openToNanoVDB(*gridWithVoxel({1, 1, 1}, 1.0f));
     nanovdb::Map& map = reinterpret_cast<nanovdb::GridData*>(handle.data())->mMap;
